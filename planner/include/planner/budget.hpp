@@ -1,0 +1,34 @@
+#pragma once
+// Budget: how much search one planning call may do. Both limits apply; whichever runs out
+// first ends the call. The expansion limit makes runs deterministic (tests); the
+// wall-clock limit is the real-time cutoff.
+#include <chrono>
+#include <cstdint>
+#include <limits>
+
+namespace planner {
+
+using Clock = std::chrono::steady_clock;
+
+struct Budget {
+  double ms = std::numeric_limits<double>::infinity();
+  uint64_t expansions = std::numeric_limits<uint64_t>::max();
+
+  static Budget time_ms(double ms) { return {ms, std::numeric_limits<uint64_t>::max()}; }
+  static Budget expansion_count(uint64_t e) { return {std::numeric_limits<double>::infinity(), e}; }
+  static Budget unlimited() { return {}; }
+
+  // Deadline for a call starting now (time_point::max() when unlimited).
+  Clock::time_point deadline_from(Clock::time_point start) const
+  {
+    if (!(ms < 1e12)) return Clock::time_point::max();
+    return start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(ms));
+  }
+};
+
+inline double ms_since(Clock::time_point t0)
+{
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+}  // namespace planner

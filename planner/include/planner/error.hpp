@@ -1,0 +1,19 @@
+#pragma once
+// Errors the planner reports for bad input. The message is one line that names the
+// file and line (or the object) at fault, so a CLI can print it as is and exit non-zero.
+#include <stdexcept>
+#include <string>
+
+namespace planner {
+
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// "path:line: what" (line omitted when 0).
+inline InputError input_error(const std::string& path, int line, const std::string& what)
+{
+  return InputError(path + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " + what);
+}
+
+}  // namespace planner

@@ -1,0 +1,79 @@
+#pragma once
+// Graph: the MAPF graph. Vertices are dense ids 0..size()-1; edges are undirected
+// (every move can be reversed, which RT-LaCAM's reroot relies on). Neighbour lists are
+// stored flat (CSR) because PIBT walks them in its innermost loop.
+//
+// Vertices may carry a display position (x, y). Graphs built from a MovingAI grid also
+// keep the grid: width(), height(), cell (x = column, y = row) of each vertex and the
+// vertex at a cell (-1 on obstacles).
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace planner {
+
+using Vertex = int32_t;
+
+struct Point {
+  double x = 0, y = 0;
+};
+
+// A read-only view of a contiguous range (C++17 has no std::span).
+template <class T>
+struct Span {
+  const T* b = nullptr;
+  const T* e = nullptr;
+  const T* begin() const { return b; }
+  const T* end() const { return e; }
+  size_t size() const { return static_cast<size_t>(e - b); }
+  bool empty() const { return b == e; }
+  const T& operator[](size_t k) const { return b[k]; }
+};
+
+class Graph {
+ public:
+  Graph() = default;
+
+  // Undirected graph from an edge list. Duplicate edges are merged; self-loops and
+  // ids out of range throw std::invalid_argument. `pos` is empty or has one entry per vertex.
+  static Graph from_edges(int num_vertices, const std::vector<std::pair<Vertex, Vertex>>& edges,
+                          std::vector<Point> pos = {});
+
+  // 4-connected grid graph; free[y * width + x] says whether the cell is free.
+  static Graph from_grid(int width, int height, const std::vector<bool>& free);
+
+  int size() const { return static_cast<int>(offsets_.size()) - 1; }
+  Span<Vertex> neighbors(Vertex v) const { return {nbrs_.data() + offsets_[v], nbrs_.data() + offsets_[v + 1]}; }
+  int degree(Vertex v) const { return offsets_[v + 1] - offsets_[v]; }
+  int max_degree() const { return max_degree_; }
+  bool adjacent(Vertex u, Vertex v) const;
+  size_t num_edges() const { return nbrs_.size() / 2; }
+
+  bool has_positions() const { return !pos_.empty(); }
+  Point position(Vertex v) const { return pos_[v]; }
+
+  // Grid graphs only (width() == 0 otherwise).
+  bool is_grid() const { return width_ > 0; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Vertex at(int x, int y) const;              // -1 off the map or on an obstacle
+  int cell_x(Vertex v) const { return cell_[v] % width_; }
+  int cell_y(Vertex v) const { return cell_[v] / width_; }
+
+  // Number of connected components and a component id per vertex.
+  std::vector<int> components(int* count = nullptr) const;
+
+  std::string name;  // e.g. the map file it came from
+
+ private:
+  std::vector<int32_t> offsets_{0};
+  std::vector<Vertex> nbrs_;
+  std::vector<Point> pos_;
+  int max_degree_ = 0;
+  int width_ = 0, height_ = 0;
+  std::vector<int32_t> cell_;       // vertex -> y * width + x
+  std::vector<Vertex> vertex_at_;   // y * width + x -> vertex or -1
+};
+
+}  // namespace planner

@@ -1,0 +1,38 @@
+#pragma once
+// NaiveRtLacam: the baseline of the RT-LaCAM paper. Every iteration runs a fresh LaCAM
+// search from the current configuration with the same budget and moves by the same rule
+// (root's child toward the top of the DFS stack, or toward the goal once found). Nothing
+// is remembered between iterations, so it can cycle forever (livelock).
+#include "planner/realtime_planner.hpp"
+
+namespace planner {
+
+class NaiveRtLacam : public RealtimePlanner {
+ public:
+  NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
+               ActionPreference* pref = nullptr, GoalTest test = {});
+
+  Status search(const Budget& b) override;
+  const Config& next() override;
+  void commit() override;
+  void set_goals(const Config& goals, GoalTest test = {}) override;
+
+  const Config& current() const override { return current_; }
+  const Config& goals() const override { return goals_; }
+  bool at_goal() const override;
+  uint64_t expansions() const override { return lacam_.expansions(); }
+  size_t explored() const override { return lacam_.explored(); }
+  std::string name() const override { return "naive"; }
+
+ private:
+  const HNode* planned() const;
+  void restart();
+
+  DistTable dist_;   // shared by all iterations: BFS once per goal, not per iteration
+  Lacam lacam_;
+  Config current_, goals_, next_;
+  GoalTest test_;
+  bool fresh_ = false;  // lacam_ is rooted at current_ and may be continued
+};
+
+}  // namespace planner

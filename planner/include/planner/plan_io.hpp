@@ -1,0 +1,27 @@
+#pragma once
+// Writes an executed plan in the result format of Kei18's LaCAM/PIBT tools, which their
+// visualisers read: key=value header lines, then "solution=" and one line per timestep
+// "t:(x,y),(x,y),..." with x = column, y = row on grid maps (display position otherwise,
+// or the vertex id as (v,0) when the graph has no positions).
+#include <ostream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "planner/config.hpp"
+#include "planner/graph.hpp"
+
+namespace planner {
+
+struct PlanHeader {
+  std::string map_file, solver;
+  bool solved = false;
+  long long soc = 0, soc_lb = 0, makespan = 0;
+  double comp_time_ms = 0;
+  std::vector<std::pair<std::string, std::string>> extra;  // more key=value lines
+};
+
+void write_plan(std::ostream& out, const Graph& g, const Config& starts, const Config& goals,
+                const std::vector<Config>& plan, const PlanHeader& h);
+
+}  // namespace planner

@@ -1,0 +1,44 @@
+#pragma once
+// PIBT's dynamic priorities (Okumura et al., AIJ 2022), as LaCAM uses them per HNode:
+// an agent's priority grows by one each step it is away from its goal and drops to its
+// fractional part once it arrives; the initial fractional part, dist/N, breaks ties.
+// Agents are ordered by descending priority, equal priorities by ascending agent id, so
+// the order is a pure function of the priorities.
+#include <algorithm>
+#include <cstdint>
+
+#include "planner/dist_table.hpp"
+
+namespace planner {
+
+inline void init_priorities(const Vertex* C, int n, DistTable& D, float* prio)
+{
+  for (int i = 0; i < n; ++i) prio[i] = static_cast<float>(D.get(i, C[i])) / static_cast<float>(n);
+}
+
+inline void next_priorities(const Vertex* C, int n, DistTable& D, const float* parent, float* prio)
+{
+  for (int i = 0; i < n; ++i)
+    prio[i] = D.get(i, C[i]) != 0 ? parent[i] + 1.0f : parent[i] - static_cast<float>(static_cast<int>(parent[i]));
+}
+
+// Sorts `order` (a permutation of 0..n-1) by descending priority. Insertion sort: the
+// caller passes the parent's order, which is nearly sorted already, so this is ~O(n).
+inline void sort_by_priority(const float* prio, int n, int32_t* order)
+{
+  auto before = [prio](int32_t a, int32_t b) { return prio[a] > prio[b] || (prio[a] == prio[b] && a < b); };
+  for (int k = 1; k < n; ++k) {
+    int32_t a = order[k];
+    int j = k;
+    for (; j > 0 && before(a, order[j - 1]); --j) order[j] = order[j - 1];
+    order[j] = a;
+  }
+}
+
+inline void initial_order(const float* prio, int n, int32_t* order)
+{
+  for (int i = 0; i < n; ++i) order[i] = i;
+  std::sort(order, order + n, [prio](int32_t a, int32_t b) { return prio[a] > prio[b] || (prio[a] == prio[b] && a < b); });
+}
+
+}  // namespace planner

@@ -1,0 +1,47 @@
+#pragma once
+// RealtimePlanner: the interface the executors (bench, SUMO controller, lifelong runs) use
+// to interleave planning and execution:
+//
+//   loop:  search(budget)        -- think; may be called several times per move
+//          next()                -- the configuration to move to now
+//          ...agents execute...
+//          commit()              -- they are there: advance
+//
+// Implementations: RtLacam (persistent, rerooted search: complete), NaiveRtLacam (fresh
+// search each iteration), PibtPlanner (one PIBT step per iteration, no search).
+#include <cstdint>
+#include <string>
+
+#include "planner/budget.hpp"
+#include "planner/config.hpp"
+#include "planner/lacam.hpp"
+
+namespace planner {
+
+class RealtimePlanner {
+ public:
+  virtual ~RealtimePlanner() = default;
+
+  virtual Status search(const Budget& b) = 0;
+  virtual const Config& next() = 0;
+  virtual void commit() = 0;
+  // New goals: a new search rooted at the current configuration (lifelong tasks).
+  virtual void set_goals(const Config& goals, GoalTest test = {}) = 0;
+
+  virtual const Config& current() const = 0;
+  virtual const Config& goals() const = 0;
+  virtual bool at_goal() const = 0;           // current configuration passes the goal test
+  virtual bool exhausted() const { return false; }  // proven: no solution
+  virtual uint64_t expansions() const = 0;    // total over all iterations
+  virtual size_t explored() const = 0;        // size of the current explored table
+  virtual std::string name() const = 0;
+
+  // search + next: the paper's planning iteration.
+  const Config& step(const Budget& b)
+  {
+    search(b);
+    return next();
+  }
+};
+
+}  // namespace planner

@@ -1,0 +1,50 @@
+#pragma once
+// RtLacam: Real-Time LaCAM (Liang, Veerapaneni, Harabor, Li, Likhachev; SoCS 2025).
+//
+// One LaCAM search is built up across planning iterations. search(budget) continues the
+// DFS where the last call stopped; next() walks parent pointers from the top of the DFS
+// stack back to the root -- which is always the current configuration -- and returns the
+// root's child on that path (or the root: wait). commit() moves the agents there and
+// reroots the tree by reversing that one edge. The explored table and every constraint
+// survive, so revisits still force new successors and the search is the very same one
+// full-horizon LaCAM runs: same expansions, same explored set, hence complete, with no
+// deadlock or livelock. Once the goal is found the agents follow the tree path to it
+// without further search.
+#include <vector>
+
+#include "planner/realtime_planner.hpp"
+
+namespace planner {
+
+class RtLacam : public RealtimePlanner {
+ public:
+  RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
+          ActionPreference* pref = nullptr, GoalTest test = {});
+
+  Status search(const Budget& b) override;
+  const Config& next() override;
+  void commit() override;
+  void set_goals(const Config& goals, GoalTest test = {}) override;
+
+  const Config& current() const override { return current_; }
+  const Config& goals() const override { return lacam_.goals(); }
+  bool at_goal() const override;
+  bool exhausted() const override { return lacam_.status() == Status::NoSolution; }
+  uint64_t expansions() const override { return lacam_.expansions(); }
+  size_t explored() const override { return lacam_.explored(); }
+  std::string name() const override { return "rtlacam"; }
+
+  const Lacam& lacam() const { return lacam_; }  // for tests and statistics
+
+ private:
+  const HNode* planned();
+
+  DistTable dist_;
+  Lacam lacam_;
+  Config current_;
+  Config next_;
+  GoalTest test_;
+  std::vector<const HNode*> goal_path_;  // goal first, root last, once solved
+};
+
+}  // namespace planner

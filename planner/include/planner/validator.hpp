@@ -1,0 +1,54 @@
+#pragma once
+// Validator: checks an executed sequence of configurations C^0, C^1, ... :
+//   - C^0 equals the starts (and, when required, the last one equals the goals),
+//   - every agent waits or moves along a graph edge,
+//   - no vertex conflict (two agents on one vertex),
+//   - no swap conflict (two agents exchanging vertices over one edge).
+// It works step by step (executors feed it every move they make) or on a whole plan, and
+// keeps the paper's cost: one per agent per step, except while an agent stays on its goal.
+#include <string>
+#include <vector>
+
+#include "planner/config.hpp"
+#include "planner/graph.hpp"
+
+namespace planner {
+
+class Validator {
+ public:
+  Validator(const Graph& g, const Config& starts, const Config& goals);
+
+  // Checks the transition current() -> next and advances. Returns false (and keeps the
+  // first error) on a violation; the sequence then stays invalid.
+  bool step(const Config& next);
+  // Goal changes (lifelong) only affect the cost accounting.
+  void set_goals(const Config& goals) { goals_ = goals; }
+
+  bool ok() const { return error_.empty(); }
+  const std::string& error() const { return error_; }
+  const Config& current() const { return current_; }
+  long long steps() const { return steps_; }           // makespan
+  long long sum_of_costs() const { return soc_; }
+
+  // A transition check on its own: "" if valid, else what is wrong.
+  static std::string check_transition(const Graph& g, const Config& from, const Config& to);
+
+ private:
+  std::string check(const Config& from, const Config& to);
+
+  const Graph& g_;
+  Config current_, goals_;
+  // vertex -> agent arriving / leaving in the step being checked, valid where stamp == epoch
+  std::vector<int32_t> to_agent_, from_agent_;
+  std::vector<uint32_t> to_stamp_, from_stamp_;
+  uint32_t epoch_ = 0;
+  std::string error_;
+  long long steps_ = 0, soc_ = 0;
+};
+
+// Whole plan: "" if `plan` is valid from `starts` (and ends at `goals` when
+// `require_goals`), else the first violation with its timestep.
+std::string validate_plan(const Graph& g, const Config& starts, const Config& goals, const std::vector<Config>& plan,
+                          bool require_goals);
+
+}  // namespace planner

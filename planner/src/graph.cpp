@@ -1,0 +1,99 @@
+#include "planner/graph.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace planner {
+
+Graph Graph::from_edges(int n, const std::vector<std::pair<Vertex, Vertex>>& edges, std::vector<Point> pos)
+{
+  if (n < 0) throw std::invalid_argument("graph: negative vertex count");
+  if (!pos.empty() && static_cast<int>(pos.size()) != n)
+    throw std::invalid_argument("graph: " + std::to_string(pos.size()) + " positions for " + std::to_string(n) + " vertices");
+  std::vector<std::pair<Vertex, Vertex>> arcs;
+  arcs.reserve(edges.size() * 2);
+  for (auto [u, v] : edges) {
+    if (u < 0 || v < 0 || u >= n || v >= n)
+      throw std::invalid_argument("graph: edge (" + std::to_string(u) + "," + std::to_string(v) + ") out of range");
+    if (u == v) throw std::invalid_argument("graph: self-loop at vertex " + std::to_string(u));
+    arcs.emplace_back(u, v);
+    arcs.emplace_back(v, u);
+  }
+  std::sort(arcs.begin(), arcs.end());
+  arcs.erase(std::unique(arcs.begin(), arcs.end()), arcs.end());
+
+  Graph g;
+  g.offsets_.assign(n + 1, 0);
+  for (auto& a : arcs) ++g.offsets_[a.first + 1];
+  for (int v = 0; v < n; ++v) g.offsets_[v + 1] += g.offsets_[v];
+  g.nbrs_.resize(arcs.size());
+  for (size_t k = 0; k < arcs.size(); ++k) g.nbrs_[k] = arcs[k].second;  // arcs sorted by source
+  for (int v = 0; v < n; ++v) g.max_degree_ = std::max(g.max_degree_, g.degree(v));
+  g.pos_ = std::move(pos);
+  return g;
+}
+
+Graph Graph::from_grid(int width, int height, const std::vector<bool>& free)
+{
+  if (width <= 0 || height <= 0 || free.size() != static_cast<size_t>(width) * height)
+    throw std::invalid_argument("graph: bad grid dimensions");
+  std::vector<Vertex> vertex_at(free.size(), -1);
+  std::vector<int32_t> cell;
+  std::vector<Point> pos;
+  for (int k = 0; k < width * height; ++k) {
+    if (!free[k]) continue;
+    vertex_at[k] = static_cast<Vertex>(cell.size());
+    cell.push_back(k);
+    pos.push_back({static_cast<double>(k % width), static_cast<double>(k / width)});
+  }
+  std::vector<std::pair<Vertex, Vertex>> edges;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      Vertex v = vertex_at[y * width + x];
+      if (v < 0) continue;
+      if (x + 1 < width && vertex_at[y * width + x + 1] >= 0) edges.emplace_back(v, vertex_at[y * width + x + 1]);
+      if (y + 1 < height && vertex_at[(y + 1) * width + x] >= 0) edges.emplace_back(v, vertex_at[(y + 1) * width + x]);
+    }
+  }
+  Graph g = from_edges(static_cast<int>(cell.size()), edges, std::move(pos));
+  g.width_ = width;
+  g.height_ = height;
+  g.cell_ = std::move(cell);
+  g.vertex_at_ = std::move(vertex_at);
+  return g;
+}
+
+bool Graph::adjacent(Vertex u, Vertex v) const
+{
+  auto nb = neighbors(u);
+  return std::binary_search(nb.begin(), nb.end(), v);  // lists are sorted by construction
+}
+
+Vertex Graph::at(int x, int y) const
+{
+  if (!is_grid() || x < 0 || y < 0 || x >= width_ || y >= height_) return -1;
+  return vertex_at_[y * width_ + x];
+}
+
+std::vector<int> Graph::components(int* count) const
+{
+  std::vector<int> comp(size(), -1);
+  std::vector<Vertex> stack;
+  int c = 0;
+  for (Vertex s = 0; s < size(); ++s) {
+    if (comp[s] >= 0) continue;
+    comp[s] = c;
+    stack.push_back(s);
+    while (!stack.empty()) {
+      Vertex v = stack.back();
+      stack.pop_back();
+      for (Vertex u : neighbors(v))
+        if (comp[u] < 0) comp[u] = c, stack.push_back(u);
+    }
+    ++c;
+  }
+  if (count) *count = c;
+  return comp;
+}
+
+}  // namespace planner

@@ -1,0 +1,193 @@
+#include "planner/lacam.hpp"
+
+#include <algorithm>
+
+#include "planner/priority.hpp"
+
+namespace planner {
+
+const char* to_string(Status s)
+{
+  switch (s) {
+    case Status::Searching: return "searching";
+    case Status::Solved: return "solved";
+    case Status::NoSolution: return "no_solution";
+  }
+  return "?";
+}
+
+Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), moves_(g.max_degree() + 1)
+{
+  pibt_.set_preference(pref);
+}
+
+void Lacam::reset(const Config& start, const Config& goals, GoalTest test)
+{
+  n_ = static_cast<int>(start.size());
+  goals_ = goals;
+  goal_test_ = std::move(test);
+  dist_.set_goals(goals);
+  pibt_.set_goals(goals);
+  nodes_.reset();
+  constraints_.reset();
+  configs_.reset();
+  orders_.reset();
+  priorities_.reset();
+  explored_.clear();
+  explored_.set_num_agents(n_);
+  open_.clear();
+  all_.clear();
+  goal_ = nullptr;
+  scratch_.assign(n_, -1);
+  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_));
+  explored_.insert(root_);
+  open_.push_back(root_);
+  status_ = Status::Searching;
+}
+
+HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash)
+{
+  HNode* h = nodes_.alloc(1);
+  *h = HNode{};
+  Vertex* c = configs_.alloc(n_);
+  std::copy(C, C + n_, c);
+  float* prio = priorities_.alloc(n_);
+  int32_t* order = orders_.alloc(n_);
+  if (parent) {
+    next_priorities(c, n_, dist_, parent->priorities, prio);
+    std::copy(parent->order, parent->order + n_, order);
+    sort_by_priority(prio, n_, order);
+  } else {
+    init_priorities(c, n_, dist_, prio);
+    initial_order(prio, n_, order);
+  }
+  h->C = c;
+  h->priorities = prio;
+  h->order = order;
+  h->parent = parent;
+  h->hash = hash;
+  h->id = static_cast<uint32_t>(all_.size());
+  Constraint* root = constraints_.alloc(1);
+  *root = Constraint{};
+  h->push(root);
+  all_.push_back(h);
+  return h;
+}
+
+bool Lacam::is_goal(const HNode* h) const
+{
+  return goal_test_ ? goal_test_(h->C) : config_equal(h->C, goals_.data(), n_);
+}
+
+Status Lacam::expand()
+{
+  if (status_ != Status::Searching) return status_;
+  if (open_.empty()) return status_ = Status::NoSolution;
+  HNode* H = open_.back();
+  if (is_goal(H)) {
+    goal_ = H;
+    return status_ = Status::Solved;
+  }
+  ++expansions_;
+  Constraint* L = H->pop();
+  if (!L) {  // every successor of H has been tried
+    open_.pop_back();
+    return status_;
+  }
+
+  // Grow the low-level tree lazily: children fix the next agent in H's order.
+  if (L->depth < n_) {
+    const int32_t i = H->order[L->depth];
+    const Vertex v = H->C[i];
+    const auto nb = g_.neighbors(v);
+    Vertex* moves = moves_.data();
+    int k = 0;
+    for (Vertex u : nb) moves[k++] = u;
+    moves[k++] = v;
+    rng_.shuffle(moves, k);
+    Constraint* kids = constraints_.alloc(k);
+    for (int m = 0; m < k; ++m) {
+      kids[m] = Constraint{L, nullptr, i, moves[m], L->depth + 1};
+      H->push(&kids[m]);
+    }
+  }
+
+  if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
+  const uint64_t hash = config_hash(scratch_.data(), n_);
+  if (HNode* known = explored_.find(scratch_.data(), hash)) {
+    open_.push_back(known);  // revisit: its next constraint yields another successor
+  } else {
+    HNode* h = new_node(scratch_.data(), H, hash);
+    explored_.insert(h);
+    open_.push_back(h);
+  }
+  return status_;
+}
+
+Status Lacam::search(const Budget& b)
+{
+  const auto t0 = Clock::now();
+  const auto deadline = b.deadline_from(t0);
+  uint64_t done = 0;
+  while (status_ == Status::Searching) {
+    expand();
+    if (++done >= b.expansions || Clock::now() >= deadline) break;
+  }
+  return status_;
+}
+
+std::vector<Config> Lacam::path(const HNode* to) const
+{
+  std::vector<Config> out;
+  for (const HNode* h = to; h; h = h->parent) out.emplace_back(h->C, h->C + n_);
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
+const HNode* Lacam::next_toward(const HNode* target) const
+{
+  if (!target || target == root_) return root_;
+  const HNode* h = target;
+  while (h->parent != root_) h = h->parent;
+  return h;
+}
+
+void Lacam::reroot(const HNode* child)
+{
+  if (child == root_) return;
+  HNode* c = all_[child->id];  // non-const handle of the same node
+  root_->parent = c;
+  c->parent = nullptr;
+  root_ = c;
+}
+
+bool Lacam::check_tree(std::string* why) const
+{
+  auto fail = [&](const std::string& w) {
+    if (why) *why = w;
+    return false;
+  };
+  if (!root_) return fail("no root");
+  if (root_->parent) return fail("root has a parent");
+  // 0 = unknown, 1 = on the current walk, 2 = reaches the root
+  std::vector<uint8_t> mark(all_.size(), 0);
+  mark[root_->id] = 2;
+  std::vector<const HNode*> walk;
+  for (const HNode* s : all_) {
+    walk.clear();
+    const HNode* h = s;
+    while (mark[h->id] == 0) {
+      mark[h->id] = 1;
+      walk.push_back(h);
+      if (!h->parent) return fail("node " + std::to_string(h->id) + " has no parent but is not the root");
+      h = h->parent;
+    }
+    if (mark[h->id] == 1) return fail("cycle through node " + std::to_string(h->id));
+    for (const HNode* w : walk) mark[w->id] = 2;
+  }
+  if (explored_.size() != all_.size()) return fail("explored table and node list differ in size");
+  return true;
+}
+
+}  // namespace planner

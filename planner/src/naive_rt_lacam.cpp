@@ -1,0 +1,55 @@
+#include "planner/naive_rt_lacam.hpp"
+
+namespace planner {
+
+NaiveRtLacam::NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
+                           ActionPreference* pref, GoalTest test)
+    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts)
+{
+  set_goals(goals, std::move(test));
+}
+
+void NaiveRtLacam::set_goals(const Config& goals, GoalTest test)
+{
+  goals_ = goals;
+  test_ = std::move(test);
+  fresh_ = false;
+}
+
+Status NaiveRtLacam::search(const Budget& b)
+{
+  if (!fresh_) {
+    lacam_.reset(current_, goals_, test_);
+    fresh_ = true;
+  }
+  return lacam_.search(b);
+}
+
+const HNode* NaiveRtLacam::planned() const
+{
+  if (!fresh_) return nullptr;
+  const HNode* target = lacam_.status() == Status::Solved ? lacam_.goal_node() : lacam_.top();
+  return lacam_.next_toward(target);
+}
+
+const Config& NaiveRtLacam::next()
+{
+  const HNode* h = planned();
+  if (h) next_.assign(h->C, h->C + lacam_.num_agents());
+  else next_ = current_;
+  return next_;
+}
+
+void NaiveRtLacam::commit()
+{
+  next();
+  current_ = next_;
+  fresh_ = false;
+}
+
+bool NaiveRtLacam::at_goal() const
+{
+  return test_ ? test_(current_.data()) : current_ == goals_;
+}
+
+}  // namespace planner

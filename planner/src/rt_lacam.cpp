@@ -1,0 +1,55 @@
+#include "planner/rt_lacam.hpp"
+
+namespace planner {
+
+RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
+                 GoalTest test)
+    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts)
+{
+  set_goals(goals, std::move(test));
+}
+
+void RtLacam::set_goals(const Config& goals, GoalTest test)
+{
+  test_ = test;
+  lacam_.reset(current_, goals, std::move(test));
+  goal_path_.clear();
+}
+
+Status RtLacam::search(const Budget& b)
+{
+  if (lacam_.status() != Status::Searching) return lacam_.status();
+  const Status s = lacam_.search(b);
+  if (s == Status::Solved)
+    for (const HNode* h = lacam_.goal_node(); h; h = h->parent) goal_path_.push_back(h);
+  return s;
+}
+
+const HNode* RtLacam::planned()
+{
+  if (!goal_path_.empty()) return goal_path_.size() >= 2 ? goal_path_[goal_path_.size() - 2] : lacam_.root();
+  return lacam_.next_toward(lacam_.top());
+}
+
+const Config& RtLacam::next()
+{
+  const HNode* h = planned();
+  next_.assign(h->C, h->C + lacam_.num_agents());
+  return next_;
+}
+
+void RtLacam::commit()
+{
+  const HNode* h = planned();
+  if (h == lacam_.root()) return;  // wait
+  lacam_.reroot(h);
+  if (!goal_path_.empty()) goal_path_.pop_back();
+  current_.assign(h->C, h->C + lacam_.num_agents());
+}
+
+bool RtLacam::at_goal() const
+{
+  return test_ ? test_(current_.data()) : current_ == lacam_.goals();
+}
+
+}  // namespace planner

@@ -1,0 +1,97 @@
+#include "planner/runner.hpp"
+
+#include <algorithm>
+
+#include "planner/validator.hpp"
+
+namespace planner {
+namespace {
+
+double percentile(std::vector<float> v, double q)
+{
+  if (v.empty()) return 0;
+  size_t k = static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+}  // namespace
+
+RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts, const Config& goals,
+                       const RunOptions& opt)
+{
+  RunResult r;
+  Validator val(g, starts, goals);
+  std::vector<float> times;
+  if (opt.record_plan) r.plan.push_back(starts);
+  while (true) {
+    if (p.at_goal()) {
+      r.solved = true;
+      break;
+    }
+    if (r.total_planning_ms > opt.timeout_ms) {
+      r.timed_out = true;
+      break;
+    }
+    if (r.iterations >= opt.max_steps) {
+      r.step_limit = true;
+      break;
+    }
+    const auto t0 = Clock::now();
+    p.search(opt.per_iteration);
+    p.next();
+    p.commit();
+    const double dt = ms_since(t0);
+    times.push_back(static_cast<float>(dt));
+    r.total_planning_ms += dt;
+    r.max_iteration_ms = std::max(r.max_iteration_ms, dt);
+    ++r.iterations;
+    if (p.exhausted()) {
+      r.no_solution = true;
+      break;
+    }
+    if (!val.step(p.current())) {
+      r.validation_error = val.error();
+      break;
+    }
+    if (opt.record_plan) r.plan.push_back(p.current());
+  }
+  r.p99_iteration_ms = percentile(std::move(times), 0.99);
+  r.soc = val.sum_of_costs();
+  r.makespan = val.steps();
+  r.expansions = p.expansions();
+  r.explored = p.explored();
+  return r;
+}
+
+RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& goals, LacamOptions lopt,
+                           const RunOptions& opt, ActionPreference* pref)
+{
+  RunResult r;
+  const auto t0 = Clock::now();
+  DistTable dist(g);
+  Lacam lacam(g, dist, lopt, pref);
+  lacam.reset(starts, goals);
+  lacam.search(Budget::time_ms(opt.timeout_ms));
+  r.total_planning_ms = r.max_iteration_ms = r.p99_iteration_ms = ms_since(t0);
+  r.iterations = 1;
+  r.expansions = lacam.expansions();
+  r.explored = lacam.explored();
+  r.no_solution = lacam.status() == Status::NoSolution;
+  r.timed_out = lacam.status() == Status::Searching;
+  if (lacam.status() != Status::Solved) return r;
+  std::vector<Config> path = lacam.path(lacam.goal_node());
+  Validator val(g, starts, goals);
+  for (size_t t = 1; t < path.size(); ++t)
+    if (!val.step(path[t])) {
+      r.validation_error = val.error();
+      return r;
+    }
+  r.solved = true;
+  r.soc = val.sum_of_costs();
+  r.makespan = val.steps();
+  if (opt.record_plan) r.plan = std::move(path);
+  return r;
+}
+
+}  // namespace planner
