@@ -1,0 +1,102 @@
+// rtlacam-bench end to end: runs, JSON output, plan file, and bad input -> one clear
+// line on stderr and a non-zero exit code.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <vector>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result run(const std::string& args)
+{
+  std::string err_file = testing::TempDir() + "bench_err.txt";
+  std::string cmd = std::string(RTLACAM_BENCH_BIN) + " " + args + " 2>" + err_file;
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+const std::string kDir = RTLACAM_TEST_DATA "/planner/";
+const std::string kMap = kDir + "random-32-32-20.map";
+const std::string kScen = kDir + "random-32-32-20-random-1.scen";
+
+std::string tmp(const std::string& name, const std::string& text)
+{
+  std::string path = testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST(BenchCli, RunsEverySolverAndPrintsJson)
+{
+  for (std::string solver : {"pibt", "lacam", "rtlacam", "naive"}) {
+    Result r = run("--map " + kMap + " --scen " + kScen + " -N 50 --solver " + solver + " --json --cutoff-ms 1");
+    EXPECT_EQ(r.code, 0) << solver << ": " << r.err;
+    for (std::string key : std::vector<std::string>{"\"solved\":true", "\"total_planning_ms\"", "\"norm_soc\"", "\"soc_lb\"", "\"p99_iteration_ms\"",
+                            "\"valid\":true", "\"solver\":\"" + solver + "\""})
+      EXPECT_NE(r.out.find(key), std::string::npos) << key << " missing in " << r.out;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << "one JSON line";
+  }
+}
+
+TEST(BenchCli, WritesThePlanInLacamFormat)
+{
+  std::string out = testing::TempDir() + "plan.txt";
+  Result r = run("--map " + kMap + " --scen " + kScen + " -N 20 --solver rtlacam --budget-expansions 1 --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream f(out);
+  std::string line, all;
+  int steps = 0;
+  bool in_solution = false;
+  while (std::getline(f, line)) {
+    all += line + "\n";
+    if (in_solution) ++steps;
+    if (line == "solution=") in_solution = true;
+  }
+  for (std::string key : std::vector<std::string>{"agents=20\n", "solved=1\n", "soc=", "soc_lb=", "makespan=", "comp_time=", "starts=(", "goals=("})
+    EXPECT_NE(all.find(key), std::string::npos) << key;
+  EXPECT_NE(all.find("\n0:("), std::string::npos);
+  EXPECT_GT(steps, 1);
+}
+
+TEST(BenchCli, BadInputGivesOneLineAndNonZeroExit)
+{
+  struct Case {
+    std::string args, expect;
+  };
+  std::string bad_map = tmp("bad.map", "type octile\nheight 2\nwidth 2\nmap\n..\n.\n");
+  std::string dup = tmp("dup.scen", "version 1\n0\tm\t32\t32\t0\t0\t5\t0\t5\n0\tm\t32\t32\t0\t0\t6\t0\t6\n");
+  std::vector<Case> cases = {
+      {"--map /nope.map --scen " + kScen + " -N 5", "/nope.map: cannot open"},
+      {"--map " + bad_map + " --scen " + kScen + " -N 5", "bad.map:6"},
+      {"--map " + kMap + " --scen " + kScen + " -N 100000", "only 409"},
+      {"--map " + kMap + " --scen " + dup + " -N 2", "dup.scen:3: agent 1: duplicate start"},
+      {"--map " + kMap + " --scen " + kScen + " -N 5 --solver magic", "solver"},
+  };
+  for (auto& c : cases) {
+    Result r = run(c.args);
+    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << "stderr: " << r.err;
+    EXPECT_EQ(r.out, "") << c.args;
+  }
+}

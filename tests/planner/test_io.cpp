@@ -1,0 +1,109 @@
+// MovingAI readers and instance checks: good files load, bad ones give one clear error
+// naming file and line.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "planner/error.hpp"
+#include "planner/movingai.hpp"
+
+using namespace planner;
+
+namespace {
+
+std::string write_tmp(const std::string& name, const std::string& text)
+{
+  std::string path = testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* kMap = "type octile\nheight 3\nwidth 4\nmap\n....\n.@@.\n....\n";
+
+std::string scen_line(int sx, int sy, int gx, int gy) {
+  return "0\tm.map\t4\t3\t" + std::to_string(sx) + "\t" + std::to_string(sy) + "\t" + std::to_string(gx) + "\t" +
+         std::to_string(gy) + "\t1\n";
+}
+
+// Expects InputError whose message contains every fragment.
+template <class F>
+void expect_error(F f, std::vector<std::string> fragments)
+{
+  try {
+    f();
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    std::string m = e.what();
+    EXPECT_EQ(m.find('\n'), std::string::npos) << m;
+    for (auto& s : fragments) EXPECT_NE(m.find(s), std::string::npos) << "'" << s << "' not in: " << m;
+  }
+}
+
+}  // namespace
+
+TEST(MovingAi, LoadsTheBenchmarkMap)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  EXPECT_EQ(g.width(), 32);
+  EXPECT_EQ(g.height(), 32);
+  EXPECT_EQ(g.size(), 819);
+  int comps = 0;
+  g.components(&comps);
+  EXPECT_EQ(comps, 1);
+  for (Vertex v = 0; v < g.size(); ++v)
+    for (Vertex u : g.neighbors(v)) {
+      EXPECT_TRUE(g.adjacent(u, v));
+      EXPECT_EQ(std::abs(g.cell_x(u) - g.cell_x(v)) + std::abs(g.cell_y(u) - g.cell_y(v)), 1);
+    }
+  Instance ins = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 409);
+  EXPECT_EQ(ins.num_agents(), 409);
+  EXPECT_EQ(ins.source_lines.front(), 2);
+}
+
+TEST(MovingAi, SmallMapStructure)
+{
+  Graph g = load_map(write_tmp("small.map", kMap));
+  EXPECT_EQ(g.size(), 10);
+  EXPECT_EQ(g.num_edges(), 10u);
+  EXPECT_EQ(g.at(1, 1), -1);
+  EXPECT_EQ(g.degree(g.at(0, 0)), 2);
+  EXPECT_EQ(g.degree(g.at(1, 0)), 2);
+}
+
+TEST(MovingAi, MapErrorsNameFileAndLine)
+{
+  expect_error([] { load_map("/nonexistent/x.map"); }, {"/nonexistent/x.map", "cannot open"});
+  expect_error([] { load_map(write_tmp("a.map", "hello\n")); }, {"a.map:1", "type octile"});
+  expect_error([] { load_map(write_tmp("b.map", "type octile\nheight x\nwidth 4\nmap\n")); }, {"b.map:2", "height"});
+  expect_error([] { load_map(write_tmp("c.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@@\n....\n")); },
+               {"c.map:6", "3 characters"});
+  expect_error([] { load_map(write_tmp("d.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@#.\n....\n")); },
+               {"d.map:6", "'#'"});
+  expect_error([] { load_map(write_tmp("e.map", "type octile\nheight 3\nwidth 4\nmap\n....\n")); }, {"e.map:", "ends after 1"});
+}
+
+TEST(MovingAi, ScenErrorsNameFileAndLine)
+{
+  Graph g = load_map(write_tmp("m.map", kMap));
+  auto scen = [](const std::string& name, const std::string& body) { return write_tmp(name, "version 1\n" + body); };
+  expect_error([&] { load_scen("/nonexistent/x.scen", g, 1); }, {"x.scen", "cannot open"});
+  expect_error([&] { load_scen(scen("n.scen", scen_line(0, 0, 3, 0)), g, 2); }, {"n.scen", "asked for 2", "only 1"});
+  expect_error([&] { load_scen(scen("o.scen", scen_line(0, 0, 3, 0) + scen_line(1, 1, 3, 2)), g, 2); },
+               {"o.scen:3", "start (1,1)", "obstacle"});
+  expect_error([&] { load_scen(scen("f.scen", scen_line(0, 0, 9, 0)), g, 1); }, {"f.scen:2", "goal (9,0)", "off the map"});
+  expect_error([&] { load_scen(scen("d.scen", scen_line(0, 0, 3, 0) + scen_line(0, 0, 3, 2)), g, 2); },
+               {"d.scen:3", "agent 1", "duplicate start"});
+  expect_error([&] { load_scen(scen("g.scen", scen_line(0, 0, 3, 0) + scen_line(0, 2, 3, 0)), g, 2); },
+               {"g.scen:3", "duplicate goal"});
+  expect_error([&] { load_scen(scen("m.scen", "0\tm.map\t4\t3\t0\t0\n"), g, 1); }, {"m.scen:2", "expected"});
+  expect_error([&] { load_scen(write_tmp("v.scen", "hello\n"), g, 1); }, {"v.scen:1", "version 1"});
+  expect_error([&] { load_scen(scen("w.scen", "0\tm.map\t5\t3\t0\t0\t1\t0\t1\n"), g, 1); }, {"w.scen:2", "5x3"});
+}
+
+TEST(MovingAi, UnreachableGoalIsAnError)
+{
+  Graph g = load_map(write_tmp("split.map", "type octile\nheight 1\nwidth 5\nmap\n..@..\n"));
+  std::string s = write_tmp("split.scen", "version 1\n0\tsplit.map\t5\t1\t0\t0\t4\t0\t4\n");
+  expect_error([&] { load_scen(s, g, 1); }, {"split.scen:2", "unreachable"});
+}
