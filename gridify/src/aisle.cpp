@@ -1,0 +1,63 @@
+#include "gridify/aisle.hpp"
+
+#include <map>
+
+#include "planner/error.hpp"
+
+namespace gridify {
+
+static planner::Point centre(const NetFile& net, const std::string& j)
+{
+  const NetJunction* p = net.junction(j);
+  return {p->x, p->y};
+}
+
+std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vector<Dropped>& dropped)
+{
+  // (from, to) -> edge index. std::map keeps the pairing independent of hash order.
+  std::map<std::pair<std::string, std::string>, int> directed;
+  for (int i = 0; i < static_cast<int>(net.edges.size()); ++i) {
+    const NetEdge& e = net.edges[i];
+    if (e.from == e.to)
+      throw planner::input_error(net.path, e.line, "edge '" + e.id + "' starts and ends at junction '" + e.from + "'");
+    auto [it, fresh] = directed.emplace(std::make_pair(e.from, e.to), i);
+    if (!fresh)
+      throw planner::input_error(net.path, e.line,
+                                 "edges '" + net.edges[it->second].id + "' and '" + e.id + "' both go from '" + e.from +
+                                     "' to '" + e.to + "' (one aisle per pair of junctions)");
+  }
+
+  std::vector<Aisle> aisles;
+  // File order: the first edge of a pair seen becomes the aisle's A->B direction.
+  for (const NetEdge& e : net.edges) {
+    auto back = directed.find({e.to, e.from});
+    if (back == directed.end()) {
+      std::string why = "one-way aisle: no opposite edge from '" + e.to + "' to '" + e.from +
+                        "' (every move must be reversible)";
+      if (!drop_one_way) throw planner::input_error(net.path, e.line, "edge '" + e.id + "': " + why + " (use --drop-one-way)");
+      dropped.push_back({"one-way edge", e.id, why, {{centre(net, e.from), centre(net, e.to)}}});
+      continue;
+    }
+    const NetEdge& o = net.edges[back->second];
+    if (net.edge_index.at(o.id) < net.edge_index.at(e.id)) continue;  // pair already made from `o`
+    Aisle a;
+    a.ab = e.id;
+    a.ba = o.id;
+    a.a = e.from;
+    a.b = e.to;
+    // Lane index 0 (rightmost): warehouse aisles have one lane per direction.
+    auto lane0 = [&](const NetEdge& edge) -> const NetLane& {
+      for (const NetLane& l : edge.lanes)
+        if (l.index == 0) return l;
+      throw planner::input_error(net.path, edge.line, "edge '" + edge.id + "' has no lane with index 0");
+    };
+    a.lane_ab = lane0(e).id;
+    a.length_ab = lane0(e).length;
+    a.lane_ba = lane0(o).id;
+    a.length_ba = lane0(o).length;
+    aisles.push_back(std::move(a));
+  }
+  return aisles;
+}
+
+}  // namespace gridify
