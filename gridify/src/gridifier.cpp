@@ -43,7 +43,7 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
       a.snapped = true;
       ++snapped;
     } else {
-      std::string what = n < 1 ? "is shorter than" : "is not a multiple of";
+      std::string what = a.length_ab < opt.cell_length ? "is shorter than" : "is not a multiple of";
       throw planner::input_error(net.path, e.line,
                                  "edge '" + a.ab + "': length " + num(a.length_ab) + " " + what + " cell_length " +
                                      num(opt.cell_length) + " (use --snap)");

@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Writes the plain-XML inputs (.nod.xml, .edg.xml, .add.xml) of the warehouse scenarios.
+
+A warehouse here: vertical picking aisles between shelf blocks, joined by horizontal
+cross aisles; dead-end stub aisles outside the bottom cross aisle end at pick-up stations
+and stubs above the top one at drop stations; parking spots are parkingAreas in the
+outer aisles. Every aisle is a pair of opposite one-way single-lane edges (see
+gridify/README.md). Node coordinates are whole metres, so with cell_length 1 every
+aisle length is a multiple of the cell.
+
+Usage: make_warehouse.py  (writes small.* and large.* here; then run ./build.sh)
+"""
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park):
+    nodes, edges = {}, []
+    top = cross_ys[-1]
+    for c in range(columns):
+        for r, y in enumerate(cross_ys):
+            nodes[f"c{c}r{r}"] = (c * pitch, y)
+    def aisle(a, b):
+        edges.append((f"{a}_{b}", a, b))
+        edges.append((f"{b}_{a}", b, a))
+    for r in range(len(cross_ys)):            # cross aisles
+        for c in range(columns - 1):
+            aisle(f"c{c}r{r}", f"c{c + 1}r{r}")
+    for c in range(columns):                  # picking aisles between shelf blocks
+        for r in range(len(cross_ys) - 1):
+            aisle(f"c{c}r{r}", f"c{c}r{r + 1}")
+    stations = []
+    for c in pick_cols:                       # pick-up stations below the bottom cross aisle
+        nodes[f"pick{c}"] = (c * pitch, -stub)
+        aisle(f"c{c}r0", f"pick{c}")
+        stations.append(("busStop", f"pickup{c}", f"c{c}r0_pick{c}_0", stub, "pickup"))
+    last = len(cross_ys) - 1
+    for c in drop_cols:                       # drop stations above the top cross aisle
+        nodes[f"drop{c}"] = (c * pitch, top + stub)
+        aisle(f"c{c}r{last}", f"drop{c}")
+        stations.append(("busStop", f"drop{c}", f"c{c}r{last}_drop{c}_0", stub, "drop"))
+    for k, (c, r, pos) in enumerate(park):    # parking spots inside the outer picking aisles
+        stations.append(("parkingArea", f"park{k}", f"c{c}r{r}_c{c}r{r + 1}_0", pos, "parking"))
+
+    with open(os.path.join(HERE, f"{name}.nod.xml"), "w") as f:
+        f.write("<nodes>\n")
+        for n, (x, y) in nodes.items():
+            f.write(f'    <node id="{n}" x="{x:.2f}" y="{y:.2f}" type="unregulated"/>\n')
+        f.write("</nodes>\n")
+    with open(os.path.join(HERE, f"{name}.edg.xml"), "w") as f:
+        f.write("<edges>\n")
+        for e, a, b in edges:
+            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"/>\n')
+        f.write("</edges>\n")
+    with open(os.path.join(HERE, f"{name}.add.xml"), "w") as f:
+        f.write("<additional>\n")
+        for elem, sid, lane, pos, kind in stations:
+            # A stop covers [pos - 0.5, pos] so its middle snaps to the cell at `pos`.
+            extra = ' roadsideCapacity="1"' if elem == "parkingArea" else ""
+            f.write(f'    <{elem} id="{sid}" lane="{lane}" startPos="{pos - 0.5:.2f}" endPos="{pos:.2f}"{extra}>\n')
+            f.write(f'        <param key="kind" value="{kind}"/>\n')
+            f.write(f"    </{elem}>\n")
+        f.write("</additional>\n")
+
+
+# Small: 4 picking aisles 8 m long between 3 m shelf blocks, 2 pick-up and 2 drop stations.
+warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
+          pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)])
+# Large: 16 picking aisles, two shelf rows (cross aisles at y = 0, 12, 24),
+# 8 pick-up and 8 drop stations, 4 parking spots.
+warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
+          pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
+          park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)])

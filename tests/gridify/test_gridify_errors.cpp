@@ -1,0 +1,180 @@
+// Bad inputs: each gives one clear line naming the file (and line / edge), never a crash;
+// the options that turn some of them into reported drops.
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "gridify/gridifier.hpp"
+#include "gridify_test_util.hpp"
+#include "planner/error.hpp"
+
+using namespace gridify;
+using namespace gridify_test;
+
+namespace {
+
+// The message of the InputError gridify throws (fails the test if none is thrown).
+std::string error_of(const std::string& net, GridifyOptions opt = {})
+{
+  try {
+    gridify::gridify(net, opt);
+  } catch (const planner::InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << net;
+  return "";
+}
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(GridifyErrors, OneWayAisleIsAnErrorNamingTheEdge)
+{
+  std::string e = error_of(data("oneway.net.xml"));
+  EXPECT_TRUE(has(e, "oneway.net.xml:")) << e;
+  EXPECT_TRUE(has(e, "edge 'b_d'")) << e;
+  EXPECT_TRUE(has(e, "--drop-one-way")) << e;
+}
+
+TEST(GridifyErrors, OneWayAisleDroppedOnRequest)
+{
+  GridifyOptions opt;
+  opt.drop_one_way = true;
+  NetFile net = NetFile::read(data("oneway.net.xml"));
+  CellMap m = gridify::gridify(net, opt);
+  EXPECT_EQ(m.aisles.size(), 2u);
+  EXPECT_EQ(m.cells.size(), 3u + 4u);  // a, b, c + 2 cells per 3 m aisle
+  EXPECT_EQ(m.junction_cell("d"), -1);
+  ASSERT_EQ(m.dropped.size(), 2u);
+  EXPECT_EQ(m.dropped[0].kind, "one-way edge");
+  EXPECT_EQ(m.dropped[0].id, "b_d");
+  EXPECT_EQ(m.dropped[1].kind, "component");  // d is left without aisles
+  EXPECT_EQ(m.dropped[1].id, "d");
+  expect_invariants(m, net);
+}
+
+TEST(GridifyErrors, LengthNotAMultipleOfTheCell)
+{
+  std::string e = error_of(data("notmultiple.net.xml"));
+  EXPECT_TRUE(has(e, "notmultiple.net.xml:")) << e;
+  EXPECT_TRUE(has(e, "edge 'b_c': length 3.4 is not a multiple of cell_length 1 (use --snap)")) << e;
+  GridifyOptions opt;
+  opt.cell_length = 5;
+  e = error_of(data("notmultiple.net.xml"), opt);
+  EXPECT_TRUE(has(e, "length 3 is shorter than cell_length 5")) << e;
+}
+
+TEST(GridifyErrors, LengthSnappedOnRequest)
+{
+  GridifyOptions opt;
+  opt.snap = true;
+  NetFile net = NetFile::read(data("notmultiple.net.xml"));
+  CellMap m = gridify::gridify(net, opt);
+  ASSERT_EQ(m.aisles.size(), 2u);
+  const Aisle& bc = m.aisles[1];
+  EXPECT_EQ(bc.ab, "b_c");
+  EXPECT_TRUE(bc.snapped);
+  EXPECT_EQ(bc.steps, 3);
+  EXPECT_NEAR(bc.spacing, 3.4 / 3, 1e-12);
+  const Cell& last = m.cells[bc.cells[2]];  // k = 2
+  EXPECT_NEAR(last.poses[0].pos, 2 * 3.4 / 3, 1e-12);
+  EXPECT_NEAR(last.poses[1].pos, 3.4 - 2 * 3.4 / 3, 1e-12);
+  EXPECT_FALSE(m.aisles[0].snapped);
+  EXPECT_EQ(m.warnings.size(), 1u);
+  expect_invariants(m, net);
+  // Within the tolerance a length counts as a multiple.
+  GridifyOptions loose;
+  loose.tolerance = 0.5;
+  EXPECT_EQ(gridify::gridify(net, loose).aisles[1].steps, 3);
+}
+
+TEST(GridifyErrors, DisconnectedNetKeepsTheLargestComponent)
+{
+  NetFile net = NetFile::read(data("disconnected.net.xml"));
+  CellMap m = gridify::gridify(net);
+  EXPECT_EQ(m.num_junction_cells(), 4);  // a b c d
+  EXPECT_EQ(m.aisles.size(), 3u);
+  EXPECT_EQ(m.cells.size(), 4u + 3u);    // 2 m aisles: 1 cell each
+  EXPECT_EQ(m.junction_cell("e"), -1);
+  ASSERT_EQ(m.dropped.size(), 1u);
+  EXPECT_EQ(m.dropped[0].kind, "component");
+  EXPECT_EQ(m.dropped[0].id, "e, f");
+  EXPECT_TRUE(has(m.dropped[0].reason, "4 cell(s)")) << m.dropped[0].reason;
+  EXPECT_EQ(m.dropped[0].segments.size(), 1u);
+  expect_invariants(m, net);
+  // Lanes of the dropped part are not located.
+  EXPECT_EQ(m.locate("e_f_0", 1.0), -1);
+
+  GridifyOptions strict;
+  strict.keep_largest = false;
+  std::string e = error_of(data("disconnected.net.xml"), strict);
+  EXPECT_TRUE(has(e, "disconnected")) << e;
+}
+
+TEST(GridifyErrors, InternalLinksAreRefusedClearly)
+{
+  std::string e = error_of(data("internal.net.xml"));
+  EXPECT_TRUE(has(e, "internal.net.xml")) << e;
+  EXPECT_TRUE(has(e, "--no-internal-links")) << e;
+}
+
+TEST(GridifyErrors, MissingFile)
+{
+  std::string e = error_of(data("no_such_file.net.xml"));
+  EXPECT_TRUE(has(e, "no_such_file.net.xml: cannot open file")) << e;
+}
+
+TEST(GridifyErrors, MalformedXmlNamesFileAndLine)
+{
+  EXPECT_TRUE(has(error_of(data("malformed.net.xml")), "malformed.net.xml:7: malformed XML"));
+  EXPECT_TRUE(has(error_of(data("empty.net.xml")), "empty.net.xml:1: malformed XML"));
+  EXPECT_TRUE(has(error_of(data("not_a_net.xml")), "no <net> root element"));
+}
+
+TEST(GridifyErrors, MissingOrBadAttributes)
+{
+  EXPECT_EQ(error_of(data("missing_length.net.xml")),
+            data("missing_length.net.xml") + ":9: <lane id='b_a_0'>: missing attribute 'length'");
+  EXPECT_EQ(error_of(data("nonnumeric.net.xml")),
+            data("nonnumeric.net.xml") + ":12: <junction id='b'>: attribute 'x' is not a number: 'three'");
+  EXPECT_EQ(error_of(data("unknown_junction.net.xml")),
+            data("unknown_junction.net.xml") + ":5: edge 'a_b' refers to unknown junction 'zz'");
+}
+
+TEST(GridifyErrors, BadStationFiles)
+{
+  GridifyOptions opt;
+  opt.additional = data("bad_station_lane.add.xml");
+  std::string e = error_of(data("tiny.net.xml"), opt);
+  EXPECT_TRUE(has(e, "bad_station_lane.add.xml:3: <busStop id='stopX'>: lane 'nowhere_0' is not in")) << e;
+  opt.additional = data("bad_station_pos.add.xml");
+  e = error_of(data("tiny.net.xml"), opt);
+  EXPECT_TRUE(has(e, "bad_station_pos.add.xml:2:")) << e;
+  EXPECT_TRUE(has(e, "'startPos' is not a number")) << e;
+  opt.additional = data("no_such.add.xml");
+  EXPECT_TRUE(has(error_of(data("tiny.net.xml"), opt), "no_such.add.xml: cannot open file"));
+}
+
+TEST(GridifyErrors, BadCellLength)
+{
+  GridifyOptions opt;
+  opt.cell_length = 0;
+  EXPECT_TRUE(has(error_of(data("tiny.net.xml"), opt), "cell_length must be a positive number"));
+}
+
+// The CLI prints the one-line error and exits non-zero.
+TEST(GridifyErrors, CliExitsNonZeroWithTheMessage)
+{
+  std::string log = temp_dir() + "/err.txt";
+  std::string cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("oneway.net.xml") + "' 2> '" + log + "' > /dev/null";
+  int rc = std::system(cmd.c_str());
+  EXPECT_NE(rc, 0);
+  std::ifstream in(log);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  EXPECT_TRUE(has(ss.str(), "error: ")) << ss.str();
+  EXPECT_TRUE(has(ss.str(), "edge 'b_d'")) << ss.str();
+  cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("oneway.net.xml") + "' --drop-one-way -q";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+}
