@@ -178,3 +178,24 @@ TEST(GridifyErrors, CliExitsNonZeroWithTheMessage)
   cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("oneway.net.xml") + "' --drop-one-way -q";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
 }
+
+// Links need SUMO connections: without turnarounds a vehicle could drive into a dead end
+// and never leave it (SUMO would end its trip), so dead-end junction cells are dropped and
+// reported, and the missing U-turns elsewhere are counted.
+TEST(GridifyErrors, LinksWithoutSumoConnectionsAreDropped)
+{
+  NetFile net = NetFile::read(data("noturnarounds.net.xml"));
+  CellMap m = gridify::gridify(net);
+  EXPECT_EQ(m.num_junction_cells(), 1);  // b
+  EXPECT_EQ(m.num_aisle_cells(), 4);
+  EXPECT_EQ(m.graph.num_edges(), 4u);
+  int links = 0, comps = 0;
+  for (const Dropped& d : m.dropped) links += d.kind == "link", comps += d.kind == "component";
+  EXPECT_EQ(links, 2);
+  EXPECT_EQ(comps, 2);
+  ASSERT_EQ(m.warnings.size(), 2u);
+  EXPECT_TRUE(has(m.warnings[0], "2 turn(s)")) << m.warnings[0];
+  // Arriving cells next to a dead end still have both poses; b keeps its straight moves.
+  EXPECT_EQ(m.cells[m.junction_cell("b")].movements.size(), 2u);
+  expect_invariants(m, net);
+}

@@ -12,6 +12,10 @@ done
 # The same kind of net, but with SUMO's default internal links: gridify must refuse it.
 netconvert -n internal.nod.xml -e internal.edg.xml -o internal.net.xml \
   --no-turnarounds.geometry false --default.junctions.radius 0 --junctions.corner-detail 0 --offset.disable-normalization
+# A line a-b-c without any turnaround (--no-turnarounds): the dead ends a and c lose their
+# links, b lacks the U-turns.
+netconvert -n noturnarounds.nod.xml -e noturnarounds.edg.xml -o noturnarounds.net.xml \
+  --no-internal-links --no-turnarounds --default.junctions.radius 0 --junctions.corner-detail 0 --offset.disable-normalization
 netgenerate --grid --grid.x-number 4 --grid.y-number 3 --grid.length 5 \
   --default.lanenumber 1 --default.lanewidth 1.0 --default.speed 1.0 \
   --default-junction-type unregulated --no-internal-links \
