@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs what this project needs on Debian 12 (as root, or through sudo).
+set -euo pipefail
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+PKGS=(
+  build-essential cmake git
+  libgtest-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libeigen3-dev
+  libpugixml-dev libexpat1-dev
+  sumo sumo-tools
+  python3 python3-matplotlib
+)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#PKGS[@]} packages present"
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}"
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
