@@ -175,10 +175,13 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       const std::string& j = end ? a.b : a.a;
       std::string id = j + "/" + (end ? a.ba : a.ab);
       unlinked.push_back(id);
+      // Draw just the missing link: junction centre to the neighbouring cell.
+      const NetJunction &from = end ? jb : ja, &to = end ? ja : jb;
+      planner::Point p{from.x, from.y}, q{from.x + (to.x - from.x) / a.steps, from.y + (to.y - from.y) / a.steps};
       m.dropped.push_back({"link", id,
                            "no SUMO connection lets a vehicle at junction '" + j + "' enter '" + (end ? a.ba : a.ab) +
                                "' or leave '" + (end ? a.ab : a.ba) + "' there",
-                           {{{ja.x, ja.y}, {jb.x, jb.y}}}});
+                           {{p, q}}});
     }
   }
 
@@ -194,25 +197,30 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
     std::vector<std::vector<std::string>> comp_junctions(ncomp);
     for (int v = 0; v < n0; ++v)
       if (cells[v].kind == CellKind::Junction) comp_junctions[comp[v]].push_back(cells[v].junction);
+    auto name = [&](int c) {
+      return comp_junctions[c].empty() ? std::string("(aisle cells only)") : list_ids(comp_junctions[c]);
+    };
     if (!opt.keep_largest) {
       int other = keep == 0 ? 1 : 0;
       throw planner::input_error(net.path, 0,
-                                 "the net is disconnected (" + std::to_string(ncomp) + " components), e.g. junctions " +
-                                     list_ids(comp_junctions[other]) + " are cut off from junction " +
-                                     comp_junctions[keep].front());
+                                 "the net is disconnected (" + std::to_string(ncomp) + " components): junctions " +
+                                     name(other) + " are cut off from junctions " + name(keep));
     }
     std::vector<Dropped> parts(ncomp);
     for (const Aisle& a : aisles) {
-      int c = comp[a.cells[1 == a.cells.size() ? 0 : 1]];
+      int c = comp[a.cells[1]];
       if (c != keep) {
         const NetJunction &ja = *net.junction(a.a), &jb = *net.junction(a.b);
         parts[c].segments.push_back({{ja.x, ja.y}, {jb.x, jb.y}});
       }
     }
+    for (int v = 0; v < n0; ++v)  // dropped junctions as points (zero-length segments)
+      if (comp[v] != keep && cells[v].kind == CellKind::Junction)
+        parts[comp[v]].segments.push_back({{cells[v].x, cells[v].y}, {cells[v].x, cells[v].y}});
     for (int c = 0; c < ncomp; ++c) {
       if (c == keep) continue;
       parts[c].kind = "component";
-      parts[c].id = comp_junctions[c].empty() ? std::string("(aisle cells only)") : list_ids(comp_junctions[c]);
+      parts[c].id = name(c);
       parts[c].reason = std::to_string(comp_size[c]) + " cell(s) not connected to the largest component (" +
                         std::to_string(comp_size[keep]) + " cells)";
       m.dropped.push_back(std::move(parts[c]));

@@ -75,10 +75,17 @@ std::string to_svg(const CellMap& m, const SvgOptions& opt)
   }
   o << "</g>\n<g stroke=\"#e41a1c\" stroke-width=\"" << std::max(1.5, 0.12 * c * s) << "\" stroke-dasharray=\""
     << std::max(3.0, 0.3 * c * s) << "\" fill=\"none\">\n";
+  const double dj = std::max(4.0, 0.6 * c * s);
   for (const Dropped& d : m.dropped)
-    for (auto& [p, q] : d.segments)
-      o << "<line x1=\"" << X(p.x) << "\" y1=\"" << Y(p.y) << "\" x2=\"" << X(q.x) << "\" y2=\"" << Y(q.y) << "\"><title>"
-        << esc(d.kind + " " + d.id + ": " + d.reason) << "</title></line>\n";
+    for (auto& [p, q] : d.segments) {
+      std::string title = "<title>" + esc(d.kind + " " + d.id + ": " + d.reason) + "</title>";
+      if (p.x == q.x && p.y == q.y)  // a dropped junction
+        o << "<rect x=\"" << X(p.x) - dj / 2 << "\" y=\"" << Y(p.y) - dj / 2 << "\" width=\"" << dj << "\" height=\"" << dj
+          << "\" stroke-dasharray=\"none\">" << title << "</rect>\n";
+      else
+        o << "<line x1=\"" << X(p.x) << "\" y1=\"" << Y(p.y) << "\" x2=\"" << X(q.x) << "\" y2=\"" << Y(q.y) << "\">" << title
+          << "</line>\n";
+    }
   o << "</g>\n";
 
   // Graph edges.

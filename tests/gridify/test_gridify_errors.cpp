@@ -101,7 +101,7 @@ TEST(GridifyErrors, DisconnectedNetKeepsTheLargestComponent)
   EXPECT_EQ(m.dropped[0].kind, "component");
   EXPECT_EQ(m.dropped[0].id, "e, f");
   EXPECT_TRUE(has(m.dropped[0].reason, "4 cell(s)")) << m.dropped[0].reason;
-  EXPECT_EQ(m.dropped[0].segments.size(), 1u);
+  EXPECT_EQ(m.dropped[0].segments.size(), 1u + 2u);  // aisle e-f, junctions e and f
   expect_invariants(m, net);
   // Lanes of the dropped part are not located.
   EXPECT_EQ(m.locate("e_f_0", 1.0), -1);

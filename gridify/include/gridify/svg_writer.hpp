@@ -4,7 +4,8 @@
 //    shortened lane shapes), junctions as grey squares;
 //  - graph edges as thin dark lines, aisle cells as dots, junction cells as blue squares;
 //  - stations as coloured discs with their id (colour by kind, legend at the top);
-//  - dropped parts (one-way edges, small components, links) as dashed red lines.
+//  - dropped parts (one-way edges, small components, links) as dashed red lines,
+//    dropped junctions as red hollow squares.
 #include <string>
 
 #include "gridify/cell_map.hpp"
