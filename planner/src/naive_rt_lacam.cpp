@@ -49,7 +49,7 @@ void NaiveRtLacam::commit()
 
 bool NaiveRtLacam::at_goal() const
 {
-  return test_ ? test_(current_.data()) : current_ == goals_;
+  return passes_goal_test(test_, current_, goals_);
 }
 
 }  // namespace planner

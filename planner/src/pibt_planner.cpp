@@ -50,7 +50,7 @@ void PibtPlanner::commit()
 
 bool PibtPlanner::at_goal() const
 {
-  return test_ ? test_(current_.data()) : current_ == goals_;
+  return passes_goal_test(test_, current_, goals_);
 }
 
 }  // namespace planner

@@ -49,7 +49,7 @@ void RtLacam::commit()
 
 bool RtLacam::at_goal() const
 {
-  return test_ ? test_(current_.data()) : current_ == lacam_.goals();
+  return passes_goal_test(test_, current_, lacam_.goals());
 }
 
 }  // namespace planner

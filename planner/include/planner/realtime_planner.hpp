@@ -18,6 +18,12 @@
 
 namespace planner {
 
+// The goal test as every planner applies it to its current configuration.
+inline bool passes_goal_test(const GoalTest& test, const Config& current, const Config& goals)
+{
+  return test ? test(current.data()) : current == goals;
+}
+
 class RealtimePlanner {
  public:
   virtual ~RealtimePlanner() = default;
