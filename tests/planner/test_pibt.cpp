@@ -4,6 +4,7 @@
 #include <numeric>
 
 #include "planner/movingai.hpp"
+#include "planner/lacam.hpp"
 #include "planner/pibt.hpp"
 #include "planner/priority.hpp"
 #include "planner/validator.hpp"
@@ -69,4 +70,53 @@ TEST(Pibt, HonoursConstraintsAndRejectsCollidingOnes)
   Constraint s1{&root, nullptr, 0, from[1], 1};
   Constraint s2{&s1, nullptr, 1, from[0], 2};
   EXPECT_FALSE(pibt.generate(from.data(), order.data(), &s2, to.data(), rng));
+}
+
+namespace {
+// A preference that tries moves in reverse order of usefulness (farthest from the goal
+// first): a stand-in for a poor learned policy.
+struct Contrarian : ActionPreference {
+  DistTable& d;
+  int prepared = 0;
+  explicit Contrarian(DistTable& dist) : d(dist) {}
+  void prepare(const Vertex*, int) override { ++prepared; }
+  float score(int agent, Vertex, Vertex to, Rng& rng) override
+  {
+    return -static_cast<float>(d.get(agent, to)) + rng.uniform();
+  }
+};
+}  // namespace
+
+TEST(Pibt, FollowsThePluggedPreference)
+{
+  Graph g = test::grid({".....", ".....", "....."});
+  Config from = test::at(g, {{2, 1}}), goals = test::at(g, {{4, 1}});
+  DistTable d(g);
+  d.set_goals(goals);
+  Contrarian pref(d);
+  Pibt pibt(g, d);
+  pibt.set_goals(goals);
+  pibt.set_preference(&pref);
+  Rng rng(0);
+  std::vector<int32_t> order = {0};
+  Config to(1);
+  ASSERT_TRUE(pibt.generate(from.data(), order.data(), nullptr, to.data(), rng));
+  EXPECT_EQ(to[0], g.at(1, 1));  // the move away from the goal
+  EXPECT_EQ(pref.prepared, 1);
+}
+
+TEST(Pibt, LacamStaysCompleteUnderAnyPreference)
+{
+  for (const auto& c : test::hard_cases()) {
+    SCOPED_TRACE(c.name);
+    Graph g = test::grid(c.rows);
+    Config s = test::at(g, c.starts), t = test::at(g, c.goals);
+    DistTable d(g);
+    Contrarian pref(d);
+    Lacam lacam(g, d, LacamOptions{}, &pref);
+    lacam.reset(s, t);
+    ASSERT_EQ(lacam.search(Budget::unlimited()), Status::Solved);
+    EXPECT_EQ(validate_plan(g, s, t, lacam.path(lacam.goal_node()), true), "");
+    EXPECT_GT(pref.prepared, 0);
+  }
 }

@@ -65,7 +65,7 @@ void run_checked(RtLacam& rt, const Inst& in, uint64_t per_step, bool check_ever
 TEST(RtLacam, BuildsTheSameTreeAsFullHorizonLacam)
 {
   for (const auto& in : instances()) {
-    for (uint64_t seed = 0; seed < 4; ++seed) {
+    for (uint64_t seed = 0; seed < 8; ++seed) {
       SCOPED_TRACE(in.name + " seed " + std::to_string(seed));
       LacamOptions o;
       o.swap = in.swap;
