@@ -14,11 +14,13 @@ void RtLacam::set_goals(const Config& goals, GoalTest test)
   test_ = test;
   lacam_.reset(current_, goals, std::move(test));
   goal_path_.clear();
+  planned_ = nullptr;
 }
 
 Status RtLacam::search(const Budget& b)
 {
   if (lacam_.status() != Status::Searching) return lacam_.status();
+  planned_ = nullptr;
   const Status s = lacam_.search(b);
   if (s == Status::Solved)
     for (const HNode* h = lacam_.goal_node(); h; h = h->parent) goal_path_.push_back(h);
@@ -27,8 +29,9 @@ Status RtLacam::search(const Budget& b)
 
 const HNode* RtLacam::planned()
 {
-  if (!goal_path_.empty()) return goal_path_.size() >= 2 ? goal_path_[goal_path_.size() - 2] : lacam_.root();
-  return lacam_.next_toward(lacam_.top());
+  if (planned_) return planned_;
+  if (!goal_path_.empty()) return planned_ = goal_path_.size() >= 2 ? goal_path_[goal_path_.size() - 2] : lacam_.root();
+  return planned_ = lacam_.next_toward(lacam_.top());
 }
 
 const Config& RtLacam::next()
@@ -43,6 +46,7 @@ void RtLacam::commit()
   const HNode* h = planned();
   if (h == lacam_.root()) return;  // wait
   lacam_.reroot(h);
+  planned_ = nullptr;
   if (!goal_path_.empty()) goal_path_.pop_back();
   current_.assign(h->C, h->C + lacam_.num_agents());
 }

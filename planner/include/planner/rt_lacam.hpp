@@ -45,6 +45,7 @@ class RtLacam : public RealtimePlanner {
   Config next_;
   GoalTest test_;
   std::vector<const HNode*> goal_path_;  // goal first, root last, once solved
+  const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
 };
 
 }  // namespace planner
