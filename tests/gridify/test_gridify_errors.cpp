@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <typeinfo>
 
 #include "gridify/gridifier.hpp"
 #include "gridify_test_util.hpp"
@@ -198,4 +199,44 @@ TEST(GridifyErrors, LinksWithoutSumoConnectionsAreDropped)
   // Arriving cells next to a dead end still have both poses; b keeps its straight moves.
   EXPECT_EQ(m.cells[m.junction_cell("b")].movements.size(), 2u);
   expect_invariants(m, net);
+}
+
+// Robustness: every prefix of a real net and byte-level corruptions of it either gridify
+// or fail with an InputError -- never another exception, never a crash.
+TEST(GridifyErrors, TruncatedAndCorruptedNetsNeverCrash)
+{
+  std::ifstream in(scenario("small.net.xml"));
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  const std::string dir = temp_dir();
+  int ok = 0, input_errors = 0;
+  auto attempt = [&](const std::string& content) {
+    std::string path = dir + "/x.net.xml";
+    std::ofstream(path) << content;
+    try {
+      gridify::gridify(path);
+      ++ok;
+    } catch (const planner::InputError& e) {
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << "multi-line message";
+      ++input_errors;
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "unexpected " << typeid(e).name() << ": " << e.what();
+    }
+  };
+  for (size_t cut = 0; cut < text.size(); cut += 97) attempt(text.substr(0, cut));
+  unsigned rng = 12345;
+  const char junk[] = {'<', '>', '"', '=', '/', 'x', '0', '9', '-', ' ', '.', '\0'};
+  for (int k = 0; k < 300; ++k) {
+    std::string t = text;
+    for (int j = 0; j < 3; ++j) {
+      rng = rng * 1103515245u + 12345u;
+      size_t at = (rng >> 8) % t.size();
+      rng = rng * 1103515245u + 12345u;
+      t[at] = junk[(rng >> 8) % sizeof(junk)];
+    }
+    attempt(t);
+  }
+  EXPECT_GT(input_errors, 0);
+  EXPECT_GT(ok, 0);
 }
