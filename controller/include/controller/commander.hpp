@@ -1,0 +1,90 @@
+#pragma once
+// Commander: commanding scheme "S" (see /work/shared/notes/sumo-1.15.md and
+// controller/README.md). SUMO moves the AGVs itself; the commander only changes a
+// vehicle's speed, route or lane position when its state changes:
+//   wait                          -> setSpeed(0)                     (if it was moving)
+//   along its lane                -> setSpeed(d / tick)              (if it was not)
+//   out of a junction cell        -> setRoute({in, out, cont}); setSpeed(d / tick)
+//   reversal inside an aisle      -> setRoute({AB, BA, cont}); moveTo(BA_0, L - pos); setSpeed
+// where the route always ends with one more edge `cont` so no AGV ever reaches the end of
+// its route (SUMO would remove it). Reference point: the vehicle FRONT sits on the cell
+// centre; a junction cell is the end of the incoming lane. With speedMode 0 and a step
+// length dividing the tick, SUMO lands every AGV exactly on its cell (verify() checks).
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "controller/sumo_backend.hpp"
+#include "controller/sumo_error.hpp"
+#include "gridify/cell_map.hpp"
+#include "planner/config.hpp"
+
+namespace controller {
+
+struct CommandStats {
+  long long speed = 0, route = 0, move_to = 0;  // calls sent
+  long long jumps = 0;     // turns SUMO has no connection for: done by moveTo at once
+  long long resyncs = 0;   // verify() found an AGV off its cell and moved it back
+  double max_error = 0;    // largest position error seen by verify(), metres
+  long long total() const { return speed + route + move_to; }
+};
+
+class Commander {
+ public:
+  Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick_s);
+
+  static std::string vehicle_id(int agent) { return "agv" + std::to_string(agent); }
+
+  // Adds one vehicle per agent (type "agv") with its front on the start cell, speedMode 0
+  // and speed 0. They enter the network at the next SUMO step.
+  void insert(const planner::Config& starts);
+
+  // Commands for the move cur -> next (one tick). Agents with cur == next wait.
+  void command(const planner::Config& cur, const planner::Config& next);
+
+  // After the tick: every AGV must be on the pose of its cell in `at` within `tol`
+  // metres; off by more -> moveTo back (counted in resyncs). An AGV missing from SUMO is
+  // a ControlError.
+  void verify(const planner::Config& at, double tol);
+
+  // The commanded pose of an agent (where its front must be after the tick).
+  const gridify::SumoPose& pose(int agent) const { return agv_[agent].pose; }
+  const CommandStats& stats() const { return stats_; }
+  // True if some turn the planner may use has no SUMO connection (SUMO then needs
+  // --ignore-route-errors for the route that jumps it).
+  bool needs_ignore_route_errors() const { return missing_turns_; }
+
+ private:
+  struct Agv {
+    std::string id;
+    gridify::SumoPose pose;  // commanded front position
+    double speed = 0;        // last commanded speed
+  };
+  struct Lane {
+    std::string edge;
+    double length = 0;
+    std::string opposite;    // lane of the opposite edge of the aisle
+    planner::Vertex end = -1;  // junction cell at the end of the lane
+  };
+
+  void command(int agent, planner::Vertex u, planner::Vertex v);
+  // A SUMO call on an AGV failed: a ControlError if the AGV is gone, else rethrows.
+  [[noreturn]] void failed(int agent, const SumoError& e);
+  const Lane& lane(const std::string& id) const;
+  const std::string& continuation(const std::string& edge) const;  // an edge SUMO may take after `edge`
+  bool connected(const std::string& from, const std::string& to) const;
+  void set_speed(Agv& a, double v);
+  void set_route(Agv& a, std::vector<std::string> edges);
+
+  const gridify::CellMap& map_;
+  SumoBackend& sumo_;
+  double tick_;
+  std::unordered_map<std::string, Lane> lanes_;
+  std::unordered_map<std::string, std::string> edge_lane_;
+  std::unordered_map<std::string, std::vector<std::string>> next_edges_;  // SUMO connections
+  bool missing_turns_ = false;
+  std::vector<Agv> agv_;
+  CommandStats stats_;
+};
+
+}  // namespace controller

@@ -1,0 +1,104 @@
+#pragma once
+// Config: one controller run as read from YAML (see controller/README.md for the schema
+// and defaults). Plain structs; load_config() validates everything that can be checked
+// without the net (unknown keys, types, ranges, files), resolve_fleet() the rest
+// (cells on the graph, enough free cells). Every error is one ConfigError line
+// "file: key.path: what".
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace controller {
+
+struct ConfigError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A cell named in YAML: a vertex id, or a station / junction id. `key` is its key path.
+struct CellRef {
+  int vertex = -1;
+  std::string name;
+  std::string key;
+};
+
+struct SumoOutputs {
+  bool fcd = true, tripinfo = true, summary = true, collision = true;
+};
+
+struct SumoSection {
+  std::string net;         // absolute after loading (relative paths are relative to the YAML)
+  std::string additional;  // stations (optional)
+  double step_length = 0.125;
+  std::vector<std::string> extra_args;
+  SumoOutputs outputs;
+};
+
+struct GridSection {
+  double cell_length = 1.0;
+  double tolerance = 0.01;
+  bool snap = false;
+  bool drop_one_way = false;
+};
+
+// The AGV vType of scheme S; maxSpeed and emergencyDecel are derived (cell/tick, vmax/dt).
+struct VType {
+  double length = 0.8, width = 0.6, min_gap = 0.1, accel = 2.0, decel = 2.0;
+};
+
+struct FleetSection {
+  int count = 0;
+  uint64_t seed = 0;
+  bool random_starts = true;  // starts: random
+  std::vector<CellRef> starts;
+  VType vtype;
+};
+
+struct PlannerSection {
+  std::string solver = "rtlacam";  // rtlacam | naive | pibt
+  double budget_ms = 1.0;          // per SUMO step; 0 = no time limit
+  uint64_t expansions = 0;         // per SUMO step; 0 = no limit (set it for deterministic runs)
+  uint64_t seed = 0;
+  bool swap = true;
+};
+
+struct TasksSection {
+  std::string mode = "one_shot";  // one_shot (lifelong: the task-layer issue)
+  bool random_goals = true;
+  uint64_t seed = 1;
+  std::vector<CellRef> goals;
+};
+
+struct RunSection {
+  double tick_s = 1.0;
+  long long max_ticks = 1000;
+  std::string backend = "libsumo";  // libsumo | traci
+  bool gui = false;                  // sumo-gui through TraCI
+  int port = 0;                      // traci: connect to a running SUMO instead of starting one
+  double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
+  bool verbose = false;
+};
+
+struct OutputSection {
+  std::string dir = "out/run";  // relative to the working directory
+  bool plan = true;
+};
+
+struct Config {
+  std::string path;  // the YAML file
+  SumoSection sumo;
+  GridSection grid;
+  FleetSection fleet;
+  PlannerSection planner;
+  TasksSection tasks;
+  RunSection run;
+  OutputSection output;
+
+  int steps_per_tick() const;  // tick_s / step_length (validated to be a whole number)
+};
+
+Config load_config(const std::string& path);
+// The same from YAML text; relative paths resolve against `base_dir`.
+Config parse_config(const std::string& yaml, const std::string& name, const std::string& base_dir);
+
+}  // namespace controller

@@ -1,0 +1,56 @@
+#pragma once
+// Controller: one SUMO run in which a real-time planner drives every AGV cell by cell.
+//
+//   gridify(net) -> CellMap; fleet -> starts/goals; start SUMO; insert the AGVs
+//   every SUMO step:  planner.search(budget)            (thinking while the AGVs move)
+//   every tick (tick_s / step_length steps), at its start:
+//       next = planner.next(); planner.commit()         (reroot at once: the search goes on
+//                                                        from where the AGVs are heading)
+//       validator.step(next); commander.command(cur, next)   (scheme S)
+//   at its end: commander.verify(next)                  (exact poses, else moveTo + count)
+//   after every SUMO step: no AGV arrived, teleported or collided.
+// Any violation stops the run with a one-line error in Metrics::error; the outputs
+// (SUMO files, metrics.json, plan.txt) are written in every case.
+#include <functional>
+#include <memory>
+
+#include "controller/config.hpp"
+#include "controller/metrics.hpp"
+#include "controller/sumo_backend.hpp"
+#include "gridify/cell_map.hpp"
+#include "planner/realtime_planner.hpp"
+
+namespace controller {
+
+// The solver named by planner.solver on this graph and instance.
+std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
+                                                       const planner::Config& starts, const planner::Config& goals);
+
+// The back end named by run.backend (run.gui: sumo-gui through TraCI).
+std::unique_ptr<SumoBackend> make_backend(const RunSection& r);
+
+class Controller {
+ public:
+  explicit Controller(Config cfg) : cfg_(std::move(cfg)) {}
+
+  // Runs to the goals or run.max_ticks. Bad configuration (including cells off the
+  // graph) throws ConfigError before SUMO starts; everything later ends up in
+  // Metrics::error.
+  Metrics run();
+
+  // Called at the start of every tick, before the commands: lets tests (or tools) act on
+  // SUMO from outside, e.g. remove an AGV behind the controller's back.
+  std::function<void(long long tick, SumoBackend& sumo)> on_tick;
+  // Metres an AGV may be off its cell after a tick before it is re-synced.
+  double tolerance = 1e-6;
+
+  const gridify::CellMap& map() const { return map_; }
+  const std::vector<planner::Config>& plan() const { return plan_; }
+
+ private:
+  Config cfg_;
+  gridify::CellMap map_;
+  std::vector<planner::Config> plan_;
+};
+
+}  // namespace controller

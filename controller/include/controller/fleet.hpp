@@ -1,0 +1,14 @@
+#pragma once
+// Fleet: the MAPF instance of a run -- start and goal cell of every AGV -- from the
+// config's explicit cells (vertex ids, station or junction ids) or random distinct cells
+// drawn with a seed. Errors (cells off the graph, unknown names, two AGVs on one cell,
+// more AGVs than cells) are ConfigErrors naming the key path.
+#include "controller/config.hpp"
+#include "gridify/cell_map.hpp"
+#include "planner/instance.hpp"
+
+namespace controller {
+
+planner::Instance make_instance(const Config& cfg, const gridify::CellMap& map);
+
+}  // namespace controller

@@ -1,0 +1,37 @@
+#pragma once
+// Metrics of one controller run, written as metrics.json in the output directory
+// (also when the run stops on an error: what happened so far, plus the error line).
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "controller/commander.hpp"
+
+namespace controller {
+
+// Summary of a sample of durations in milliseconds.
+struct Latency {
+  long long count = 0;
+  double mean = 0, p50 = 0, p99 = 0, max = 0;
+  static Latency of(std::vector<double> ms);
+};
+
+struct Metrics {
+  std::string config, net, backend, solver, error;  // error: "" when the run was clean
+  bool solved = false;          // every AGV on its goal (one-shot)
+  int agents = 0, cells = 0;
+  long long ticks = 0;          // executed ticks (MAPF steps)
+  long long makespan = 0, soc = 0, soc_lb = 0;
+  long long violations = 0;     // validator / collision / teleport / arrival / lost AGV
+  uint64_t expansions = 0;
+  double tick_s = 0, step_length = 0, sim_s = 0, wall_s = 0, budget_ms = 0;
+  Latency planner_ms_per_step;  // one search(budget) call per SUMO step
+  Latency planner_ms_per_tick;  // sum over the steps of a tick
+  Latency sumo_ms_per_step;     // SUMO's own step (inside the back end)
+  Latency control_ms_per_tick;  // commands + verification
+  CommandStats commands;
+
+  nlohmann::json to_json() const;
+};
+
+}  // namespace controller

@@ -1,0 +1,58 @@
+#pragma once
+// SumoBackend: the few SUMO calls the controller needs, behind one interface so the same
+// loop runs embedded (libsumo) or over a socket (libtraci). libsumo and libtraci headers
+// cannot share a translation unit, hence one .cpp per implementation.
+//
+// Every call throws SumoError (one line) on failure, including a lost TraCI connection.
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace controller {
+
+struct VehiclePose {
+  std::string lane;  // "" if the vehicle is not (or no longer) in the network
+  double pos = 0;    // lane position of the front
+};
+
+class SumoBackend {
+ public:
+  virtual ~SumoBackend() = default;
+
+  // Starts a simulation with SUMO command-line options (without the binary name).
+  virtual void start(const std::vector<std::string>& args) = 0;
+  virtual void close() = 0;
+  virtual bool running() const = 0;
+
+  virtual void step() = 0;       // one SUMO step (step-length seconds)
+  virtual double time() = 0;     // simulation time in seconds
+
+  virtual void add_route(const std::string& id, const std::vector<std::string>& edges) = 0;
+  // Inserted at the next step with the front at `pos` on lane `lane_index` and speed 0.
+  virtual void add_vehicle(const std::string& id, const std::string& route, const std::string& type,
+                           int lane_index, double pos) = 0;
+  virtual void set_speed_mode(const std::string& id, int mode) = 0;
+  virtual void set_speed(const std::string& id, double speed) = 0;
+  virtual void set_route(const std::string& id, const std::vector<std::string>& edges) = 0;
+  virtual void move_to(const std::string& id, const std::string& lane, double pos) = 0;
+  virtual VehiclePose pose(const std::string& id) = 0;
+  virtual void remove(const std::string& id) = 0;
+
+  virtual std::vector<std::string> vehicles() = 0;     // in the network now
+  virtual std::vector<std::string> pending() = 0;      // added, not yet inserted
+  // Events of the last step:
+  virtual std::vector<std::string> arrived() = 0;
+  virtual std::vector<std::string> teleported() = 0;   // started teleporting
+  virtual std::vector<std::string> colliding() = 0;
+
+  virtual std::string name() const = 0;
+};
+
+// Embedded SUMO in this process (one simulation per process).
+std::unique_ptr<SumoBackend> make_libsumo_backend();
+
+// TraCI: starts `binary` (sumo or sumo-gui, found on PATH) as a child process, or, with
+// port > 0, connects to a SUMO already listening there (start() then ignores args).
+std::unique_ptr<SumoBackend> make_traci_backend(const std::string& binary = "sumo", int port = 0);
+
+}  // namespace controller

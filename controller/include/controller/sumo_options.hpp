@@ -1,0 +1,24 @@
+#pragma once
+// The SUMO side of a run: the AGV vType file and the command-line options of scheme S.
+//   --step-length dt --time-to-teleport -1      (waiting AGVs are never teleported)
+//   --collision.action warn --collision.mingap-factor 0   (report physical overlaps only,
+//                                                          never remove or teleport)
+//   --no-step-log true, outputs (fcd/tripinfo/summary/collision) into the run's dir,
+//   then the user's extra_args (they come last, so they can override).
+#include <string>
+#include <vector>
+
+#include "controller/config.hpp"
+
+namespace controller {
+
+// Writes <dir>/agv.add.xml with vType "agv": the config's body sizes, speedFactor 1,
+// speedDev 0, sigma 0, maxSpeed a little above max_spacing / tick and emergencyDecel >=
+// maxSpeed / step_length (a stop from full speed within one step raises no warning).
+// Returns the file's path.
+std::string write_vtype_file(const Config& cfg, const std::string& dir, double max_spacing);
+
+std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,
+                                   bool ignore_route_errors);
+
+}  // namespace controller

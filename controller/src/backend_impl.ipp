@@ -1,0 +1,121 @@
+// Shared body of the two SUMO back ends. Included by libsumo_backend.cpp with
+// `namespace api = libsumo` and by traci_backend.cpp with `namespace api = libtraci`:
+// the two APIs have the same static functions, but their headers cannot share a
+// translation unit. Lives in an anonymous namespace of each including file.
+
+std::string one_line(std::string s)
+{
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!s.empty() && s.back() == ' ') s.pop_back();
+  return s.empty() ? "unknown error (SUMO gave no message)" : s;
+}
+
+// Runs a SUMO call; any exception becomes one SumoError line naming the call.
+template <class F>
+auto guarded(const char* what, F&& f) -> decltype(f())
+{
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    throw SumoError(std::string("SUMO ") + what + ": " + one_line(e.what()));
+  }
+}
+
+class ApiBackend : public SumoBackend {
+ public:
+  bool running() const override { return running_; }
+
+  void step() override
+  {
+    call("step", [] { api::Simulation::step(); });
+  }
+  double time() override
+  {
+    return call("getTime", [] { return api::Simulation::getTime(); });
+  }
+  void add_route(const std::string& id, const std::vector<std::string>& edges) override
+  {
+    call("Route.add", [&] { api::Route::add(id, edges); });
+  }
+  void add_vehicle(const std::string& id, const std::string& route, const std::string& type, int lane_index,
+                   double pos) override
+  {
+    call("Vehicle.add", [&] {
+      api::Vehicle::add(id, route, type, "now", std::to_string(lane_index), fmt(pos), "0");
+    });
+  }
+  void set_speed_mode(const std::string& id, int mode) override
+  {
+    call("Vehicle.setSpeedMode", [&] { api::Vehicle::setSpeedMode(id, mode); });
+  }
+  void set_speed(const std::string& id, double speed) override
+  {
+    call("Vehicle.setSpeed", [&] { api::Vehicle::setSpeed(id, speed); });
+  }
+  void set_route(const std::string& id, const std::vector<std::string>& edges) override
+  {
+    call("Vehicle.setRoute", [&] { api::Vehicle::setRoute(id, edges); });
+  }
+  void move_to(const std::string& id, const std::string& lane, double pos) override
+  {
+    call("Vehicle.moveTo", [&] { api::Vehicle::moveTo(id, lane, pos); });
+  }
+  VehiclePose pose(const std::string& id) override
+  {
+    return call("Vehicle.getLaneID/getLanePosition", [&] {
+      return VehiclePose{api::Vehicle::getLaneID(id), api::Vehicle::getLanePosition(id)};
+    });
+  }
+  void remove(const std::string& id) override
+  {
+    call("Vehicle.remove", [&] { api::Vehicle::remove(id); });
+  }
+  std::vector<std::string> vehicles() override
+  {
+    return call("Vehicle.getIDList", [] { return api::Vehicle::getIDList(); });
+  }
+  std::vector<std::string> pending() override
+  {
+    return call("Simulation.getPendingVehicles", [] { return api::Simulation::getPendingVehicles(); });
+  }
+  std::vector<std::string> arrived() override
+  {
+    return call("Simulation.getArrivedIDList", [] { return api::Simulation::getArrivedIDList(); });
+  }
+  std::vector<std::string> teleported() override
+  {
+    return call("Simulation.getStartingTeleportIDList", [] { return api::Simulation::getStartingTeleportIDList(); });
+  }
+  std::vector<std::string> colliding() override
+  {
+    return call("Simulation.getCollidingVehiclesIDList", [] { return api::Simulation::getCollidingVehiclesIDList(); });
+  }
+
+ protected:
+  // A call on a running simulation. libtraci dereferences a null connection once it is
+  // closed, so nothing goes through after a close or a fatal (connection) error.
+  template <class F>
+  auto call(const char* what, F&& f) -> decltype(f())
+  {
+    if (!running_) throw SumoError(std::string("SUMO ") + what + ": no simulation running (closed or connection lost)");
+    try {
+      return f();
+    } catch (const libsumo::FatalTraCIError& e) {
+      running_ = false;
+      throw SumoError(std::string("SUMO ") + what + ": connection lost: " + one_line(e.what()));
+    } catch (const std::exception& e) {
+      throw SumoError(std::string("SUMO ") + what + ": " + one_line(e.what()));
+    }
+  }
+
+  bool running_ = false;
+
+  // Exact decimal of a double: SUMO parses departPos as text.
+  static std::string fmt(double x)
+  {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return buf;
+  }
+};

@@ -1,0 +1,180 @@
+#include "controller/commander.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "controller/sumo_error.hpp"
+
+namespace controller {
+
+Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick_s)
+    : map_(map), sumo_(sumo), tick_(tick_s)
+{
+  for (const gridify::Aisle& a : map.aisles) {
+    lanes_[a.lane_ab] = Lane{a.ab, a.length_ab, a.lane_ba, a.cells.back()};
+    lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front()};
+    edge_lane_[a.ab] = a.lane_ab;
+    edge_lane_[a.ba] = a.lane_ba;
+  }
+  for (const gridify::Cell& c : map.cells)
+    for (const gridify::Movement& m : c.movements) next_edges_[m.from].push_back(m.to);
+  // Turns the planner may ask for but SUMO has no connection for: out of a junction cell
+  // from any incoming lane into any linked aisle, and reversals inside aisles.
+  for (planner::Vertex u = 0; u < map.graph.size(); ++u) {
+    const gridify::Cell& c = map.cells[u];
+    if (c.kind != gridify::CellKind::Junction) continue;
+    for (const gridify::SumoPose& in : c.poses)
+      for (planner::Vertex w : map.graph.neighbors(u))
+        if (!connected(lane(in.lane).edge, lane(map.pose_entering(u, w).lane).edge)) missing_turns_ = true;
+  }
+  for (const gridify::Aisle& a : map.aisles)
+    if (a.steps > 1 && (!connected(a.ab, a.ba) || !connected(a.ba, a.ab))) missing_turns_ = true;
+}
+
+const Commander::Lane& Commander::lane(const std::string& id) const
+{
+  auto it = lanes_.find(id);
+  if (it == lanes_.end()) throw ControlError("lane '" + id + "' is not on a kept aisle of the grid");
+  return it->second;
+}
+
+bool Commander::connected(const std::string& from, const std::string& to) const
+{
+  auto it = next_edges_.find(from);
+  if (it == next_edges_.end()) return false;
+  for (const std::string& e : it->second)
+    if (e == to) return true;
+  return false;
+}
+
+const std::string& Commander::continuation(const std::string& edge) const
+{
+  auto it = next_edges_.find(edge);
+  if (it == next_edges_.end() || it->second.empty())
+    throw ControlError("edge '" + edge + "' has no SUMO connection onwards: an AGV there would leave the network");
+  return it->second.front();
+}
+
+void Commander::set_speed(Agv& a, double v)
+{
+  if (a.speed == v) return;  // scheme S: only state changes cost a call
+  sumo_.set_speed(a.id, v);
+  a.speed = v;
+  ++stats_.speed;
+}
+
+void Commander::set_route(Agv& a, std::vector<std::string> edges)
+{
+  sumo_.set_route(a.id, edges);
+  ++stats_.route;
+}
+
+void Commander::insert(const planner::Config& starts)
+{
+  agv_.clear();
+  for (int i = 0; i < static_cast<int>(starts.size()); ++i) {
+    Agv a;
+    a.id = vehicle_id(i);
+    // Any pose of the start cell will do; the first heads A->B (aisles) or comes in over
+    // the first kept incoming edge (junctions).
+    a.pose = map_.cells[starts[i]].poses.front();
+    const std::string& edge = lane(a.pose.lane).edge;
+    const std::string route = "r_" + a.id;
+    sumo_.add_route(route, {edge, continuation(edge)});
+    sumo_.add_vehicle(a.id, route, "agv", 0, a.pose.pos);
+    // Works on a vehicle that is still pending insertion.
+    sumo_.set_speed_mode(a.id, 0);
+    sumo_.set_speed(a.id, 0);
+    agv_.push_back(a);
+  }
+}
+
+void Commander::failed(int agent, const SumoError& e)
+{
+  const std::string& id = agv_[agent].id;
+  const std::vector<std::string> ids = sumo_.vehicles();  // throws again if SUMO itself is gone
+  if (std::find(ids.begin(), ids.end(), id) == ids.end())
+    throw ControlError("AGV " + id + " (agent " + std::to_string(agent) +
+                       ") is not in SUMO any more (removed behind the controller's back?)");
+  throw e;
+}
+
+void Commander::command(const planner::Config& cur, const planner::Config& next)
+{
+  for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
+    try {
+      command(i, cur[i], next[i]);
+    } catch (const SumoError& e) {
+      failed(i, e);
+    }
+  }
+}
+
+void Commander::command(int i, planner::Vertex u, planner::Vertex v)
+{
+  {
+    Agv& a = agv_[i];
+    if (u == v) {
+      set_speed(a, 0);
+      return;
+    }
+    const gridify::SumoPose target = map_.pose_entering(u, v);
+    const Lane& here = lane(a.pose.lane);
+    if (target.lane == a.pose.lane) {
+      // Along the lane; the route already continues past its end.
+      set_speed(a, (target.pos - a.pose.pos) / tick_);
+    } else if (map_.cells[u].kind == gridify::CellKind::Junction) {
+      const std::string& out = lane(target.lane).edge;
+      set_route(a, {here.edge, out, continuation(out)});
+      if (connected(here.edge, out)) {
+        set_speed(a, target.pos / tick_);
+      } else {
+        // No SUMO connection for this turn: jump there now (SUMO runs with
+        // --ignore-route-errors in this case).
+        sumo_.move_to(a.id, target.lane, target.pos);
+        ++stats_.move_to;
+        ++stats_.jumps;
+        set_speed(a, 0);
+      }
+    } else if (target.lane == here.opposite) {
+      // Reversal inside an aisle: turn the vehicle round on the spot, then drive.
+      const Lane& back = lane(target.lane);
+      const double turned = back.length - a.pose.pos;
+      set_route(a, {here.edge, back.edge, continuation(back.edge)});
+      sumo_.move_to(a.id, target.lane, turned);
+      ++stats_.move_to;
+      set_speed(a, (target.pos - turned) / tick_);
+    } else {
+      throw ControlError("agent " + std::to_string(i) + ": no scheme-S command for the move " + std::to_string(u) +
+                         " -> " + std::to_string(v) + " from lane " + a.pose.lane);
+    }
+    a.pose = target;
+  }
+}
+
+void Commander::verify(const planner::Config& at, double tol)
+{
+  (void)at;  // the commanded poses already encode `at`; kept for the call's meaning
+  for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
+    Agv& a = agv_[i];
+    VehiclePose p;
+    try {
+      p = sumo_.pose(a.id);
+    } catch (const SumoError& e) {
+      failed(i, e);
+    }
+    if (p.lane.empty())
+      throw ControlError("AGV " + a.id + " (agent " + std::to_string(i) + ") is not on any lane (not inserted or removed)");
+    const double err = p.lane == a.pose.lane ? std::fabs(p.pos - a.pose.pos) : INFINITY;
+    if (err <= tol) {
+      if (err > stats_.max_error) stats_.max_error = err;
+      continue;
+    }
+    // Off its cell: put it back (the route of every AGV contains its commanded lane).
+    sumo_.move_to(a.id, a.pose.lane, a.pose.pos);
+    ++stats_.move_to;
+    ++stats_.resyncs;
+  }
+}
+
+}  // namespace controller

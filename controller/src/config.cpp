@@ -1,0 +1,249 @@
+#include "controller/config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+namespace controller {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Walks the YAML tree with the key path of every node, so each error names it.
+class Reader {
+ public:
+  Reader(std::string file, std::string base) : file_(std::move(file)), base_(std::move(base)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const
+  {
+    throw ConfigError(file_ + ": " + (key.empty() ? "" : key + ": ") + what);
+  }
+
+  // A mapping with only the given keys (a missing section is an empty mapping).
+  void keys(const YAML::Node& n, const std::string& key, const std::set<std::string>& allowed) const
+  {
+    if (!n || n.IsNull()) return;
+    if (!n.IsMap()) fail(key, "expected a mapping");
+    for (const auto& kv : n) {
+      const std::string k = kv.first.as<std::string>();
+      if (!allowed.count(k)) {
+        std::string list;
+        for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + a;
+        fail(join(key, k), "unknown key (expected one of: " + list + ")");
+      }
+    }
+  }
+
+  template <class T>
+  void get(const YAML::Node& parent, const std::string& key, const char* k, T& out, const char* type) const
+  {
+    if (!parent || !parent.IsMap() || !parent[k]) return;
+    const YAML::Node n = parent[k];
+    if (!n.IsScalar()) fail(join(key, k), std::string("expected ") + type);
+    try {
+      out = n.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(join(key, k), std::string("expected ") + type + ", got '" + n.Scalar() + "'");
+    }
+  }
+  void number(const YAML::Node& p, const std::string& key, const char* k, double& out, double lo, bool lo_open = false) const
+  {
+    get(p, key, k, out, "a number");
+    if (!std::isfinite(out) || out < lo || (lo_open && out == lo))
+      fail(join(key, k), "must be " + std::string(lo_open ? "> " : ">= ") + fmt(lo) + ", got " + fmt(out));
+  }
+  void flag(const YAML::Node& p, const std::string& key, const char* k, bool& out) const { get(p, key, k, out, "true or false"); }
+  void text(const YAML::Node& p, const std::string& key, const char* k, std::string& out) const { get(p, key, k, out, "a string"); }
+  void choice(const YAML::Node& p, const std::string& key, const char* k, std::string& out,
+              const std::set<std::string>& allowed) const
+  {
+    text(p, key, k, out);
+    if (!allowed.count(out)) {
+      std::string list;
+      for (const std::string& a : allowed) list += (list.empty() ? "" : "|") + a;
+      fail(join(key, k), "'" + out + "' is not one of " + list);
+    }
+  }
+  // A file that must exist; relative to the YAML file.
+  void file(const YAML::Node& p, const std::string& key, const char* k, std::string& out, bool required) const
+  {
+    if (!p || !p.IsMap() || !p[k]) {
+      if (required) fail(join(key, k), "missing (required)");
+      return;
+    }
+    text(p, key, k, out);
+    fs::path f(out);
+    if (f.is_relative()) f = fs::path(base_) / f;
+    f = f.lexically_normal();
+    if (!fs::is_regular_file(f)) fail(join(key, k), "file '" + f.string() + "' not found");
+    out = f.string();
+  }
+  // `random` or a list of cells (vertex ids or station / junction ids).
+  void cells(const YAML::Node& p, const std::string& key, const char* k, bool& random, std::vector<CellRef>& out) const
+  {
+    if (!p || !p.IsMap() || !p[k]) return;
+    const YAML::Node n = p[k];
+    const std::string kk = join(key, k);
+    if (n.IsScalar()) {
+      if (n.Scalar() != "random") fail(kk, "expected 'random' or a list of cells, got '" + n.Scalar() + "'");
+      random = true;
+      return;
+    }
+    if (!n.IsSequence()) fail(kk, "expected 'random' or a list of cells");
+    random = false;
+    for (size_t i = 0; i < n.size(); ++i) {
+      CellRef c;
+      c.key = kk + "[" + std::to_string(i) + "]";
+      if (!n[i].IsScalar()) fail(c.key, "expected a cell id or a station/junction id");
+      int v = 0;
+      if (YAML::convert<int>::decode(n[i], v)) c.vertex = v;
+      else c.name = n[i].Scalar();
+      out.push_back(c);
+    }
+  }
+
+  static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
+  static std::string fmt(double x)
+  {
+    std::ostringstream s;
+    s << x;
+    return s.str();
+  }
+
+ private:
+  std::string file_, base_;
+};
+
+}  // namespace
+
+int Config::steps_per_tick() const { return static_cast<int>(std::lround(run.tick_s / sumo.step_length)); }
+
+Config parse_config(const std::string& yaml, const std::string& name, const std::string& base_dir)
+{
+  Reader r(name, base_dir);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml);
+  } catch (const YAML::Exception& e) {
+    r.fail("", "not valid YAML: line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
+  }
+  if (!root.IsMap()) r.fail("", "expected a mapping with sections sumo, grid, fleet, planner, tasks, run, output");
+  r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "output"});
+
+  Config c;
+  c.path = name;
+
+  const YAML::Node s = root["sumo"];
+  if (!s) r.fail("sumo", "missing (required: at least sumo.net)");
+  r.keys(s, "sumo", {"net", "additional", "step_length", "extra_args", "outputs"});
+  r.file(s, "sumo", "net", c.sumo.net, true);
+  r.file(s, "sumo", "additional", c.sumo.additional, false);
+  r.number(s, "sumo", "step_length", c.sumo.step_length, 0, true);
+  if (s["extra_args"]) {
+    const YAML::Node a = s["extra_args"];
+    if (!a.IsSequence()) r.fail("sumo.extra_args", "expected a list of strings");
+    for (size_t i = 0; i < a.size(); ++i) {
+      if (!a[i].IsScalar()) r.fail("sumo.extra_args[" + std::to_string(i) + "]", "expected a string");
+      c.sumo.extra_args.push_back(a[i].Scalar());
+    }
+  }
+  const YAML::Node o = s["outputs"];
+  r.keys(o, "sumo.outputs", {"fcd", "tripinfo", "summary", "collision"});
+  r.flag(o, "sumo.outputs", "fcd", c.sumo.outputs.fcd);
+  r.flag(o, "sumo.outputs", "tripinfo", c.sumo.outputs.tripinfo);
+  r.flag(o, "sumo.outputs", "summary", c.sumo.outputs.summary);
+  r.flag(o, "sumo.outputs", "collision", c.sumo.outputs.collision);
+
+  const YAML::Node g = root["grid"];
+  r.keys(g, "grid", {"cell_length", "tolerance", "snap", "drop_one_way"});
+  r.number(g, "grid", "cell_length", c.grid.cell_length, 0, true);
+  r.number(g, "grid", "tolerance", c.grid.tolerance, 0);
+  r.flag(g, "grid", "snap", c.grid.snap);
+  r.flag(g, "grid", "drop_one_way", c.grid.drop_one_way);
+
+  const YAML::Node f = root["fleet"];
+  if (!f) r.fail("fleet", "missing (required: at least fleet.count)");
+  r.keys(f, "fleet", {"count", "seed", "starts", "vtype"});
+  r.get(f, "fleet", "seed", c.fleet.seed, "a non-negative integer");
+  r.cells(f, "fleet", "starts", c.fleet.random_starts, c.fleet.starts);
+  if (f["count"]) {
+    r.get(f, "fleet", "count", c.fleet.count, "an integer");
+    if (c.fleet.count < 1) r.fail("fleet.count", "must be >= 1, got " + std::to_string(c.fleet.count));
+    if (!c.fleet.random_starts && static_cast<int>(c.fleet.starts.size()) != c.fleet.count)
+      r.fail("fleet.starts", "lists " + std::to_string(c.fleet.starts.size()) + " cells but fleet.count is " +
+                                 std::to_string(c.fleet.count));
+  } else if (!c.fleet.random_starts) {
+    c.fleet.count = static_cast<int>(c.fleet.starts.size());
+  } else {
+    r.fail("fleet.count", "missing (required with random starts)");
+  }
+  if (c.fleet.count < 1) r.fail("fleet.starts", "must list at least one cell");
+  const YAML::Node v = f["vtype"];
+  r.keys(v, "fleet.vtype", {"length", "width", "min_gap", "accel", "decel"});
+  r.number(v, "fleet.vtype", "length", c.fleet.vtype.length, 0, true);
+  r.number(v, "fleet.vtype", "width", c.fleet.vtype.width, 0, true);
+  r.number(v, "fleet.vtype", "min_gap", c.fleet.vtype.min_gap, 0);
+  r.number(v, "fleet.vtype", "accel", c.fleet.vtype.accel, 0, true);
+  r.number(v, "fleet.vtype", "decel", c.fleet.vtype.decel, 0, true);
+  if (c.fleet.vtype.length + c.fleet.vtype.min_gap > c.grid.cell_length + 1e-9)
+    r.fail("fleet.vtype", "length + min_gap (" + Reader::fmt(c.fleet.vtype.length + c.fleet.vtype.min_gap) +
+                              ") exceeds grid.cell_length (" + Reader::fmt(c.grid.cell_length) +
+                              "): AGVs on adjacent cells would overlap");
+
+  const YAML::Node p = root["planner"];
+  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap"});
+  r.choice(p, "planner", "solver", c.planner.solver, {"rtlacam", "naive", "pibt"});
+  r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
+  r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");
+  r.get(p, "planner", "seed", c.planner.seed, "a non-negative integer");
+  r.flag(p, "planner", "swap", c.planner.swap);
+  if (c.planner.budget_ms == 0 && c.planner.expansions == 0)
+    r.fail("planner.budget_ms", "0 needs planner.expansions > 0 (some limit per SUMO step)");
+
+  const YAML::Node t = root["tasks"];
+  r.keys(t, "tasks", {"mode", "goals", "seed"});
+  r.choice(t, "tasks", "mode", c.tasks.mode, {"one_shot", "lifelong"});
+  if (c.tasks.mode == "lifelong") r.fail("tasks.mode", "'lifelong' needs the task layer, which is not built yet");
+  r.get(t, "tasks", "seed", c.tasks.seed, "a non-negative integer");
+  r.cells(t, "tasks", "goals", c.tasks.random_goals, c.tasks.goals);
+  if (!c.tasks.random_goals && static_cast<int>(c.tasks.goals.size()) != c.fleet.count)
+    r.fail("tasks.goals", "lists " + std::to_string(c.tasks.goals.size()) + " cells but the fleet has " +
+                              std::to_string(c.fleet.count) + " AGVs");
+
+  const YAML::Node u = root["run"];
+  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "port", "progress_s", "verbose"});
+  r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
+  r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
+  if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
+  r.choice(u, "run", "backend", c.run.backend, {"libsumo", "traci"});
+  r.flag(u, "run", "gui", c.run.gui);
+  r.get(u, "run", "port", c.run.port, "an integer");
+  if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
+  r.number(u, "run", "progress_s", c.run.progress_s, 0);
+  r.flag(u, "run", "verbose", c.run.verbose);
+  const double k = c.run.tick_s / c.sumo.step_length;
+  if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
+    r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
+
+  const YAML::Node w = root["output"];
+  r.keys(w, "output", {"dir", "plan"});
+  r.text(w, "output", "dir", c.output.dir);
+  r.flag(w, "output", "plan", c.output.plan);
+  return c;
+}
+
+Config load_config(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the config file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  fs::path base = fs::path(path).parent_path();
+  return parse_config(ss.str(), path, base.empty() ? "." : base.string());
+}
+
+}  // namespace controller

@@ -1,0 +1,82 @@
+#include "controller/fleet.hpp"
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <unordered_map>
+
+namespace controller {
+namespace {
+
+[[noreturn]] void fail(const Config& cfg, const std::string& key, const std::string& what)
+{
+  throw ConfigError(cfg.path + ": " + key + ": " + what);
+}
+
+planner::Vertex resolve(const Config& cfg, const gridify::CellMap& map, const CellRef& c)
+{
+  const int n = map.graph.size();
+  if (c.name.empty()) {
+    if (c.vertex < 0 || c.vertex >= n)
+      fail(cfg, c.key, "cell " + std::to_string(c.vertex) + " is not on the graph (cells 0.." + std::to_string(n - 1) + ")");
+    return c.vertex;
+  }
+  for (const gridify::Station& s : map.stations)
+    if (s.id == c.name) return s.cell;
+  planner::Vertex v = map.junction_cell(c.name);
+  if (v >= 0) return v;
+  fail(cfg, c.key, "'" + c.name + "' is neither a cell id, a station nor a junction of the graph");
+}
+
+std::vector<planner::Vertex> resolve_all(const Config& cfg, const gridify::CellMap& map,
+                                         const std::vector<CellRef>& refs, const char* what)
+{
+  std::vector<planner::Vertex> out;
+  std::unordered_map<planner::Vertex, const CellRef*> seen;
+  for (const CellRef& r : refs) {
+    planner::Vertex v = resolve(cfg, map, r);
+    auto [it, fresh] = seen.emplace(v, &r);
+    if (!fresh) fail(cfg, r.key, "cell " + std::to_string(v) + " is already the " + what + " of " + it->second->key);
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<planner::Vertex> random_cells(const Config& cfg, const gridify::CellMap& map, uint64_t seed,
+                                          const char* key)
+{
+  const int n = map.graph.size();
+  if (cfg.fleet.count > n)
+    fail(cfg, key, std::to_string(cfg.fleet.count) + " AGVs but the graph has only " + std::to_string(n) + " cells");
+  std::vector<planner::Vertex> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  // Partial Fisher-Yates with an explicit mt19937_64 draw: the same cells on every platform
+  // (std::shuffle/uniform_int_distribution are implementation-defined).
+  std::mt19937_64 rng(seed);
+  for (int i = 0; i < cfg.fleet.count; ++i) {
+    int j = i + static_cast<int>(rng() % static_cast<uint64_t>(n - i));
+    std::swap(all[i], all[j]);
+  }
+  all.resize(cfg.fleet.count);
+  return all;
+}
+
+}  // namespace
+
+planner::Instance make_instance(const Config& cfg, const gridify::CellMap& map)
+{
+  planner::Instance ins;
+  ins.source = cfg.path;
+  ins.starts = cfg.fleet.random_starts ? random_cells(cfg, map, cfg.fleet.seed, "fleet.count")
+                                       : resolve_all(cfg, map, cfg.fleet.starts, "start");
+  ins.goals = cfg.tasks.random_goals ? random_cells(cfg, map, cfg.tasks.seed, "fleet.count")
+                                     : resolve_all(cfg, map, cfg.tasks.goals, "goal");
+  try {
+    ins.check(map.graph);
+  } catch (const std::exception& e) {
+    fail(cfg, "fleet", e.what());
+  }
+  return ins;
+}
+
+}  // namespace controller

@@ -1,0 +1,65 @@
+#include "controller/metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace controller {
+
+Latency Latency::of(std::vector<double> ms)
+{
+  Latency l;
+  l.count = static_cast<long long>(ms.size());
+  if (ms.empty()) return l;
+  std::sort(ms.begin(), ms.end());
+  auto at = [&](double q) { return ms[std::min(ms.size() - 1, static_cast<size_t>(std::ceil(q * ms.size())) - 1)]; };
+  l.mean = std::accumulate(ms.begin(), ms.end(), 0.0) / ms.size();
+  l.p50 = at(0.50);
+  l.p99 = at(0.99);
+  l.max = ms.back();
+  return l;
+}
+
+static nlohmann::json latency_json(const Latency& l)
+{
+  return {{"count", l.count}, {"mean", l.mean}, {"p50", l.p50}, {"p99", l.p99}, {"max", l.max}};
+}
+
+nlohmann::json Metrics::to_json() const
+{
+  nlohmann::json j;
+  j["config"] = config;
+  j["net"] = net;
+  j["backend"] = backend;
+  j["solver"] = solver;
+  j["error"] = error;
+  j["solved"] = solved;
+  j["agents"] = agents;
+  j["cells"] = cells;
+  j["ticks"] = ticks;
+  j["makespan"] = makespan;
+  j["soc"] = soc;
+  j["soc_lb"] = soc_lb;
+  j["violations"] = violations;
+  j["expansions"] = expansions;
+  j["tick_s"] = tick_s;
+  j["step_length"] = step_length;
+  j["budget_ms_per_step"] = budget_ms;
+  j["sim_s"] = sim_s;
+  j["wall_s"] = wall_s;
+  j["real_time_factor"] = wall_s > 0 ? sim_s / wall_s : 0.0;
+  j["planner_ms_per_step"] = latency_json(planner_ms_per_step);
+  j["planner_ms_per_tick"] = latency_json(planner_ms_per_tick);
+  j["sumo_ms_per_step"] = latency_json(sumo_ms_per_step);
+  j["control_ms_per_tick"] = latency_json(control_ms_per_tick);
+  j["commands"] = {{"total", commands.total()},
+                   {"set_speed", commands.speed},
+                   {"set_route", commands.route},
+                   {"move_to", commands.move_to},
+                   {"jumps", commands.jumps}};
+  j["resyncs"] = commands.resyncs;
+  j["max_position_error_m"] = commands.max_error;
+  return j;
+}
+
+}  // namespace controller

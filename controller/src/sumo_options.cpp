@@ -1,0 +1,67 @@
+#include "controller/sumo_options.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+
+#include "controller/sumo_error.hpp"
+
+namespace controller {
+
+static std::string num(double x)
+{
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+std::string write_vtype_file(const Config& cfg, const std::string& dir, double max_spacing)
+{
+  const VType& t = cfg.fleet.vtype;
+  // Commanded speeds are (distance / tick); the margin keeps rounding from capping them.
+  const double vmax = 1.01 * max_spacing / cfg.run.tick_s;
+  const double emergency = std::max(2 * vmax / cfg.sumo.step_length, t.decel);
+  const std::string path = dir + "/agv.add.xml";
+  std::ofstream out(path);
+  if (!out) throw SumoError("cannot write " + path);
+  out << "<additional>\n"
+      << "    <vType id=\"agv\" length=\"" << num(t.length) << "\" width=\"" << num(t.width) << "\" minGap=\""
+      << num(t.min_gap) << "\" accel=\"" << num(t.accel) << "\" decel=\"" << num(t.decel) << "\" emergencyDecel=\""
+      << num(emergency) << "\" maxSpeed=\"" << num(vmax)
+      << "\" speedFactor=\"1\" speedDev=\"0\" sigma=\"0\" guiShape=\"truck\"/>\n"
+      << "</additional>\n";
+  return path;
+}
+
+std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,
+                                   bool ignore_route_errors)
+{
+  std::vector<std::string> a{"-n",
+                             cfg.sumo.net,
+                             "-a",
+                             vtype_file,
+                             "--step-length",
+                             num(cfg.sumo.step_length),
+                             "--time-to-teleport",
+                             "-1",
+                             "--collision.action",
+                             "warn",
+                             "--collision.mingap-factor",
+                             "0",
+                             "--no-step-log",
+                             "true"};
+  if (ignore_route_errors) a.push_back("--ignore-route-errors");
+  const SumoOutputs& o = cfg.sumo.outputs;
+  if (o.fcd) {
+    a.insert(a.end(), {"--fcd-output", dir + "/fcd.xml", "--fcd-output.attributes", "x,y,angle,speed,lane,pos"});
+  }
+  if (o.tripinfo)
+    a.insert(a.end(), {"--tripinfo-output", dir + "/tripinfo.xml", "--tripinfo-output.write-unfinished", "true"});
+  if (o.summary) a.insert(a.end(), {"--summary-output", dir + "/summary.xml"});
+  if (o.collision) a.insert(a.end(), {"--collision-output", dir + "/collision.xml"});
+  if (cfg.run.gui) a.insert(a.end(), {"--start", "true", "--quit-on-end", "true"});
+  a.insert(a.end(), cfg.sumo.extra_args.begin(), cfg.sumo.extra_args.end());
+  return a;
+}
+
+}  // namespace controller

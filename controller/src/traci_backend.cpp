@@ -1,0 +1,66 @@
+// TraciBackend: SUMO over a TraCI socket (libtraci). Either starts `sumo`/`sumo-gui` as a
+// child (libtraci popen()s the command joined by spaces, unquoted: paths with spaces
+// break, so they are refused here) or connects to a SUMO already listening on a port.
+// Every call is a round trip (~12-40 us), so the controller reads poses once per tick.
+#include <libsumo/libtraci.h>
+
+#include <cstdio>
+
+#include "controller/sumo_backend.hpp"
+#include "controller/sumo_error.hpp"
+
+namespace controller {
+namespace {
+
+namespace api = libtraci;
+#include "backend_impl.ipp"
+
+class TraciBackend : public ApiBackend {
+ public:
+  TraciBackend(std::string binary, int port) : binary_(std::move(binary)), port_(port) {}
+  ~TraciBackend() override { close(); }
+
+  void start(const std::vector<std::string>& args) override
+  {
+    if (running_) close();
+    if (port_ > 0) {
+      guarded("connect", [&] { api::Simulation::init(port_, kRetries); });
+    } else {
+      std::vector<std::string> cmd{binary_};
+      for (const std::string& a : args) {
+        if (a.find_first_of(" \t'\"") != std::string::npos)
+          throw SumoError("SUMO start: argument '" + a + "' contains a space or quote, which libtraci cannot pass");
+        cmd.push_back(a);
+      }
+      guarded("start", [&] { api::Simulation::start(cmd, -1, kRetries); });
+    }
+    running_ = true;
+  }
+  void close() override
+  {
+    if (!running_) return;
+    running_ = false;
+    try {
+      api::Simulation::close();
+    } catch (const std::exception&) {
+      // The connection may already be gone; nothing left to report.
+    }
+  }
+  std::string name() const override { return "traci"; }
+
+ private:
+  // libtraci retries a refused connection once per second; sumo listens as soon as the
+  // net is loaded, so a child that is not up after this long has failed to start.
+  static constexpr int kRetries = 15;
+  std::string binary_;
+  int port_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<SumoBackend> make_traci_backend(const std::string& binary, int port)
+{
+  return std::make_unique<TraciBackend>(binary, port);
+}
+
+}  // namespace controller

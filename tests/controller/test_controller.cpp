@@ -1,0 +1,288 @@
+// Controller tests against the real SUMO 1.15. ctest runs each TEST in its own process
+// (libsumo: one global simulation per process); every test writes into its own temp dir.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <set>
+
+#include "controller/commander.hpp"
+#include "controller/config.hpp"
+#include "controller/controller.hpp"
+#include "controller/sumo_error.hpp"
+#include "controller/sumo_options.hpp"
+#include "gridify/gridifier.hpp"
+#include "planner/validator.hpp"
+
+using namespace controller;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string temp_dir(const std::string& name)
+{
+  fs::path d = fs::temp_directory_path() / ("rtlacam_ctl_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+Config small_config(const std::string& name)
+{
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse.yaml");
+  c.output.dir = temp_dir(name);
+  c.run.progress_s = 0;
+  // Deterministic: a fixed number of expansions per SUMO step, no wall-clock cutoff.
+  c.planner.budget_ms = 0;
+  c.planner.expansions = 20;
+  return c;
+}
+
+void expect_clean_solved_run(const Config& cfg, const Controller& c, const Metrics& m)
+{
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.resyncs, 0);
+  EXPECT_LE(m.commands.max_error, 1e-6);
+  EXPECT_EQ(m.commands.jumps, 0);
+  EXPECT_GT(m.ticks, 0);
+  // The executed plan is a valid MAPF solution ending on the goals.
+  const auto& plan = c.plan();
+  ASSERT_FALSE(plan.empty());
+  EXPECT_EQ(planner::validate_plan(c.map().graph, plan.front(), plan.back(), plan, true), "");
+  for (const char* f : {"metrics.json", "plan.txt", "fcd.xml", "tripinfo.xml", "summary.xml", "collision.xml"})
+    EXPECT_TRUE(fs::exists(cfg.output.dir + "/" + f)) << f;
+  // SUMO itself saw no collision.
+  std::ifstream col(cfg.output.dir + "/collision.xml");
+  std::string text((std::istreambuf_iterator<char>(col)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("<collision "), std::string::npos);
+}
+
+std::string config_error(const std::string& yaml)
+{
+  try {
+    parse_config(yaml, "t.yaml", RTLACAM_CONFIGS);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const std::string kNet = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n";
+
+}  // namespace
+
+TEST(ControllerRun, SmallWarehouseLibsumoReachesAllGoalsExactly)
+{
+  Config cfg = small_config("libsumo");
+  Controller c(cfg);
+  Metrics m = c.run();
+  expect_clean_solved_run(cfg, c, m);
+  EXPECT_EQ(m.backend, "libsumo");
+  EXPECT_EQ(m.agents, 16);
+}
+
+TEST(ControllerRun, SmallWarehouseTraciReachesAllGoalsExactly)
+{
+  Config cfg = small_config("traci");
+  cfg.run.backend = "traci";
+  Controller c(cfg);
+  Metrics m = c.run();
+  expect_clean_solved_run(cfg, c, m);
+  EXPECT_EQ(m.backend, "traci");
+}
+
+TEST(ControllerRun, SameExecutedPlanWithBothBackends)
+{
+  // Deterministic budget: the two back ends must see the very same run. libsumo runs in
+  // this process, libtraci in a child: both fit in one test process.
+  Config a = small_config("same_a");
+  Config b = small_config("same_b");
+  b.run.backend = "traci";
+  Controller ca(a), cb(b);
+  ca.run();
+  cb.run();
+  EXPECT_EQ(ca.plan(), cb.plan());
+}
+
+TEST(ControllerRun, SolversNaiveAndPibtRunTheLoop)
+{
+  for (const char* s : {"naive", "pibt"}) {
+    Config cfg = small_config(std::string("solver_") + s);
+    cfg.planner.solver = s;
+    cfg.fleet.count = 6;
+    cfg.run.max_ticks = 150;
+    Controller c(cfg);
+    Metrics m = c.run();
+    EXPECT_EQ(m.error, "") << s;
+    EXPECT_EQ(m.violations, 0) << s;
+    EXPECT_EQ(m.commands.resyncs, 0) << s;
+  }
+}
+
+TEST(ControllerFault, AgvRemovedBehindTheControllersBack)
+{
+  Config cfg = small_config("removed");
+  Controller c(cfg);
+  c.on_tick = [](long long tick, SumoBackend& sumo) {
+    if (tick == 5) sumo.remove("agv3");
+  };
+  Metrics m = c.run();
+  EXPECT_NE(m.error.find("agv3"), std::string::npos) << m.error;
+  EXPECT_NE(m.error.find("removed behind the controller's back"), std::string::npos) << m.error;
+  EXPECT_EQ(m.error.find('\n'), std::string::npos);
+  EXPECT_FALSE(m.solved);
+  EXPECT_EQ(m.violations, 1);
+  EXPECT_TRUE(fs::exists(cfg.output.dir + "/metrics.json"));
+}
+
+TEST(ControllerFault, LostTraciConnection)
+{
+  Config cfg = small_config("lost");
+  cfg.run.backend = "traci";
+  Controller c(cfg);
+  c.on_tick = [](long long tick, SumoBackend& sumo) {
+    if (tick == 3) sumo.close();  // the socket goes away under the controller
+  };
+  Metrics m = c.run();
+  EXPECT_NE(m.error.find("SUMO "), std::string::npos) << m.error;
+  EXPECT_EQ(m.error.find('\n'), std::string::npos);
+  EXPECT_FALSE(m.solved);
+  EXPECT_TRUE(fs::exists(cfg.output.dir + "/metrics.json"));
+}
+
+TEST(ControllerFault, SumoFailsToStart)
+{
+  Config cfg = small_config("nostart");
+  cfg.sumo.extra_args = {"--no-such-option", "1"};
+  Controller c(cfg);
+  Metrics m = c.run();
+  EXPECT_NE(m.error.find("SUMO load"), std::string::npos) << m.error;
+  EXPECT_EQ(m.ticks, 0);
+  EXPECT_TRUE(fs::exists(cfg.output.dir + "/metrics.json"));
+}
+
+// Scheme S alone: AGVs on random conflict-free walks (waits, moves along aisles, turns and
+// U-turns at junctions, reversals inside aisles) for many ticks; every AGV must stand
+// exactly on its cell after every tick without a single re-sync.
+TEST(SchemeS, PositionsExactOverManyTicks)
+{
+  Config cfg = small_config("schemes");
+  cfg.sumo.outputs = {false, false, false, false};
+  gridify::CellMap map = gridify::gridify(cfg.sumo.net);
+  const planner::Graph& g = map.graph;
+  std::unique_ptr<SumoBackend> sumo = make_libsumo_backend();
+  Commander cmd(map, *sumo, cfg.run.tick_s);
+  sumo->start(sumo_args(cfg, cfg.output.dir, write_vtype_file(cfg, cfg.output.dir, cfg.grid.cell_length), false));
+
+  const int n = 12, ticks = 600, k = cfg.steps_per_tick();
+  std::mt19937_64 rng(7);
+  planner::Config cur;
+  for (int v = 0; static_cast<int>(cur.size()) < n; v += 5) cur.push_back(v % g.size());
+  cmd.insert(cur);
+  sumo->step();
+  cmd.verify(cur, 1e-6);
+  planner::Validator val(g, cur, cur);
+  long long moves = 0, reversals = 0;
+  for (int t = 0; t < ticks; ++t) {
+    std::set<planner::Vertex> taken(cur.begin(), cur.end());
+    planner::Config next = cur;
+    for (int i = 0; i < n; ++i) {
+      auto nb = g.neighbors(cur[i]);
+      if (rng() % 5 == 0) continue;  // wait
+      planner::Vertex w = nb[rng() % nb.size()];
+      if (taken.count(w)) continue;  // never into an occupied or claimed cell
+      taken.insert(w);
+      next[i] = w;
+      ++moves;
+      if (t > 0 && val.current()[i] != cur[i]) {
+      }
+    }
+    ASSERT_TRUE(val.step(next)) << val.error();
+    for (int i = 0; i < n; ++i)
+      if (next[i] != cur[i] && map.pose_entering(cur[i], next[i]).lane != cmd.pose(i).lane &&
+          map.cells[cur[i]].kind == gridify::CellKind::Aisle)
+        ++reversals;
+    cmd.command(cur, next);
+    for (int s = 0; s < k; ++s) {
+      sumo->step();
+      ASSERT_TRUE(sumo->arrived().empty());
+      ASSERT_TRUE(sumo->teleported().empty());
+      ASSERT_TRUE(sumo->colliding().empty()) << "t=" << t;
+    }
+    cmd.verify(next, 1e-6);
+    ASSERT_EQ(cmd.stats().resyncs, 0) << "tick " << t;
+    cur = next;
+  }
+  EXPECT_GT(moves, ticks * n / 2);
+  EXPECT_GT(reversals, 10);
+  EXPECT_LE(cmd.stats().max_error, 1e-9);
+  sumo->close();
+}
+
+TEST(ControllerConfig, DefaultsAndShippedConfigsLoad)
+{
+  for (const char* f : {"small_warehouse.yaml", "large_warehouse.yaml"}) {
+    Config c = load_config(std::string(RTLACAM_CONFIGS) + "/" + f);
+    EXPECT_EQ(c.planner.solver, "rtlacam");
+    EXPECT_EQ(c.steps_per_tick(), 8);
+    EXPECT_TRUE(fs::exists(c.sumo.net));
+  }
+  Config d = parse_config(kNet + "fleet: {count: 3}\n", "t.yaml", RTLACAM_CONFIGS);
+  EXPECT_DOUBLE_EQ(d.sumo.step_length, 0.125);
+  EXPECT_DOUBLE_EQ(d.run.tick_s, 1.0);
+  EXPECT_EQ(d.run.backend, "libsumo");
+  EXPECT_TRUE(d.fleet.random_starts);
+  EXPECT_TRUE(d.tasks.random_goals);
+}
+
+TEST(ControllerConfig, ErrorsNameTheKeyPath)
+{
+  struct Case {
+    std::string yaml, expect;
+  };
+  const std::vector<Case> cases = {
+      {kNet + "  fcd: true\nfleet: {count: 3}\n", "t.yaml: sumo.fcd: unknown key"},
+      {kNet + "fleet: {count: 3}\nplaner: {}\n", "t.yaml: planer: unknown key"},
+      {kNet + "fleet: {count: 3}\nplanner: {budget_ms: fast}\n", "t.yaml: planner.budget_ms: expected a number, got 'fast'"},
+      {kNet + "fleet: {count: three}\n", "t.yaml: fleet.count: expected an integer, got 'three'"},
+      {kNet + "fleet: {count: 3}\nplanner: {solver: astar}\n", "t.yaml: planner.solver: 'astar' is not one of"},
+      {kNet + "fleet: {count: 3}\nrun: {gui: maybe}\n", "t.yaml: run.gui: expected true or false"},
+      {"sumo:\n  net: nowhere.net.xml\nfleet: {count: 3}\n", "t.yaml: sumo.net: file '"},
+      {"sumo: {step_length: 0.1}\nfleet: {count: 3}\n", "t.yaml: sumo.net: missing (required)"},
+      {kNet + "fleet: {count: 3, starts: [1, 2]}\n", "t.yaml: fleet.starts: lists 2 cells but fleet.count is 3"},
+      {kNet + "fleet: {count: 3}\nrun: {tick_s: 0.3}\n", "t.yaml: run.tick_s: must be a whole multiple"},
+      {kNet + "fleet: {count: 3, vtype: {length: 0.95}}\n", "t.yaml: fleet.vtype: length + min_gap"},
+      {kNet + "fleet: {count: 3}\nsumo2: 1\n", "t.yaml: sumo2: unknown key"},
+      {kNet + "fleet: [1, 2]\n", "t.yaml: fleet: expected a mapping"},
+      {kNet + "fleet: {count: 3}\ntasks: {mode: lifelong}\n", "t.yaml: tasks.mode: 'lifelong' needs the task layer"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg = config_error(c.yaml);
+    EXPECT_EQ(msg.rfind(c.expect, 0), 0u) << "yaml:\n" << c.yaml << "\ngot: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+TEST(ControllerConfig, CellErrorsNeedTheGraph)
+{
+  auto run_error = [](const std::string& yaml) -> std::string {
+    Config c = parse_config(yaml, "t.yaml", RTLACAM_CONFIGS);
+    c.output.dir = temp_dir("cells");
+    try {
+      Controller(c).run();
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  };
+  EXPECT_EQ(run_error(kNet + "fleet: {count: 2, starts: [0, 999]}\n"),
+            "t.yaml: fleet.starts[1]: cell 999 is not on the graph (cells 0..61)");
+  EXPECT_EQ(run_error(kNet + "fleet: {count: 2, starts: [4, 4]}\n"),
+            "t.yaml: fleet.starts[1]: cell 4 is already the start of fleet.starts[0]");
+  EXPECT_EQ(run_error(kNet + "  additional: ../sumo_scenarios/small.add.xml\nfleet: {count: 2}\ntasks: {goals: [pickup1, nowhere]}\n"),
+            "t.yaml: tasks.goals[1]: 'nowhere' is neither a cell id, a station nor a junction of the graph");
+  EXPECT_EQ(run_error(kNet + "fleet: {count: 100}\n"), "t.yaml: fleet.count: 100 AGVs but the graph has only 62 cells");
+}
