@@ -68,6 +68,11 @@ struct GridCase {
   double length, cell;
 };
 
+void PrintTo(const GridCase& g, std::ostream* os)
+{
+  *os << g.x << "x" << g.y << " nodes, " << g.length << " m aisles, cell " << g.cell;
+}
+
 class GridifyNetgenerate : public ::testing::TestWithParam<GridCase> {};
 
 TEST_P(GridifyNetgenerate, ClosedForms)
@@ -81,7 +86,19 @@ TEST_P(GridifyNetgenerate, ClosedForms)
 INSTANTIATE_TEST_SUITE_P(Sizes, GridifyNetgenerate,
                          ::testing::Values(GridCase{2, 2, 1, 1}, GridCase{2, 3, 3, 1}, GridCase{3, 4, 3, 1},
                                            GridCase{5, 5, 5, 1}, GridCase{7, 3, 4, 2}, GridCase{6, 6, 2, 0.5},
-                                           GridCase{10, 10, 5, 1}));
+                                           GridCase{10, 10, 5, 1}),
+                         [](const ::testing::TestParamInfo<GridCase>& i) {
+                           // e.g. 6x6_L2_c0p5 (node counts, aisle length, cell length)
+                           auto f = [](double d) {
+                             std::string s = std::to_string(d);
+                             s.erase(s.find_last_not_of('0') + 1);
+                             if (s.back() == '.') s.pop_back();
+                             for (char& ch : s) if (ch == '.') ch = 'p';
+                             return s;
+                           };
+                           return std::to_string(i.param.x) + "x" + std::to_string(i.param.y) + "_L" +
+                                  f(i.param.length) + "_c" + f(i.param.cell);
+                         });
 
 // The speed target: a 21x21 grid (1680 edges) in well under a second.
 TEST(GridifyGrid, Grid21Speed)
