@@ -215,7 +215,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
                               std::to_string(c.fleet.count) + " AGVs");
 
   const YAML::Node u = root["run"];
-  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "port", "progress_s", "verbose"});
+  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "port", "progress_s"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -224,7 +224,6 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
   r.number(u, "run", "progress_s", c.run.progress_s, 0);
-  r.flag(u, "run", "verbose", c.run.verbose);
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");

@@ -76,7 +76,6 @@ struct RunSection {
   bool gui = false;                  // sumo-gui through TraCI
   int port = 0;                      // traci: connect to a running SUMO instead of starting one
   double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
-  bool verbose = false;
 };
 
 struct OutputSection {
