@@ -14,15 +14,19 @@ void NaiveRtLacam::set_goals(const Config& goals, GoalTest test)
   goals_ = goals;
   test_ = std::move(test);
   fresh_ = false;
+  solution_.clear();
 }
 
 Status NaiveRtLacam::search(const Budget& b)
 {
+  if (!solution_.empty()) return Status::Solved;
   if (!fresh_) {
     lacam_.reset(current_, goals_, test_);
     fresh_ = true;
   }
-  return lacam_.search(b);
+  const Status s = lacam_.search(b);
+  if (s == Status::Solved) solution_ = lacam_.path(lacam_.goal_node());
+  return s;
 }
 
 const HNode* NaiveRtLacam::planned() const
@@ -34,6 +38,7 @@ const HNode* NaiveRtLacam::planned() const
 
 const Config& NaiveRtLacam::next()
 {
+  if (!solution_.empty()) return next_ = solution_.size() >= 2 ? solution_[1] : solution_[0];
   const HNode* h = planned();
   if (h) next_.assign(h->C, h->C + lacam_.num_agents());
   else next_ = current_;
@@ -45,6 +50,7 @@ void NaiveRtLacam::commit()
   next();
   current_ = next_;
   fresh_ = false;
+  if (solution_.size() >= 2) solution_.erase(solution_.begin());
 }
 
 bool NaiveRtLacam::at_goal() const

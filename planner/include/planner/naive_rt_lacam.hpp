@@ -1,8 +1,11 @@
 #pragma once
 // NaiveRtLacam: the baseline of the RT-LaCAM paper. Every iteration runs a fresh LaCAM
-// search from the current configuration with the same budget and moves by the same rule
-// (root's child toward the top of the DFS stack, or toward the goal once found). Nothing
-// is remembered between iterations, so it can cycle forever (livelock).
+// search from the current configuration with the same budget and moves by the same rule:
+// root's child toward the top of the DFS stack. Nothing is remembered between iterations,
+// so it can cycle forever (livelock). Like RT-LaCAM, once an iteration's search reaches
+// the goal the agents follow that path to the end without replanning: a fresh search from
+// each point of a found path restarts PIBT's priorities and can walk back, which would
+// make the baseline fail even with budgets that solve the whole instance.
 #include "planner/realtime_planner.hpp"
 
 namespace planner {
@@ -33,6 +36,7 @@ class NaiveRtLacam : public RealtimePlanner {
   Config current_, goals_, next_;
   GoalTest test_;
   bool fresh_ = false;  // lacam_ is rooted at current_ and may be continued
+  std::vector<Config> solution_;  // a found path, current first, once some search solved
 };
 
 }  // namespace planner
