@@ -14,7 +14,7 @@ void RtLacam::set_goals(const Config& goals, GoalTest test)
   test_ = test;
   lacam_.reset(current_, goals, std::move(test));
   goal_path_.clear();
-  planned_ = nullptr;
+  planned_ = promised_ = nullptr;
 }
 
 Status RtLacam::search(const Budget& b)
@@ -36,18 +36,26 @@ const HNode* RtLacam::planned()
 
 const Config& RtLacam::next()
 {
-  const HNode* h = planned();
+  const HNode* h = promised_ = planned();
   next_.assign(h->C, h->C + lacam_.num_agents());
   return next_;
 }
 
 void RtLacam::commit()
 {
-  const HNode* h = planned();
+  const HNode* h = promised_ ? promised_ : planned();
+  promised_ = nullptr;
   if (h == lacam_.root()) return;  // wait
+  const bool on_goal_path = goal_path_.size() >= 2 && goal_path_[goal_path_.size() - 2] == h;
   lacam_.reroot(h);
   planned_ = nullptr;
-  if (!goal_path_.empty()) goal_path_.pop_back();
+  if (on_goal_path) {
+    goal_path_.pop_back();
+  } else if (!goal_path_.empty()) {
+    // The goal was found after next() promised a move off its path: walk it again.
+    goal_path_.clear();
+    for (const HNode* g = lacam_.goal_node(); g; g = g->parent) goal_path_.push_back(g);
+  }
   current_.assign(h->C, h->C + lacam_.num_agents());
 }
 

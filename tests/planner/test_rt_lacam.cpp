@@ -201,3 +201,27 @@ TEST(RtLacam, CallerGoalTestEndsTheSearch)
   EXPECT_TRUE(rt.current()[0] == t[0] || rt.current()[1] == t[1]);
   EXPECT_LE(val.steps(), 4);  // agent 1 is two steps away, agent 0 four
 }
+
+TEST(RtLacam, CommitMovesWhereNextSaidEvenIfSearchRanInBetween)
+{
+  // An executor asks next(), keeps searching while the agents move, then commits.
+  for (const auto& in : instances()) {
+    if (in.g.size() > 100) continue;
+    SCOPED_TRACE(in.name);
+    LacamOptions o;
+    o.swap = in.swap;
+    RtLacam rt(in.g, in.s, in.t, o);
+    Validator val(in.g, in.s, in.t);
+    for (int k = 0; k < 100000 && !rt.at_goal(); ++k) {
+      rt.search(Budget::expansion_count(1));
+      const Config promised = rt.next();
+      rt.search(Budget::expansion_count(3));
+      rt.commit();
+      ASSERT_EQ(rt.current(), promised);
+      ASSERT_TRUE(val.step(rt.current())) << val.error();
+      std::string why;
+      ASSERT_TRUE(rt.lacam().check_tree(&why)) << why;
+    }
+    EXPECT_TRUE(rt.at_goal());
+  }
+}

@@ -10,6 +10,10 @@
 // full-horizon LaCAM runs: same expansions, same explored set, hence complete, with no
 // deadlock or livelock. Once the goal is found the agents follow the tree path to it
 // without further search.
+//
+// commit() moves to the configuration next() last returned, even if search() ran in
+// between (an executor may keep thinking while the agents move): any child of the root
+// is a valid move, and search() never changes parent pointers.
 #include <vector>
 
 #include "planner/realtime_planner.hpp"
@@ -46,6 +50,7 @@ class RtLacam : public RealtimePlanner {
   GoalTest test_;
   std::vector<const HNode*> goal_path_;  // goal first, root last, once solved
   const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
+  const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
 };
 
 }  // namespace planner
