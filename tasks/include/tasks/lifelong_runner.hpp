@@ -1,0 +1,67 @@
+#pragma once
+// The lifelong executor on the plain MAPF graph. Each step:
+//
+//   search(budget); next()        -- plan (timed: plannerTimes)
+//   check the move (Validator)    -- any violation counts in numPlannerErrors
+//   commit()                      -- the agents are there
+//   advance_epoch(...)            -- errands completed? then new goals, new epoch
+//
+// Progress epochs: goals change only when an errand completes. RT-LaCAM then restarts its
+// tree at the current configuration (set_goals); while nothing completes it keeps its tree,
+// explored table and constraints, which is what makes it escape deadlocks and livelocks
+// that PIBT and the naive variant fall into.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "planner/budget.hpp"
+#include "planner/graph.hpp"
+#include "planner/realtime_planner.hpp"
+#include "tasks/task_manager.hpp"
+
+namespace tasks {
+
+// The seam for every executor (this runner, the SUMO controller): after the agents
+// committed step t, report their positions; on completions the planner gets the new goals
+// and the lifelong goal test (a fresh search tree). Returns the step's completions.
+std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& planner, long t);
+
+struct StepRecord {      // what one step did (for tests and progress output)
+  long t = 0;
+  double planner_ms = 0;
+  int completed = 0;     // errands completed at the end of this step
+  bool new_epoch = false;
+  size_t explored = 0;   // planner's explored table after search, before any reset
+  long epoch = 0;        // epoch in which the step was planned
+};
+
+struct LifelongOptions {
+  long steps = 1000;
+  planner::Budget budget = planner::Budget::time_ms(100);
+  std::function<void(const StepRecord&)> on_step;  // optional, after every step
+};
+
+struct PlannerTimes {
+  double mean = 0, p50 = 0, p99 = 0, max = 0;
+};
+PlannerTimes summarize(std::vector<double> ms);
+
+struct LifelongResult {
+  long steps = 0;
+  long errands_finished = 0, tasks_finished = 0;
+  long epochs = 0;                  // set_goals calls, the initial goals included
+  std::vector<Event> events;
+  std::vector<double> planner_ms;   // per step: search + next (+ set_goals of its epoch start)
+  double setup_ms = 0;              // first assignment + planner construction
+  double task_ms = 0;               // task layer (completions, reveals, assignment) over all steps
+  double wall_ms = 0;
+  long planner_errors = 0;
+  std::string first_error;          // first validator message, "" when clean
+  uint64_t expansions = 0;
+};
+
+// Starts the tasks at `starts`, builds `solver` (see make_planner) and runs.
+LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& starts, TaskManager& tasks,
+                            const std::string& solver, uint64_t seed, const LifelongOptions& opt);
+
+}  // namespace tasks

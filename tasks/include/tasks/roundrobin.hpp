@@ -1,0 +1,18 @@
+#pragma once
+// RoundRobin (LoRR 2023): agent i holds tasks i, i+N, i+2N, ... of the task file (cyclic),
+// one at a time; no scheduler. With one-errand tasks (the 2023 files) a task is an errand.
+#include "tasks/task_manager.hpp"
+
+namespace tasks {
+
+class RoundRobin : public TaskManager {
+ public:
+  using TaskManager::TaskManager;
+  std::string mode() const override { return "roundrobin"; }
+
+ protected:
+  void on_start(const planner::Config& positions) override;
+  void on_finished(int agent, const Task& task) override;
+};
+
+}  // namespace tasks

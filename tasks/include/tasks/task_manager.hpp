@@ -1,0 +1,75 @@
+#pragma once
+// TaskManager: errand bookkeeping shared by the task modes, and the seam every executor
+// (the lifelong runner here, the SUMO controller later) talks to:
+//
+//   tasks.start(starts)                     -- first goals
+//   loop:  ...agents move one step...
+//          events = tasks.update(t, positions)  -- completions at the end of step t
+//          if (!events.empty()) new epoch with tasks.goals()
+//
+// Each agent's goal is the cell of its next errand, or its own position while it holds no
+// task (it then counts as arrived). Goals change only inside start() and update().
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "planner/config.hpp"
+#include "tasks/task.hpp"
+#include "tasks/lorr_files.hpp"
+
+namespace tasks {
+
+class TaskManager {
+ public:
+  explicit TaskManager(std::shared_ptr<const TaskFile> file) : file_(std::move(file)) {}
+  virtual ~TaskManager() = default;
+
+  virtual std::string mode() const = 0;
+
+  // Gives the agents their first tasks.
+  void start(const planner::Config& positions);
+  // End of step t: each agent standing on the cell of its next errand completes it. Then
+  // the mode hands out new work. Returns the step's completions (agent order).
+  std::vector<Event> update(long t, const planner::Config& positions);
+
+  const planner::Config& goals() const { return goals_; }
+  // Agents that hold a task (and so have a real errand to reach).
+  bool busy(int agent) const { return holding_[agent] >= 0; }
+  const Task* task_of(int agent) const;  // null when free
+
+  int num_agents() const { return static_cast<int>(goals_.size()); }
+  long errands_finished() const { return errands_finished_; }
+  long tasks_finished() const { return tasks_finished_; }
+  long tasks_assigned() const { return tasks_assigned_; }
+
+ protected:
+  // A task of the stream by sequence number (line = id mod file size).
+  Task make_task(long id) const;
+  // Mode hooks. on_start: assign first tasks. on_finished: `agent` just finished `task`
+  // (its slot is already cleared). after_step: once per step with completions, after all
+  // on_finished calls (e.g. batch assignment).
+  virtual void on_start(const planner::Config& positions) = 0;
+  virtual void on_finished(int agent, const Task& task) = 0;
+  virtual void after_step(const planner::Config& positions) { (void)positions; }
+
+  // Task storage: slots hold live tasks; holding_[agent] indexes a slot or is -1.
+  int add_task(Task t);                // returns its slot
+  void give(int agent, int slot);      // assign an unassigned task
+  Task& slot(int s) { return slots_[s]; }
+  const Task& slot(int s) const { return slots_[s]; }
+  void drop(int s);                    // remove a finished task
+  std::vector<int> live_slots() const; // slots in use, ascending task id
+
+  std::shared_ptr<const TaskFile> file_;
+  std::vector<int> holding_;
+
+ private:
+  void refresh_goals(const planner::Config& positions);
+
+  std::vector<Task> slots_;
+  std::vector<int> free_slots_;
+  planner::Config goals_;
+  long errands_finished_ = 0, tasks_finished_ = 0, tasks_assigned_ = 0;
+};
+
+}  // namespace tasks

@@ -1,0 +1,32 @@
+#include "tasks/lifelong_goal.hpp"
+
+#include "tasks/task_manager.hpp"
+
+namespace tasks {
+
+planner::GoalTest lifelong_goal_test(const planner::Config& goals, const planner::Config& positions,
+                                     const std::vector<char>& busy)
+{
+  struct Pending {
+    int agent;
+    planner::Vertex goal;
+  };
+  std::vector<Pending> pending;
+  for (size_t i = 0; i < goals.size(); ++i)
+    if (busy[i] && positions[i] != goals[i]) pending.push_back({static_cast<int>(i), goals[i]});
+  if (pending.empty()) return [](const planner::Vertex*) { return true; };
+  return [pending = std::move(pending)](const planner::Vertex* c) {
+    for (const Pending& p : pending)
+      if (c[p.agent] == p.goal) return true;
+    return false;
+  };
+}
+
+planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Config& positions)
+{
+  std::vector<char> busy(tasks.num_agents());
+  for (int a = 0; a < tasks.num_agents(); ++a) busy[a] = tasks.busy(a);
+  return lifelong_goal_test(tasks.goals(), positions, busy);
+}
+
+}  // namespace tasks

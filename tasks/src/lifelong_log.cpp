@@ -1,0 +1,37 @@
+#include "tasks/lifelong_log.hpp"
+
+namespace tasks {
+
+nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
+{
+  nlohmann::json j;
+  j["actionModel"] = "grid4";  // LoRR: "MAPF_T" (heading, turning costs a step); ours: 4-connected moves
+  j["problem"] = info.problem;
+  j["solver"] = info.solver;
+  j["mode"] = info.mode;
+  j["assigner"] = info.mode == "pool" ? info.assigner : "none";
+  j["budgetMs"] = info.budget_ms;
+  j["seed"] = info.seed;
+  j["teamSize"] = info.team_size;
+  j["makespan"] = r.steps;
+  j["numTaskFinished"] = r.tasks_finished;
+  j["numErrandFinished"] = r.errands_finished;
+  const double steps = r.steps > 0 ? static_cast<double>(r.steps) : 1.0;
+  j["throughput"] = static_cast<double>(r.tasks_finished) / steps;
+  j["errandThroughput"] = static_cast<double>(r.errands_finished) / steps;
+  const PlannerTimes pt = summarize(r.planner_ms);
+  j["plannerTimes"] = {{"mean", pt.mean}, {"p50", pt.p50}, {"p99", pt.p99}, {"max", pt.max}};
+  j["setupMs"] = r.setup_ms;
+  j["taskLayerMs"] = r.task_ms;
+  j["wallMs"] = r.wall_ms;
+  j["epochs"] = r.epochs;
+  j["expansions"] = r.expansions;
+  j["numPlannerErrors"] = r.planner_errors;
+  if (!r.first_error.empty()) j["firstPlannerError"] = r.first_error;
+  nlohmann::json ev = nlohmann::json::array();
+  for (const Event& e : r.events) ev.push_back({e.t, e.agent, e.task, e.errand});
+  j["events"] = std::move(ev);
+  return j;
+}
+
+}  // namespace tasks

@@ -1,0 +1,107 @@
+#include "tasks/lorr_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "planner/error.hpp"
+
+namespace tasks {
+namespace {
+
+using nlohmann::json;
+using planner::input_error;
+
+std::string dir_of(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+std::string stem_of(const std::string& path)
+{
+  const auto slash = path.find_last_of('/');
+  std::string base = slash == std::string::npos ? path : path.substr(slash + 1);
+  const auto dot = base.find_last_of('.');
+  return dot == std::string::npos ? base : base.substr(0, dot);
+}
+
+json read_json(const std::string& path)
+{
+  std::ifstream in(path);
+  if (!in) throw input_error(path, 0, "cannot open file");
+  try {
+    return json::parse(in);
+  } catch (const json::parse_error& e) {
+    // nlohmann reports a byte offset; keep the message on one line.
+    throw input_error(path, 0, std::string("invalid JSON: ") + e.what());
+  }
+}
+
+std::string string_field(const json& j, const std::string& path, const char* key)
+{
+  if (!j.contains(key)) throw input_error(path, 0, std::string("missing field '") + key + "'");
+  if (!j[key].is_string()) throw input_error(path, 0, std::string("field '") + key + "' must be a string");
+  return j[key].get<std::string>();
+}
+
+// simulation_time.json keys are the instance names without the round prefix ("I-04" for
+// MR23-I-04); the longest key that ends the stem wins.
+long lookup_steps(const std::string& problem_dir, const std::string& stem)
+{
+  for (const std::string& d : {problem_dir, problem_dir + "../"}) {
+    const std::string f = d + "simulation_time.json";
+    std::ifstream in(f);
+    if (!in) continue;
+    const json j = read_json(f);
+    long best = -1;
+    size_t best_len = 0;
+    for (auto it = j.begin(); it != j.end(); ++it) {
+      const std::string& k = it.key();
+      if (k.size() <= stem.size() && stem.compare(stem.size() - k.size(), k.size(), k) == 0 && k.size() > best_len &&
+          it->is_number_integer()) {
+        best = it->get<long>();
+        best_len = k.size();
+      }
+    }
+    if (best > 0) return best;
+  }
+  return -1;
+}
+
+}  // namespace
+
+int LorrProblem::pool_size() const
+{
+  const double r = num_tasks_reveal * team_size;  // 2023 roundrobin files say 1: one per agent
+  return std::max(team_size, static_cast<int>(std::floor(r + 1e-9)));
+}
+
+LorrProblem load_lorr_problem(const std::string& path)
+{
+  const json j = read_json(path);
+  if (!j.is_object()) throw input_error(path, 0, "expected a JSON object");
+  LorrProblem p;
+  p.path = path;
+  p.name = stem_of(path);
+  const std::string dir = dir_of(path);
+  p.map_file = dir + string_field(j, path, "mapFile");
+  p.agent_file = dir + string_field(j, path, "agentFile");
+  p.task_file = dir + string_field(j, path, "taskFile");
+  if (!j.contains("teamSize") || !j["teamSize"].is_number_integer() || j["teamSize"].get<long long>() <= 0 ||
+      j["teamSize"].get<long long>() > 1000000)
+    throw input_error(path, 0, "field 'teamSize' must be a positive integer");
+  p.team_size = j["teamSize"].get<int>();
+  if (j.contains("numTasksReveal")) {
+    if (!j["numTasksReveal"].is_number() || !(j["numTasksReveal"].get<double>() > 0))
+      throw input_error(path, 0, "field 'numTasksReveal' must be a positive number");
+    p.num_tasks_reveal = j["numTasksReveal"].get<double>();
+  }
+  if (j.contains("version")) p.year = 2024;
+  if (j.contains("taskAssignmentStrategy")) p.strategy = string_field(j, path, "taskAssignmentStrategy");
+  p.simulation_time = lookup_steps(dir, p.name);
+  return p;
+}
+
+}  // namespace tasks

@@ -1,0 +1,96 @@
+#include "tasks/task_manager.hpp"
+
+#include <algorithm>
+
+namespace tasks {
+
+void TaskManager::start(const planner::Config& positions)
+{
+  holding_.assign(positions.size(), -1);
+  goals_ = positions;
+  on_start(positions);
+  refresh_goals(positions);
+}
+
+std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
+{
+  std::vector<Event> events;
+  for (int a = 0; a < num_agents(); ++a) {
+    const int s = holding_[a];
+    if (s < 0) continue;
+    Task& k = slots_[s];
+    if (positions[a] != k.next_cell()) continue;
+    events.push_back({t, a, k.id, k.next});
+    ++k.next;
+    ++errands_finished_;
+    if (k.finished()) {
+      ++tasks_finished_;
+      const Task done = k;
+      holding_[a] = -1;
+      drop(s);
+      on_finished(a, done);
+    }
+  }
+  if (!events.empty()) {
+    after_step(positions);
+    refresh_goals(positions);
+  }
+  return events;
+}
+
+const Task* TaskManager::task_of(int agent) const
+{
+  return holding_[agent] >= 0 ? &slots_[holding_[agent]] : nullptr;
+}
+
+Task TaskManager::make_task(long id) const
+{
+  Task t;
+  t.id = id;
+  t.line = static_cast<int>(id % file_->size());
+  t.errands = file_->tasks[t.line];
+  return t;
+}
+
+int TaskManager::add_task(Task t)
+{
+  t.agent = -1;
+  if (!free_slots_.empty()) {
+    const int s = free_slots_.back();
+    free_slots_.pop_back();
+    slots_[s] = std::move(t);
+    return s;
+  }
+  slots_.push_back(std::move(t));
+  return static_cast<int>(slots_.size()) - 1;
+}
+
+void TaskManager::give(int agent, int s)
+{
+  slots_[s].agent = agent;
+  holding_[agent] = s;
+  ++tasks_assigned_;
+}
+
+void TaskManager::drop(int s)
+{
+  slots_[s] = Task{};
+  free_slots_.push_back(s);
+}
+
+std::vector<int> TaskManager::live_slots() const
+{
+  std::vector<int> out;
+  for (int s = 0; s < static_cast<int>(slots_.size()); ++s)
+    if (slots_[s].id >= 0) out.push_back(s);
+  std::sort(out.begin(), out.end(), [&](int a, int b) { return slots_[a].id < slots_[b].id; });
+  return out;
+}
+
+void TaskManager::refresh_goals(const planner::Config& positions)
+{
+  for (int a = 0; a < num_agents(); ++a)
+    goals_[a] = holding_[a] >= 0 ? slots_[holding_[a]].next_cell() : positions[a];
+}
+
+}  // namespace tasks

@@ -1,0 +1,58 @@
+#include "tasks/task_pool.hpp"
+
+namespace tasks {
+
+TaskPool::TaskPool(std::shared_ptr<const TaskFile> file, const planner::Graph& g, int pool_size,
+                   std::unique_ptr<TaskAssigner> assigner)
+    : TaskManager(std::move(file)), dist_(g), pool_size_(pool_size), assigner_(std::move(assigner))
+{
+  chain_by_line_.assign(file_->size(), -1);
+}
+
+int TaskPool::chain_length(const Task& t)
+{
+  int& c = chain_by_line_[t.line];
+  if (c < 0) {
+    c = 0;
+    for (size_t k = 1; k < t.errands.size(); ++k) c += dist_.from_goal(t.errands[k], t.errands[k - 1]);
+  }
+  return c;
+}
+
+int64_t TaskPool::cost(planner::Vertex pos, const Task& t)
+{
+  return static_cast<int64_t>(dist_.from_goal(t.errands[t.next], pos)) + chain_length(t);
+}
+
+void TaskPool::on_start(const planner::Config& positions)
+{
+  for (int k = 0; k < pool_size_; ++k) add_task(make_task(next_id_++));
+  assign_free(positions);
+}
+
+void TaskPool::on_finished(int, const Task&)
+{
+  add_task(make_task(next_id_++));
+}
+
+void TaskPool::after_step(const planner::Config& positions)
+{
+  assign_free(positions);
+}
+
+void TaskPool::assign_free(const planner::Config& positions)
+{
+  std::vector<int> agents, cols;
+  for (int a = 0; a < num_agents(); ++a)
+    if (holding_[a] < 0) agents.push_back(a);
+  if (agents.empty()) return;
+  for (int s : live_slots())
+    if (slot(s).agent < 0) cols.push_back(s);
+  if (cols.empty()) return;
+  const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()),
+                                                   [&](int i, int j) { return cost(positions[agents[i]], slot(cols[j])); });
+  for (size_t i = 0; i < agents.size(); ++i)
+    if (match[i] >= 0) give(agents[i], cols[match[i]]);
+}
+
+}  // namespace tasks

@@ -1,0 +1,164 @@
+// Task semantics on hand-made instances, driven by hand (no planner): exact completions.
+#include <gtest/gtest.h>
+
+#include "tasks/greedy_assigner.hpp"
+#include "tasks/hungarian_assigner.hpp"
+#include "tasks/lifelong_goal.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/task_pool.hpp"
+#include "tasks_test_util.hpp"
+
+using namespace tasks;
+using planner::Config;
+
+namespace {
+
+// A 6 x 1 corridor: cell x is vertex x.
+const planner::Graph& corridor()
+{
+  static const planner::Graph g = ttest::grid({"......"});
+  return g;
+}
+
+}  // namespace
+
+TEST(RoundRobin, AgentIGetsTasksIPlusKN)
+{
+  const auto& g = corridor();
+  // Lines 0..4 (one errand each); 2 agents: agent 0 gets 0, 2, 4, 1 (=6 mod 5), ...
+  auto file = ttest::task_file(g, {{{1, 0}}, {{4, 0}}, {{2, 0}}, {{5, 0}}, {{3, 0}}});
+  RoundRobin rr(file);
+  rr.start({0, 5});
+  EXPECT_EQ(rr.mode(), "roundrobin");
+  EXPECT_EQ(rr.goals(), (Config{1, 4}));
+
+  EXPECT_TRUE(rr.update(1, {0, 5}).empty());       // nobody there
+  EXPECT_EQ(rr.update(2, {1, 5}), (std::vector<Event>{{2, 0, 0, 0}}));
+  EXPECT_EQ(rr.goals(), (Config{2, 4}));            // agent 0 -> task 2
+  EXPECT_EQ(rr.update(3, {2, 4}), (std::vector<Event>{{3, 0, 2, 0}, {3, 1, 1, 0}}));
+  EXPECT_EQ(rr.goals(), (Config{3, 5}));            // agent 0 -> task 4, agent 1 -> task 3
+  EXPECT_EQ(rr.update(4, {3, 5}), (std::vector<Event>{{4, 0, 4, 0}, {4, 1, 3, 0}}));
+  // Cyclic: agent 0's next task is id 6 = line 1, agent 1's id 5 = line 0.
+  ASSERT_NE(rr.task_of(0), nullptr);
+  EXPECT_EQ(rr.task_of(0)->id, 6);
+  EXPECT_EQ(rr.task_of(0)->line, 1);
+  EXPECT_EQ(rr.task_of(1)->line, 0);
+  EXPECT_EQ(rr.goals(), (Config{4, 1}));
+  EXPECT_EQ(rr.errands_finished(), 5);
+  EXPECT_EQ(rr.tasks_finished(), 5);
+}
+
+TEST(RoundRobin, OneErrandPerAgentPerStep)
+{
+  const auto& g = corridor();
+  // Agent 0's tasks 0 and 2 are both at x=1: standing there completes one per step.
+  auto file = ttest::task_file(g, {{{1, 0}}, {{5, 0}}, {{1, 0}}, {{5, 0}}});
+  RoundRobin rr(file);
+  rr.start({1, 3});
+  // Standing on the goal at the start does not count before a step has ended.
+  EXPECT_EQ(rr.update(1, {1, 3}), (std::vector<Event>{{1, 0, 0, 0}}));
+  EXPECT_EQ(rr.update(2, {1, 3}), (std::vector<Event>{{2, 0, 2, 0}}));
+  EXPECT_EQ(rr.update(3, {1, 3}), (std::vector<Event>{{3, 0, 4, 0}}));  // id 4 = line 0, x=1 again
+  EXPECT_TRUE(rr.update(4, {0, 3}).empty());
+}
+
+TEST(RoundRobin, MultiErrandTasksAndDuplicateGoals)
+{
+  const auto& g = corridor();
+  // Both agents' tasks end at x=3 (a shared station): nothing assumes distinct goals.
+  auto file = ttest::task_file(g, {{{1, 0}, {3, 0}}, {{5, 0}, {3, 0}}});
+  RoundRobin rr(file);
+  rr.start({0, 4});
+  EXPECT_EQ(rr.update(1, {1, 5}), (std::vector<Event>{{1, 0, 0, 0}, {1, 1, 1, 0}}));
+  EXPECT_EQ(rr.goals(), (Config{3, 3}));
+  EXPECT_EQ(rr.tasks_finished(), 0);
+  EXPECT_EQ(rr.update(2, {3, 4}), (std::vector<Event>{{2, 0, 0, 1}}));
+  EXPECT_EQ(rr.tasks_finished(), 1);
+  EXPECT_EQ(rr.errands_finished(), 3);
+  EXPECT_EQ(rr.task_of(0)->id, 2);  // line 0 again
+}
+
+TEST(TaskPool, RevealAssignComplete)
+{
+  const auto& g = corridor();
+  // Two-errand tasks (pick-up, drop). Pool of 3 for 2 agents.
+  auto file = ttest::task_file(g, {
+                                      {{5, 0}, {4, 0}},  // 0: far from both
+                                      {{1, 0}, {2, 0}},  // 1: near agent 0
+                                      {{3, 0}, {0, 0}},  // 2: near agent 1 (chain 3)
+                                      {{0, 0}, {1, 0}},  // 3: revealed when one finishes
+                                  });
+  TaskPool pool(file, g, 3, std::make_unique<GreedyAssigner>());
+  pool.start({0, 4});
+  EXPECT_EQ(pool.mode(), "pool");
+  EXPECT_EQ(pool.revealed(), 3);
+  // Greedy, agent 0 first: costs from x=0: task0 5+1, task1 1+1, task2 3+3 -> task 1.
+  // Agent 1 from x=4: task0 1+1=2, task2 1+3=4 -> task 0.
+  ASSERT_NE(pool.task_of(0), nullptr);
+  EXPECT_EQ(pool.task_of(0)->id, 1);
+  EXPECT_EQ(pool.task_of(1)->id, 0);
+  EXPECT_EQ(pool.goals(), (Config{1, 5}));
+
+  EXPECT_EQ(pool.update(1, {1, 5}), (std::vector<Event>{{1, 0, 1, 0}, {1, 1, 0, 0}}));
+  EXPECT_TRUE(pool.task_of(0)->opened());
+  EXPECT_EQ(pool.goals(), (Config{2, 4}));
+  EXPECT_EQ(pool.revealed(), 3);  // nothing finished yet
+  EXPECT_EQ(pool.update(2, {2, 4}), (std::vector<Event>{{2, 0, 1, 1}, {2, 1, 0, 1}}));
+  EXPECT_EQ(pool.tasks_finished(), 2);
+  EXPECT_EQ(pool.revealed(), 5);  // ids 3, 4 (= line 0 again)
+  // Free: task 2 (3->0), task 3 (0->1), task 4 (5->4). Agent 0 at x=2: 1+3, 2+1, 3+1 -> task 3 (id 3, cost 3).
+  // Agent 1 at x=4: task 2: 1+3=4, task 4: 1+1=2 -> task 4.
+  EXPECT_EQ(pool.task_of(0)->id, 3);
+  EXPECT_EQ(pool.task_of(1)->id, 4);
+  EXPECT_EQ(pool.goals(), (Config{0, 5}));
+}
+
+TEST(TaskPool, HungarianBeatsGreedyOnTheClassicTrap)
+{
+  const auto& g = corridor();
+  // Agent 0 at x=2, agent 1 at x=0; one-errand tasks A at x=1, B at x=5.
+  // A at x=1, B at x=5. Greedy: agent 0 takes A (1), agent 1 is left with B (5): 6.
+  // Matching: agent 1 -> A (1), agent 0 -> B (3): 4.
+  auto file = ttest::task_file(g, {{{1, 0}}, {{5, 0}}});
+  TaskPool greedy(file, g, 2, std::make_unique<GreedyAssigner>());
+  greedy.start({2, 0});
+  EXPECT_EQ(greedy.goals(), (Config{1, 5}));
+  TaskPool hung(file, g, 2, std::make_unique<HungarianAssigner>());
+  hung.start({2, 0});
+  EXPECT_EQ(hung.goals(), (Config{5, 1}));
+}
+
+TEST(TaskPool, IdleAgentsWaitWhenTasksRunOut)
+{
+  const auto& g = corridor();
+  auto file = ttest::task_file(g, {{{5, 0}}});
+  TaskPool pool(file, g, 1, std::make_unique<GreedyAssigner>());
+  pool.start({0, 2});
+  EXPECT_TRUE(pool.busy(0));      // greedy: agent 0 chooses first
+  EXPECT_FALSE(pool.busy(1));
+  EXPECT_EQ(pool.goals()[1], 2);  // agent 1 idles in place
+  // Its idle goal is its own cell and it is not pending in the goal test.
+  const auto test = lifelong_goal_test(pool, {0, 2});
+  const planner::Vertex c0[] = {0, 2};
+  const planner::Vertex c1[] = {5, 3};
+  EXPECT_FALSE(test(c0));
+  EXPECT_TRUE(test(c1));
+}
+
+TEST(LifelongGoal, SomePendingAgentOnItsGoal)
+{
+  // Agents 0, 1 pending; agent 2 already on its goal (arrived); agent 3 idle.
+  const Config goals{5, 5, 2, 3}, pos{0, 1, 2, 3};
+  const auto test = lifelong_goal_test(goals, pos, {1, 1, 1, 0});
+  const planner::Vertex root[] = {0, 1, 2, 3};
+  const planner::Vertex dup[] = {5, 1, 2, 3};    // a shared goal: one agent there is enough
+  const planner::Vertex other[] = {0, 5, 4, 3};
+  const planner::Vertex arrived_only[] = {0, 1, 2, 4};
+  EXPECT_FALSE(test(root));
+  EXPECT_TRUE(test(dup));
+  EXPECT_TRUE(test(other));
+  EXPECT_FALSE(test(arrived_only));
+  // Nobody pending: everything passes (the planner may wait).
+  const auto all = lifelong_goal_test(Config{0, 1}, Config{0, 1}, {1, 1});
+  EXPECT_TRUE(all(root));
+}
