@@ -23,10 +23,11 @@ int main(int argc, char** argv)
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
-  int k_nearest = 32;
+  int k_nearest = 32, agents = 0;
   bool quiet = false;
   app.add_option("--problem", problem_file, "LoRR problem JSON")->required();
   app.add_option("--steps", steps, "steps to simulate (default: the instance's simulation_time)");
+  app.add_option("--agents", agents, "use only the first N agents of the team (default: teamSize)")->check(CLI::PositiveNumber);
   app.add_option("--mode", mode, "roundrobin | pool (default: roundrobin for 2023 roundrobin problems, else pool)")
       ->check(CLI::IsMember({"roundrobin", "pool"}));
   app.add_option("--assigner", assigner, "pool mode: greedy | hungarian")
@@ -45,7 +46,10 @@ int main(int argc, char** argv)
   CLI11_PARSE(app, argc, argv);
 
   try {
-    const LorrProblem pr = load_lorr_problem(problem_file);
+    LorrProblem pr = load_lorr_problem(problem_file);
+    if (agents > pr.team_size)
+      throw planner::input_error(problem_file, 0, "--agents " + std::to_string(agents) + " but teamSize is " + std::to_string(pr.team_size));
+    if (agents > 0) pr.team_size = agents;
     const planner::Graph g = planner::load_map(pr.map_file);
     const planner::Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
     auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));

@@ -80,3 +80,14 @@ TEST(LifelongCli, BadInputIsOneLineAndExitCode2)
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(run_cli("--problem x.json --solver lacam").code, 0);
 }
+
+TEST(LifelongCli, AgentsUsesTheFirstNOfTheTeam)
+{
+  const std::string p = ttest::kData + "/2023/random.domain/MR23-I-04.json";
+  const CliRun r = run_cli("--problem " + p + " --agents 20 --steps 30 --solver naive --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["teamSize"], 20);
+  const CliRun bad = run_cli("--problem " + p + " --agents 101 --steps 30");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("teamSize is 100"), std::string::npos) << bad.err;
+}

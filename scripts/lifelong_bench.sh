@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Lifelong benchmark (issue 5 closing note): LoRR random-32-32-20 instances, 2023 round
+# robin and 2024 pool (greedy; hungarian at 100 ms), solvers pibt / naive / rtlacam at
+# 1, 10, 100 ms per step; warehouse_large with the first 1,000 / 2,000 agents.
+# Logs, tables and PNGs go to out/lifelong/ (OUT=...). Run from the repository root after
+#   cmake -S . -B build-tasks -DCMAKE_BUILD_TYPE=Release && cmake --build build-tasks -j2
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BIN=${BIN:-build-tasks/apps/rtlacam-lifelong}
+OUT=${OUT:-out/lifelong}
+PY=${PYTHON:-/usr/bin/python3}
+L=../shared/benchmarks/lorr
+BUDGETS=${BUDGETS:-"1 10 100"}
+SKIP_WAREHOUSE=${SKIP_WAREHOUSE:-0}
+
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2023" --budget-ms $BUDGETS \
+  --title "LoRR 2023 random-32-32-20, roundrobin" \
+  --problems $L/2023/random.domain/MR23-I-04.json $L/2023/random.domain/MR23-I-03.json \
+             $L/2023/random.domain/MR23-I-05.json $L/2023/random.domain/MR23-I-07.json $L/2023/random.domain/MR23-I-08.json
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-greedy" --budget-ms $BUDGETS --assigner greedy \
+  --title "LoRR 2024 random-32-32-20, pool/greedy" \
+  --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian" --budget-ms 100 --assigner hungarian \
+  --title "LoRR 2024 random-32-32-20, pool/hungarian" \
+  --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
+$PY scripts/plot_lifelong.py -o "$OUT/MR23-I-05_completions.png" "$OUT"/2023/MR23-I-05_{pibt,naive,rtlacam}_100ms.json
+
+if [ "$SKIP_WAREHOUSE" != 1 ]; then
+  $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/warehouse-1000" --budget-ms 100 --agents 1000 --steps 500 \
+    --title "warehouse_large (MR23-I-10), first 1,000 agents" --problems $L/2023/warehouse.domain/MR23-I-10.json
+  $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/warehouse-2000" --budget-ms 100 --agents 2000 --steps 1000 \
+    --title "warehouse_large (MR23-I-10), first 2,000 agents" --problems $L/2023/warehouse.domain/MR23-I-10.json
+fi
+echo "tables: $OUT/*/table.md"
