@@ -1,0 +1,25 @@
+#include "policy/golden_file.hpp"
+
+#include "policy/binary_reader.hpp"
+
+namespace policy {
+
+Golden load_golden(const std::string& path)
+{
+  BinaryReader in(path);
+  in.expect_magic(kGoldenMagic, "policy golden file");
+  const uint32_t version = in.u32("version");
+  if (version != kGoldenVersion) throw in.error("unsupported golden file version " + std::to_string(version));
+  const uint32_t n = in.u32("sample count"), inputs = in.u32("input size"), outputs = in.u32("output size");
+  if (n < 1 || n > 1000000 || inputs < 1 || inputs > 65536 || outputs < 1 || outputs > 65536)
+    throw in.error("implausible shape " + std::to_string(n) + " x " + std::to_string(inputs) + " -> " + std::to_string(outputs));
+  Golden g;
+  g.x.resize(inputs, n);
+  g.logits.resize(outputs, n);
+  in.read(g.x.data(), static_cast<uint64_t>(g.x.size()) * sizeof(float), "inputs");
+  in.read(g.logits.data(), static_cast<uint64_t>(g.logits.size()) * sizeof(float), "logits");
+  in.expect_end();
+  return g;
+}
+
+}  // namespace policy
