@@ -13,12 +13,16 @@ using namespace controller;
 int main(int argc, char** argv)
 {
   CLI::App app{"Run a SUMO warehouse scenario with RT-LaCAM commanding every AGV"};
-  std::string path, backend, out;
+  std::string path, backend, solver, out;
   bool gui = false;
   long long max_ticks = 0;
+  int port = 0;
   app.add_option("config", path, "scenario YAML (config/<scenario>.yaml)")->required();
   app.add_flag("--gui", gui, "watch it live in sumo-gui (through TraCI)");
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
+  app.add_option("--solver", solver, "override planner.solver")->check(CLI::IsMember({"rtlacam", "naive", "pibt"}));
+  app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
+      ->check(CLI::Range(1, 65535));
   app.add_option("--max-ticks", max_ticks, "override run.max_ticks")->check(CLI::PositiveNumber);
   app.add_option("--out", out, "override output.dir");
   CLI11_PARSE(app, argc, argv);
@@ -27,6 +31,11 @@ int main(int argc, char** argv)
     Config cfg = load_config(path);
     if (gui) cfg.run.gui = true;
     if (!backend.empty()) cfg.run.backend = backend;
+    if (!solver.empty()) cfg.planner.solver = solver;
+    if (port > 0) {
+      cfg.run.port = port;
+      if (backend.empty()) cfg.run.backend = "traci";
+    }
     if (max_ticks > 0) cfg.run.max_ticks = max_ticks;
     if (!out.empty()) cfg.output.dir = out;
 

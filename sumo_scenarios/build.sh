@@ -1,5 +1,5 @@
 #!/bin/sh
-# Rebuilds the warehouse scenarios: plain XML -> .net.xml with SUMO 1.15 netconvert, then
+# Rebuilds the scenarios (small, large, huge warehouses; bottleneck corridor): plain XML -> .net.xml with SUMO 1.15 netconvert, then
 # gridifies them (summary, SVG) if rtlacam-gridify is given as $1.
 # The netconvert options make lane length == distance between node centres (no internal
 # lanes, zero junction radius) and add turnarounds at every node, corners included.
@@ -7,7 +7,7 @@ set -e
 cd "$(dirname "$0")"
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 python3 make_warehouse.py
-for s in small large; do
+for s in small large huge bottleneck; do
   netconvert -n $s.nod.xml -e $s.edg.xml -o $s.net.xml \
     --no-internal-links --no-turnarounds.geometry false \
     --default.junctions.radius 0 --junctions.corner-detail 0 --offset.disable-normalization

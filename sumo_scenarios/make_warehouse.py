@@ -8,7 +8,11 @@ outer aisles. Every aisle is a pair of opposite one-way single-lane edges (see
 gridify/README.md). Node coordinates are whole metres, so with cell_length 1 every
 aisle length is a multiple of the cell.
 
-Usage: make_warehouse.py  (writes small.* and large.* here; then run ./build.sh)
+Also writes `huge` (the 1000-AGV benchmark warehouse, scripts/bench_sumo.sh) and
+`bottleneck`: a single corridor with dead-end sidings, where two groups of AGVs must pass
+each other (config/bottleneck.yaml: naive replanning livelocks there, RT-LaCAM finishes).
+
+Usage: make_warehouse.py  (writes small.*, large.*, huge.*, bottleneck.* here; then run ./build.sh)
 """
 import os
 
@@ -43,6 +47,10 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park):
     for k, (c, r, pos) in enumerate(park):    # parking spots inside the outer picking aisles
         stations.append(("parkingArea", f"park{k}", f"c{c}r{r}_c{c}r{r + 1}_0", pos, "parking"))
 
+    write(name, nodes, edges, stations)
+
+
+def write(name, nodes, edges, stations):
     with open(os.path.join(HERE, f"{name}.nod.xml"), "w") as f:
         f.write("<nodes>\n")
         for n, (x, y) in nodes.items():
@@ -64,6 +72,30 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park):
         f.write("</additional>\n")
 
 
+def corridor(name, length, sidings, siding_length, bays):
+    """A corridor `west` -> `east` (x = 0 .. length) with dead-end sidings going north at
+    the x in `sidings`; busStops w1..w<bays> / e1..e<bays> tag the corridor cells 1..bays
+    metres from either end (the ends themselves are the junctions `west` and `east`)."""
+    nodes = {"west": (0, 0), "east": (length, 0)}
+    chain = ["west"] + [f"j{x}" for x in sidings] + ["east"]
+    for x in sidings:
+        nodes[f"j{x}"] = (x, 0)
+        nodes[f"siding{x}"] = (x, siding_length)
+    edges = []
+    def aisle(a, b):
+        edges.append((f"{a}_{b}", a, b))
+        edges.append((f"{b}_{a}", b, a))
+    for a, b in zip(chain, chain[1:]):
+        aisle(a, b)
+    for x in sidings:
+        aisle(f"j{x}", f"siding{x}")
+    stations = []
+    for k in range(1, bays + 1):
+        stations.append(("busStop", f"w{k}", f"west_{chain[1]}_0", k, "bay"))
+        stations.append(("busStop", f"e{k}", f"east_{chain[-2]}_0", k, "bay"))
+    write(name, nodes, edges, stations)
+
+
 # Small: 4 picking aisles 8 m long between 3 m shelf blocks, 2 pick-up and 2 drop stations.
 warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
           pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)])
@@ -72,3 +104,10 @@ warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
 warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
           pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
           park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)])
+# Huge (benchmark, 1000 AGVs): 48 picking aisles 10 m long in 7 shelf rows (cross aisles
+# every 10 m), 24 pick-up and 24 drop stations: about 4600 cells.
+warehouse("huge", columns=48, pitch=4, cross_ys=list(range(0, 71, 10)), stub=3,
+          pick_cols=list(range(0, 48, 2)), drop_cols=list(range(1, 48, 2)), park=[])
+# Bottleneck: a 16 m corridor with three 2 m sidings (x = 4, 8, 12); 4 AGVs at each end
+# swap ends (config/bottleneck.yaml).
+corridor("bottleneck", length=16, sidings=[4, 8, 12], siding_length=2, bays=3)

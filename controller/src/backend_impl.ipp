@@ -1,7 +1,8 @@
 // Shared body of the two SUMO back ends. Included by libsumo_backend.cpp with
 // `namespace api = libsumo` and by traci_backend.cpp with `namespace api = libtraci`:
 // the two APIs have the same static functions, but their headers cannot share a
-// translation unit. Lives in an anonymous namespace of each including file.
+// translation unit. Lives in an anonymous namespace of each including file, which also
+// defines `constexpr bool kOverSocket` (true for libtraci).
 
 std::string one_line(std::string s)
 {
@@ -101,11 +102,18 @@ class ApiBackend : public SumoBackend {
     if (!running_) throw SumoError(std::string("SUMO ") + what + ": no simulation running (closed or connection lost)");
     try {
       return f();
+    } catch (const libsumo::TraCIException& e) {
+      // SUMO refused the call (unknown vehicle, bad lane, ...): the simulation goes on.
+      throw SumoError(std::string("SUMO ") + what + ": " + one_line(e.what()));
     } catch (const libsumo::FatalTraCIError& e) {
       running_ = false;
       throw SumoError(std::string("SUMO ") + what + ": connection lost: " + one_line(e.what()));
     } catch (const std::exception& e) {
-      throw SumoError(std::string("SUMO ") + what + ": " + one_line(e.what()));
+      // Over a socket anything else is the transport (tcpip::SocketException: sumo died,
+      // broken pipe, reset); embedded it is SUMO's own ProcessError.
+      if (!kOverSocket) throw SumoError(std::string("SUMO ") + what + ": " + one_line(e.what()));
+      running_ = false;
+      throw SumoError(std::string("SUMO ") + what + ": connection lost: " + one_line(e.what()));
     }
   }
 

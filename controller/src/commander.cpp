@@ -92,6 +92,7 @@ void Commander::insert(const planner::Config& starts)
 void Commander::failed(int agent, const SumoError& e)
 {
   const std::string& id = agv_[agent].id;
+  if (!sumo_.running()) throw e;  // the connection is gone: that is the error
   const std::vector<std::string> ids = sumo_.vehicles();  // throws again if SUMO itself is gone
   if (std::find(ids.begin(), ids.end(), id) == ids.end())
     throw ControlError("AGV " + id + " (agent " + std::to_string(agent) +

@@ -166,6 +166,8 @@ Metrics Controller::run()
       cur = next;
       plan_.push_back(cur);
       ++m.ticks;
+      m.makespan = val.steps();  // executed ticks only (a tick cut short by an error is not)
+      m.soc = val.sum_of_costs();
 
       if (cfg_.run.progress_s > 0 && std::chrono::duration<double>(Clock::now() - last_progress).count() >= cfg_.run.progress_s) {
         last_progress = Clock::now();
@@ -193,8 +195,6 @@ Metrics Controller::run()
   }
   sumo->close();  // flushes SUMO's output files
 
-  m.makespan = val.steps();
-  m.soc = val.sum_of_costs();
   m.expansions = p->expansions();
   m.planner_ms_per_step = Latency::of(plan_step);
   m.planner_ms_per_tick = Latency::of(plan_tick);

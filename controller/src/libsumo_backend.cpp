@@ -12,6 +12,7 @@ namespace controller {
 namespace {
 
 namespace api = libsumo;
+constexpr bool kOverSocket = false;
 #include "backend_impl.ipp"
 
 class LibsumoBackend : public ApiBackend {

@@ -4,6 +4,7 @@
 // Every call is a round trip (~12-40 us), so the controller reads poses once per tick.
 #include <libsumo/libtraci.h>
 
+#include <csignal>
 #include <cstdio>
 
 #include "controller/sumo_backend.hpp"
@@ -13,6 +14,7 @@ namespace controller {
 namespace {
 
 namespace api = libtraci;
+constexpr bool kOverSocket = true;
 #include "backend_impl.ipp"
 
 class TraciBackend : public ApiBackend {
@@ -23,6 +25,11 @@ class TraciBackend : public ApiBackend {
   void start(const std::vector<std::string>& args) override
   {
     if (running_) close();
+    // A write to a socket whose sumo died raises SIGPIPE, which would kill the whole
+    // process without a word: ignore it (unless the host program installed a handler), so
+    // the write fails and the loss is reported as an error like any other.
+    struct sigaction old {};
+    if (::sigaction(SIGPIPE, nullptr, &old) == 0 && old.sa_handler == SIG_DFL) std::signal(SIGPIPE, SIG_IGN);
     if (port_ > 0) {
       guarded("connect", [&] { api::Simulation::init(port_, kRetries); });
     } else {

@@ -1,0 +1,271 @@
+// Every shipped scenario run to completion on the real SUMO 1.15, the bottleneck on which
+// naive replanning livelocks, and a TraCI connection lost because the sumo process dies.
+// ctest runs each TEST in its own process; every test writes into its own temp dir.
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "controller/config.hpp"
+#include "controller/controller.hpp"
+#include "controller/sumo_options.hpp"
+#include "planner/validator.hpp"
+
+using namespace controller;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string temp_dir(const std::string& name)
+{
+  fs::path d = fs::temp_directory_path() / ("rtlacam_scn_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+Config scenario(const std::string& yaml, const std::string& name)
+{
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/" + yaml);
+  c.output.dir = temp_dir(name);
+  c.run.progress_s = 0;
+  return c;
+}
+
+std::string slurp(const std::string& path)
+{
+  std::ifstream in(path);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// A run that reached every goal exactly: no violation, no re-sync, no SUMO collision,
+// teleport or arrival (any of those stops the run with an error), a valid executed plan.
+void expect_exact_solved_run(const Config& cfg, const Controller& c, const Metrics& m)
+{
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.resyncs, 0);
+  EXPECT_EQ(m.commands.jumps, 0);
+  EXPECT_LE(m.commands.max_error, 1e-6);
+  const auto& plan = c.plan();
+  ASSERT_FALSE(plan.empty());
+  EXPECT_EQ(static_cast<long long>(plan.size()), m.ticks + 1);
+  EXPECT_EQ(planner::validate_plan(c.map().graph, plan.front(), plan.back(), plan, true), "");
+  const nlohmann::json j = nlohmann::json::parse(slurp(cfg.output.dir + "/metrics.json"));
+  EXPECT_EQ(j["solved"], true);
+  EXPECT_EQ(j["ticks"], m.ticks);
+  if (cfg.sumo.outputs.collision) {
+    EXPECT_EQ(slurp(cfg.output.dir + "/collision.xml").find("<collision "), std::string::npos);
+  }
+  if (cfg.sumo.outputs.summary) {
+    // SUMO's own count: nobody arrived or teleported, all AGVs still running at the end.
+    const std::string s = slurp(cfg.output.dir + "/summary.xml");
+    const size_t last = s.rfind("<step ");
+    ASSERT_NE(last, std::string::npos);
+    const std::string step = s.substr(last, s.find("/>", last) - last);
+    EXPECT_NE(step.find(" arrived=\"0\""), std::string::npos) << step;
+    EXPECT_NE(step.find(" teleports=\"0\""), std::string::npos) << step;
+    EXPECT_NE(step.find(" collisions=\"0\""), std::string::npos) << step;
+    EXPECT_NE(step.find(" running=\"" + std::to_string(m.agents) + "\""), std::string::npos) << step;
+  }
+}
+
+// A TCP port nobody listens on right now.
+int free_port()
+{
+  int s = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  a.sin_port = 0;
+  ::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(s);
+  return ntohs(a.sin_port);
+}
+
+// Starts `sumo <args> --remote-port <port>` as our own child (quiet), returns its pid.
+pid_t spawn_sumo(std::vector<std::string> args, int port, const std::string& log)
+{
+  args.insert(args.begin(), "sumo");
+  args.insert(args.end(), {"--remote-port", std::to_string(port)});
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::FILE* f = std::freopen(log.c_str(), "w", stdout);
+    (void)f;
+    ::dup2(::fileno(stdout), 2);
+    std::vector<char*> argv;
+    for (std::string& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ::execvp("sumo", argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// A scenario config set up to connect over TraCI to a sumo the test starts itself.
+struct ExternalSumo {
+  pid_t pid = -1;
+  int port = 0;
+  ExternalSumo(Config& cfg)
+  {
+    port = free_port();
+    cfg.run.backend = "traci";
+    cfg.run.port = port;
+    const std::string vtype = write_vtype_file(cfg, cfg.output.dir, cfg.grid.cell_length);
+    pid = spawn_sumo(sumo_args(cfg, cfg.output.dir, vtype, false), port, cfg.output.dir + "/sumo.log");
+  }
+  void kill()
+  {
+    if (pid <= 0) return;
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+    pid = -1;
+  }
+  ~ExternalSumo() { kill(); }
+};
+
+}  // namespace
+
+TEST(ControllerScenario, SmallWarehouseCompletesExactly)
+{
+  Config cfg = scenario("small_warehouse.yaml", "small");
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_exact_solved_run(cfg, c, m);
+  EXPECT_EQ(m.agents, 16);
+}
+
+TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
+{
+  Config cfg = scenario("large_warehouse.yaml", "large");
+  cfg.planner.budget_ms = 0;  // deterministic
+  cfg.planner.expansions = 20;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_exact_solved_run(cfg, c, m);
+  EXPECT_EQ(m.agents, 200);
+  EXPECT_GT(m.commands.total(), 1000);
+}
+
+TEST(ControllerScenario, BottleneckRtLacamPassesTheCorridor)
+{
+  for (uint64_t seed : {0, 1, 2}) {
+    SCOPED_TRACE(seed);
+    Config cfg = scenario("bottleneck.yaml", "bottleneck_rt" + std::to_string(seed));
+    cfg.planner.seed = seed;
+    ASSERT_EQ(cfg.planner.solver, "rtlacam");
+    Controller c(cfg);
+    const Metrics m = c.run();
+    expect_exact_solved_run(cfg, c, m);
+    EXPECT_EQ(m.agents, 8);
+    EXPECT_LT(m.ticks, 300);
+    // Everybody swapped ends: the corridor had to be shared.
+    EXPECT_GE(m.soc, m.soc_lb);
+  }
+}
+
+TEST(ControllerScenario, BottleneckNaiveReplanningStalls)
+{
+  // Same budget (2 expansions per SUMO step) as RT-LaCAM above: a fresh search every tick
+  // never gets the two groups past each other. Still every executed step is valid.
+  for (uint64_t seed : {0, 1, 2}) {
+    SCOPED_TRACE(seed);
+    Config cfg = scenario("bottleneck.yaml", "bottleneck_naive" + std::to_string(seed));
+    cfg.planner.solver = "naive";
+    cfg.planner.seed = seed;
+    cfg.run.max_ticks = 1000;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    EXPECT_EQ(m.error, "");
+    EXPECT_FALSE(m.solved);
+    EXPECT_EQ(m.ticks, 1000);
+    EXPECT_EQ(m.violations, 0);
+    EXPECT_EQ(m.commands.resyncs, 0);
+    EXPECT_LE(m.commands.max_error, 1e-6);
+    EXPECT_EQ(planner::validate_plan(c.map().graph, c.plan().front(), c.plan().front(), c.plan(), false), "");
+  }
+}
+
+TEST(ControllerScenario, ShippedConfigsAndSumocfgsLoad)
+{
+  // Every scenario has a config and a .sumocfg that SUMO accepts (sumo-gui -c uses it).
+  for (const char* s : {"small", "large", "huge", "bottleneck"}) {
+    const std::string cfgfile = std::string(RTLACAM_SCENARIOS) + "/" + s + ".sumocfg";
+    ASSERT_TRUE(fs::exists(cfgfile)) << cfgfile;
+    const std::string log = temp_dir(std::string("sumocfg_") + s) + "/sumo.log";
+    const std::string cmd = "sumo -c " + cfgfile + " --end 1 --no-step-log true > " + log + " 2>&1";
+    EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
+  }
+  for (const char* y : {"small_warehouse.yaml", "large_warehouse.yaml", "huge_warehouse.yaml", "bottleneck.yaml"}) {
+    Config c = load_config(std::string(RTLACAM_CONFIGS) + "/" + y);
+    EXPECT_TRUE(fs::exists(c.sumo.net)) << y;
+  }
+}
+
+TEST(ControllerFault, SumoProcessKilledMidRun)
+{
+  // The test starts sumo itself (--remote-port), the controller connects over TraCI, and
+  // the sumo process is killed at tick 5: one clear error line, metrics so far written.
+  Config cfg = scenario("small_warehouse.yaml", "killed");
+  cfg.planner.budget_ms = 0;
+  cfg.planner.expansions = 20;
+  ExternalSumo sumo(cfg);
+  Controller c(cfg);
+  c.on_tick = [&](long long tick, SumoBackend&) {
+    if (tick == 5) sumo.kill();
+  };
+  const Metrics m = c.run();
+  EXPECT_NE(m.error.find("connection lost"), std::string::npos) << m.error;
+  EXPECT_EQ(m.error.rfind("SUMO ", 0), 0u) << m.error;
+  EXPECT_EQ(m.error.find('\n'), std::string::npos) << m.error;
+  EXPECT_FALSE(m.solved);
+  EXPECT_EQ(m.ticks, 5);
+  const nlohmann::json j = nlohmann::json::parse(slurp(cfg.output.dir + "/metrics.json"));
+  EXPECT_EQ(j["error"], m.error);
+  EXPECT_EQ(j["ticks"], 5);
+  EXPECT_EQ(j["solved"], false);
+  EXPECT_TRUE(fs::exists(cfg.output.dir + "/plan.txt"));
+}
+
+TEST(ControllerFault, SumoProcessKilledUnderTheAppExitsNonZero)
+{
+  // The same through the CLI: rtlacam-sumo --port P against our sumo, killed once the
+  // app has printed its first progress line.
+  Config cfg = scenario("large_warehouse.yaml", "killed_app");
+  cfg.sumo.outputs = {false, false, false, false};
+  ExternalSumo sumo(cfg);
+  const std::string yaml = cfg.output.dir + "/run.yaml";
+  std::ofstream(yaml) << "sumo:\n  net: " << cfg.sumo.net << "\n  outputs: {fcd: false, tripinfo: false, summary: false, collision: false}\n"
+                      << "fleet: {count: 200, seed: 1}\ntasks: {seed: 2}\nrun: {progress_s: 0.05}\n";
+  const std::string cmd = std::string(RTLACAM_SUMO_APP) + " " + yaml + " --port " + std::to_string(sumo.port) +
+                          " --out " + cfg.output.dir + " 2>&1";
+  std::FILE* app = ::popen(cmd.c_str(), "r");
+  ASSERT_NE(app, nullptr);
+  std::string out;
+  char line[4096];
+  while (std::fgets(line, sizeof line, app)) {
+    out += line;
+    if (std::string(line).rfind("[rtlacam-sumo] tick", 0) == 0) sumo.kill();
+  }
+  const int status = ::pclose(app);
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 1) << out;
+  EXPECT_NE(out.find("error: SUMO "), std::string::npos) << out;
+  EXPECT_NE(out.find("connection lost"), std::string::npos) << out;
+  const nlohmann::json j = nlohmann::json::parse(slurp(cfg.output.dir + "/metrics.json"));
+  EXPECT_NE(j["error"].get<std::string>(), "");
+  EXPECT_GT(j["ticks"].get<long long>(), 0);
+  EXPECT_EQ(j["solved"], false);
+}
