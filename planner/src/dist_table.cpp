@@ -1,10 +1,11 @@
 #include "planner/dist_table.hpp"
 
+#include <algorithm>
+
 namespace planner {
 
-DistTable::Table::Table(const Graph& g, Vertex goal) : dist(g.size(), kInf)
+DistTable::Table::Table(const Graph& g, Vertex goal_vertex) : dist(g.size(), kInf), goal(goal_vertex)
 {
-  queue.reserve(g.size());
   dist[goal] = 0;
   queue.push_back(goal);
 }
@@ -21,10 +22,11 @@ int32_t DistTable::Table::extend_until(Vertex v, const Graph& g)
     }
     if (dist[v] != kInf) return dist[v];
   }
-  return kInf;  // BFS exhausted: v is unreachable
+  if (!queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done: free the queue
+  return kInf;  // v is unreachable
 }
 
-DistTable::DistTable(const Graph& g) : g_(g) {}
+DistTable::DistTable(const Graph& g, size_t max_tables) : g_(g), max_tables_(max_tables) {}
 
 DistTable::Table* DistTable::table_for(Vertex goal)
 {
@@ -36,8 +38,24 @@ DistTable::Table* DistTable::table_for(Vertex goal)
 
 void DistTable::set_goals(const Config& goals)
 {
+  ++assign_round_;
   agent_table_.resize(goals.size());
-  for (size_t i = 0; i < goals.size(); ++i) agent_table_[i] = table_for(goals[i]);
+  for (size_t i = 0; i < goals.size(); ++i) {
+    agent_table_[i] = table_for(goals[i]);
+    agent_table_[i]->last_assigned = assign_round_;
+  }
+  if (max_tables_ > 0 && tables_.size() > max_tables_) evict();
+}
+
+void DistTable::evict()
+{
+  // Tables assigned in this round are in use; drop the oldest of the others.
+  std::sort(tables_.begin(), tables_.end(),
+            [](const std::unique_ptr<Table>& a, const std::unique_ptr<Table>& b) { return a->last_assigned > b->last_assigned; });
+  size_t keep = max_tables_;
+  while (keep < tables_.size() && tables_[keep]->last_assigned == assign_round_) ++keep;
+  for (size_t k = keep; k < tables_.size(); ++k) by_goal_.erase(tables_[k]->goal);
+  tables_.resize(keep);
 }
 
 int32_t DistTable::from_goal(Vertex goal, Vertex v)

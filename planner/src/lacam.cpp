@@ -22,7 +22,7 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   pibt_.set_preference(pref);
 }
 
-void Lacam::reset(const Config& start, const Config& goals, GoalTest test)
+void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities)
 {
   n_ = static_cast<int>(start.size());
   goals_ = goals;
@@ -40,13 +40,13 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test)
   all_.clear();
   goal_ = nullptr;
   scratch_.assign(n_, -1);
-  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_));
+  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities);
   explored_.insert(root_);
   open_.push_back(root_);
   status_ = Status::Searching;
 }
 
-HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash)
+HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities)
 {
   HNode* h = nodes_.alloc(1);
   *h = HNode{};
@@ -59,7 +59,8 @@ HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash)
     std::copy(parent->order, parent->order + n_, order);
     sort_by_priority(prio, n_, order);
   } else {
-    init_priorities(c, n_, dist_, prio);
+    if (root_priorities) std::copy(root_priorities, root_priorities + n_, prio);
+    else init_priorities(c, n_, dist_, prio);
     initial_order(prio, n_, order);
   }
   h->C = c;

@@ -17,13 +17,15 @@ void PibtPlanner::set_goals(const Config& goals, GoalTest test)
   dist_.set_goals(goals);
   pibt_.set_goals(goals);
   const int n = static_cast<int>(goals.size());
+  next_.assign(n, -1);
+  planned_ = false;
+  // Lifelong goal changes keep the priorities: PIBT's memory of who waited longest.
+  if (static_cast<int>(prio_.size()) == n) return;
   prio_.assign(n, 0.0f);
   prio_next_.assign(n, 0.0f);
   order_.assign(n, 0);
-  next_.assign(n, -1);
   init_priorities(current_.data(), n, dist_, prio_.data());
   initial_order(prio_.data(), n, order_.data());
-  planned_ = false;
 }
 
 Status PibtPlanner::search(const Budget&)

@@ -12,7 +12,14 @@ RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, Laca
 void RtLacam::set_goals(const Config& goals, GoalTest test)
 {
   test_ = test;
-  lacam_.reset(current_, goals, std::move(test));
+  // A new epoch keeps the agents' PIBT priorities (see Lacam::reset).
+  const HNode* root = lacam_.root();
+  if (root && goals.size() == current_.size()) {
+    carried_.assign(root->priorities, root->priorities + lacam_.num_agents());
+    lacam_.reset(current_, goals, std::move(test), carried_.data());
+  } else {
+    lacam_.reset(current_, goals, std::move(test));
+  }
   goal_path_.clear();
   planned_ = promised_ = nullptr;
 }

@@ -60,3 +60,28 @@ TEST(DistTable, UnreachableIsInfinite)
   EXPECT_EQ(d.get(0, 1), 1);
   EXPECT_EQ(d.get(0, 2), DistTable::kInf);
 }
+
+TEST(DistTable, CapDropsIdleTablesAndStaysCorrect)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  const size_t cap = 8;
+  DistTable d(g, cap);
+  Rng rng(11);
+  for (int round = 0; round < 10 * static_cast<int>(cap); ++round) {
+    Config goals = {static_cast<Vertex>(rng.below(g.size())), static_cast<Vertex>(rng.below(g.size())),
+                    static_cast<Vertex>(rng.below(g.size()))};
+    d.set_goals(goals);
+    EXPECT_LE(d.num_tables(), cap);
+    for (int q = 0; q < 20; ++q) {
+      int i = static_cast<int>(rng.below(3));
+      Vertex v = static_cast<Vertex>(rng.below(g.size()));
+      ASSERT_EQ(d.get(i, v), bfs(g, goals[i])[v]);
+    }
+  }
+  // Tables in use are never dropped, even past the cap.
+  Config many;
+  for (Vertex v = 0; v < 20; ++v) many.push_back(v);
+  d.set_goals(many);
+  EXPECT_EQ(d.num_tables(), 20u);
+  EXPECT_EQ(d.get(19, 19), 0);
+}

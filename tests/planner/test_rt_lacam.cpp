@@ -225,3 +225,23 @@ TEST(RtLacam, CommitMovesWhereNextSaidEvenIfSearchRanInBetween)
     EXPECT_TRUE(rt.at_goal());
   }
 }
+
+TEST(RtLacam, NewEpochKeepsThePibtPriorities)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  Graph g = load_map(dir + "random-32-32-20.map");
+  Instance ins = load_scen(dir + "random-32-32-20-random-1.scen", g, 50);
+  RtLacam rt(g, ins.starts, ins.goals);
+  for (int k = 0; k < 5; ++k) {
+    rt.step(Budget::expansion_count(3));
+    rt.commit();
+  }
+  const HNode* root = rt.lacam().root();
+  std::vector<float> before(root->priorities, root->priorities + 50);
+  Config goals = ins.goals;
+  std::swap(goals[0], goals[1]);
+  rt.set_goals(goals);
+  const HNode* fresh = rt.lacam().root();
+  EXPECT_EQ(std::vector<float>(fresh->priorities, fresh->priorities + 50), before);
+  EXPECT_EQ(rt.lacam().explored(), 1u);
+}

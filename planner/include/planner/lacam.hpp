@@ -46,8 +46,10 @@ class Lacam {
   // reuse BFS tables. `pref` (optional) orders PIBT's candidate moves.
   Lacam(const Graph& g, DistTable& dist, LacamOptions opt = {}, ActionPreference* pref = nullptr);
 
-  // Drops the tree and starts a new search rooted at `start` towards `goals`.
-  void reset(const Config& start, const Config& goals, GoalTest test = {});
+  // Drops the tree and starts a new search rooted at `start` towards `goals`. The root's
+  // PIBT priorities are `priorities` when given (a lifelong epoch carries them over, so
+  // agents that waited long keep winning conflicts), else distance / N.
+  void reset(const Config& start, const Config& goals, GoalTest test = {}, const float* priorities = nullptr);
 
   Status expand();                   // one LaCAM iteration
   Status search(const Budget& b);    // expands until solved, exhausted or out of budget (>= 1 expansion)
@@ -77,7 +79,7 @@ class Lacam {
   bool check_tree(std::string* why = nullptr) const;
 
  private:
-  HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash);
+  HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities = nullptr);
   bool is_goal(const HNode* h) const;
 
   const Graph& g_;

@@ -19,6 +19,7 @@ class NaiveRtLacam : public RealtimePlanner {
   const Config& next() override;
   void commit() override;
   void set_goals(const Config& goals, GoalTest test = {}) override;
+  void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }

@@ -33,6 +33,8 @@ class RealtimePlanner {
   virtual void commit() = 0;
   // New goals: a new search rooted at the current configuration (lifelong tasks).
   virtual void set_goals(const Config& goals, GoalTest test = {}) = 0;
+  // Lifelong runs: cap the distance tables kept for goals no agent has now (0 = no cap).
+  virtual void set_max_dist_tables(size_t n) { (void)n; }
 
   virtual const Config& current() const = 0;
   virtual const Config& goals() const = 0;

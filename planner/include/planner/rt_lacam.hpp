@@ -25,10 +25,12 @@ class RtLacam : public RealtimePlanner {
   RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
           ActionPreference* pref = nullptr, GoalTest test = {});
 
+
   Status search(const Budget& b) override;
   const Config& next() override;
   void commit() override;
   void set_goals(const Config& goals, GoalTest test = {}) override;
+  void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return lacam_.goals(); }
@@ -51,6 +53,7 @@ class RtLacam : public RealtimePlanner {
   std::vector<const HNode*> goal_path_;  // goal first, root last, once solved
   const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
+  std::vector<float> carried_;           // priorities carried into a new epoch
 };
 
 }  // namespace planner
