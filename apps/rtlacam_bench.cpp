@@ -1,5 +1,7 @@
 // rtlacam-bench: the RT-LaCAM paper's experiment on one MovingAI instance.
 // Prints one JSON object per run; --out writes the executed plan (LaCAM result format).
+// --policy plugs a learned one-step policy into PIBT's move order (policy/README.md);
+// solver cspibt is that policy with PIBT's collision shield and no search.
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
@@ -13,13 +15,15 @@
 #include "planner/plan_io.hpp"
 #include "planner/rt_lacam.hpp"
 #include "planner/runner.hpp"
+#include "policy/policy_preference.hpp"
+#include "policy/weights_file.hpp"
 
 using namespace planner;
 
 int main(int argc, char** argv)
 {
   CLI::App app{"RT-LaCAM benchmark: interleaved planning and execution on a MovingAI instance"};
-  std::string map_file, scen_file, solver = "rtlacam", out_file;
+  std::string map_file, scen_file, solver = "rtlacam", out_file, policy_file;
   int agents = 0;
   double cutoff_ms = 1.0, timeout_s = 60.0;
   uint64_t budget_expansions = 0, seed = 0;
@@ -28,8 +32,8 @@ int main(int argc, char** argv)
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
-  app.add_option("--solver", solver, "pibt | lacam | rtlacam | naive")
-      ->check(CLI::IsMember({"pibt", "lacam", "rtlacam", "naive"}))
+  app.add_option("--solver", solver, "pibt | lacam | rtlacam | naive | cspibt (pibt ordered by --policy)")
+      ->check(CLI::IsMember({"pibt", "lacam", "rtlacam", "naive", "cspibt"}))
       ->capture_default_str();
   app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions,
@@ -40,7 +44,12 @@ int main(int argc, char** argv)
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
+  app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
   CLI11_PARSE(app, argc, argv);
+  if (solver == "cspibt" && policy_file.empty()) {
+    std::cerr << "rtlacam-bench: --solver cspibt needs --policy WEIGHTS" << std::endl;
+    return 2;
+  }
 
   try {
     const Graph g = load_map(map_file);
@@ -56,17 +65,25 @@ int main(int argc, char** argv)
     ropt.max_steps = max_steps;
     ropt.record_plan = !out_file.empty();
 
+    // The policy: loaded before the clock starts (a one-off, like reading the map).
+    policy::Model model;
+    std::unique_ptr<policy::PolicyPreference> pref;
+    if (!policy_file.empty()) {
+      model = policy::load_weights(policy_file);
+      pref = std::make_unique<policy::PolicyPreference>(g, model, ins.goals);
+    }
+
     RunResult r;
     if (solver == "lacam") {
-      r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt);
+      r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt, pref.get());
     } else {
       // Construction (distance tables, the root node) counts as planning time, as it
       // does inside run_full_horizon for LaCAM.
       const auto t0 = Clock::now();
       std::unique_ptr<RealtimePlanner> p;
-      if (solver == "rtlacam") p = std::make_unique<RtLacam>(g, ins.starts, ins.goals, lopt);
-      else if (solver == "naive") p = std::make_unique<NaiveRtLacam>(g, ins.starts, ins.goals, lopt);
-      else p = std::make_unique<PibtPlanner>(g, ins.starts, ins.goals, lopt);
+      if (solver == "rtlacam") p = std::make_unique<RtLacam>(g, ins.starts, ins.goals, lopt, pref.get());
+      else if (solver == "naive") p = std::make_unique<NaiveRtLacam>(g, ins.starts, ins.goals, lopt, pref.get());
+      else p = std::make_unique<PibtPlanner>(g, ins.starts, ins.goals, lopt, pref.get());
       const double setup_ms = ms_since(t0);
       r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
       r.total_planning_ms += setup_ms;
@@ -98,6 +115,11 @@ int main(int argc, char** argv)
     j["step_limit"] = r.step_limit;
     j["valid"] = r.validation_error.empty();
     if (!r.validation_error.empty()) j["validation_error"] = r.validation_error;
+    if (pref) {
+      j["policy"] = policy_file;
+      j["policy_inferences"] = pref->inferences();
+      j["policy_ms"] = pref->observation_ms() + pref->forward_ms();
+    }
     std::cout << (compact ? j.dump() : j.dump(2)) << std::endl;
 
     if (!out_file.empty()) {

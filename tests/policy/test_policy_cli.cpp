@@ -1,0 +1,132 @@
+// The policy from the command line: rtlacam-bench --solver cspibt / --policy, and
+// rtlacam-policy dump/time. Bad input -> one clear line on stderr, non-zero exit code.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "policy/dump_file.hpp"
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result run(const std::string& bin, const std::string& args)
+{
+  const std::string err_file = testing::TempDir() + "policy_cli_err.txt";
+  const std::string cmd = bin + " " + args + " 2>" + err_file;
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf;
+  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+const std::string kMap = RTLACAM_TEST_DATA "/planner/random-32-32-20.map";
+const std::string kScen = RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen";
+const std::string kWeights = RTLACAM_POLICY_MODELS "/random-32-32-20.bin";
+const std::string kInstance = "--map " + kMap + " --scen " + kScen;
+
+}  // namespace
+
+TEST(PolicyCli, BenchRunsEverySolverWithThePolicy)
+{
+  for (std::string solver : {"cspibt", "pibt", "rtlacam", "naive", "lacam"}) {
+    SCOPED_TRACE(solver);
+    const Result r = run(RTLACAM_BENCH_BIN, kInstance + " -N 30 --solver " + solver + " --policy " + kWeights +
+                                                " --json --budget-expansions 5 --max-steps 300");
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.out.find("\"valid\":true"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"solver\":\"" + solver + "\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"policy\":\"" + kWeights + "\""), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("\"policy_inferences\":"), std::string::npos) << r.out;
+    if (solver == "rtlacam" || solver == "lacam") {
+      EXPECT_NE(r.out.find("\"solved\":true"), std::string::npos) << r.out;
+    }
+  }
+}
+
+TEST(PolicyCli, BenchWithoutPolicyKeepsItsJson)
+{
+  const Result r = run(RTLACAM_BENCH_BIN, kInstance + " -N 20 --solver rtlacam --json");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("policy"), std::string::npos) << r.out;
+}
+
+TEST(PolicyCli, BenchBadPolicyInput)
+{
+  Result r = run(RTLACAM_BENCH_BIN, kInstance + " -N 5 --solver cspibt");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "rtlacam-bench: --solver cspibt needs --policy WEIGHTS\n");
+
+  const std::string bad = testing::TempDir() + "policy_cli_bad.bin";
+  std::ofstream(bad) << "RTLPOLCY\x01";
+  r = run(RTLACAM_BENCH_BIN, kInstance + " -N 5 --solver rtlacam --policy " + bad);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err.rfind("rtlacam-bench: " + bad + ": truncated file: version", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+
+  r = run(RTLACAM_BENCH_BIN, kInstance + " -N 5 --solver rtlacam --policy " + kMap);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("not a policy weights file (bad magic"), std::string::npos) << r.err;
+}
+
+TEST(PolicyCli, DumpWritesOneRecordPerAgentAndStep)
+{
+  const std::string out = testing::TempDir() + "policy_cli_dump.bin";
+  const Result r = run(RTLACAM_POLICY_BIN, "dump " + kInstance + " -N 10 20 --radius 2 --out " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Header: magic, version, radius, channels, features, 4 scales, count; then the records.
+  std::ifstream in(out, std::ios::binary);
+  char magic[8];
+  uint32_t h[4];
+  float scale[4];
+  uint64_t count = 0;
+  in.read(magic, 8);
+  in.read(reinterpret_cast<char*>(h), sizeof h);
+  in.read(reinterpret_cast<char*>(scale), sizeof scale);
+  in.read(reinterpret_cast<char*>(&count), sizeof count);
+  EXPECT_EQ(std::string(magic, 8), "RTLPDUMP");
+  EXPECT_EQ(h[0], 1u);
+  EXPECT_EQ(h[1], 2u);
+  EXPECT_EQ(h[2], 4u);
+  EXPECT_EQ(h[3], 4u * 25);
+  EXPECT_EQ(scale[2], 4.0f);
+  EXPECT_EQ(scale[0], 1.0f);
+  // Every agent at every step of both solutions: 10 * T1 + 20 * T2 records.
+  long long makespan_sum = 0;
+  std::istringstream log(r.err);
+  std::string line;
+  int n = 0;
+  while (std::getline(log, line)) {
+    const auto k = line.find("\"makespan\":");
+    ASSERT_NE(k, std::string::npos) << line;
+    makespan_sum += (n++ == 0 ? 10 : 20) * std::stoll(line.substr(k + 11));
+  }
+  EXPECT_EQ(n, 2);
+  EXPECT_EQ(static_cast<long long>(count), makespan_sum);
+  in.seekg(0, std::ios::end);
+  EXPECT_EQ(static_cast<uint64_t>(in.tellg()), 8 + 16 + 16 + 8 + count * (100 + 2));
+  EXPECT_NE(r.out.find("\"samples\":" + std::to_string(count)), std::string::npos) << r.out;
+}
+
+TEST(PolicyCli, TimePrintsJson)
+{
+  const Result r = run(RTLACAM_POLICY_BIN, "time --weights " + kWeights + " " + kInstance + " -N 50 --reps 3");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"forward_ms\":"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"agents\":50"), std::string::npos) << r.out;
+}
