@@ -14,10 +14,15 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver
 {
   planner::LacamOptions opt;
   opt.seed = seed;
-  if (solver == "rtlacam") return std::make_unique<planner::RtLacam>(g, starts, goals, opt, nullptr, std::move(test));
-  if (solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, nullptr, std::move(test));
-  if (solver == "pibt") return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, nullptr, std::move(test));
-  throw std::invalid_argument("unknown solver '" + solver + "' (pibt | naive | rtlacam)");
+  std::unique_ptr<planner::RealtimePlanner> p;
+  if (solver == "rtlacam") p = std::make_unique<planner::RtLacam>(g, starts, goals, opt, nullptr, std::move(test));
+  else if (solver == "naive") p = std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, nullptr, std::move(test));
+  else if (solver == "pibt") p = std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, nullptr, std::move(test));
+  else throw std::invalid_argument("unknown solver '" + solver + "' (pibt | naive | rtlacam)");
+  // A lifelong run visits thousands of goal cells: keep the tables in use plus a few
+  // hundred recent ones, not one per cell ever visited.
+  p->set_max_dist_tables(2 * starts.size() + 256);
+  return p;
 }
 
 }  // namespace tasks
