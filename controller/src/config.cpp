@@ -215,12 +215,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
                               std::to_string(c.fleet.count) + " AGVs");
 
   const YAML::Node u = root["run"];
-  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "port", "progress_s"});
+  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
   r.choice(u, "run", "backend", c.run.backend, {"libsumo", "traci"});
   r.flag(u, "run", "gui", c.run.gui);
+  r.number(u, "run", "gui_delay_ms", c.run.gui_delay_ms, 0);
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
   r.number(u, "run", "progress_s", c.run.progress_s, 0);

@@ -59,7 +59,9 @@ std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, co
     a.insert(a.end(), {"--tripinfo-output", dir + "/tripinfo.xml", "--tripinfo-output.write-unfinished", "true"});
   if (o.summary) a.insert(a.end(), {"--summary-output", dir + "/summary.xml"});
   if (o.collision) a.insert(a.end(), {"--collision-output", dir + "/collision.xml"});
-  if (cfg.run.gui) a.insert(a.end(), {"--start", "true", "--quit-on-end", "true"});
+  if (cfg.run.gui)
+    a.insert(a.end(), {"--start", "true", "--quit-on-end", "true", "--delay", num(cfg.run.gui_delay_ms),
+                       "--window-size", "1280,800", "--window-pos", "0,0"});
   a.insert(a.end(), cfg.sumo.extra_args.begin(), cfg.sumo.extra_args.end());
   return a;
 }

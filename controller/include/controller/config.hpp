@@ -74,6 +74,7 @@ struct RunSection {
   long long max_ticks = 1000;
   std::string backend = "libsumo";  // libsumo | traci
   bool gui = false;                  // sumo-gui through TraCI
+  double gui_delay_ms = 100;         // sumo-gui's --delay (a watchable pace; 0 = flat out)
   int port = 0;                      // traci: connect to a running SUMO instead of starting one
   double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
 };
