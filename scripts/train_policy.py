@@ -75,6 +75,32 @@ def load_dump(path):
     return x.reshape(count, features), data["action"].astype(np.int64), data["flags"], radius
 
 
+# The 8 symmetries of the square window (transpose?, flip columns?, flip rows?) and what
+# each does to the actions (stay, up, down, left, right): random maps look the same in every
+# orientation, so each batch is shown in a random one (8x the data for free).
+TRANSPOSE = [0, 3, 4, 1, 2]   # up <-> left, down <-> right
+FLIP_X = [0, 1, 2, 4, 3]      # left <-> right
+FLIP_Y = [0, 2, 1, 3, 4]      # up <-> down
+
+
+def augment(xb, yb, k, channels, window):
+    """Symmetry k (0..7) applied to a batch of flat observations and their actions."""
+    if k == 0:
+        return xb, yb
+    v = xb.view(-1, channels, window, window)  # [c][wy][wx]
+    perm = torch.arange(NUM_ACTIONS)
+    if k & 1:
+        v = v.transpose(2, 3)
+        perm = torch.tensor(TRANSPOSE)[perm]
+    if k & 2:
+        v = v.flip(3)
+        perm = torch.tensor(FLIP_X)[perm]
+    if k & 4:
+        v = v.flip(2)
+        perm = torch.tensor(FLIP_Y)[perm]
+    return v.reshape(xb.shape[0], -1), perm[yb]
+
+
 def make_model(features, hidden):
     layers, width = [], features
     for h in hidden:
@@ -124,7 +150,7 @@ def main():
     ap.add_argument("--bin", default=os.path.join(ROOT, "build/apps/rtlacam-policy"), help="rtlacam-policy binary")
     ap.add_argument("--map", default="random-32-32-20", help="map name under data/movingai")
     ap.add_argument("--scens", default="1-20", help="training scens (21..25 are for evaluation)")
-    ap.add_argument("--agents", default="50 100 150 200 250 300 350", help="agent counts per scen")
+    ap.add_argument("--agents", default="10 25 50 100 150 200 250 300 350", help="agent counts per scen")
     ap.add_argument("--keep", type=float, default=0.2, help="fraction of (agent, step) samples dumped")
     ap.add_argument("--dump-timeout-s", type=float, default=10.0, help="LaCAM limit per instance")
     ap.add_argument("--radius", type=int, default=4, help="observation radius (window 2r+1)")
@@ -134,6 +160,8 @@ def main():
     ap.add_argument("--lr", type=float, default=1e-3)
     ap.add_argument("--goal-stay-keep", type=float, default=0.3,
                     help="fraction kept of the samples 'on the goal, stays' (they dominate late steps)")
+    ap.add_argument("--no-augment", dest="augment", action="store_false",
+                    help="do not show batches in random rotations/reflections of the window")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--threads", type=int, default=1, help="torch CPU threads (the machine is shared)")
     ap.add_argument("--work-dir", default=os.path.join(ROOT, "out/policy_train"), help="dump file goes here")
@@ -181,8 +209,11 @@ def main():
         total = 0.0
         for k in range(0, len(order), args.batch):
             idx = order[k:k + args.batch]
+            xb, yb = xt[idx], yt[idx]
+            if args.augment:
+                xb, yb = augment(xb, yb, int(torch.randint(8, (1,), generator=gen)), 4, 2 * radius + 1)
             opt.zero_grad()
-            loss = loss_fn(model(xt[idx]), yt[idx])
+            loss = loss_fn(model(xb), yb)
             loss.backward()
             opt.step()
             total += loss.item() * len(idx)
