@@ -47,6 +47,10 @@ int main(int argc, char** argv)
     std::printf("  planner ms/step mean %.3f p50 %.3f p99 %.3f max %.3f; sumo ms/step mean %.3f; wall %.2f s (%.0fx real time)\n",
                 m.planner_ms_per_step.mean, m.planner_ms_per_step.p50, m.planner_ms_per_step.p99,
                 m.planner_ms_per_step.max, m.sumo_ms_per_step.mean, m.wall_s, m.wall_s > 0 ? m.sim_s / m.wall_s : 0.0);
+    const Metrics::PerSimSecond ps = m.per_sim_second();
+    std::printf("  per simulated second: wall %.2f ms = sumo %.2f + controller %.2f (planner %.2f, commands/checks %.2f); "
+                "controller/sumo %.2f\n",
+                ps.wall_ms, ps.sumo_ms, ps.controller_ms, ps.planner_ms, ps.control_ms, ps.ratio);
     std::printf("  commands %lld, re-syncs %lld, max position error %.3g m, violations %lld; outputs in %s\n",
                 m.commands.total(), m.commands.resyncs, m.commands.max_error, m.violations, cfg.output.dir.c_str());
     if (!m.error.empty()) {

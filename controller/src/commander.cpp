@@ -72,6 +72,7 @@ void Commander::set_route(Agv& a, std::vector<std::string> edges)
 void Commander::insert(const planner::Config& starts)
 {
   agv_.clear();
+  ids_.clear();
   for (int i = 0; i < static_cast<int>(starts.size()); ++i) {
     Agv a;
     a.id = vehicle_id(i);
@@ -85,6 +86,7 @@ void Commander::insert(const planner::Config& starts)
     // Works on a vehicle that is still pending insertion.
     sumo_.set_speed_mode(a.id, 0);
     sumo_.set_speed(a.id, 0);
+    ids_.push_back(a.id);
     agv_.push_back(a);
   }
 }
@@ -156,23 +158,24 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v)
 void Commander::verify(const planner::Config& at, double tol)
 {
   (void)at;  // the commanded poses already encode `at`; kept for the call's meaning
+  const std::vector<VehiclePose> now = sumo_.poses(ids_);
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     Agv& a = agv_[i];
-    VehiclePose p;
-    try {
-      p = sumo_.pose(a.id);
-    } catch (const SumoError& e) {
-      failed(i, e);
-    }
+    const VehiclePose& p = now[i];
     if (p.lane.empty())
-      throw ControlError("AGV " + a.id + " (agent " + std::to_string(i) + ") is not on any lane (not inserted or removed)");
+      throw ControlError("AGV " + a.id + " (agent " + std::to_string(i) +
+                         ") is not in SUMO any more (removed behind the controller's back?)");
     const double err = p.lane == a.pose.lane ? std::fabs(p.pos - a.pose.pos) : INFINITY;
     if (err <= tol) {
       if (err > stats_.max_error) stats_.max_error = err;
       continue;
     }
     // Off its cell: put it back (the route of every AGV contains its commanded lane).
-    sumo_.move_to(a.id, a.pose.lane, a.pose.pos);
+    try {
+      sumo_.move_to(a.id, a.pose.lane, a.pose.pos);
+    } catch (const SumoError& e) {
+      failed(i, e);
+    }
     ++stats_.move_to;
     ++stats_.resyncs;
   }

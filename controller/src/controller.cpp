@@ -133,6 +133,7 @@ Metrics Controller::run()
   plan_ = {ins.starts};
   planner::Config cur = ins.starts;
   auto last_progress = Clock::now();
+  auto loop0 = Clock::now();  // start of the tick loop (after start-up and insertion)
   try {
     sumo->start(sumo_args(cfg_, dir, write_vtype_file(cfg_, dir, max_spacing), cmd.needs_ignore_route_errors()));
     cmd.insert(ins.starts);
@@ -141,6 +142,7 @@ Metrics Controller::run()
     if (!waiting.empty()) throw ControlError("SUMO could not insert AGV(s) on their start cells: " + join_ids(waiting));
     cmd.verify(cur, tolerance);
 
+    loop0 = Clock::now();
     for (;;) {
       if (p->at_goal()) {
         m.solved = true;
@@ -157,7 +159,10 @@ Metrics Controller::run()
       double ctl = ms_since(t0);
 
       plan_in_tick = 0;
-      for (int s = 0; s < k; ++s) step_once();
+      for (int s = 0; s < k; ++s) {
+        if (s == k - 1) sumo->request_poses();  // verify() reads them after this step
+        step_once();
+      }
       plan_tick.push_back(plan_in_tick);
 
       t0 = Clock::now();
@@ -193,6 +198,7 @@ Metrics Controller::run()
     } catch (const SumoError&) {
     }
   }
+  m.loop_s = ms_since(loop0) / 1000;
   sumo->close();  // flushes SUMO's output files
 
   m.expansions = p->expansions();

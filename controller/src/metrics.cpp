@@ -25,6 +25,20 @@ static nlohmann::json latency_json(const Latency& l)
   return {{"count", l.count}, {"mean", l.mean}, {"p50", l.p50}, {"p99", l.p99}, {"max", l.max}};
 }
 
+Metrics::PerSimSecond Metrics::per_sim_second() const
+{
+  PerSimSecond p;
+  const double sim = ticks * tick_s;
+  if (sim <= 0) return p;
+  p.wall_ms = loop_s * 1000 / sim;
+  p.sumo_ms = sumo_ms_per_step.mean * sumo_ms_per_step.count / sim;
+  p.planner_ms = planner_ms_per_step.mean * planner_ms_per_step.count / sim;
+  p.controller_ms = std::max(0.0, p.wall_ms - p.sumo_ms);
+  p.control_ms = std::max(0.0, p.controller_ms - p.planner_ms);
+  p.ratio = p.sumo_ms > 0 ? p.controller_ms / p.sumo_ms : 0.0;
+  return p;
+}
+
 nlohmann::json Metrics::to_json() const
 {
   nlohmann::json j;
@@ -48,6 +62,14 @@ nlohmann::json Metrics::to_json() const
   j["sim_s"] = sim_s;
   j["wall_s"] = wall_s;
   j["real_time_factor"] = wall_s > 0 ? sim_s / wall_s : 0.0;
+  j["loop_s"] = loop_s;
+  const PerSimSecond p = per_sim_second();
+  j["ms_per_sim_s"] = {{"wall", p.wall_ms},
+                       {"sumo", p.sumo_ms},
+                       {"controller", p.controller_ms},
+                       {"planner", p.planner_ms},
+                       {"control", p.control_ms}};
+  j["controller_to_sumo_ratio"] = p.ratio;
   j["planner_ms_per_step"] = latency_json(planner_ms_per_step);
   j["planner_ms_per_tick"] = latency_json(planner_ms_per_tick);
   j["sumo_ms_per_step"] = latency_json(sumo_ms_per_step);

@@ -25,6 +25,9 @@ class TraciBackend : public ApiBackend {
   void start(const std::vector<std::string>& args) override
   {
     if (running_) close();
+    anchor_.clear();
+    dt_ = 0;
+    requested_ = false;
     // A write to a socket whose sumo died raises SIGPIPE, which would kill the whole
     // process without a word: ignore it (unless the host program installed a handler), so
     // the write fails and the loss is reported as an error like any other.
@@ -55,12 +58,49 @@ class TraciBackend : public ApiBackend {
   }
   std::string name() const override { return "traci"; }
 
+  // One context subscription on a junction with a range covering any net: SUMO sends the
+  // lane and position of every vehicle with the response of the next step only (the
+  // subscription's time window is that step), so a tick costs one extra round trip
+  // instead of two per AGV.
+  void request_poses() override
+  {
+    call("Junction.subscribeContext", [&] {
+      if (anchor_.empty()) anchor_ = api::Junction::getIDList().at(0);
+      if (dt_ <= 0) dt_ = api::Simulation::getDeltaT();
+      const double t = api::Simulation::getTime() + dt_;
+      api::Junction::subscribeContext(anchor_, libsumo::CMD_GET_VEHICLE_VARIABLE, 1e9,
+                                      {libsumo::VAR_LANE_ID, libsumo::VAR_LANEPOSITION}, t - dt_ / 2, t + dt_ / 2);
+    });
+    requested_ = true;
+  }
+  std::vector<VehiclePose> poses(const std::vector<std::string>& ids) override
+  {
+    if (!requested_) return ApiBackend::poses(ids);
+    requested_ = false;
+    const libsumo::SubscriptionResults all =
+        call("Junction.getContextSubscriptionResults", [&] { return api::Junction::getContextSubscriptionResults(anchor_); });
+    std::vector<VehiclePose> out(ids.size());
+    for (size_t i = 0; i < ids.size(); ++i) {
+      auto it = all.find(ids[i]);
+      if (it == all.end()) continue;  // not in the network: empty lane
+      const libsumo::TraCIResults& r = it->second;
+      auto lane = r.find(libsumo::VAR_LANE_ID), pos = r.find(libsumo::VAR_LANEPOSITION);
+      if (lane == r.end() || pos == r.end()) throw SumoError("SUMO context subscription: no lane/position for " + ids[i]);
+      out[i].lane = static_cast<const libsumo::TraCIString&>(*lane->second).value;
+      out[i].pos = static_cast<const libsumo::TraCIDouble&>(*pos->second).value;
+    }
+    return out;
+  }
+
  private:
   // libtraci retries a refused connection once per second; sumo listens as soon as the
   // net is loaded, so a child that is not up after this long has failed to start.
   static constexpr int kRetries = 15;
   std::string binary_;
   int port_ = 0;
+  std::string anchor_;     // junction of the pose subscription
+  double dt_ = 0;          // step length
+  bool requested_ = false;
 };
 
 }  // namespace

@@ -269,3 +269,39 @@ TEST(ControllerFault, SumoProcessKilledUnderTheAppExitsNonZero)
   EXPECT_GT(j["ticks"].get<long long>(), 0);
   EXPECT_EQ(j["solved"], false);
 }
+
+TEST(ControllerFault, AgvRemovedOverTraciIsCaught)
+{
+  // Over TraCI the poses come from one context subscription per tick: an AGV missing
+  // from it is reported like any other lost AGV.
+  Config cfg = scenario("small_warehouse.yaml", "removed_traci");
+  cfg.run.backend = "traci";
+  cfg.planner.budget_ms = 0;
+  cfg.planner.expansions = 20;
+  Controller c(cfg);
+  c.on_tick = [](long long tick, SumoBackend& sumo) {
+    if (tick == 4) sumo.remove("agv7");
+  };
+  const Metrics m = c.run();
+  EXPECT_NE(m.error.find("agv7"), std::string::npos) << m.error;
+  EXPECT_NE(m.error.find("removed behind the controller's back"), std::string::npos) << m.error;
+  EXPECT_EQ(m.violations, 1);
+  EXPECT_EQ(m.ticks, 4);
+}
+
+TEST(ControllerMetrics, JsonHasTheIssuesFields)
+{
+  Config cfg = scenario("small_warehouse.yaml", "metrics");
+  Controller c(cfg);
+  const Metrics m = c.run();
+  ASSERT_EQ(m.error, "");
+  const nlohmann::json j = nlohmann::json::parse(slurp(cfg.output.dir + "/metrics.json"));
+  for (const char* k : {"ticks", "solved", "soc", "makespan", "violations", "resyncs", "error", "ms_per_sim_s",
+                        "controller_to_sumo_ratio", "real_time_factor"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* k : {"p50", "p99", "max", "mean", "count"}) EXPECT_TRUE(j["planner_ms_per_step"].contains(k)) << k;
+  EXPECT_EQ(j["commands"]["total"], m.commands.total());
+  EXPECT_GT(j["commands"]["total"].get<long long>(), 0);
+  for (const char* k : {"wall", "sumo", "controller", "planner", "control"}) EXPECT_TRUE(j["ms_per_sim_s"].contains(k)) << k;
+  EXPECT_GT(j["ms_per_sim_s"]["sumo"].get<double>(), 0);
+}

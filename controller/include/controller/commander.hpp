@@ -44,7 +44,8 @@ class Commander {
 
   // After the tick: every AGV must be on the pose of its cell in `at` within `tol`
   // metres; off by more -> moveTo back (counted in resyncs). An AGV missing from SUMO is
-  // a ControlError.
+  // a ControlError. Reads all poses with one SumoBackend::poses() call (request_poses()
+  // before the tick's last step lets a back end batch it).
   void verify(const planner::Config& at, double tol);
 
   // The commanded pose of an agent (where its front must be after the tick).
@@ -84,6 +85,7 @@ class Commander {
   std::unordered_map<std::string, std::vector<std::string>> next_edges_;  // SUMO connections
   bool missing_turns_ = false;
   std::vector<Agv> agv_;
+  std::vector<std::string> ids_;  // SUMO ids of the agents, in agent order
   CommandStats stats_;
 };
 

@@ -25,11 +25,20 @@ struct Metrics {
   long long violations = 0;     // validator / collision / teleport / arrival / lost AGV
   uint64_t expansions = 0;
   double tick_s = 0, step_length = 0, sim_s = 0, wall_s = 0, budget_ms = 0;
+  double loop_s = 0;            // wall time of the tick loop (start-up and insertion excluded)
   Latency planner_ms_per_step;  // one search(budget) call per SUMO step
   Latency planner_ms_per_tick;  // sum over the steps of a tick
   Latency sumo_ms_per_step;     // SUMO's own step (inside the back end)
   Latency control_ms_per_tick;  // commands + verification
   CommandStats commands;
+
+  // Wall milliseconds per simulated second in the tick loop: all, SUMO's own steps
+  // (inside the back end), the controller (everything else: planner + commands +
+  // verification + event checks), the planner alone. ratio = controller / sumo.
+  struct PerSimSecond {
+    double wall_ms = 0, sumo_ms = 0, controller_ms = 0, planner_ms = 0, control_ms = 0, ratio = 0;
+  };
+  PerSimSecond per_sim_second() const;
 
   nlohmann::json to_json() const;
 };

@@ -36,6 +36,18 @@ class SumoBackend {
   virtual void set_route(const std::string& id, const std::vector<std::string>& edges) = 0;
   virtual void move_to(const std::string& id, const std::string& lane, double pos) = 0;
   virtual VehiclePose pose(const std::string& id) = 0;
+  // Many poses at once. Call request_poses() before the step after which poses() reads
+  // them: a back end may batch the read (TraCI: one context subscription answered with
+  // that step, instead of two round trips per vehicle). A vehicle not in the network gets
+  // an empty lane. The default reads them one by one.
+  virtual void request_poses() {}
+  virtual std::vector<VehiclePose> poses(const std::vector<std::string>& ids)
+  {
+    std::vector<VehiclePose> out;
+    out.reserve(ids.size());
+    for (const std::string& id : ids) out.push_back(pose(id));
+    return out;
+  }
   virtual void remove(const std::string& id) = 0;
 
   virtual std::vector<std::string> vehicles() = 0;     // in the network now
