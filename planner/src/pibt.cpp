@@ -18,6 +18,7 @@ void Pibt::set_goals(const Config& goals)
     if (next_[i] >= 0) occ_next_[next_[i]] = -1;
   }
   goals_ = goals;
+  if (pref_) pref_->set_goals(goals);
   n_ = static_cast<int>(goals.size());
   now_.assign(n_, -1);
   next_.assign(n_, -1);

@@ -4,6 +4,7 @@
 // preference PIBT uses distance-to-goal plus a uniform [0,1) random tie-break; plugging a
 // learned one-step policy in here gives collision-shield PIBT (CS-PIBT): the policy
 // proposes, PIBT (with LaCAM's constraints) guarantees a collision-free configuration.
+#include "planner/config.hpp"
 #include "planner/graph.hpp"
 #include "planner/rng.hpp"
 
@@ -12,6 +13,10 @@ namespace planner {
 class ActionPreference {
  public:
   virtual ~ActionPreference() = default;
+
+  // The planner's goals changed (construction, a lifelong epoch). Preferences that look
+  // at goals themselves (a learned policy's observations) update here.
+  virtual void set_goals(const Config& goals) { (void)goals; }
 
   // Called once before PIBT generates a successor of `config` (n agents): the place
   // for batched inference over all agents.

@@ -24,7 +24,7 @@ class Pibt {
   Pibt(const Graph& g, DistTable& d, bool swap = true);
 
   // Goals are needed by the swap operation (an agent parked on its goal in a dead end
-  // does not need to move). Also sizes the agent arrays.
+  // does not need to move) and are passed on to the preference. Sizes the agent arrays.
   void set_goals(const Config& goals);
   void set_preference(ActionPreference* pref) { pref_ = pref; }
   bool swap() const { return swap_; }

@@ -13,8 +13,8 @@
 // renormalised distribution); probabilities closer than 1e-6 count as ties, broken by the
 // planner's random number generator.
 //
-// Goals: the preference computes its own observations, so it must be told the goals --
-// at construction, and through set_goals() whenever the planner's goals change.
+// Goals: the preference computes its own observations from the goals. Planners call
+// set_goals() whenever theirs change (construction, lifelong epochs).
 #include <Eigen/Core>
 
 #include "planner/action_preference.hpp"
@@ -28,7 +28,7 @@ class PolicyPreference : public planner::ActionPreference {
   // `g` (a grid graph) and `model` must outlive this.
   PolicyPreference(const planner::Graph& g, const Model& model, const planner::Config& goals);
 
-  void set_goals(const planner::Config& goals);
+  void set_goals(const planner::Config& goals) override;
 
   void prepare(const planner::Vertex* config, int n) override;
   float score(int agent, planner::Vertex from, planner::Vertex to, planner::Rng& rng) override;
