@@ -7,6 +7,8 @@
 
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
+#include "policy/policy_preference.hpp"
+#include "policy/weights_file.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_files.hpp"
@@ -19,7 +21,7 @@ using namespace tasks;
 int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
-  std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file;
+  std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -34,8 +36,9 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"greedy", "hungarian"}))
       ->capture_default_str();
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--solver", solver, "pibt | naive | rtlacam")
-      ->check(CLI::IsMember({"pibt", "naive", "rtlacam"}))
+  app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
+  app.add_option("--solver", solver, "pibt | naive | rtlacam | cspibt (pibt ordered by --policy)")
+      ->check(CLI::IsMember({"pibt", "naive", "rtlacam", "cspibt"}))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions per step (deterministic); 0 = none");
@@ -61,7 +64,17 @@ int main(int argc, char** argv)
     if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
     else tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner, k_nearest));
 
+    // The policy is told the goals by the planner (ActionPreference::set_goals).
+    policy::Model model;
+    std::unique_ptr<policy::PolicyPreference> pref;
+    if (solver == "cspibt" && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
+    if (!policy_file.empty()) {
+      model = policy::load_weights(policy_file);
+      pref = std::make_unique<policy::PolicyPreference>(g, model, planner::Config{});
+    }
+
     LifelongOptions opt;
+    opt.pref = pref.get();
     opt.steps = steps;
     opt.budget = planner::Budget::time_ms(budget_ms);
     if (budget_expansions > 0) opt.budget.expansions = budget_expansions;
@@ -83,6 +96,7 @@ int main(int argc, char** argv)
     const LifelongResult r = run_lifelong(g, starts, *tm, solver, seed, opt);
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = lifelong_log(info, r);
+    if (pref) j["policy"] = policy_file;
     if (!out_file.empty()) {
       std::ofstream out(out_file);
       if (!out) throw planner::input_error(out_file, 0, "cannot write file");

@@ -39,6 +39,7 @@ struct LifelongOptions {
   long steps = 1000;
   planner::Budget budget = planner::Budget::time_ms(100);
   std::function<void(const StepRecord&)> on_step;  // optional, after every step
+  planner::ActionPreference* pref = nullptr;       // optional move order (learned policy)
 };
 
 struct PlannerTimes {
