@@ -159,6 +159,20 @@ TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
   EXPECT_GT(m.commands.total(), 1000);
 }
 
+TEST(ControllerScenario, HugeWarehouseThousandAgvsCompleteExactly)
+{
+  // The benchmark scenario as a test (~8 s): 1000 AGVs, 4680 cells, ~410 ticks.
+  Config cfg = scenario("huge_warehouse.yaml", "huge");
+  cfg.sumo.outputs = {false, false, true, true};
+  cfg.planner.budget_ms = 0;  // deterministic
+  cfg.planner.expansions = 5;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_exact_solved_run(cfg, c, m);
+  EXPECT_EQ(m.agents, 1000);
+  EXPECT_GT(m.cells, 4000);
+}
+
 TEST(ControllerScenario, BottleneckRtLacamPassesTheCorridor)
 {
   for (uint64_t seed : {0, 1, 2}) {
