@@ -1,5 +1,7 @@
 #include "gridify/gridifier.hpp"
 
+#include "gridify/movingai_map.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -299,6 +301,14 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
   for (const Cell& c : m.cells) pos.push_back({c.x, c.y});
   m.graph = planner::Graph::from_edges(static_cast<int>(m.cells.size()), kept_edges, std::move(pos));
   m.graph.name = net.path;
+  // An axis-aligned lattice net also gets the planner's grid view (MovingAI-style cells),
+  // which grid-based tools such as the learned policy's observations need.
+  if (const GridLayout L = grid_layout(m); L.width > 0) {
+    std::vector<int32_t> cells;
+    cells.reserve(L.coord.size());
+    for (const GridCoord& c : L.coord) cells.push_back(c.row * L.width + c.col);
+    m.graph.attach_grid(L.width, L.height, std::move(cells));
+  }
 
   // Step 6.
   if (!opt.additional.empty()) tag_stations(m, net, opt.additional);

@@ -1,6 +1,7 @@
 #include "planner/graph.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace planner {
@@ -61,6 +62,27 @@ Graph Graph::from_grid(int width, int height, const std::vector<bool>& free)
   g.cell_ = std::move(cell);
   g.vertex_at_ = std::move(vertex_at);
   return g;
+}
+
+void Graph::attach_grid(int width, int height, std::vector<int32_t> cells)
+{
+  if (width <= 0 || height <= 0 || cells.size() != static_cast<size_t>(size()))
+    throw std::invalid_argument("graph: grid view needs one cell per vertex");
+  std::vector<Vertex> vertex_at(static_cast<size_t>(width) * height, -1);
+  for (Vertex v = 0; v < size(); ++v) {
+    if (cells[v] < 0 || cells[v] >= width * height) throw std::invalid_argument("graph: cell off the grid");
+    if (vertex_at[cells[v]] >= 0) throw std::invalid_argument("graph: two vertices on one cell");
+    vertex_at[cells[v]] = v;
+  }
+  for (Vertex v = 0; v < size(); ++v)
+    for (Vertex u : neighbors(v)) {
+      const int dx = std::abs(cells[u] % width - cells[v] % width), dy = std::abs(cells[u] / width - cells[v] / width);
+      if (dx + dy != 1) throw std::invalid_argument("graph: an edge joins cells that are not 4-neighbours");
+    }
+  width_ = width;
+  height_ = height;
+  cell_ = std::move(cells);
+  vertex_at_ = std::move(vertex_at);
 }
 
 bool Graph::adjacent(Vertex u, Vertex v) const

@@ -127,3 +127,28 @@ TEST(GridifyGrid, MovingAiRoundTrip)
   EXPECT_EQ(g.width(), 16);
   EXPECT_EQ(g.height(), 11);
 }
+
+TEST(GridifyGrid, LatticeNetsGetTheGridView)
+{
+  CellMap m = gridify::gridify(data("grid4x3.net.xml"));
+  ASSERT_TRUE(m.graph.is_grid());
+  EXPECT_EQ(m.graph.width(), 16);
+  EXPECT_EQ(m.graph.height(), 11);
+  // Same lattice as the MovingAI export: every vertex's cell is free there, with the same
+  // neighbours.
+  std::string path = temp_dir() + "/grid4x3_view.map";
+  write_movingai_map(m, path);
+  planner::Graph g = planner::load_map(path);
+  for (planner::Vertex v = 0; v < m.graph.size(); ++v) {
+    const int x = m.graph.cell_x(v), y = m.graph.cell_y(v);
+    ASSERT_EQ(m.graph.at(x, y), v);
+    planner::Vertex w = g.at(x, y);
+    ASSERT_GE(w, 0);
+    EXPECT_EQ(m.graph.degree(v), g.degree(w));
+  }
+  // Cell rows grow downwards while SUMO's y grows upwards.
+  planner::Vertex top = 0;
+  for (planner::Vertex v = 0; v < m.graph.size(); ++v)
+    if (m.graph.position(v).y > m.graph.position(top).y) top = v;
+  EXPECT_EQ(m.graph.cell_y(top), 0);
+}

@@ -107,3 +107,19 @@ TEST(MovingAi, UnreachableGoalIsAnError)
   std::string s = write_tmp("split.scen", "version 1\n0\tsplit.map\t5\t1\t0\t0\t4\t0\t4\n");
   expect_error([&] { load_scen(s, g, 1); }, {"split.scen:2", "unreachable"});
 }
+
+TEST(Graph, AttachGridChecksTheLattice)
+{
+  // A 3-vertex path laid out as an L on a 2x2 grid.
+  Graph g = Graph::from_edges(3, {{0, 1}, {1, 2}});
+  Graph h = g;
+  h.attach_grid(2, 2, {0, 1, 3});  // (0,0) - (1,0) - (1,1)
+  EXPECT_TRUE(h.is_grid());
+  EXPECT_EQ(h.at(1, 1), 2);
+  EXPECT_EQ(h.at(0, 1), -1);
+  EXPECT_EQ(h.cell_x(2), 1);
+  Graph a = g, b = g, c = g;
+  EXPECT_THROW(a.attach_grid(2, 2, {0, 1, 2}), std::invalid_argument);  // (1,0)-(0,1) not neighbours
+  EXPECT_THROW(b.attach_grid(2, 2, {0, 1, 1}), std::invalid_argument);  // shared cell
+  EXPECT_THROW(c.attach_grid(2, 2, {0, 1}), std::invalid_argument);     // one cell per vertex
+}

@@ -61,6 +61,12 @@ class Graph {
   int cell_x(Vertex v) const { return cell_[v] % width_; }
   int cell_y(Vertex v) const { return cell_[v] / width_; }
 
+  // Gives a graph built from an edge list the grid view of a lattice: vertex v sits at
+  // cell (cells[v] % width, cells[v] / width). Throws std::invalid_argument unless the
+  // cells are distinct and inside the grid and every edge joins 4-neighbours (a
+  // gridified warehouse whose aisles lie on a lattice becomes a grid graph this way).
+  void attach_grid(int width, int height, std::vector<int32_t> cells);
+
   // Number of connected components and a component id per vertex.
   std::vector<int> components(int* count = nullptr) const;
 
