@@ -158,7 +158,17 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v)
 void Commander::verify(const planner::Config& at, double tol)
 {
   (void)at;  // the commanded poses already encode `at`; kept for the call's meaning
-  const std::vector<VehiclePose> now = sumo_.poses(ids_);
+  std::vector<VehiclePose> now;
+  try {
+    now = sumo_.poses(ids_);
+  } catch (const SumoError& e) {
+    // A getter failed: name the AGV that is gone, if one is (else it is SUMO's error).
+    if (!sumo_.running()) throw;
+    const std::vector<std::string> present = sumo_.vehicles();
+    for (int i = 0; i < static_cast<int>(agv_.size()); ++i)
+      if (std::find(present.begin(), present.end(), agv_[i].id) == present.end()) failed(i, e);
+    throw;
+  }
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     Agv& a = agv_[i];
     const VehiclePose& p = now[i];

@@ -15,8 +15,11 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "controller/commander.hpp"
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "controller/sumo_error.hpp"
+#include "gridify/gridifier.hpp"
 #include "controller/sumo_options.hpp"
 #include "planner/validator.hpp"
 
@@ -318,4 +321,33 @@ TEST(ControllerMetrics, JsonHasTheIssuesFields)
   EXPECT_GT(j["commands"]["total"].get<long long>(), 0);
   for (const char* k : {"wall", "sumo", "controller", "planner", "control"}) EXPECT_TRUE(j["ms_per_sim_s"].contains(k)) << k;
   EXPECT_GT(j["ms_per_sim_s"]["sumo"].get<double>(), 0);
+}
+
+TEST(ControllerFault, AgvMissingAtVerificationIsNamed)
+{
+  // An AGV gone when verify() reads the poses (no arrival check in between): verify()
+  // itself names it, with libsumo (per-AGV getters) and TraCI (context subscription).
+  for (const char* backend : {"libsumo", "traci"}) {
+    SCOPED_TRACE(backend);
+    Config cfg = scenario("small_warehouse.yaml", std::string("missing_") + backend);
+    cfg.sumo.outputs = {false, false, false, false};
+    const gridify::CellMap map = gridify::gridify(cfg.sumo.net);
+    std::unique_ptr<SumoBackend> sumo = std::string(backend) == "traci" ? make_traci_backend() : make_libsumo_backend();
+    Commander cmd(map, *sumo, cfg.run.tick_s);
+    sumo->start(sumo_args(cfg, cfg.output.dir, write_vtype_file(cfg, cfg.output.dir, 1.0), false));
+    const planner::Config at{0, 5, 10, 15};
+    cmd.insert(at);
+    sumo->step();
+    cmd.verify(at, 1e-6);
+    sumo->remove("agv2");
+    sumo->request_poses();
+    sumo->step();
+    try {
+      cmd.verify(at, 1e-6);
+      ADD_FAILURE() << "no error";
+    } catch (const ControlError& e) {
+      EXPECT_NE(std::string(e.what()).find("AGV agv2 (agent 2)"), std::string::npos) << e.what();
+    }
+    sumo->close();
+  }
 }
