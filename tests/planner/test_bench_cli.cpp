@@ -6,33 +6,16 @@
 #include <algorithm>
 #include <array>
 #include <vector>
+
+#include "cli_run.hpp"
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result run(const std::string& args)
-{
-  std::string err_file = testing::TempDir() + "bench_err.txt";
-  std::string cmd = std::string(RTLACAM_BENCH_BIN) + " " + args + " 2>" + err_file;
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
+using Result = test::CliResult;
+Result run(const std::string& args) { return test::run_cli(RTLACAM_BENCH_BIN, args); }
 
 const std::string kDir = RTLACAM_TEST_DATA "/planner/";
 const std::string kMap = kDir + "random-32-32-20.map";

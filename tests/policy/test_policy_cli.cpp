@@ -9,31 +9,13 @@
 #include <fstream>
 #include <sstream>
 
+#include "cli_run.hpp"
 #include "policy/dump_file.hpp"
 
 namespace {
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result run(const std::string& bin, const std::string& args)
-{
-  const std::string err_file = testing::TempDir() + "policy_cli_err.txt";
-  const std::string cmd = bin + " " + args + " 2>" + err_file;
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf;
-  while (fgets(buf.data(), buf.size(), p)) r.out += buf.data();
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_file);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
+using Result = test::CliResult;
+Result run(const std::string& bin, const std::string& args) { return test::run_cli(bin, args); }
 
 const std::string kMap = RTLACAM_TEST_DATA "/planner/random-32-32-20.map";
 const std::string kScen = RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen";
