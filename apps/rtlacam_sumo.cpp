@@ -1,5 +1,6 @@
 // rtlacam-sumo: a SUMO warehouse run in which RT-LaCAM drives every AGV cell by cell.
-// Exit codes: 0 every AGV reached its goal; 2 run.max_ticks ended first; 1 an error
+// Exit codes: 0 every AGV reached its goal (lifelong: run.max_ticks ran clean); 2 a
+// one-shot run where run.max_ticks ended first; 1 an error
 // (bad config, SUMO failure, a violation) -- metrics.json is written in every case but
 // the config error.
 #include <CLI/CLI.hpp>
@@ -41,9 +42,16 @@ int main(int argc, char** argv)
 
     Controller c(cfg);
     const Metrics m = c.run();
-    std::printf("%s: %d AGVs, %s via %s: %s after %lld ticks (makespan %lld, soc %lld, lb %lld)\n", path.c_str(),
-                m.agents, m.solver.c_str(), m.backend.c_str(), m.solved ? "all at goal" : "NOT solved", m.ticks,
-                m.makespan, m.soc, m.soc_lb);
+    if (cfg.tasks.lifelong())
+      std::printf("%s: %d AGVs, %s via %s, lifelong %s: %lld ticks, %lld errands (%.3f/tick), %lld tasks (%.3f/tick), "
+                  "%lld epochs; log %s/%s\n",
+                  path.c_str(), m.agents, m.solver.c_str(), m.backend.c_str(), m.assignment.c_str(), m.ticks,
+                  m.errands_finished, m.errand_throughput(), m.tasks_finished, m.throughput(), m.epochs,
+                  cfg.output.dir.c_str(), cfg.tasks.log.c_str());
+    else
+      std::printf("%s: %d AGVs, %s via %s: %s after %lld ticks (makespan %lld, soc %lld, lb %lld)\n", path.c_str(),
+                  m.agents, m.solver.c_str(), m.backend.c_str(), m.solved ? "all at goal" : "NOT solved", m.ticks,
+                  m.makespan, m.soc, m.soc_lb);
     std::printf("  planner ms/step mean %.3f p50 %.3f p99 %.3f max %.3f; sumo ms/step mean %.3f; wall %.2f s (%.0fx real time)\n",
                 m.planner_ms_per_step.mean, m.planner_ms_per_step.p50, m.planner_ms_per_step.p99,
                 m.planner_ms_per_step.max, m.sumo_ms_per_step.mean, m.wall_s, m.wall_s > 0 ? m.sim_s / m.wall_s : 0.0);
@@ -57,7 +65,7 @@ int main(int argc, char** argv)
       std::cerr << "error: " << m.error << '\n';
       return 1;
     }
-    return m.solved ? 0 : 2;
+    return m.solved || cfg.tasks.lifelong() ? 0 : 2;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
     return 1;

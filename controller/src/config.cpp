@@ -82,7 +82,32 @@ class Reader {
     if (!fs::is_regular_file(f)) fail(join(key, k), "file '" + f.string() + "' not found");
     out = f.string();
   }
-  // `random` or a list of cells (vertex ids or station / junction ids).
+  // One cell: a vertex id, a station / junction id, or {lane: L, pos: P}.
+  CellRef cell(const YAML::Node& n, const std::string& key) const
+  {
+    CellRef c;
+    c.key = key;
+    if (n.IsMap()) {
+      keys(n, key, {"lane", "pos"});
+      if (!n["lane"]) fail(join(key, "lane"), "missing (a lane position needs lane and pos)");
+      if (!n["pos"]) fail(join(key, "pos"), "missing (a lane position needs lane and pos)");
+      text(n, key, "lane", c.lane);
+      number(n, key, "pos", c.pos, 0);
+      return c;
+    }
+    if (!n.IsScalar()) fail(key, "expected a cell id, a station/junction id or {lane: L, pos: P}");
+    int v = 0;
+    if (YAML::convert<int>::decode(n, v)) c.vertex = v;
+    else c.name = n.Scalar();
+    return c;
+  }
+  // A list of cells.
+  void cell_list(const YAML::Node& n, const std::string& key, std::vector<CellRef>& out) const
+  {
+    if (!n.IsSequence()) fail(key, "expected a list of cells");
+    for (size_t i = 0; i < n.size(); ++i) out.push_back(cell(n[i], key + "[" + std::to_string(i) + "]"));
+  }
+  // `random` or a list of cells (vertex ids, station / junction ids, lane positions).
   void cells(const YAML::Node& p, const std::string& key, const char* k, bool& random, std::vector<CellRef>& out) const
   {
     if (!p || !p.IsMap() || !p[k]) return;
@@ -95,15 +120,14 @@ class Reader {
     }
     if (!n.IsSequence()) fail(kk, "expected 'random' or a list of cells");
     random = false;
-    for (size_t i = 0; i < n.size(); ++i) {
-      CellRef c;
-      c.key = kk + "[" + std::to_string(i) + "]";
-      if (!n[i].IsScalar()) fail(c.key, "expected a cell id or a station/junction id");
-      int v = 0;
-      if (YAML::convert<int>::decode(n[i], v)) c.vertex = v;
-      else c.name = n[i].Scalar();
-      out.push_back(c);
-    }
+    cell_list(n, kk, out);
+  }
+  // An integer in [lo, hi].
+  void integer(const YAML::Node& p, const std::string& key, const char* k, int& out, int lo, int hi) const
+  {
+    get(p, key, k, out, "an integer");
+    if (out < lo || out > hi)
+      fail(join(key, k), "must be in " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " + std::to_string(out));
   }
 
   static std::string join(const std::string& a, const std::string& b) { return a.empty() ? b : a + "." + b; }
@@ -205,14 +229,52 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("planner.budget_ms", "0 needs planner.expansions > 0 (some limit per SUMO step)");
 
   const YAML::Node t = root["tasks"];
-  r.keys(t, "tasks", {"mode", "goals", "seed"});
+  r.keys(t, "tasks", {"mode", "goals", "seed", "pickups", "drops", "random", "list", "assignment", "assigner",
+                      "pool_size", "k_nearest", "log"});
   r.choice(t, "tasks", "mode", c.tasks.mode, {"one_shot", "lifelong"});
-  if (c.tasks.mode == "lifelong") r.fail("tasks.mode", "'lifelong' needs the task layer, which is not built yet");
   r.get(t, "tasks", "seed", c.tasks.seed, "a non-negative integer");
-  r.cells(t, "tasks", "goals", c.tasks.random_goals, c.tasks.goals);
-  if (!c.tasks.random_goals && static_cast<int>(c.tasks.goals.size()) != c.fleet.count)
-    r.fail("tasks.goals", "lists " + std::to_string(c.tasks.goals.size()) + " cells but the fleet has " +
-                              std::to_string(c.fleet.count) + " AGVs");
+  if (!c.tasks.lifelong()) {
+    for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "log"})
+      if (t && t.IsMap() && t[k]) r.fail(std::string("tasks.") + k, "only with tasks.mode: lifelong");
+    r.cells(t, "tasks", "goals", c.tasks.random_goals, c.tasks.goals);
+    if (!c.tasks.random_goals && static_cast<int>(c.tasks.goals.size()) != c.fleet.count)
+      r.fail("tasks.goals", "lists " + std::to_string(c.tasks.goals.size()) + " cells but the fleet has " +
+                                std::to_string(c.fleet.count) + " AGVs");
+  } else {
+    if (t["goals"]) r.fail("tasks.goals", "only with tasks.mode: one_shot (lifelong goals come from the tasks)");
+    if (t["pickups"]) r.cell_list(t["pickups"], "tasks.pickups", c.tasks.pickups);
+    if (t["drops"]) r.cell_list(t["drops"], "tasks.drops", c.tasks.drops);
+    if (t["pickups"] && c.tasks.pickups.empty()) r.fail("tasks.pickups", "must list at least one cell");
+    if (t["drops"] && c.tasks.drops.empty()) r.fail("tasks.drops", "must list at least one cell");
+    if (t["random"] && t["list"]) r.fail("tasks.list", "give either tasks.random or tasks.list, not both");
+    if (t["list"]) {
+      const YAML::Node l = t["list"];
+      c.tasks.random_tasks = false;
+      if (!l.IsSequence() || l.size() == 0) r.fail("tasks.list", "expected a non-empty list of tasks (each a list of errand cells)");
+      for (size_t i = 0; i < l.size(); ++i) {
+        const std::string key = "tasks.list[" + std::to_string(i) + "]";
+        std::vector<CellRef> task;
+        r.cell_list(l[i], key, task);
+        if (task.empty()) r.fail(key, "a task needs at least one errand cell");
+        c.tasks.list.push_back(std::move(task));
+      }
+    } else {
+      const YAML::Node rn = t["random"];
+      r.keys(rn, "tasks.random", {"count", "errands"});
+      r.integer(rn, "tasks.random", "count", c.tasks.count, 1, 10000000);
+      r.integer(rn, "tasks.random", "errands", c.tasks.errands, 1, 100);
+    }
+    r.choice(t, "tasks", "assignment", c.tasks.assignment, {"roundrobin", "pool"});
+    if (c.tasks.assignment != "pool")
+      for (const char* k : {"assigner", "pool_size", "k_nearest"})
+        if (t[k]) r.fail(std::string("tasks.") + k, "only with tasks.assignment: pool");
+    r.choice(t, "tasks", "assigner", c.tasks.assigner, {"greedy", "hungarian"});
+    r.integer(t, "tasks", "pool_size", c.tasks.pool_size, 0, 10000000);
+    r.integer(t, "tasks", "k_nearest", c.tasks.k_nearest, 1, 1000000);
+    r.text(t, "tasks", "log", c.tasks.log);
+    if (c.tasks.log.empty() || c.tasks.log.find('/') != std::string::npos)
+      r.fail("tasks.log", "expected a file name (written in output.dir), got '" + c.tasks.log + "'");
+  }
 
   const YAML::Node u = root["run"];
   r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s"});

@@ -8,6 +8,7 @@
 
 #include "controller/commander.hpp"
 #include "controller/fleet.hpp"
+#include "controller/lifelong.hpp"
 #include "controller/sumo_error.hpp"
 #include "controller/sumo_options.hpp"
 #include "gridify/gridifier.hpp"
@@ -17,6 +18,9 @@
 #include "planner/plan_io.hpp"
 #include "planner/rt_lacam.hpp"
 #include "planner/validator.hpp"
+#include "tasks/lifelong_goal.hpp"
+#include "tasks/lifelong_log.hpp"
+#include "tasks/lifelong_runner.hpp"
 
 namespace controller {
 
@@ -25,14 +29,15 @@ using planner::Clock;
 using planner::ms_since;
 
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
-                                                       const planner::Config& starts, const planner::Config& goals)
+                                                       const planner::Config& starts, const planner::Config& goals,
+                                                       planner::ActionPreference* pref, planner::GoalTest test)
 {
   planner::LacamOptions opt;
   opt.swap = p.swap;
   opt.seed = p.seed;
-  if (p.solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt);
-  if (p.solver == "pibt") return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt);
-  return std::make_unique<planner::RtLacam>(g, starts, goals, opt);
+  if (p.solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, pref, std::move(test));
+  if (p.solver == "pibt") return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, pref, std::move(test));
+  return std::make_unique<planner::RtLacam>(g, starts, goals, opt, pref, std::move(test));
 }
 
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r)
@@ -79,6 +84,9 @@ Metrics Controller::run()
   m.tick_s = cfg_.run.tick_s;
   m.step_length = cfg_.sumo.step_length;
   m.budget_ms = cfg_.planner.budget_ms;
+  m.mode = cfg_.tasks.mode;
+  const bool lifelong = cfg_.tasks.lifelong();
+  if (lifelong) m.assignment = cfg_.tasks.assignment;
 
   // Everything that can be wrong with the input fails here, before SUMO starts.
   gridify::GridifyOptions go;
@@ -96,7 +104,10 @@ Metrics Controller::run()
   const planner::Graph& g = map_.graph;
   m.agents = ins.num_agents();
   m.cells = g.size();
-  m.soc_lb = ins.soc_lower_bound(g);
+  if (!lifelong) m.soc_lb = ins.soc_lower_bound(g);
+  // Lifelong: the task stream (its errors are config errors too).
+  std::unique_ptr<tasks::TaskManager> tm;
+  if (lifelong) tm = make_task_manager(cfg_, map_, make_task_file(cfg_, map_));
 
   const std::string dir = cfg_.output.dir;
   std::error_code ec;
@@ -108,8 +119,25 @@ Metrics Controller::run()
   std::unique_ptr<SumoBackend> sumo = make_backend(cfg_.run);
   m.backend = sumo->name();
   Commander cmd(map_, *sumo, cfg_.run.tick_s);
-  std::unique_ptr<planner::RealtimePlanner> p = make_planner(cfg_.planner, g, ins.starts, ins.goals);
-  planner::Validator val(g, ins.starts, ins.goals);
+  tasks::LifelongResult life;  // lifelong bookkeeping for the log
+  planner::Config goals = ins.goals;
+  planner::GoalTest goal_test;
+  auto setup0 = Clock::now();
+  if (tm) {
+    // Duplicate goals are normal here (two AGVs sent to one station): the lifelong goal
+    // test ("some AGV not yet arrived stands on its goal") never needs distinct goals.
+    tm->start(ins.starts);
+    goals = tm->goals();
+    goal_test = tasks::lifelong_goal_test(*tm, ins.starts);
+  }
+  std::unique_ptr<planner::RealtimePlanner> p = make_planner(cfg_.planner, g, ins.starts, goals, nullptr, goal_test);
+  if (tm) {
+    // Thousands of goal cells over a run: keep the tables in use plus a few hundred recent.
+    p->set_max_dist_tables(2 * ins.starts.size() + 256);
+    life.setup_ms = ms_since(setup0);
+    life.epochs = 1;
+  }
+  planner::Validator val(g, ins.starts, goals);
   const planner::Budget budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                                cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
   const int k = cfg_.steps_per_tick();
@@ -132,6 +160,7 @@ Metrics Controller::run()
 
   plan_ = {ins.starts};
   planner::Config cur = ins.starts;
+  double epoch_ms = 0;  // lifelong: planner time of a new epoch, charged to the next tick
   auto last_progress = Clock::now();
   auto loop0 = Clock::now();  // start of the tick loop (after start-up and insertion)
   try {
@@ -144,7 +173,7 @@ Metrics Controller::run()
 
     loop0 = Clock::now();
     for (;;) {
-      if (p->at_goal()) {
+      if (!tm && p->at_goal()) {
         m.solved = true;
         break;
       }
@@ -164,6 +193,8 @@ Metrics Controller::run()
         step_once();
       }
       plan_tick.push_back(plan_in_tick);
+      const double tick_planner_ms = plan_in_tick + epoch_ms;
+      epoch_ms = 0;
 
       t0 = Clock::now();
       cmd.verify(next, tolerance);
@@ -174,14 +205,45 @@ Metrics Controller::run()
       m.makespan = val.steps();  // executed ticks only (a tick cut short by an error is not)
       m.soc = val.sum_of_costs();
 
+      if (tm) {
+        // The tick boundary of the task layer: the AGVs stand exactly on `cur` (verified
+        // above) and the planner has committed to it. Errands completed at the end of tick
+        // t (1-based) start a new epoch: new goals, a fresh tree rooted at `cur`, and one
+        // search slice so the next tick has a first move (a fresh tree's only node is the
+        // root: without it every AGV would wait one tick after each completion).
+        life.planner_ms.push_back(tick_planner_ms);
+        t0 = Clock::now();
+        const std::vector<tasks::Event> ev = tasks::advance_epoch(*tm, *p, m.ticks);
+        if (!ev.empty()) {
+          val.set_goals(tm->goals());
+          p->search(budget);
+          ++life.epochs;
+          life.events.insert(life.events.end(), ev.begin(), ev.end());
+          epoch_ms = ms_since(t0);
+        } else {
+          life.task_ms += ms_since(t0);
+        }
+        m.errands_finished = tm->errands_finished();
+        m.tasks_finished = tm->tasks_finished();
+      }
+
       if (cfg_.run.progress_s > 0 && std::chrono::duration<double>(Clock::now() - last_progress).count() >= cfg_.run.progress_s) {
         last_progress = Clock::now();
-        int at_goal = 0;
-        for (int i = 0; i < ins.num_agents(); ++i) at_goal += cur[i] == ins.goals[i];
         const double wall = ms_since(wall0) / 1000;
-        std::fprintf(stderr, "[rtlacam-sumo] tick %lld/%lld  at goal %d/%d  sim %.1f s  wall %.1f s (%.0fx real time)\n",
-                     m.ticks, cfg_.run.max_ticks, at_goal, ins.num_agents(), m.ticks * cfg_.run.tick_s, wall,
-                     wall > 0 ? m.ticks * cfg_.run.tick_s / wall : 0.0);
+        if (tm) {
+          std::fprintf(stderr,
+                       "[rtlacam-sumo] tick %lld/%lld  errands %lld (%.3f/tick)  tasks %lld (%.3f/tick)  planner p99 %.2f "
+                       "ms/tick  wall %.1f s (%.0fx real time)\n",
+                       m.ticks, cfg_.run.max_ticks, m.errands_finished, m.errand_throughput(), m.tasks_finished,
+                       m.throughput(), tasks::summarize(life.planner_ms).p99, wall,
+                       wall > 0 ? m.ticks * cfg_.run.tick_s / wall : 0.0);
+        } else {
+          int at_goal = 0;
+          for (int i = 0; i < ins.num_agents(); ++i) at_goal += cur[i] == ins.goals[i];
+          std::fprintf(stderr, "[rtlacam-sumo] tick %lld/%lld  at goal %d/%d  sim %.1f s  wall %.1f s (%.0fx real time)\n",
+                       m.ticks, cfg_.run.max_ticks, at_goal, ins.num_agents(), m.ticks * cfg_.run.tick_s, wall,
+                       wall > 0 ? m.ticks * cfg_.run.tick_s / wall : 0.0);
+        }
       }
     }
   } catch (const ControlError& e) {
@@ -210,6 +272,31 @@ Metrics Controller::run()
   m.wall_s = ms_since(wall0) / 1000;
   if (m.sim_s == 0) m.sim_s = m.ticks * cfg_.run.tick_s;
 
+  if (tm) {
+    m.epochs = life.epochs;
+    life.steps = m.ticks;
+    life.errands_finished = m.errands_finished;
+    life.tasks_finished = m.tasks_finished;
+    life.expansions = m.expansions;
+    life.wall_ms = m.wall_s * 1000;
+    life.planner_errors = m.violations;
+    if (m.violations > 0) life.first_error = m.error;
+    tasks::RunInfo info;
+    info.problem = cfg_.path;
+    info.solver = p->name();
+    info.mode = cfg_.tasks.assignment;
+    info.assigner = cfg_.tasks.assigner;
+    info.team_size = m.agents;
+    info.budget_ms = cfg_.planner.budget_ms;
+    info.seed = cfg_.tasks.seed;
+    nlohmann::json j = tasks::lifelong_log(info, life);
+    j["tickS"] = cfg_.run.tick_s;
+    j["backend"] = m.backend;
+    j["expansionsPerSumoStep"] = cfg_.planner.expansions;
+    j["taskCount"] = tm ? static_cast<long long>(cfg_.tasks.random_tasks ? cfg_.tasks.count : cfg_.tasks.list.size()) : 0;
+    if (!m.error.empty()) j["error"] = m.error;
+    std::ofstream(dir + "/" + cfg_.tasks.log) << j.dump(2) << '\n';
+  }
   std::ofstream(dir + "/metrics.json") << m.to_json().dump(2) << '\n';
   if (cfg_.output.plan) {
     planner::PlanHeader h;
@@ -222,7 +309,7 @@ Metrics Controller::run()
     h.comp_time_ms = m.planner_ms_per_step.mean * m.planner_ms_per_step.count;
     h.extra = {{"backend", m.backend}, {"ticks", std::to_string(m.ticks)}, {"error", m.error}};
     std::ofstream out(dir + "/plan.txt");
-    planner::write_plan(out, g, ins.starts, ins.goals, plan_, h);
+    planner::write_plan(out, g, ins.starts, tm ? tm->goals() : ins.goals, plan_, h);
   }
   return m;
 }

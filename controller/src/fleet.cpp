@@ -13,9 +13,20 @@ namespace {
   throw ConfigError(cfg.path + ": " + key + ": " + what);
 }
 
-planner::Vertex resolve(const Config& cfg, const gridify::CellMap& map, const CellRef& c)
+}  // namespace
+
+planner::Vertex resolve_cell(const Config& cfg, const gridify::CellMap& map, const CellRef& c)
 {
   const int n = map.graph.size();
+  if (!c.lane.empty()) {
+    double off = 0;
+    const planner::Vertex v = map.locate(c.lane, c.pos, &off);
+    if (v < 0) fail(cfg, c.key, "lane '" + c.lane + "' is not a lane of a kept aisle of the graph");
+    if (off > map.cell_length)
+      fail(cfg, c.key, "pos " + std::to_string(c.pos) + " is " + std::to_string(off) + " m from the nearest cell of lane '" +
+                           c.lane + "' (off the lane?)");
+    return v;
+  }
   if (c.name.empty()) {
     if (c.vertex < 0 || c.vertex >= n)
       fail(cfg, c.key, "cell " + std::to_string(c.vertex) + " is not on the graph (cells 0.." + std::to_string(n - 1) + ")");
@@ -28,13 +39,15 @@ planner::Vertex resolve(const Config& cfg, const gridify::CellMap& map, const Ce
   fail(cfg, c.key, "'" + c.name + "' is neither a cell id, a station nor a junction of the graph");
 }
 
+namespace {
+
 std::vector<planner::Vertex> resolve_all(const Config& cfg, const gridify::CellMap& map,
                                          const std::vector<CellRef>& refs, const char* what)
 {
   std::vector<planner::Vertex> out;
   std::unordered_map<planner::Vertex, const CellRef*> seen;
   for (const CellRef& r : refs) {
-    planner::Vertex v = resolve(cfg, map, r);
+    planner::Vertex v = resolve_cell(cfg, map, r);
     auto [it, fresh] = seen.emplace(v, &r);
     if (!fresh) fail(cfg, r.key, "cell " + std::to_string(v) + " is already the " + what + " of " + it->second->key);
     out.push_back(v);
@@ -69,8 +82,10 @@ planner::Instance make_instance(const Config& cfg, const gridify::CellMap& map)
   ins.source = cfg.path;
   ins.starts = cfg.fleet.random_starts ? random_cells(cfg, map, cfg.fleet.seed, "fleet.count")
                                        : resolve_all(cfg, map, cfg.fleet.starts, "start");
-  ins.goals = cfg.tasks.random_goals ? random_cells(cfg, map, cfg.tasks.seed, "fleet.count")
-                                     : resolve_all(cfg, map, cfg.tasks.goals, "goal");
+  if (cfg.tasks.lifelong()) ins.goals = ins.starts;  // goals come from the task layer
+  else
+    ins.goals = cfg.tasks.random_goals ? random_cells(cfg, map, cfg.tasks.seed, "fleet.count")
+                                       : resolve_all(cfg, map, cfg.tasks.goals, "goal");
   try {
     ins.check(map.graph);
   } catch (const std::exception& e) {

@@ -47,6 +47,14 @@ nlohmann::json Metrics::to_json() const
   j["backend"] = backend;
   j["solver"] = solver;
   j["error"] = error;
+  j["mode"] = mode;
+  if (mode == "lifelong")
+    j["lifelong"] = {{"assignment", assignment},
+                     {"numTaskFinished", tasks_finished},
+                     {"numErrandFinished", errands_finished},
+                     {"throughput", throughput()},
+                     {"errandThroughput", errand_throughput()},
+                     {"epochs", epochs}};
   j["solved"] = solved;
   j["agents"] = agents;
   j["cells"] = cells;

@@ -257,7 +257,7 @@ TEST(ControllerConfig, ErrorsNameTheKeyPath)
       {kNet + "fleet: {count: 3, vtype: {length: 0.95}}\n", "t.yaml: fleet.vtype: length + min_gap"},
       {kNet + "fleet: {count: 3}\nsumo2: 1\n", "t.yaml: sumo2: unknown key"},
       {kNet + "fleet: [1, 2]\n", "t.yaml: fleet: expected a mapping"},
-      {kNet + "fleet: {count: 3}\ntasks: {mode: lifelong}\n", "t.yaml: tasks.mode: 'lifelong' needs the task layer"},
+      {kNet + "fleet: {count: 3}\ntasks: {mode: forever}\n", "t.yaml: tasks.mode: 'forever' is not one of lifelong|one_shot"},
   };
   for (const Case& c : cases) {
     const std::string msg = config_error(c.yaml);

@@ -15,10 +15,13 @@ struct ConfigError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A cell named in YAML: a vertex id, or a station / junction id. `key` is its key path.
+// A cell named in YAML: a vertex id, a station / junction id, or a SUMO lane position
+// ({lane: L, pos: P}: the cell whose pose on L is nearest P). `key` is its key path.
 struct CellRef {
   int vertex = -1;
   std::string name;
+  std::string lane;
+  double pos = 0;
   std::string key;
 };
 
@@ -62,11 +65,28 @@ struct PlannerSection {
   bool swap = true;
 };
 
+// one_shot: one goal per AGV, the run ends when all are there. lifelong: a stream of tasks
+// (tasks/README.md), each a sequence of errand cells; the run ends at run.max_ticks.
 struct TasksSection {
-  std::string mode = "one_shot";  // one_shot (lifelong: the task-layer issue)
-  bool random_goals = true;
-  uint64_t seed = 1;
-  std::vector<CellRef> goals;
+  std::string mode = "one_shot";  // one_shot | lifelong
+  bool random_goals = true;       // one_shot
+  uint64_t seed = 1;              // random goals / random tasks
+  std::vector<CellRef> goals;     // one_shot
+
+  // lifelong
+  std::vector<CellRef> pickups, drops;  // empty: the stations of kind pickup / drop
+  std::string pickups_key = "tasks.pickups", drops_key = "tasks.drops";
+  bool random_tasks = true;             // tasks.random (default) or tasks.list
+  int count = 100;                      // random: tasks in the (cyclic) stream
+  int errands = 2;                      // random: errands per task: pick-up, drop, pick-up, ...
+  std::vector<std::vector<CellRef>> list;  // listed tasks: errand cells
+  std::string assignment = "roundrobin";   // roundrobin | pool
+  std::string assigner = "greedy";         // pool: greedy | hungarian
+  int pool_size = 0;                       // pool: revealed tasks; 0 = ceil(1.5 x fleet.count)
+  int k_nearest = 32;                      // hungarian: candidate tasks per AGV
+  std::string log = "lifelong.json";       // in output.dir
+
+  bool lifelong() const { return mode == "lifelong"; }
 };
 
 struct RunSection {

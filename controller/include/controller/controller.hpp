@@ -22,9 +22,12 @@
 
 namespace controller {
 
-// The solver named by planner.solver on this graph and instance.
+// The solver named by planner.solver on this graph and instance; `pref` orders PIBT's
+// moves (a learned policy), `test` replaces "all at goals" (lifelong runs).
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
-                                                       const planner::Config& starts, const planner::Config& goals);
+                                                       const planner::Config& starts, const planner::Config& goals,
+                                                       planner::ActionPreference* pref = nullptr,
+                                                       planner::GoalTest test = {});
 
 // The back end named by run.backend (run.gui: sumo-gui through TraCI).
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r);

@@ -9,6 +9,10 @@
 
 namespace controller {
 
+// Lifelong runs: goals = starts (the task layer hands out the real goals).
 planner::Instance make_instance(const Config& cfg, const gridify::CellMap& map);
+
+// One configured cell on the graph, or a ConfigError naming its key path.
+planner::Vertex resolve_cell(const Config& cfg, const gridify::CellMap& map, const CellRef& c);
 
 }  // namespace controller

@@ -32,6 +32,12 @@ struct Metrics {
   Latency control_ms_per_tick;  // commands + verification
   CommandStats commands;
 
+  // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
+  std::string mode = "one_shot", assignment;
+  long long errands_finished = 0, tasks_finished = 0, epochs = 0;
+  double throughput() const { return ticks > 0 ? static_cast<double>(tasks_finished) / ticks : 0.0; }
+  double errand_throughput() const { return ticks > 0 ? static_cast<double>(errands_finished) / ticks : 0.0; }
+
   // Wall milliseconds per simulated second in the tick loop: all, SUMO's own steps
   // (inside the back end), the controller (everything else: planner + commands +
   // verification + event checks), the planner alone. ratio = controller / sumo.

@@ -1,0 +1,23 @@
+#pragma once
+// The task layer of a lifelong controller run (tasks.mode: lifelong), built from the YAML
+// task spec: errand cells resolved on the gridified net (cell ids, station / junction ids,
+// SUMO lane positions), random or listed tasks, then the tasks library's RoundRobin or
+// TaskPool. Errors are ConfigErrors naming the key path.
+#include <memory>
+
+#include "controller/config.hpp"
+#include "gridify/cell_map.hpp"
+#include "tasks/lorr_files.hpp"
+#include "tasks/task_manager.hpp"
+
+namespace controller {
+
+// tasks.pickups / tasks.drops (default: the stations of kind pickup / drop), then
+// tasks.random (errand i from pickups when i is even, from drops when odd) or tasks.list.
+std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const gridify::CellMap& map);
+
+// tasks.assignment: roundrobin, or pool with tasks.assigner and tasks.pool_size.
+std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
+                                                      std::shared_ptr<const tasks::TaskFile> file);
+
+}  // namespace controller

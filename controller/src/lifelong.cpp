@@ -1,0 +1,61 @@
+#include "controller/lifelong.hpp"
+
+#include <cmath>
+
+#include "controller/fleet.hpp"
+#include "tasks/assigner.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/task_builder.hpp"
+#include "tasks/task_pool.hpp"
+
+namespace controller {
+namespace {
+
+std::vector<planner::Vertex> errand_cells(const Config& cfg, const gridify::CellMap& map,
+                                          const std::vector<CellRef>& refs, const std::string& key,
+                                          const std::string& kind)
+{
+  std::vector<planner::Vertex> out;
+  for (const CellRef& r : refs) out.push_back(resolve_cell(cfg, map, r));
+  if (refs.empty()) {
+    for (const gridify::Station& s : map.stations)
+      if (s.kind == kind) out.push_back(s.cell);
+    if (out.empty())
+      throw ConfigError(cfg.path + ": " + key + ": missing, and " +
+                        (cfg.sumo.additional.empty() ? std::string("there is no sumo.additional with stations")
+                                                     : "sumo.additional has no station of kind '" + kind + "'"));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const gridify::CellMap& map)
+{
+  const TasksSection& t = cfg.tasks;
+  if (!t.random_tasks) {
+    std::vector<std::vector<planner::Vertex>> list;
+    for (const std::vector<CellRef>& task : t.list) {
+      std::vector<planner::Vertex> e;
+      for (const CellRef& r : task) e.push_back(resolve_cell(cfg, map, r));
+      list.push_back(std::move(e));
+    }
+    return std::make_shared<tasks::TaskFile>(tasks::listed_task_file(std::move(list), cfg.path + ": tasks.list"));
+  }
+  std::vector<std::vector<planner::Vertex>> pools;
+  pools.push_back(errand_cells(cfg, map, t.pickups, "tasks.pickups", "pickup"));
+  if (t.errands >= 2) pools.push_back(errand_cells(cfg, map, t.drops, "tasks.drops", "drop"));
+  return std::make_shared<tasks::TaskFile>(
+      tasks::random_task_file(pools, t.count, t.errands, t.seed, cfg.path + ": tasks.random"));
+}
+
+std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
+                                                      std::shared_ptr<const tasks::TaskFile> file)
+{
+  const TasksSection& t = cfg.tasks;
+  if (t.assignment == "roundrobin") return std::make_unique<tasks::RoundRobin>(std::move(file));
+  const int pool = t.pool_size > 0 ? t.pool_size : static_cast<int>(std::ceil(1.5 * cfg.fleet.count));
+  return std::make_unique<tasks::TaskPool>(std::move(file), map.graph, pool, tasks::make_assigner(t.assigner, t.k_nearest));
+}
+
+}  // namespace controller

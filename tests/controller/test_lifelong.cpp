@@ -1,0 +1,268 @@
+// Lifelong tasks in SUMO (tasks.mode: lifelong): the task layer of tasks/ driving the
+// controller. Real SUMO 1.15 through libsumo; ctest runs each TEST in its own process.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "controller/config.hpp"
+#include "controller/controller.hpp"
+#include "controller/lifelong.hpp"
+#include "planner/validator.hpp"
+#include "tasks/task_builder.hpp"
+
+using namespace controller;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string temp_dir(const std::string& name)
+{
+  fs::path d = fs::temp_directory_path() / ("rtlacam_ll_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d.string();
+}
+
+Config lifelong_config(const std::string& name, long long ticks)
+{
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
+  c.output.dir = temp_dir(name);
+  c.run.progress_s = 0;
+  c.run.max_ticks = ticks;
+  // Deterministic: a fixed number of expansions per SUMO step, no wall-clock cutoff.
+  c.planner.budget_ms = 0;
+  c.planner.expansions = 20;
+  return c;
+}
+
+nlohmann::json read_json(const std::string& path)
+{
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// A clean lifelong run: no violation, positions exact, the executed plan valid, every
+// logged event an AGV standing on its errand cell at the end of that tick.
+void expect_clean_lifelong_run(const Config& cfg, const Controller& c, const Metrics& m)
+{
+  EXPECT_EQ(m.error, "");
+  EXPECT_FALSE(m.solved);
+  EXPECT_EQ(m.mode, "lifelong");
+  EXPECT_EQ(m.ticks, cfg.run.max_ticks);
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.resyncs, 0);
+  EXPECT_LE(m.commands.max_error, 1e-6);
+  EXPECT_EQ(m.commands.jumps, 0);
+  const auto& plan = c.plan();
+  ASSERT_EQ(static_cast<long long>(plan.size()), m.ticks + 1);
+  EXPECT_EQ(planner::validate_plan(c.map().graph, plan.front(), plan.back(), plan, false), "");
+
+  const nlohmann::json j = read_json(cfg.output.dir + "/" + cfg.tasks.log);
+  for (const char* k : {"actionModel", "teamSize", "numTaskFinished", "numErrandFinished", "makespan", "throughput",
+                        "errandThroughput", "plannerTimes", "numPlannerErrors", "events", "mode", "assigner", "solver",
+                        "budgetMs", "seed", "epochs"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  EXPECT_EQ(j["teamSize"], m.agents);
+  EXPECT_EQ(j["makespan"], m.ticks);
+  EXPECT_EQ(j["numPlannerErrors"], 0);
+  EXPECT_EQ(j["numErrandFinished"], m.errands_finished);
+  EXPECT_EQ(j["numTaskFinished"], m.tasks_finished);
+  EXPECT_DOUBLE_EQ(j["throughput"].get<double>(), static_cast<double>(m.tasks_finished) / m.ticks);
+  EXPECT_EQ(j["mode"], cfg.tasks.assignment);
+  for (const char* k : {"mean", "p50", "p99", "max"}) EXPECT_TRUE(j["plannerTimes"].contains(k)) << k;
+  ASSERT_EQ(static_cast<long long>(j["events"].size()), m.errands_finished);
+
+  // Every event: the AGV stands on the errand's cell at the end of tick t (plan[t]).
+  const auto file = make_task_file(cfg, c.map());
+  long last_t = 0;
+  for (const auto& e : j["events"]) {
+    const long t = e[0], task = e[2];
+    const int agent = e[1], errand = e[3];
+    ASSERT_GE(t, 1);
+    ASSERT_LE(t, m.ticks);
+    EXPECT_GE(t, last_t);
+    last_t = t;
+    const auto& errands = file->tasks[static_cast<size_t>(task % file->size())];
+    ASSERT_LT(errand, static_cast<int>(errands.size()));
+    EXPECT_EQ(plan[t][agent], errands[errand]) << "t " << t << " agent " << agent << " task " << task;
+  }
+  const nlohmann::json mj = read_json(cfg.output.dir + "/metrics.json");
+  EXPECT_EQ(mj["mode"], "lifelong");
+  EXPECT_EQ(mj["lifelong"]["numErrandFinished"], m.errands_finished);
+  // SUMO itself saw no collision.
+  std::ifstream col(cfg.output.dir + "/collision.xml");
+  std::string text((std::istreambuf_iterator<char>(col)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("<collision "), std::string::npos);
+}
+
+std::string config_error(const std::string& yaml)
+{
+  try {
+    parse_config(yaml, "t.yaml", RTLACAM_CONFIGS);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+std::string run_error(const std::string& yaml)
+{
+  Config c = parse_config(yaml, "t.yaml", RTLACAM_CONFIGS);
+  c.output.dir = temp_dir("cells");
+  c.run.max_ticks = 1;
+  try {
+    Controller(c).run();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const std::string kNet = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n";
+const std::string kNetAdd = kNet + "  additional: ../sumo_scenarios/small.add.xml\n";
+
+}  // namespace
+
+TEST(ControllerLifelong, SmallWarehousePoolServesTasksExactly)
+{
+  Config cfg = lifelong_config("pool", 200);
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean_lifelong_run(cfg, c, m);
+  EXPECT_GE(m.errands_finished, 15);  // measured 22 errands, 4 tasks (controller/README.md)
+  EXPECT_GE(m.tasks_finished, 3);
+  EXPECT_EQ(m.epochs, read_json(cfg.output.dir + "/lifelong.json")["epochs"].get<long long>());
+}
+
+TEST(ControllerLifelong, RoundRobinListedTasksWithSharedGoals)
+{
+  // Every AGV gets the same two-errand task (lane position, then a cell id): all goals
+  // coincide, which the lifelong goal test must handle.
+  Config cfg = lifelong_config("roundrobin", 120);
+  Config y = parse_config(kNetAdd +
+                              "fleet: {count: 6, seed: 4}\n"
+                              "tasks:\n  mode: lifelong\n  assignment: roundrobin\n"
+                              "  list: [[{lane: c1r0_pick1_0, pos: 1.75}, drop3], [pickup2, drop0]]\n",
+                          "t.yaml", RTLACAM_CONFIGS);
+  y.output = cfg.output;
+  y.run.progress_s = 0;
+  y.run.max_ticks = 120;
+  y.planner = cfg.planner;
+  Controller c(y);
+  const Metrics m = c.run();
+  expect_clean_lifelong_run(y, c, m);
+  EXPECT_GE(m.errands_finished, 6);
+  EXPECT_EQ(read_json(y.output.dir + "/lifelong.json")["assigner"], "none");
+}
+
+TEST(ControllerLifelong, HungarianPoolRuns)
+{
+  Config cfg = lifelong_config("hungarian", 100);
+  cfg.tasks.assigner = "hungarian";
+  cfg.fleet.count = 8;
+  cfg.tasks.pool_size = 0;  // 1.5 x fleet
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean_lifelong_run(cfg, c, m);
+  EXPECT_GE(m.errands_finished, 5);
+  EXPECT_EQ(read_json(cfg.output.dir + "/lifelong.json")["assigner"], "hungarian");
+}
+
+TEST(ControllerLifelong, TaskFileBuilders)
+{
+  const tasks::TaskFile a = tasks::random_task_file({{1, 2}, {7, 8, 9}}, 50, 3, 5);
+  const tasks::TaskFile b = tasks::random_task_file({{1, 2}, {7, 8, 9}}, 50, 3, 5);
+  ASSERT_EQ(a.size(), 50);
+  EXPECT_EQ(a.tasks, b.tasks);  // deterministic per seed
+  std::set<int> first, second;
+  for (const auto& t : a.tasks) {
+    ASSERT_EQ(t.size(), 3u);
+    first.insert(t[0]);
+    second.insert(t[1]);
+    EXPECT_TRUE(t[2] == 1 || t[2] == 2);  // errands alternate the pools
+  }
+  EXPECT_EQ(first, (std::set<int>{1, 2}));
+  EXPECT_EQ(second, (std::set<int>{7, 8, 9}));
+  EXPECT_NE(tasks::random_task_file({{1, 2}, {7, 8, 9}}, 50, 3, 6).tasks, a.tasks);
+  EXPECT_THROW(tasks::random_task_file({{1}, {}}, 5, 2, 0), std::invalid_argument);
+  EXPECT_THROW(tasks::random_task_file({{1}}, 0, 2, 0), std::invalid_argument);
+  const tasks::TaskFile l = tasks::listed_task_file({{3, 4}, {5}});
+  EXPECT_EQ(l.size(), 2);
+  EXPECT_EQ(l.lines, (std::vector<int>{0, 1}));
+  EXPECT_THROW(tasks::listed_task_file({{3}, {}}), std::invalid_argument);
+}
+
+TEST(ControllerLifelong, ShippedConfigLoads)
+{
+  const Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
+  EXPECT_TRUE(c.tasks.lifelong());
+  EXPECT_EQ(c.fleet.count, 16);
+  EXPECT_EQ(c.tasks.assignment, "pool");
+  EXPECT_EQ(c.tasks.pickups.size(), 2u);
+  EXPECT_EQ(c.tasks.drops.size(), 2u);
+  EXPECT_TRUE(c.tasks.random_tasks);
+}
+
+TEST(ControllerLifelong, ConfigErrorsNameTheKeyPath)
+{
+  struct Case {
+    std::string yaml, expect;
+  };
+  const std::string f = "fleet: {count: 3}\n";
+  const std::string ll = f + "tasks:\n  mode: lifelong\n";
+  const std::vector<Case> cases = {
+      {kNet + f + "tasks: {assignment: pool}\n", "t.yaml: tasks.assignment: only with tasks.mode: lifelong"},
+      {kNet + f + "tasks: {pickups: [1]}\n", "t.yaml: tasks.pickups: only with tasks.mode: lifelong"},
+      {kNet + ll + "  goals: [1, 2, 3]\n", "t.yaml: tasks.goals: only with tasks.mode: one_shot"},
+      {kNet + ll + "  assignment: fifo\n", "t.yaml: tasks.assignment: 'fifo' is not one of pool|roundrobin"},
+      {kNet + ll + "  assignment: pool\n  assigner: auction\n", "t.yaml: tasks.assigner: 'auction' is not one of greedy|hungarian"},
+      {kNet + ll + "  assigner: greedy\n", "t.yaml: tasks.assigner: only with tasks.assignment: pool"},
+      {kNet + ll + "  pool_size: 5\n", "t.yaml: tasks.pool_size: only with tasks.assignment: pool"},
+      {kNet + ll + "  assignment: pool\n  pool_size: -1\n", "t.yaml: tasks.pool_size: must be in 0.."},
+      {kNet + ll + "  assignment: pool\n  pool_size: many\n", "t.yaml: tasks.pool_size: expected an integer, got 'many'"},
+      {kNet + ll + "  assignment: pool\n  k_nearest: 0\n", "t.yaml: tasks.k_nearest: must be in 1.."},
+      {kNet + ll + "  random: {count: 0}\n", "t.yaml: tasks.random.count: must be in 1.."},
+      {kNet + ll + "  random: {errands: 0}\n", "t.yaml: tasks.random.errands: must be in 1..100"},
+      {kNet + ll + "  random: {count: 5, seed: 2}\n", "t.yaml: tasks.random.seed: unknown key"},
+      {kNet + ll + "  random: 5\n", "t.yaml: tasks.random: expected a mapping"},
+      {kNet + ll + "  random: {}\n  list: [[1]]\n", "t.yaml: tasks.list: give either tasks.random or tasks.list"},
+      {kNet + ll + "  list: []\n", "t.yaml: tasks.list: expected a non-empty list of tasks"},
+      {kNet + ll + "  list: [[1, 2], []]\n", "t.yaml: tasks.list[1]: a task needs at least one errand cell"},
+      {kNet + ll + "  list: [[1, [2]]]\n", "t.yaml: tasks.list[0][1]: expected a cell id, a station/junction id or {lane: L, pos: P}"},
+      {kNet + ll + "  list: [1]\n", "t.yaml: tasks.list[0]: expected a list of cells"},
+      {kNet + ll + "  pickups: pickup1\n", "t.yaml: tasks.pickups: expected a list of cells"},
+      {kNet + ll + "  pickups: []\n", "t.yaml: tasks.pickups: must list at least one cell"},
+      {kNet + ll + "  drops: [{lane: x}]\n", "t.yaml: tasks.drops[0].pos: missing"},
+      {kNet + ll + "  drops: [{pos: 1}]\n", "t.yaml: tasks.drops[0].lane: missing"},
+      {kNet + ll + "  drops: [{lane: x, pos: -1}]\n", "t.yaml: tasks.drops[0].pos: must be >= 0"},
+      {kNet + ll + "  drops: [{lane: x, pos: 1, side: left}]\n", "t.yaml: tasks.drops[0].side: unknown key"},
+      {kNet + ll + "  log: out/x.json\n", "t.yaml: tasks.log: expected a file name"},
+      {kNet + ll + "  mode2: 1\n", "t.yaml: tasks.mode2: unknown key"},
+  };
+  for (const Case& c : cases) {
+    const std::string msg = config_error(c.yaml);
+    EXPECT_EQ(msg.rfind(c.expect, 0), 0u) << "yaml:\n" << c.yaml << "\ngot: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  }
+}
+
+TEST(ControllerLifelong, CellErrorsNeedTheGraph)
+{
+  const std::string ll = "fleet: {count: 2}\ntasks:\n  mode: lifelong\n";
+  EXPECT_EQ(run_error(kNet + ll), "t.yaml: tasks.pickups: missing, and there is no sumo.additional with stations");
+  EXPECT_EQ(run_error(kNet + ll + "  pickups: [3]\n  drops: [nowhere]\n"),
+            "t.yaml: tasks.drops[0]: 'nowhere' is neither a cell id, a station nor a junction of the graph");
+  EXPECT_EQ(run_error(kNet + ll + "  pickups: [3, 999]\n  drops: [4]\n"),
+            "t.yaml: tasks.pickups[1]: cell 999 is not on the graph (cells 0..61)");
+  EXPECT_EQ(run_error(kNet + ll + "  list: [[3, {lane: nolane_0, pos: 1}]]\n"),
+            "t.yaml: tasks.list[0][1]: lane 'nolane_0' is not a lane of a kept aisle of the graph");
+  EXPECT_EQ(run_error(kNet + ll + "  random: {errands: 1}\n  pickups: [{lane: c1r0_pick1_0, pos: 40}]\n")
+                .rfind("t.yaml: tasks.pickups[0]: pos 40", 0),
+            0u);
+  // errands: 1 needs no drops; the stations of kind pickup are the default pickups.
+  EXPECT_EQ(run_error(kNetAdd + ll + "  random: {errands: 1}\n"), "(no error)");
+}
