@@ -14,14 +14,16 @@ using namespace controller;
 int main(int argc, char** argv)
 {
   CLI::App app{"Run a SUMO warehouse scenario with RT-LaCAM commanding every AGV"};
-  std::string path, backend, solver, out;
+  std::string path, backend, solver, out, policy_file;
   bool gui = false;
   long long max_ticks = 0;
   int port = 0;
   app.add_option("config", path, "scenario YAML (config/<scenario>.yaml)")->required();
   app.add_flag("--gui", gui, "watch it live in sumo-gui (through TraCI)");
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
-  app.add_option("--solver", solver, "override planner.solver")->check(CLI::IsMember({"rtlacam", "naive", "pibt"}));
+  app.add_option("--solver", solver, "override planner.solver")->check(CLI::IsMember({"rtlacam", "naive", "pibt", "cspibt"}));
+  app.add_option("--policy", policy_file, "override planner.policy: learned policy weights (PIBT tries moves in its order)")
+      ->check(CLI::ExistingFile);
   app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
       ->check(CLI::Range(1, 65535));
   app.add_option("--max-ticks", max_ticks, "override run.max_ticks")->check(CLI::PositiveNumber);
@@ -33,6 +35,9 @@ int main(int argc, char** argv)
     if (gui) cfg.run.gui = true;
     if (!backend.empty()) cfg.run.backend = backend;
     if (!solver.empty()) cfg.planner.solver = solver;
+    if (!policy_file.empty()) cfg.planner.policy = policy_file;
+    if (cfg.planner.solver == "cspibt" && cfg.planner.policy.empty())
+      throw ConfigError(path + ": planner.solver: cspibt needs planner.policy (or --policy WEIGHTS)");
     if (port > 0) {
       cfg.run.port = port;
       if (backend.empty()) cfg.run.backend = "traci";
@@ -41,7 +46,8 @@ int main(int argc, char** argv)
     if (!out.empty()) cfg.output.dir = out;
 
     Controller c(cfg);
-    const Metrics m = c.run();
+    Metrics m = c.run();
+    if (!m.policy.empty()) m.solver += "+policy";
     if (cfg.tasks.lifelong())
       std::printf("%s: %d AGVs, %s via %s, lifelong %s: %lld ticks, %lld errands (%.3f/tick), %lld tasks (%.3f/tick), "
                   "%lld epochs; log %s/%s\n",

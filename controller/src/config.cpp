@@ -219,8 +219,11 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
                               "): AGVs on adjacent cells would overlap");
 
   const YAML::Node p = root["planner"];
-  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap"});
-  r.choice(p, "planner", "solver", c.planner.solver, {"rtlacam", "naive", "pibt"});
+  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy"});
+  r.choice(p, "planner", "solver", c.planner.solver, {"rtlacam", "naive", "pibt", "cspibt"});
+  r.file(p, "planner", "policy", c.planner.policy, false);
+  if (c.planner.solver == "cspibt" && c.planner.policy.empty())
+    r.fail("planner.solver", "cspibt needs planner.policy (a weights file)");
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");
   r.get(p, "planner", "seed", c.planner.seed, "a non-negative integer");

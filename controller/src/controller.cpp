@@ -18,6 +18,8 @@
 #include "planner/plan_io.hpp"
 #include "planner/rt_lacam.hpp"
 #include "planner/validator.hpp"
+#include "policy/policy_preference.hpp"
+#include "policy/weights_file.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
@@ -36,7 +38,10 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.swap = p.swap;
   opt.seed = p.seed;
   if (p.solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, pref, std::move(test));
-  if (p.solver == "pibt") return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, pref, std::move(test));
+  if (p.solver == "pibt" || p.solver == "cspibt") {
+    if (p.solver == "cspibt" && !pref) throw std::invalid_argument("solver cspibt needs a policy (planner.policy)");
+    return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, pref, std::move(test));
+  }
   return std::make_unique<planner::RtLacam>(g, starts, goals, opt, pref, std::move(test));
 }
 
@@ -81,6 +86,7 @@ Metrics Controller::run()
   m.config = cfg_.path;
   m.net = cfg_.sumo.net;
   m.solver = cfg_.planner.solver;
+  m.policy = cfg_.planner.policy;
   m.tick_s = cfg_.run.tick_s;
   m.step_length = cfg_.sumo.step_length;
   m.budget_ms = cfg_.planner.budget_ms;
@@ -108,6 +114,22 @@ Metrics Controller::run()
   // Lifelong: the task stream (its errors are config errors too).
   std::unique_ptr<tasks::TaskManager> tm;
   if (lifelong) tm = make_task_manager(cfg_, map_, make_task_file(cfg_, map_));
+  // The learned policy (CS-PIBT move order). Its observations are grid windows: the net
+  // must be an axis-aligned lattice (gridify then attaches the grid view). The planner
+  // tells it the goals (ActionPreference::set_goals), so it starts with none.
+  policy::Model model;
+  std::unique_ptr<policy::PolicyPreference> pref;
+  if (!cfg_.planner.policy.empty()) {
+    if (!g.is_grid())
+      throw ConfigError(cfg_.path + ": planner.policy: needs a net whose cells lie on a lattice ('" + cfg_.sumo.net +
+                        "' does not: its observations are grid windows)");
+    try {
+      model = policy::load_weights(cfg_.planner.policy);
+    } catch (const planner::InputError& e) {
+      throw ConfigError(cfg_.path + ": planner.policy: " + e.what());
+    }
+    pref = std::make_unique<policy::PolicyPreference>(g, model, planner::Config{});
+  }
 
   const std::string dir = cfg_.output.dir;
   std::error_code ec;
@@ -130,7 +152,7 @@ Metrics Controller::run()
     goals = tm->goals();
     goal_test = tasks::lifelong_goal_test(*tm, ins.starts);
   }
-  std::unique_ptr<planner::RealtimePlanner> p = make_planner(cfg_.planner, g, ins.starts, goals, nullptr, goal_test);
+  std::unique_ptr<planner::RealtimePlanner> p = make_planner(cfg_.planner, g, ins.starts, goals, pref.get(), goal_test);
   if (tm) {
     // Thousands of goal cells over a run: keep the tables in use plus a few hundred recent.
     p->set_max_dist_tables(2 * ins.starts.size() + 256);

@@ -46,6 +46,7 @@ nlohmann::json Metrics::to_json() const
   j["net"] = net;
   j["backend"] = backend;
   j["solver"] = solver;
+  j["policy"] = policy;
   j["error"] = error;
   j["mode"] = mode;
   if (mode == "lifelong")

@@ -58,7 +58,8 @@ struct FleetSection {
 };
 
 struct PlannerSection {
-  std::string solver = "rtlacam";  // rtlacam | naive | pibt
+  std::string solver = "rtlacam";  // rtlacam | naive | pibt | cspibt (pibt ordered by the policy)
+  std::string policy;              // learned policy weights (absolute after loading); "" = none
   double budget_ms = 1.0;          // per SUMO step; 0 = no time limit
   uint64_t expansions = 0;         // per SUMO step; 0 = no limit (set it for deterministic runs)
   uint64_t seed = 0;

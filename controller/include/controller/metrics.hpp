@@ -18,6 +18,7 @@ struct Latency {
 
 struct Metrics {
   std::string config, net, backend, solver, error;  // error: "" when the run was clean
+  std::string policy;           // planner.policy weights file, "" = none
   bool solved = false;          // every AGV on its goal (one-shot)
   int agents = 0, cells = 0;
   long long ticks = 0;          // executed ticks (MAPF steps)
