@@ -22,6 +22,7 @@ int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file;
+  bool reset_priorities = false;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -36,6 +37,8 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"greedy", "hungarian"}))
       ->capture_default_str();
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_flag("--reset-priorities", reset_priorities,
+               "start PIBT priorities again from distance/N at every goal change (default: keep them)");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
   app.add_option("--solver", solver, "pibt | naive | rtlacam | cspibt (pibt ordered by --policy)")
       ->check(CLI::IsMember({"pibt", "naive", "rtlacam", "cspibt"}))
@@ -75,6 +78,7 @@ int main(int argc, char** argv)
 
     LifelongOptions opt;
     opt.pref = pref.get();
+    opt.keep_priorities = !reset_priorities;
     opt.steps = steps;
     opt.budget = planner::Budget::time_ms(budget_ms);
     if (budget_expansions > 0) opt.budget.expansions = budget_expansions;
@@ -97,6 +101,7 @@ int main(int argc, char** argv)
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = lifelong_log(info, r);
     if (pref) j["policy"] = policy_file;
+    j["keepPriorities"] = !reset_priorities;
     if (!out_file.empty()) {
       std::ofstream out(out_file);
       if (!out) throw planner::input_error(out_file, 0, "cannot write file");

@@ -4,7 +4,7 @@ namespace planner {
 
 PibtPlanner::PibtPlanner(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
                          ActionPreference* pref, GoalTest test)
-    : dist_(g), pibt_(g, dist_, opt.swap), rng_(opt.seed), current_(starts)
+    : dist_(g), pibt_(g, dist_, opt.swap), rng_(opt.seed), current_(starts), keep_priorities_(opt.keep_priorities)
 {
   pibt_.set_preference(pref);
   set_goals(goals, std::move(test));
@@ -19,8 +19,8 @@ void PibtPlanner::set_goals(const Config& goals, GoalTest test)
   const int n = static_cast<int>(goals.size());
   next_.assign(n, -1);
   planned_ = false;
-  // Lifelong goal changes keep the priorities: PIBT's memory of who waited longest.
-  if (static_cast<int>(prio_.size()) == n) return;
+  // Lifelong goal changes may keep the priorities: PIBT's memory of who waited longest.
+  if (keep_priorities_ && static_cast<int>(prio_.size()) == n) return;
   prio_.assign(n, 0.0f);
   prio_next_.assign(n, 0.0f);
   order_.assign(n, 0);

@@ -4,7 +4,7 @@ namespace planner {
 
 RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
                  GoalTest test)
-    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts)
+    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts), keep_priorities_(opt.keep_priorities)
 {
   set_goals(goals, std::move(test));
 }
@@ -12,9 +12,9 @@ RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, Laca
 void RtLacam::set_goals(const Config& goals, GoalTest test)
 {
   test_ = test;
-  // A new epoch keeps the agents' PIBT priorities (see Lacam::reset).
+  // A new epoch may keep the agents' PIBT priorities (LacamOptions::keep_priorities).
   const HNode* root = lacam_.root();
-  if (root && goals.size() == current_.size()) {
+  if (keep_priorities_ && root && goals.size() == current_.size()) {
     carried_.assign(root->priorities, root->priorities + lacam_.num_agents());
     lacam_.reset(current_, goals, std::move(test), carried_.data());
   } else {

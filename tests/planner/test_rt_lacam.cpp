@@ -245,3 +245,24 @@ TEST(RtLacam, NewEpochKeepsThePibtPriorities)
   EXPECT_EQ(std::vector<float>(fresh->priorities, fresh->priorities + 50), before);
   EXPECT_EQ(rt.lacam().explored(), 1u);
 }
+
+TEST(RtLacam, NewEpochCanRestartThePriorities)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  Graph g = load_map(dir + "random-32-32-20.map");
+  Instance ins = load_scen(dir + "random-32-32-20-random-1.scen", g, 50);
+  LacamOptions o;
+  o.keep_priorities = false;
+  RtLacam rt(g, ins.starts, ins.goals, o);
+  for (int k = 0; k < 5; ++k) {
+    rt.step(Budget::expansion_count(3));
+    rt.commit();
+  }
+  Config goals = ins.goals;
+  std::swap(goals[0], goals[1]);
+  rt.set_goals(goals);
+  DistTable d(g);
+  d.set_goals(goals);
+  const HNode* fresh = rt.lacam().root();
+  for (int i = 0; i < 50; ++i) EXPECT_FLOAT_EQ(fresh->priorities[i], d.get(i, rt.current()[i]) / 50.0f);
+}

@@ -64,6 +64,7 @@ struct PlannerSection {
   uint64_t expansions = 0;         // per SUMO step; 0 = no limit (set it for deterministic runs)
   uint64_t seed = 0;
   bool swap = true;
+  bool keep_priorities = true;  // lifelong epochs keep PIBT priorities (planner::LacamOptions)
 };
 
 // one_shot: one goal per AGV, the run ends when all are there. lifelong: a stream of tasks

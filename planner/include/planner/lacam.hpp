@@ -38,6 +38,11 @@ using GoalTest = std::function<bool(const Vertex* config)>;
 struct LacamOptions {
   bool swap = true;    // PIBT swap operation (LaCAM*); off for paper-faithful vanilla runs
   uint64_t seed = 0;   // tie-breaks in PIBT and the shuffle of constraint children
+  // Lifelong goal changes (set_goals) keep the agents' PIBT priorities instead of starting
+  // again from distance / N. Measured: +10-30 % throughput on the LoRR random-32-32-20
+  // instances, but half the throughput in a small warehouse whose stations are dead-end
+  // stubs (long-waiting agents crowd the stubs); so it is a choice, not a rule.
+  bool keep_priorities = true;
 };
 
 class Lacam {

@@ -33,6 +33,7 @@ class PibtPlanner : public RealtimePlanner {
   std::vector<float> prio_, prio_next_;
   std::vector<int32_t> order_;
   bool planned_ = false;
+  bool keep_priorities_;
   uint64_t steps_planned_ = 0;
 };
 

@@ -54,6 +54,7 @@ class RtLacam : public RealtimePlanner {
   const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
   std::vector<float> carried_;           // priorities carried into a new epoch
+  bool keep_priorities_;
 };
 
 }  // namespace planner

@@ -40,6 +40,7 @@ struct LifelongOptions {
   planner::Budget budget = planner::Budget::time_ms(100);
   std::function<void(const StepRecord&)> on_step;  // optional, after every step
   planner::ActionPreference* pref = nullptr;       // optional move order (learned policy)
+  bool keep_priorities = true;                     // see planner::LacamOptions
 };
 
 struct PlannerTimes {

@@ -16,6 +16,7 @@ namespace tasks {
 std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::GoalTest test, uint64_t seed,
-                                                       planner::ActionPreference* pref = nullptr);
+                                                       planner::ActionPreference* pref = nullptr,
+                                                       bool keep_priorities = true);
 
 }  // namespace tasks
