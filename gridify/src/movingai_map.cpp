@@ -1,5 +1,6 @@
 #include "gridify/movingai_map.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -18,7 +19,11 @@ GridLayout grid_layout(const CellMap& m, std::string* why)
   if (m.cells.empty()) return fail("no cells");
   for (const Aisle& a : m.aisles) {
     if (a.snapped) return fail("aisle '" + a.ab + "' was snapped to spacing " + std::to_string(a.spacing));
-    const Cell &ca = m.cells[a.cells.front()], &cb = m.cells[a.cells.back()];
+    // Ends whose junction was dropped are -1 in Aisle::cells: compare the kept extremes.
+    auto first = std::find_if(a.cells.begin(), a.cells.end(), [](planner::Vertex v) { return v >= 0; });
+    auto last = std::find_if(a.cells.rbegin(), a.cells.rend(), [](planner::Vertex v) { return v >= 0; });
+    if (first == a.cells.end() || *first == *last) continue;
+    const Cell &ca = m.cells[*first], &cb = m.cells[*last];
     if (std::fabs(ca.x - cb.x) > tol && std::fabs(ca.y - cb.y) > tol)
       return fail("aisle '" + a.ab + "' is not axis-aligned");
   }
