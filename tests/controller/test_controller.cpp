@@ -9,6 +9,7 @@
 
 #include "controller/commander.hpp"
 #include "controller/config.hpp"
+#include "controller_test_util.hpp"
 #include "controller/controller.hpp"
 #include "controller/sumo_error.hpp"
 #include "controller/sumo_options.hpp"
@@ -54,21 +55,10 @@ void expect_clean_solved_run(const Config& cfg, const Controller& c, const Metri
   EXPECT_EQ(planner::validate_plan(c.map().graph, plan.front(), plan.back(), plan, true), "");
   for (const char* f : {"metrics.json", "plan.txt", "fcd.xml", "tripinfo.xml", "summary.xml", "collision.xml"})
     EXPECT_TRUE(fs::exists(cfg.output.dir + "/" + f)) << f;
-  // SUMO itself saw no collision.
-  std::ifstream col(cfg.output.dir + "/collision.xml");
-  std::string text((std::istreambuf_iterator<char>(col)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text.find("<collision "), std::string::npos);
+  ctest_util::expect_no_sumo_collision(cfg.output.dir);
 }
 
-std::string config_error(const std::string& yaml)
-{
-  try {
-    parse_config(yaml, "t.yaml", RTLACAM_CONFIGS);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using ctest_util::config_error;
 
 const std::string kNet = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n";
 

@@ -9,6 +9,7 @@
 #include <set>
 
 #include "controller/config.hpp"
+#include "controller_test_util.hpp"
 #include "controller/controller.hpp"
 #include "controller/lifelong.hpp"
 #include "planner/validator.hpp"
@@ -93,21 +94,10 @@ void expect_clean_lifelong_run(const Config& cfg, const Controller& c, const Met
   const nlohmann::json mj = read_json(cfg.output.dir + "/metrics.json");
   EXPECT_EQ(mj["mode"], "lifelong");
   EXPECT_EQ(mj["lifelong"]["numErrandFinished"], m.errands_finished);
-  // SUMO itself saw no collision.
-  std::ifstream col(cfg.output.dir + "/collision.xml");
-  std::string text((std::istreambuf_iterator<char>(col)), std::istreambuf_iterator<char>());
-  EXPECT_EQ(text.find("<collision "), std::string::npos);
+  ctest_util::expect_no_sumo_collision(cfg.output.dir);
 }
 
-std::string config_error(const std::string& yaml)
-{
-  try {
-    parse_config(yaml, "t.yaml", RTLACAM_CONFIGS);
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using ctest_util::config_error;
 
 std::string run_error(const std::string& yaml)
 {

@@ -17,6 +17,7 @@
 
 #include "controller/commander.hpp"
 #include "controller/config.hpp"
+#include "controller_test_util.hpp"
 #include "controller/controller.hpp"
 #include "controller/sumo_error.hpp"
 #include "gridify/gridifier.hpp"
@@ -44,11 +45,7 @@ Config scenario(const std::string& yaml, const std::string& name)
   return c;
 }
 
-std::string slurp(const std::string& path)
-{
-  std::ifstream in(path);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
+using ctest_util::slurp;
 
 // A run that reached every goal exactly: no violation, no re-sync, no SUMO collision,
 // teleport or arrival (any of those stops the run with an error), a valid executed plan.
@@ -68,7 +65,7 @@ void expect_exact_solved_run(const Config& cfg, const Controller& c, const Metri
   EXPECT_EQ(j["solved"], true);
   EXPECT_EQ(j["ticks"], m.ticks);
   if (cfg.sumo.outputs.collision) {
-    EXPECT_EQ(slurp(cfg.output.dir + "/collision.xml").find("<collision "), std::string::npos);
+    ctest_util::expect_no_sumo_collision(cfg.output.dir);
   }
   if (cfg.sumo.outputs.summary) {
     // SUMO's own count: nobody arrived or teleported, all AGVs still running at the end.
