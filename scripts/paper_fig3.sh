@@ -114,12 +114,8 @@ for n in $AGENTS; do
     done
   done
 done
-TOTAL=$(wc -l <"$ALL")
-grep -o '"run_key":"[^"]*"' "$RESULTS" | sed 's/^"run_key":"//; s/"$//' | sort -u >"$OUT_DIR/.runs.done" || true
-awk -v donefile="$OUT_DIR/.runs.done" \
-  'BEGIN { while ((getline l < donefile) > 0) done[l] = 1 } !($1 in done)' "$ALL" >"$TODO"
-PENDING=$(wc -l <"$TODO")
-SKIPPED=$((TOTAL - PENDING))
+source "$(dirname "${BASH_SOURCE[0]}")/lib/resume.sh"
+pending_runs "$ALL" "$RESULTS" "$TODO"
 
 echo "fig3 sweep: $MAP, N [$AGENTS], scens [$SCENS], series [$SOLVERS], cutoff ${CUTOFF} ms, timeout ${TIMEOUT}s, seed $SEED"
 echo "fig3 sweep: $TOTAL runs, $SKIPPED already in $RESULTS, $PENDING to do with $JOBS parallel jobs"
