@@ -155,7 +155,7 @@ for m in $MAPS; do
     done
   done
 done
-source "$(dirname "${BASH_SOURCE[0]}")/lib/resume.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/sweep.sh"
 pending_runs "$ALL" "$RESULTS" "$TODO"
 
 echo "fig2 sweep: maps [$MAPS], scens 1..$SCENS, cutoffs [$CUTOFFS] ms, timeout ${TIMEOUT}s, swap=$SWAP, seed=$SEED"
@@ -164,7 +164,6 @@ if [[ $DRY == 1 ]]; then cut -d' ' -f2- "$TODO"; exit 0; fi
 
 # ---- one run ----------------------------------------------------------------------------
 COUNTER="$OUT_DIR/.counter"
-echo "$SKIPPED" >"$COUNTER"
 export BENCH DATA RESULTS ERRORS COUNTER TOTAL TIMEOUT MAX_STEPS PIBT_MAX_STEPS SEED SWAP
 
 run_one() {
@@ -190,22 +189,10 @@ run_one() {
   fi
   rm -f "$err"
   local done
-  done=$( { flock 9; d=$(( $(cat "$COUNTER") + 1 )); echo "$d" >"$COUNTER"; echo "$d"; } 9>>"$RESULTS.lock" )
+  done=$(count_done)
   printf '[%d/%d] %-24s N=%-4s scen=%-2s %-7s cutoff=%-5s %s\n' "$done" "$TOTAL" "$m" "$n" "$k" "$s" "$c" "$msg"
 }
-export -f run_one
-
-START=$(date +%s)
-if [[ $PENDING -gt 0 ]]; then
-  # longest-first would balance better, but interleaving keeps partial results spread evenly
-  xargs -P "$JOBS" -L 1 bash -c 'run_one "$@"' _ <"$TODO"
-fi
-END=$(date +%s)
-rm -f "$COUNTER" "$ALL" "$TODO" "$OUT_DIR/.runs.done" "$RESULTS.lock"
-echo "fig2 sweep: done in $((END - START)) s; results in $RESULTS"
-if [[ -s "$ERRORS" ]]; then
-  echo "fig2 sweep: WARNING: $(wc -l <"$ERRORS") crashed runs logged in $ERRORS (rerun the script to retry them)"
-fi
+run_pending fig2 "$ALL" "$TODO" "$JOBS"
 
 if [[ $PLOT == 1 ]]; then
   "${PYTHON:-/usr/bin/python3}" "$ROOT/scripts/plot_fig2.py" "$RESULTS" \

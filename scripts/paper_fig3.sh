@@ -114,7 +114,7 @@ for n in $AGENTS; do
     done
   done
 done
-source "$(dirname "${BASH_SOURCE[0]}")/lib/resume.sh"
+source "$(dirname "${BASH_SOURCE[0]}")/lib/sweep.sh"
 pending_runs "$ALL" "$RESULTS" "$TODO"
 
 echo "fig3 sweep: $MAP, N [$AGENTS], scens [$SCENS], series [$SOLVERS], cutoff ${CUTOFF} ms, timeout ${TIMEOUT}s, seed $SEED"
@@ -122,7 +122,6 @@ echo "fig3 sweep: $TOTAL runs, $SKIPPED already in $RESULTS, $PENDING to do with
 if [[ $DRY == 1 ]]; then cut -d' ' -f2- "$TODO"; exit 0; fi
 
 COUNTER="$OUT_DIR/.counter"
-echo "$SKIPPED" >"$COUNTER"
 export BENCH DATA MAP POLICY RESULTS ERRORS COUNTER TOTAL CUTOFF TIMEOUT MAX_STEPS PIBT_MAX_STEPS SEED
 
 run_one() {
@@ -148,21 +147,10 @@ run_one() {
   fi
   rm -f "$err"
   local done
-  done=$( { flock 9; d=$(( $(cat "$COUNTER") + 1 )); echo "$d" >"$COUNTER"; echo "$d"; } 9>>"$RESULTS.lock" )
+  done=$(count_done)
   printf '[%d/%d] N=%-4s scen=%-2s %-15s %s\n' "$done" "$TOTAL" "$n" "$k" "$series" "$msg"
 }
-export -f run_one
-
-START=$(date +%s)
-if [[ $PENDING -gt 0 ]]; then
-  xargs -P "$JOBS" -L 1 bash -c 'run_one "$@"' _ <"$TODO"
-fi
-END=$(date +%s)
-rm -f "$COUNTER" "$ALL" "$TODO" "$OUT_DIR/.runs.done" "$RESULTS.lock"
-echo "fig3 sweep: done in $((END - START)) s; results in $RESULTS"
-if [[ -s "$ERRORS" ]]; then
-  echo "fig3 sweep: WARNING: $(wc -l <"$ERRORS") crashed runs logged in $ERRORS (rerun the script to retry them)"
-fi
+run_pending fig3 "$ALL" "$TODO" "$JOBS"
 
 if [[ $PLOT == 1 ]]; then
   "${PYTHON:-/usr/bin/python3}" "$ROOT/scripts/plot_fig3.py" "$RESULTS" \
