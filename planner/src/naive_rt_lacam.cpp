@@ -1,5 +1,7 @@
 #include "planner/naive_rt_lacam.hpp"
 
+#include <algorithm>
+
 namespace planner {
 
 NaiveRtLacam::NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
@@ -25,7 +27,7 @@ Status NaiveRtLacam::search(const Budget& b)
     fresh_ = true;
   }
   const Status s = lacam_.search(b);
-  if (s == Status::Solved) solution_ = lacam_.path(lacam_.goal_node());
+  if (s == Status::Solved) solution_ = lacam_.path(lacam_.goal_node()), at_ = 0;
   return s;
 }
 
@@ -38,7 +40,7 @@ const HNode* NaiveRtLacam::planned() const
 
 const Config& NaiveRtLacam::next()
 {
-  if (!solution_.empty()) return next_ = solution_.size() >= 2 ? solution_[1] : solution_[0];
+  if (!solution_.empty()) return next_ = solution_[std::min(at_ + 1, solution_.size() - 1)];
   const HNode* h = planned();
   if (h) next_.assign(h->C, h->C + lacam_.num_agents());
   else next_ = current_;
@@ -50,7 +52,7 @@ void NaiveRtLacam::commit()
   next();
   current_ = next_;
   fresh_ = false;
-  if (solution_.size() >= 2) solution_.erase(solution_.begin());
+  if (at_ + 1 < solution_.size()) ++at_;  // index, not erase: O(1) per step
 }
 
 bool NaiveRtLacam::at_goal() const

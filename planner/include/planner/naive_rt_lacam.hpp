@@ -37,7 +37,8 @@ class NaiveRtLacam : public RealtimePlanner {
   Config current_, goals_, next_;
   GoalTest test_;
   bool fresh_ = false;  // lacam_ is rooted at current_ and may be continued
-  std::vector<Config> solution_;  // a found path, current first, once some search solved
+  std::vector<Config> solution_;  // a found path, once some search solved
+  size_t at_ = 0;                 // solution_[at_] is the current configuration
 };
 
 }  // namespace planner
