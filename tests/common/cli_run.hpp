@@ -10,6 +10,8 @@
 #include <sstream>
 #include <string>
 
+#include "temp_path.hpp"
+
 namespace test {
 
 struct CliResult {
@@ -19,7 +21,7 @@ struct CliResult {
 
 inline CliResult run_cli(const std::string& bin, const std::string& args)
 {
-  const std::string err_file = testing::TempDir() + "cli_stderr.txt";
+  const std::string err_file = temp_path("cli_stderr.txt");
   const std::string cmd = bin + " " + args + " 2>" + err_file;
   CliResult r;
   FILE* p = popen(cmd.c_str(), "r");

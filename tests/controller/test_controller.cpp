@@ -15,19 +15,14 @@
 #include "controller/sumo_options.hpp"
 #include "gridify/gridifier.hpp"
 #include "planner/validator.hpp"
+#include "temp_path.hpp"
 
 using namespace controller;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string temp_dir(const std::string& name)
-{
-  fs::path d = fs::temp_directory_path() / ("rtlacam_ctl_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
+std::string temp_dir(const std::string& name) { return test::temp_dir("ctl_" + name); }
 
 Config small_config(const std::string& name)
 {

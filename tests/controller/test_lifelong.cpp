@@ -14,19 +14,14 @@
 #include "controller/lifelong.hpp"
 #include "planner/validator.hpp"
 #include "tasks/task_builder.hpp"
+#include "temp_path.hpp"
 
 using namespace controller;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string temp_dir(const std::string& name)
-{
-  fs::path d = fs::temp_directory_path() / ("rtlacam_ll_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
+std::string temp_dir(const std::string& name) { return test::temp_dir("ll_" + name); }
 
 Config lifelong_config(const std::string& name, long long ticks)
 {

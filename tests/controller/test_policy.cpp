@@ -8,6 +8,7 @@
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
 #include "planner/validator.hpp"
+#include "temp_path.hpp"
 
 using namespace controller;
 namespace fs = std::filesystem;
@@ -16,13 +17,7 @@ namespace {
 
 const std::string kModel = std::string(RTLACAM_POLICY_MODELS) + "/random-32-32-20.bin";
 
-std::string temp_dir(const std::string& name)
-{
-  fs::path d = fs::temp_directory_path() / ("rtlacam_pol_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
+std::string temp_dir(const std::string& name) { return test::temp_dir("pol_" + name); }
 
 Config small_config(const std::string& name, const std::string& solver)
 {

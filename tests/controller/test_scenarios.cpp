@@ -23,19 +23,14 @@
 #include "gridify/gridifier.hpp"
 #include "controller/sumo_options.hpp"
 #include "planner/validator.hpp"
+#include "temp_path.hpp"
 
 using namespace controller;
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string temp_dir(const std::string& name)
-{
-  fs::path d = fs::temp_directory_path() / ("rtlacam_scn_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
+std::string temp_dir(const std::string& name) { return test::temp_dir("scn_" + name); }
 
 Config scenario(const std::string& yaml, const std::string& name)
 {

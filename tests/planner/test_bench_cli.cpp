@@ -21,12 +21,7 @@ const std::string kDir = RTLACAM_TEST_DATA "/planner/";
 const std::string kMap = kDir + "random-32-32-20.map";
 const std::string kScen = kDir + "random-32-32-20-random-1.scen";
 
-std::string tmp(const std::string& name, const std::string& text)
-{
-  std::string path = testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
+std::string tmp(const std::string& name, const std::string& text) { return test::temp_file(name, text); }
 
 }  // namespace
 
@@ -44,7 +39,7 @@ TEST(BenchCli, RunsEverySolverAndPrintsJson)
 
 TEST(BenchCli, WritesThePlanInLacamFormat)
 {
-  std::string out = testing::TempDir() + "plan.txt";
+  std::string out = test::temp_path("plan.txt");
   Result r = run("--map " + kMap + " --scen " + kScen + " -N 20 --solver rtlacam --budget-expansions 1 --out " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream f(out);

@@ -7,6 +7,7 @@
 
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
+#include "temp_path.hpp"
 
 using namespace planner;
 
@@ -14,9 +15,7 @@ namespace {
 
 std::string write_tmp(const std::string& name, const std::string& text)
 {
-  std::string path = testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
+  return test::temp_file(name, text);
 }
 
 const char* kMap = "type octile\nheight 3\nwidth 4\nmap\n....\n.@@.\n....\n";

@@ -54,7 +54,7 @@ TEST(PolicyCli, BenchBadPolicyInput)
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rtlacam-bench: --solver cspibt needs --policy WEIGHTS\n");
 
-  const std::string bad = testing::TempDir() + "policy_cli_bad.bin";
+  const std::string bad = test::temp_path("policy_cli_bad.bin");
   std::ofstream(bad) << "RTLPOLCY\x01";
   r = run(RTLACAM_BENCH_BIN, kInstance + " -N 5 --solver rtlacam --policy " + bad);
   EXPECT_EQ(r.code, 2);
@@ -68,7 +68,7 @@ TEST(PolicyCli, BenchBadPolicyInput)
 
 TEST(PolicyCli, DumpWritesOneRecordPerAgentAndStep)
 {
-  const std::string out = testing::TempDir() + "policy_cli_dump.bin";
+  const std::string out = test::temp_path("policy_cli_dump.bin");
   const Result r = run(RTLACAM_POLICY_BIN, "dump " + kInstance + " -N 10 20 --radius 2 --out " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   // Header: magic, version, radius, channels, features, 4 scales, count; then the records.

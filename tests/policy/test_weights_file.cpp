@@ -12,6 +12,7 @@
 #include "planner/error.hpp"
 #include "policy/actions.hpp"
 #include "policy/weights_file.hpp"
+#include "temp_path.hpp"
 
 using namespace policy;
 
@@ -19,7 +20,7 @@ namespace {
 
 std::string temp_path(const std::string& name)
 {
-  return testing::TempDir() + "policy_" + name;
+  return test::temp_path("policy_" + name);
 }
 
 Model tiny_model()

@@ -12,6 +12,7 @@
 
 #include "planner/graph.hpp"
 #include "tasks/lorr_files.hpp"
+#include "temp_path.hpp"
 
 namespace ttest {
 
@@ -48,10 +49,7 @@ inline std::shared_ptr<const tasks::TaskFile> task_file(const planner::Graph& g,
 // A file under the test's temporary directory with the given text.
 inline std::string temp_file(const std::string& name, const std::string& text)
 {
-  const std::string dir = testing::TempDir();
-  const std::string path = dir + (dir.empty() || dir.back() == '/' ? "" : "/") + name;
-  std::ofstream(path) << text;
-  return path;
+  return test::temp_file(name, text);
 }
 
 }  // namespace ttest

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "tasks_test_util.hpp"
+#include "temp_path.hpp"
 
 namespace {
 
@@ -19,8 +20,7 @@ struct CliRun {
 
 CliRun run_cli(const std::string& args)
 {
-  const std::string dir = testing::TempDir();
-  const std::string o = dir + "/cli.out", e = dir + "/cli.err";
+  const std::string o = test::temp_path("cli.out"), e = test::temp_path("cli.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " " + args + " >" + o + " 2>" + e).c_str());
   auto slurp = [](const std::string& f) {
     std::ifstream in(f);
@@ -35,7 +35,7 @@ CliRun run_cli(const std::string& args)
 
 TEST(LifelongCli, RoundRobinLogHasTheLorrFields)
 {
-  const std::string log = testing::TempDir() + "/rr.json";
+  const std::string log = test::temp_path("rr.json");
   const CliRun r = run_cli("--problem " + ttest::kData + "/2023/random.domain/MR23-I-04.json --steps 100 --solver rtlacam "
                     "--budget-ms 20 --budget-expansions 100 --seed 3 --quiet --out " + log);
   ASSERT_EQ(r.code, 0) << r.err;
