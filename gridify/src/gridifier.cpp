@@ -26,10 +26,13 @@ std::string num(double d)
 // Step 3: number of cell steps along each aisle.
 void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOptions& opt, std::vector<std::string>& warnings)
 {
-  int snapped = 0, off_distance = 0;
-  std::string off_example;
+  int snapped = 0, off_distance = 0, multi_lane = 0;
+  std::string off_example, multi_example;
   for (Aisle& a : aisles) {
     const NetEdge& e = *net.edge(a.ab);
+    // AGVs drive lane 0 only (one AGV per cell); wider edges are accepted but said so.
+    for (const NetEdge* d : {&e, net.edge(a.ba)})
+      if (d->lanes.size() > 1 && multi_lane++ == 0) multi_example = d->id + " (" + std::to_string(d->lanes.size()) + " lanes)";
     if (std::fabs(a.length_ab - a.length_ba) > opt.tolerance)
       throw planner::input_error(net.path, e.line,
                                  "edges '" + a.ab + "' and '" + a.ba + "' of one aisle differ in length (" + num(a.length_ab) +
@@ -60,6 +63,9 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
   if (snapped)
     warnings.push_back("snapped " + std::to_string(snapped) + " aisle(s) whose length is not a multiple of cell_length " +
                        num(opt.cell_length));
+  if (multi_lane)
+    warnings.push_back(std::to_string(multi_lane) + " edge(s) with more than one lane, e.g. " + multi_example +
+                       "; AGVs use lane 0 and connections between lanes 0 only");
   if (off_distance)
     warnings.push_back(std::to_string(off_distance) + " aisle(s) whose lane length differs from the junction distance, e.g. " +
                        off_example + "; cells are displayed between junction centres");

@@ -29,13 +29,13 @@ inline bool have_netgenerate() { return std::string(RTLACAM_NETGENERATE).size() 
 
 // netgenerate grid of nx x ny nodes, `length` metres apart, with the options of
 // /work/shared/notes/sumo-1.15.md (no internal links, radius 0, turnarounds everywhere).
-inline std::string netgenerate_grid(const std::string& dir, int nx, int ny, double length)
+inline std::string netgenerate_grid(const std::string& dir, int nx, int ny, double length, int lanes = 1)
 {
   setenv("SUMO_HOME", "/usr/share/sumo", 0);
   std::string out = dir + "/grid" + std::to_string(nx) + "x" + std::to_string(ny) + ".net.xml";
   std::string cmd = std::string(RTLACAM_NETGENERATE) + " --grid --grid.x-number " + std::to_string(nx) +
                     " --grid.y-number " + std::to_string(ny) + " --grid.length " + std::to_string(length) +
-                    " --default.lanenumber 1 --default.lanewidth 1.0 --default.speed 1.0"
+                    " --default.lanenumber " + std::to_string(lanes) + " --default.lanewidth 1.0 --default.speed 1.0"
                     " --default-junction-type unregulated --no-internal-links"
                     " --default.junctions.radius 0 --junctions.corner-detail 0 --no-turnarounds.geometry false"
                     " -o '" + out + "' > '" + dir + "/netgenerate.log' 2>&1";

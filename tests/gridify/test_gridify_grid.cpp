@@ -115,6 +115,21 @@ TEST(GridifyGrid, Grid21Speed)
   EXPECT_LT(ms, 1000.0);
 }
 
+// Multi-lane edges: AGVs use lane 0; the gridifier says so instead of staying silent.
+TEST(GridifyGrid, MultiLaneEdgesAreNamedInAWarning)
+{
+  if (!have_netgenerate()) GTEST_SKIP() << "netgenerate not installed";
+  std::string net = netgenerate_grid(temp_dir(), 3, 3, 2, 2);
+  CellMap m = gridify::gridify(net);
+  bool named = false;
+  for (const std::string& w : m.warnings) named |= w.find("24 edge(s) with more than one lane, e.g.") != std::string::npos &&
+                                                   w.find("(2 lanes); AGVs use lane 0") != std::string::npos;
+  EXPECT_TRUE(named) << (m.warnings.empty() ? "no warnings" : m.warnings.front());
+  for (const Cell& c : m.cells)
+    for (const auto& p : c.poses) EXPECT_EQ(p.lane.substr(p.lane.size() - 2), "_0") << p.lane;
+  expect_invariants(m, gridify::NetFile::read(net));
+}
+
 // The exported MovingAI map loads with the planner's reader into the same graph shape.
 TEST(GridifyGrid, MovingAiRoundTrip)
 {
