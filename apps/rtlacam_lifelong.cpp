@@ -22,7 +22,7 @@ int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file;
-  bool reset_priorities = false;
+  bool reset_priorities = false, reassign = true;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -36,6 +36,9 @@ int main(int argc, char** argv)
   app.add_option("--assigner", assigner, "pool mode: greedy | hungarian")
       ->check(CLI::IsMember({"greedy", "hungarian"}))
       ->capture_default_str();
+  app.add_flag("--reassign,!--no-reassign", reassign,
+               "pool mode: at every step with a completion, match the tasks not yet opened again (default; "
+               "--no-reassign keeps every assignment until the task is done)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");
@@ -65,7 +68,7 @@ int main(int argc, char** argv)
 
     std::unique_ptr<TaskManager> tm;
     if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
-    else tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner, k_nearest));
+    else tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner, k_nearest), reassign);
 
     // The policy is told the goals by the planner (ActionPreference::set_goals).
     policy::Model model;
@@ -102,6 +105,7 @@ int main(int argc, char** argv)
     nlohmann::json j = lifelong_log(info, r);
     if (pref) j["policy"] = policy_file;
     j["keepPriorities"] = !reset_priorities;
+    add_task_fields(j, *tm);
     if (!out_file.empty()) {
       std::ofstream out(out_file);
       if (!out) throw planner::input_error(out_file, 0, "cannot write file");

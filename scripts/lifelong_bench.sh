@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Lifelong benchmark (issue 5 closing note): LoRR random-32-32-20 instances, 2023 round
 # robin and 2024 pool (greedy; hungarian at 100 ms), solvers pibt / naive / rtlacam at
-# 1, 10, 100 ms per step; warehouse_large with the first 1,000 / 2,000 agents.
+# 1, 10, 100 ms per step, pool runs with and without task reassignment; warehouse_large with the first 1,000 / 2,000 agents.
 # Logs, tables and PNGs go to out/lifelong/ (OUT=...). Run from the repository root after
 #   cmake -S . -B build-tasks -DCMAKE_BUILD_TYPE=Release && cmake --build build-tasks -j2
 set -euo pipefail
@@ -23,6 +23,16 @@ $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-greedy" --budget
 $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian" --budget-ms 100 --assigner hungarian \
   --title "LoRR 2024 random-32-32-20, pool/hungarian" \
   --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
+# Baseline in the same run: assignments kept until the task is done (--no-reassign).
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-greedy-keep" --budget-ms $BUDGETS --assigner greedy --no-reassign \
+  --title "LoRR 2024 random-32-32-20, pool/greedy, no reassignment" \
+  --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian-keep" --budget-ms 100 --assigner hungarian --no-reassign \
+  --title "LoRR 2024 random-32-32-20, pool/hungarian, no reassignment" \
+  --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
+for a in greedy hungarian; do
+  $PY scripts/compare_reassign.py "$OUT/2024-$a/results.json" "$OUT/2024-$a-keep/results.json" | tee "$OUT/2024-$a-reassign.md"
+done
 $PY scripts/plot_lifelong.py -o "$OUT/MR23-I-05_completions.png" "$OUT"/2023/MR23-I-05_{pibt,naive,rtlacam}_100ms.json
 
 if [ "$SKIP_WAREHOUSE" != 1 ]; then

@@ -234,11 +234,11 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node t = root["tasks"];
   r.keys(t, "tasks", {"mode", "goals", "seed", "pickups", "drops", "random", "list", "assignment", "assigner",
-                      "pool_size", "k_nearest", "log"});
+                      "pool_size", "k_nearest", "reassign", "log"});
   r.choice(t, "tasks", "mode", c.tasks.mode, {"one_shot", "lifelong"});
   r.get(t, "tasks", "seed", c.tasks.seed, "a non-negative integer");
   if (!c.tasks.lifelong()) {
-    for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "log"})
+    for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "reassign", "log"})
       if (t && t.IsMap() && t[k]) r.fail(std::string("tasks.") + k, "only with tasks.mode: lifelong");
     r.cells(t, "tasks", "goals", c.tasks.random_goals, c.tasks.goals);
     if (!c.tasks.random_goals && static_cast<int>(c.tasks.goals.size()) != c.fleet.count)
@@ -270,11 +270,12 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     }
     r.choice(t, "tasks", "assignment", c.tasks.assignment, {"roundrobin", "pool"});
     if (c.tasks.assignment != "pool")
-      for (const char* k : {"assigner", "pool_size", "k_nearest"})
+      for (const char* k : {"assigner", "pool_size", "k_nearest", "reassign"})
         if (t[k]) r.fail(std::string("tasks.") + k, "only with tasks.assignment: pool");
     r.choice(t, "tasks", "assigner", c.tasks.assigner, {"greedy", "hungarian"});
     r.integer(t, "tasks", "pool_size", c.tasks.pool_size, 0, 10000000);
     r.integer(t, "tasks", "k_nearest", c.tasks.k_nearest, 1, 1000000);
+    r.flag(t, "tasks", "reassign", c.tasks.reassign);
     r.text(t, "tasks", "log", c.tasks.log);
     if (c.tasks.log.empty() || c.tasks.log.find('/') != std::string::npos)
       r.fail("tasks.log", "expected a file name (written in output.dir), got '" + c.tasks.log + "'");

@@ -313,6 +313,7 @@ Metrics Controller::run()
     info.budget_ms = cfg_.planner.budget_ms;
     info.seed = cfg_.tasks.seed;
     nlohmann::json j = tasks::lifelong_log(info, life);
+    if (tm) tasks::add_task_fields(j, *tm);
     j["tickS"] = cfg_.run.tick_s;
     j["backend"] = m.backend;
     j["expansionsPerSumoStep"] = cfg_.planner.expansions;

@@ -55,7 +55,7 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
   const TasksSection& t = cfg.tasks;
   if (t.assignment == "roundrobin") return std::make_unique<tasks::RoundRobin>(std::move(file));
   const int pool = t.pool_size > 0 ? t.pool_size : static_cast<int>(std::ceil(1.5 * cfg.fleet.count));
-  return std::make_unique<tasks::TaskPool>(std::move(file), map.graph, pool, tasks::make_assigner(t.assigner, t.k_nearest));
+  return std::make_unique<tasks::TaskPool>(std::move(file), map.graph, pool, tasks::make_assigner(t.assigner, t.k_nearest), t.reassign);
 }
 
 }  // namespace controller

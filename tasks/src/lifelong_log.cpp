@@ -1,5 +1,7 @@
 #include "tasks/lifelong_log.hpp"
 
+#include "tasks/task_pool.hpp"
+
 namespace tasks {
 
 nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
@@ -32,6 +34,14 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   for (const Event& e : r.events) ev.push_back({e.t, e.agent, e.task, e.errand});
   j["events"] = std::move(ev);
   return j;
+}
+
+void add_task_fields(nlohmann::json& j, const TaskManager& tasks)
+{
+  if (const auto* pool = dynamic_cast<const TaskPool*>(&tasks)) {
+    j["reassign"] = pool->reassigns();
+    j["numReassignments"] = pool->reassignments();
+  }
 }
 
 }  // namespace tasks

@@ -72,6 +72,15 @@ void TaskManager::give(int agent, int s)
   ++tasks_assigned_;
 }
 
+void TaskManager::release(int agent)
+{
+  const int s = holding_[agent];
+  if (s < 0) return;
+  slots_[s].agent = -1;
+  holding_[agent] = -1;
+  --tasks_assigned_;  // counts tasks handed out for good, not matching rounds
+}
+
 void TaskManager::drop(int s)
 {
   slots_[s] = Task{};

@@ -3,8 +3,8 @@
 namespace tasks {
 
 TaskPool::TaskPool(std::shared_ptr<const TaskFile> file, const planner::Graph& g, int pool_size,
-                   std::unique_ptr<TaskAssigner> assigner)
-    : TaskManager(std::move(file)), dist_(g), pool_size_(pool_size), assigner_(std::move(assigner))
+                   std::unique_ptr<TaskAssigner> assigner, bool reassign)
+    : TaskManager(std::move(file)), dist_(g), pool_size_(pool_size), assigner_(std::move(assigner)), reassign_(reassign)
 {
   chain_by_line_.assign(file_->size(), -1);
 }
@@ -37,7 +37,17 @@ void TaskPool::on_finished(int, const Task&)
 
 void TaskPool::after_step(const planner::Config& positions)
 {
+  if (!reassign_) return assign_free(positions);
+  std::vector<int> before(num_agents(), -1);  // task id each agent held unopened
+  for (int a = 0; a < num_agents(); ++a) {
+    const int s = holding_[a];
+    if (s < 0 || slot(s).next > 0) continue;
+    before[a] = static_cast<int>(slot(s).id);
+    release(a);
+  }
   assign_free(positions);
+  for (int a = 0; a < num_agents(); ++a)
+    if (before[a] >= 0 && (holding_[a] < 0 || slot(holding_[a]).id != before[a])) ++reassignments_;
 }
 
 void TaskPool::assign_free(const planner::Config& positions)

@@ -154,7 +154,10 @@ TEST(ControllerLifelong, HungarianPoolRuns)
   const Metrics m = c.run();
   expect_clean_lifelong_run(cfg, c, m);
   EXPECT_GE(m.errands_finished, 5);
-  EXPECT_EQ(read_json(cfg.output.dir + "/lifelong.json")["assigner"], "hungarian");
+  const nlohmann::json j = read_json(cfg.output.dir + "/lifelong.json");
+  EXPECT_EQ(j["assigner"], "hungarian");
+  EXPECT_EQ(j["reassign"], true);  // the default
+  EXPECT_TRUE(j["numReassignments"].is_number_integer());
 }
 
 TEST(ControllerLifelong, TaskFileBuilders)
@@ -210,6 +213,8 @@ TEST(ControllerLifelong, ConfigErrorsNameTheKeyPath)
       {kNet + ll + "  assignment: pool\n  pool_size: -1\n", "t.yaml: tasks.pool_size: must be in 0.."},
       {kNet + ll + "  assignment: pool\n  pool_size: many\n", "t.yaml: tasks.pool_size: expected an integer, got 'many'"},
       {kNet + ll + "  assignment: pool\n  k_nearest: 0\n", "t.yaml: tasks.k_nearest: must be in 1.."},
+      {kNet + ll + "  reassign: false\n", "t.yaml: tasks.reassign: only with tasks.assignment: pool"},
+      {kNet + ll + "  assignment: pool\n  reassign: often\n", "t.yaml: tasks.reassign: expected true or false, got 'often'"},
       {kNet + ll + "  random: {count: 0}\n", "t.yaml: tasks.random.count: must be in 1.."},
       {kNet + ll + "  random: {errands: 0}\n", "t.yaml: tasks.random.errands: must be in 1..100"},
       {kNet + ll + "  random: {count: 5, seed: 2}\n", "t.yaml: tasks.random.seed: unknown key"},

@@ -128,6 +128,44 @@ TEST(TaskPool, HungarianBeatsGreedyOnTheClassicTrap)
   EXPECT_EQ(hung.goals(), (Config{5, 1}));
 }
 
+// Agent 1 holds a far task it has not opened when agent 0 finishes next to it and a task
+// appears next to agent 1: with `reassign` they swap, without it they must cross.
+TEST(TaskPool, ReassignMovesUnopenedTasksToTheNearerAgent)
+{
+  const auto& g = corridor();
+  auto file = ttest::task_file(g, {{{1, 0}}, {{0, 0}}, {{5, 0}}, {{3, 0}, {2, 0}}});
+  for (bool reassign : {false, true}) {
+    SCOPED_TRACE(reassign ? "reassign" : "keep");
+    TaskPool pool(file, g, 2, std::make_unique<GreedyAssigner>(), reassign);
+    pool.start({2, 5});
+    // Greedy, agent 0 first: from x=2, task 0 (x=1) costs 1, task 1 (x=0) 2 -> task 0; agent 1 -> task 1.
+    EXPECT_EQ(pool.goals(), (Config{1, 0}));
+    EXPECT_EQ(pool.update(1, {1, 4}), (std::vector<Event>{{1, 0, 0, 0}}));  // task 0 done; task 2 (x=5) revealed
+    if (!reassign) {
+      EXPECT_EQ(pool.goals(), (Config{5, 0}));  // agent 0 takes the only free task
+      EXPECT_EQ(pool.reassignments(), 0);
+      continue;
+    }
+    // Task 1 is unopened: it is matched again. Agent 0 from x=1: task 1 costs 1, task 2 4 -> task 1.
+    EXPECT_EQ(pool.goals(), (Config{0, 5}));
+    EXPECT_EQ(pool.task_of(0)->id, 1);
+    EXPECT_EQ(pool.task_of(1)->id, 2);
+    EXPECT_EQ(pool.reassignments(), 1);
+    // Agent 1 opens task 2 (one errand: done; reveals task 3 = line 3 at x=3, x=2) while agent 0
+    // still walks to task 1: agent 0 keeps it (cheapest) and agent 1 takes task 3.
+    EXPECT_EQ(pool.update(2, {1, 5}), (std::vector<Event>{{2, 1, 2, 0}}));
+    EXPECT_EQ(pool.task_of(0)->id, 1);
+    EXPECT_EQ(pool.task_of(1)->id, 3);
+    EXPECT_EQ(pool.reassignments(), 1);
+    // Agent 1 opens task 3 at x=3; agent 0 finishes task 1 in the same step and must not take task 3.
+    EXPECT_EQ(pool.update(3, {0, 3}), (std::vector<Event>{{3, 0, 1, 0}, {3, 1, 3, 0}}));
+    EXPECT_EQ(pool.task_of(1)->id, 3);
+    EXPECT_TRUE(pool.task_of(1)->opened());
+    EXPECT_EQ(pool.task_of(0)->id, 4);  // line 0 again, revealed when task 1 finished
+    EXPECT_EQ(pool.goals(), (Config{1, 2}));
+  }
+}
+
 TEST(TaskPool, IdleAgentsWaitWhenTasksRunOut)
 {
   const auto& g = corridor();

@@ -17,4 +17,8 @@ struct RunInfo {          // what was run, for the log
 
 nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r);
 
+// Pool mode: `reassign` (unopened tasks matched again) and `numReassignments` (times a task
+// changed agent). Nothing for other modes.
+void add_task_fields(nlohmann::json& j, const TaskManager& tasks);
+
 }  // namespace tasks

@@ -55,6 +55,7 @@ class TaskManager {
   // Task storage: slots hold live tasks; holding_[agent] indexes a slot or is -1.
   int add_task(Task t);                // returns its slot
   void give(int agent, int slot);      // assign an unassigned task
+  void release(int agent);             // take back an agent's task (it stays live, unassigned)
   Task& slot(int s) { return slots_[s]; }
   const Task& slot(int s) const { return slots_[s]; }
   void drop(int s);                    // remove a finished task
