@@ -2,7 +2,10 @@
 """Pool-mode task reassignment vs keeping every assignment, from two lifelong_sweep.py
 result files of the same problems, solvers and budgets (measured in the same bench run).
 
-  compare_reassign.py out/lifelong/2024-greedy/results.json out/lifelong/2024-greedy-keep/results.json
+  compare_reassign.py NEW.json BASE.json [--png out.png]
+
+e.g. out/lifelong/2024-greedy/results.json out/lifelong/2024-greedy-keep/results.json. The PNG
+shows throughput vs agents per solver at the largest budget, with and without reassignment.
 """
 import json
 import sys
@@ -13,8 +16,15 @@ def key(j):
 
 
 def main():
-    if len(sys.argv) != 3:
+    argv = sys.argv[1:]
+    png = None
+    if "--png" in argv:
+        i = argv.index("--png")
+        png = argv[i + 1]
+        del argv[i:i + 2]
+    if len(argv) != 2:
         sys.exit(__doc__)
+    sys.argv[1:] = argv
     with open(sys.argv[1]) as f:
         new = {key(j): j for j in json.load(f)}
     with open(sys.argv[2]) as f:
@@ -34,6 +44,36 @@ def main():
         ratios.sort()
         print(f"\nratio reassign/keep over {len(ratios)} runs: min {ratios[0]:.2f}, median {ratios[len(ratios) // 2]:.2f}, "
               f"max {ratios[-1]:.2f}")
+
+    if png:
+        plot(new, base, png)
+
+
+def plot(new, base, png):
+    try:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib missing: no PNG (use ${PYTHON:-/usr/bin/python3})", file=sys.stderr)
+        return
+    budget = max(k[3] for k in new)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    colors = {"pibt": "tab:green", "naive": "tab:brown", "rtlacam": "tab:olive"}
+    assigner = next(iter(new))[1]
+    for solver in ["pibt", "naive", "rtlacam"]:
+        for data, style, label in [(new, "-", "reassign"), (base, ":", "keep")]:
+            pts = sorted((j["teamSize"], j["throughput"]) for k, j in data.items() if k[2] == solver and k[3] == budget)
+            if pts:
+                ax.plot(*zip(*pts), style, marker="o", color=colors[solver], label=f"{solver} {label}")
+    ax.set_xlabel("agents")
+    ax.set_ylabel("tasks finished per step")
+    ax.set_title(f"LoRR 2024 random-32-32-20, pool/{assigner}, {budget:g} ms: reassignment vs keep")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    print(f"wrote {png}", file=sys.stderr)
 
 
 if __name__ == "__main__":

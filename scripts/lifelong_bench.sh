@@ -31,7 +31,7 @@ $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian-keep" 
   --title "LoRR 2024 random-32-32-20, pool/hungarian, no reassignment" \
   --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
 for a in greedy hungarian; do
-  $PY scripts/compare_reassign.py "$OUT/2024-$a/results.json" "$OUT/2024-$a-keep/results.json" | tee "$OUT/2024-$a-reassign.md"
+  $PY scripts/compare_reassign.py "$OUT/2024-$a/results.json" "$OUT/2024-$a-keep/results.json" --png "$OUT/2024-$a-reassign.png" | tee "$OUT/2024-$a-reassign.md"
 done
 $PY scripts/plot_lifelong.py -o "$OUT/MR23-I-05_completions.png" "$OUT"/2023/MR23-I-05_{pibt,naive,rtlacam}_100ms.json
 
