@@ -3,6 +3,8 @@
 // and throughput that does not stay at zero where PIBT livelocks.
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "planner/movingai.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/lifelong_runner.hpp"
@@ -134,16 +136,28 @@ TEST_P(LorrRuns, RoundRobin2023ValidatorClean)
 TEST_P(LorrRuns, Pool2024ValidatorClean)
 {
   Lorr L("/2024/random.domain/RANDOM-01.json");
-  for (const std::string assigner : {"greedy", "hungarian"}) {
-    TaskPool pool(L.file, L.g, L.p.pool_size(), make_assigner(assigner));
-    LifelongOptions opt;
-    opt.steps = 200;
-    opt.budget = planner::Budget{50.0, 100};
-    const LifelongResult r = run_lifelong(L.g, L.starts, pool, GetParam(), 0, opt);
-    EXPECT_EQ(r.planner_errors, 0) << assigner << ": " << r.first_error;
-    EXPECT_GT(r.tasks_finished, 50) << assigner;
-    EXPECT_GT(r.errands_finished, r.tasks_finished) << assigner;  // 2..5 errands per task
-  }
+  for (const std::string assigner : {"greedy", "hungarian"})
+    for (bool reassign : {false, true}) {
+      SCOPED_TRACE(assigner + (reassign ? " reassign" : " keep"));
+      TaskPool pool(L.file, L.g, L.p.pool_size(), make_assigner(assigner), reassign);
+      LifelongOptions opt;
+      opt.steps = 200;
+      opt.budget = planner::Budget{50.0, 100};
+      const LifelongResult r = run_lifelong(L.g, L.starts, pool, GetParam(), 0, opt);
+      EXPECT_EQ(r.planner_errors, 0) << r.first_error;
+      EXPECT_GT(r.tasks_finished, 50);
+      EXPECT_GT(r.errands_finished, r.tasks_finished);  // 2..5 errands per task
+      EXPECT_EQ(pool.reassignments() > 0, reassign);
+      // An opened task never changes agent: all errands of a task, in order, by one agent.
+      std::map<long, std::pair<int, int>> by_task;  // task -> (agent, next errand)
+      for (const Event& e : r.events) {
+        auto [it, fresh] = by_task.emplace(e.task, std::make_pair(e.agent, 0));
+        EXPECT_EQ(it->second.first, e.agent) << "task " << e.task << " changed agent after it opened";
+        EXPECT_EQ(it->second.second, e.errand) << "task " << e.task;
+        it->second.second = e.errand + 1;
+        (void)fresh;
+      }
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Solvers, LorrRuns, ::testing::Values("pibt", "naive", "rtlacam"));
