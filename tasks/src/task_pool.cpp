@@ -7,6 +7,9 @@ TaskPool::TaskPool(std::shared_ptr<const TaskFile> file, const planner::Graph& g
     : TaskManager(std::move(file)), dist_(g), pool_size_(pool_size), assigner_(std::move(assigner)), reassign_(reassign)
 {
   chain_by_line_.assign(file_->size(), -1);
+  // Keep the tables of the tasks being matched plus a cache; drop the rest (chain lengths
+  // are computed once per file line and would otherwise keep a table per errand cell).
+  dist_.set_max_tables(static_cast<size_t>(pool_size_) + 256);
 }
 
 int TaskPool::chain_length(const Task& t)
@@ -59,6 +62,9 @@ void TaskPool::assign_free(const planner::Config& positions)
   for (int s : live_slots())
     if (slot(s).agent < 0) cols.push_back(s);
   if (cols.empty()) return;
+  planner::Config in_use;
+  for (int s : cols) in_use.push_back(slot(s).errands[slot(s).next]);
+  dist_.set_goals(in_use);  // marks their tables in use; evicts idle ones over the cap
   const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()),
                                                    [&](int i, int j) { return cost(positions[agents[i]], slot(cols[j])); });
   for (size_t i = 0; i < agents.size(); ++i)

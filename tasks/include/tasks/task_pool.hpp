@@ -37,7 +37,7 @@ class TaskPool : public TaskManager {
   void assign_free(const planner::Config& positions);
   int chain_length(const Task& t);
 
-  planner::DistTable dist_;  // per errand cell, lazily (true graph distances, cached)
+  planner::DistTable dist_;  // per errand cell, lazily (true graph distances, LRU-capped)
   int pool_size_;
   std::unique_ptr<TaskAssigner> assigner_;
   bool reassign_;
