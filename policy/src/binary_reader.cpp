@@ -12,11 +12,16 @@ BinaryReader::BinaryReader(const std::string& path) : path_(path), in_(path, std
   in_.seekg(0, std::ios::beg);
 }
 
-void BinaryReader::read(void* dst, uint64_t bytes, const std::string& what)
+void BinaryReader::need(uint64_t bytes, const std::string& what) const
 {
   if (bytes > size_ - offset_)
     throw error("truncated file: " + what + " needs " + std::to_string(bytes) + " bytes at offset " +
                 std::to_string(offset_) + ", only " + std::to_string(size_ - offset_) + " left");
+}
+
+void BinaryReader::read(void* dst, uint64_t bytes, const std::string& what)
+{
+  need(bytes, what);
   in_.read(static_cast<char*>(dst), static_cast<std::streamsize>(bytes));
   if (!in_) throw error("read error at offset " + std::to_string(offset_));
   offset_ += bytes;

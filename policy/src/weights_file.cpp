@@ -50,10 +50,13 @@ Model load_weights(const std::string& path)
                      (k == 0 ? " (4 channels x " + std::to_string(m.spec.window()) + "^2 window)" : " (previous layer's outputs)"));
     if (k + 1 == num_layers && out != kNumActions)
       throw in.error("last layer has " + std::to_string(out) + " outputs, expected " + std::to_string(kNumActions) + " action logits");
+    // Up to 65536 x 65536 floats (16 GiB): check the file holds them before allocating.
+    const uint64_t count = static_cast<uint64_t>(out) * inputs;
+    in.need(count * sizeof(float), name + " weights");
     Dense d;
     d.w.resize(out, inputs);
     d.b.resize(out);
-    read_floats(in, d.w.data(), static_cast<uint64_t>(out) * inputs, name + " weights");
+    read_floats(in, d.w.data(), count, name + " weights");
     read_floats(in, d.b.data(), out, name + " bias");
     m.layers.push_back(std::move(d));
     expected_in = out;

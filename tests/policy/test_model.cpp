@@ -6,6 +6,7 @@
 #include "policy/actions.hpp"
 #include "policy/golden_file.hpp"
 #include "policy/weights_file.hpp"
+#include "temp_path.hpp"
 
 using namespace policy;
 
@@ -72,5 +73,20 @@ TEST(GoldenFile, ErrorsNameTheFile)
     FAIL();
   } catch (const planner::InputError& e) {
     EXPECT_EQ(std::string(e.what()).rfind(p + ": not a policy golden file", 0), 0u) << e.what();
+  }
+}
+
+// A 24-byte header claiming 1e6 samples x 65536 inputs (262 GB) with no data behind it is
+// a truncated file, found before allocating (it used to escape as std::bad_alloc).
+TEST(GoldenFile, HugeClaimedShapeIsTruncationNotBadAlloc)
+{
+  std::string bytes(kGoldenMagic, 8);
+  for (uint32_t v : {kGoldenVersion, 1000000u, 65536u, 5u}) bytes.append(reinterpret_cast<const char*>(&v), 4);
+  const std::string p = test::temp_file("huge.golden", bytes);
+  try {
+    load_golden(p);
+    FAIL();
+  } catch (const planner::InputError& e) {
+    EXPECT_EQ(std::string(e.what()), p + ": truncated file: inputs needs 262144000000 bytes at offset 24, only 0 left");
   }
 }

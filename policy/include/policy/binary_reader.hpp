@@ -20,6 +20,9 @@ class BinaryReader {
 
   // Reads `bytes` bytes of field `what`; throws "truncated" naming it when the file ends.
   void read(void* dst, uint64_t bytes, const std::string& what);
+  // The same check without reading: call it before allocating a buffer whose size comes
+  // from the file, so a corrupt header is "truncated", not a multi-gigabyte allocation.
+  void need(uint64_t bytes, const std::string& what) const;
   uint32_t u32(const std::string& what);
   uint64_t u64(const std::string& what);
   void expect_magic(const char (&magic)[8], const std::string& kind);
