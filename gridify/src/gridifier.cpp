@@ -28,6 +28,7 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
 {
   int snapped = 0, off_distance = 0, multi_lane = 0;
   std::string off_example, multi_example;
+  long long cells = static_cast<long long>(net.junctions.size());
   for (Aisle& a : aisles) {
     const NetEdge& e = *net.edge(a.ab);
     // AGVs drive lane 0 only (one AGV per cell); wider edges are accepted but said so.
@@ -37,7 +38,14 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
       throw planner::input_error(net.path, e.line,
                                  "edges '" + a.ab + "' and '" + a.ba + "' of one aisle differ in length (" + num(a.length_ab) +
                                      " vs " + num(a.length_ba) + ")");
-    long n = std::lround(a.length_ab / opt.cell_length);
+    // Bound the step count before rounding it: a 3e9 m lane overflowed `int` steps (out of
+    // bounds writes), a 1e9 m one allocated a billion cells.
+    const double q = a.length_ab / opt.cell_length;
+    if (q > kMaxCells)
+      throw planner::input_error(net.path, e.line,
+                                 "edge '" + a.ab + "': length " + num(a.length_ab) + " is more than " +
+                                     std::to_string(kMaxCells) + " cells of cell_length " + num(opt.cell_length));
+    long n = std::lround(q);
     bool fits = n >= 1 && std::fabs(a.length_ab - n * opt.cell_length) <= opt.tolerance;
     if (fits) {
       a.steps = static_cast<int>(n);
@@ -53,6 +61,10 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
                                  "edge '" + a.ab + "': length " + num(a.length_ab) + " " + what + " cell_length " +
                                      num(opt.cell_length) + " (use --snap)");
     }
+    if ((cells += a.steps - 1) > kMaxCells)
+      throw planner::input_error(net.path, e.line,
+                                 "the net has more than " + std::to_string(kMaxCells) + " cells of cell_length " +
+                                     num(opt.cell_length) + " (reached at edge '" + a.ab + "')");
     // The model assumes lane length == distance between the junction centres.
     const NetJunction &ja = *net.junction(a.a), &jb = *net.junction(a.b);
     double dist = std::hypot(jb.x - ja.x, jb.y - ja.y);

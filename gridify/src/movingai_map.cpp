@@ -32,6 +32,8 @@ GridLayout grid_layout(const CellMap& m, std::string* why)
   GridLayout L;
   for (const Cell& cell : m.cells) {
     double fx = (cell.x - minx) / c, fy = (maxy - cell.y) / c;
+    // Bound before converting to int: a cell 2^31 cell lengths away overflowed col + 1.
+    if (fx > 1e8 || fy > 1e8) return fail("the lattice is too large");
     GridCoord g{static_cast<int>(std::lround(fx)), static_cast<int>(std::lround(fy))};
     if (std::fabs(fx - g.col) * c > tol || std::fabs(fy - g.row) * c > tol)
       return fail("a cell at (" + std::to_string(cell.x) + ", " + std::to_string(cell.y) + ") is off the lattice");

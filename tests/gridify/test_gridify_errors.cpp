@@ -6,8 +6,10 @@
 #include <typeinfo>
 
 #include "gridify/gridifier.hpp"
+#include "gridify/movingai_map.hpp"
 #include "gridify_test_util.hpp"
 #include "planner/error.hpp"
+#include "temp_path.hpp"
 
 using namespace gridify;
 using namespace gridify_test;
@@ -27,6 +29,23 @@ std::string error_of(const std::string& net, GridifyOptions opt = {})
 }
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Junctions j0, j1, ... at x = xs[k] (y = 0), consecutive ones joined by an aisle whose two
+// lanes are `len` long, with U-turn connections at both ends of every aisle.
+std::string line_net(const std::vector<std::string>& xs, const std::string& len)
+{
+  std::string t = "<net version=\"1.9\">\n";
+  auto j = [](size_t k) { return "j" + std::to_string(k); };
+  for (size_t k = 0; k < xs.size(); ++k)
+    t += "  <junction id=\"" + j(k) + "\" type=\"unregulated\" x=\"" + xs[k] + "\" y=\"0\"/>\n";
+  for (size_t k = 0; k + 1 < xs.size(); ++k)
+    for (const auto& [from, to] : {std::make_pair(j(k), j(k + 1)), std::make_pair(j(k + 1), j(k))}) {
+      t += "  <edge id=\"" + from + "_" + to + "\" from=\"" + from + "\" to=\"" + to + "\">\n";
+      t += "    <lane id=\"" + from + "_" + to + "_0\" index=\"0\" length=\"" + len + "\"/>\n  </edge>\n";
+      t += "  <connection from=\"" + from + "_" + to + "\" to=\"" + to + "_" + from + "\" fromLane=\"0\" toLane=\"0\" dir=\"t\"/>\n";
+    }
+  return t + "</net>\n";
+}
 
 }  // namespace
 
@@ -239,4 +258,31 @@ TEST(GridifyErrors, TruncatedAndCorruptedNetsNeverCrash)
   }
   EXPECT_GT(input_errors, 0);
   EXPECT_GT(ok, 0);
+}
+
+// A 3e9 m lane used to become 3e9 steps cast to a negative int (a crash), a 1e9 m one a
+// billion cells: more than kMaxCells cells is an error naming the edge.
+TEST(GridifyErrors, HugeLaneLengthIsAnError)
+{
+  for (const std::string len : {"3e9", "1e9"}) {
+    const std::string net = test::temp_file("huge_lane.net.xml", line_net({"0", "1"}, len));
+    EXPECT_EQ(error_of(net), net + ":4: edge 'j0_j1': length " + (len == "3e9" ? "3e+09" : "1e+09") +
+                                 " is more than 1000000 cells of cell_length 1");
+  }
+  // Two aisles of 600000 cells each: under the limit one by one, over it together.
+  const std::string net = test::temp_file("two_long.net.xml", line_net({"0", "600000", "1200000"}, "600000"));
+  EXPECT_EQ(error_of(net), net + ":13: the net has more than 1000000 cells of cell_length 1 (reached at edge 'j1_j2')");
+}
+
+// A junction 2^31 - 1 cell lengths from the other used to overflow the MovingAI lattice
+// width (a crash); it is too large a lattice, so the net has no grid view.
+TEST(GridifyErrors, FarApartJunctionsHaveNoGridView)
+{
+  const std::string net = test::temp_file("far.net.xml", line_net({"0", "2147483647"}, "1"));
+  const CellMap m = gridify::gridify(net);
+  EXPECT_EQ(m.cells.size(), 2u);
+  EXPECT_FALSE(m.graph.is_grid());
+  std::string why;
+  EXPECT_EQ(grid_layout(m, &why).width, 0);
+  EXPECT_EQ(why, "the lattice is too large");
 }

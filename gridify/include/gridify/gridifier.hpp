@@ -20,6 +20,10 @@
 
 namespace gridify {
 
+// Most cells gridify() makes. More means a wrong cell_length or a corrupt lane length
+// (a 1e9 m lane would be a billion cells); the largest shipped net has under 5000.
+constexpr int kMaxCells = 1000000;
+
 struct GridifyOptions {
   double cell_length = 1.0;  // metres between cell centres along an aisle
   double tolerance = 0.01;   // metres; SUMO writes lengths with 2 decimals
