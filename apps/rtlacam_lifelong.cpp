@@ -37,8 +37,8 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"greedy", "hungarian"}))
       ->capture_default_str();
   app.add_flag("--reassign,!--no-reassign", reassign,
-               "pool mode: at every step with a completion, match the tasks not yet opened again (default; "
-               "--no-reassign keeps every assignment until the task is done)");
+               "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
+               "(default; --no-reassign keeps every assignment until the task is done)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");

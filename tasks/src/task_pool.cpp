@@ -40,17 +40,48 @@ void TaskPool::on_finished(int, const Task&)
 
 void TaskPool::after_step(const planner::Config& positions)
 {
-  if (!reassign_) return assign_free(positions);
-  std::vector<int> before(num_agents(), -1);  // task id each agent held unopened
-  for (int a = 0; a < num_agents(); ++a) {
-    const int s = holding_[a];
-    if (s < 0 || slot(s).next > 0) continue;
-    before[a] = static_cast<int>(slot(s).id);
-    release(a);
-  }
-  assign_free(positions);
+  if (reassign_) steal_rounds(positions);
+  else assign_free(positions);
+}
+
+void TaskPool::steal_rounds(const planner::Config& positions)
+{
+  std::vector<int> agents;
   for (int a = 0; a < num_agents(); ++a)
-    if (before[a] >= 0 && (holding_[a] < 0 || slot(holding_[a]).id != before[a])) ++reassignments_;
+    if (holding_[a] < 0) agents.push_back(a);
+  // Each steal strictly shortens the stolen task's first leg, so this ends; the round
+  // limit only bounds the work of one step.
+  for (int round = 0; round < 8 && !agents.empty(); ++round) {
+    std::vector<int> cols;
+    for (int s : live_slots())
+      if (slot(s).next == 0) cols.push_back(s);
+    if (cols.empty()) return;
+    planner::Config in_use;
+    for (int s : cols) in_use.push_back(slot(s).errands[0]);
+    dist_.set_goals(in_use);
+    std::vector<int64_t> held(cols.size(), kForbidden);  // holder's distance to the first errand
+    for (size_t j = 0; j < cols.size(); ++j)
+      if (const int b = slot(cols[j]).agent; b >= 0) held[j] = dist_.from_goal(slot(cols[j]).errands[0], positions[b]);
+    auto c = [&](int i, int j) -> int64_t {
+      const Task& t = slot(cols[j]);
+      const int64_t d = dist_.from_goal(t.errands[0], positions[agents[i]]);
+      if (t.agent >= 0 && d >= held[j]) return kForbidden;  // only a strictly nearer agent may take it
+      return d + chain_length(t);
+    };
+    const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()), c);
+    std::vector<int> displaced;
+    for (size_t i = 0; i < agents.size(); ++i) {
+      if (match[i] < 0 || c(static_cast<int>(i), match[i]) >= kForbidden) continue;
+      const int s = cols[match[i]];
+      if (const int b = slot(s).agent; b >= 0) {
+        release(b);
+        displaced.push_back(b);
+        ++reassignments_;
+      }
+      give(agents[i], s);
+    }
+    agents = std::move(displaced);
+  }
 }
 
 void TaskPool::assign_free(const planner::Config& positions)

@@ -3,9 +3,11 @@
 // each finished task reveals the next line (cyclic). An agent without a task is matched
 // to a free task by the assigner at the start and at the end of every step in which
 // something completed (goals change only then). An opened task (first errand done) stays
-// with its agent until finished, as in LoRR. With `reassign`, every such step also takes
-// back the tasks not yet opened and matches them again together with the free agents, so a
-// task goes to whoever is nearest now, not to whoever was free when it was revealed. Goals
+// with its agent until finished, as in LoRR. With `reassign`, a free agent may also take a
+// task that is not yet opened from its holder when it is strictly nearer to the task's first
+// errand; the holder is then free and matched in the next round (at most 8 rounds a step).
+// The work stays O(free agents x unopened tasks), as without reassignment, so it scales to
+// LoRR's 10,000 agents (a full rematch of every unopened task each step does not). Goals
 // still change only at steps with a completion, so RT-LaCAM's epochs stay as they are.
 #include <memory>
 
@@ -35,6 +37,8 @@ class TaskPool : public TaskManager {
 
  private:
   void assign_free(const planner::Config& positions);
+  void steal_rounds(const planner::Config& positions);  // assign_free with reassignment
+  static constexpr int64_t kForbidden = int64_t{1} << 40;
   int chain_length(const Task& t);
 
   planner::DistTable dist_;  // per errand cell, lazily (true graph distances, LRU-capped)
