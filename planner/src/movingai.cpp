@@ -1,5 +1,6 @@
 #include "planner/movingai.hpp"
 
+#include <cstdint>
 #include <fstream>
 #include <sstream>
 
@@ -49,7 +50,12 @@ Graph load_map(const std::string& path)
   int height = header_value(in, path, lineno, "height");
   int width = header_value(in, path, lineno, "width");
   if (!next_line(in, line, lineno) || line != "map") throw input_error(path, lineno, "expected 'map'");
-  std::vector<bool> free(static_cast<size_t>(width) * height, false);
+  // Vertex ids and cell indices are int.
+  if (static_cast<long long>(width) * height > INT32_MAX)
+    throw input_error(path, lineno, "map of " + std::to_string(width) + " x " + std::to_string(height) + " cells is too large");
+  // Grown row by row, not sized from the header: a 45-byte file claiming 100000 x 100000
+  // cells used to allocate (and zero) 1.25 GB before finding out it has no rows.
+  std::vector<bool> free;
   for (int y = 0; y < height; ++y) {
     if (!next_line(in, line, lineno))
       throw input_error(path, lineno + 1, "map ends after " + std::to_string(y) + " of " + std::to_string(height) + " rows");
@@ -57,10 +63,9 @@ Graph load_map(const std::string& path)
       throw input_error(path, lineno, "row has " + std::to_string(line.size()) + " characters, expected " + std::to_string(width));
     for (int x = 0; x < width; ++x) {
       char c = line[x];
-      if (c == '.' || c == 'G' || c == 'S' || c == 'E')
-        free[static_cast<size_t>(y) * width + x] = true;
-      else if (c != '@' && c != 'O' && c != 'T' && c != 'W')
+      if (c != '.' && c != 'G' && c != 'S' && c != 'E' && c != '@' && c != 'O' && c != 'T' && c != 'W')
         throw input_error(path, lineno, std::string("unknown map character '") + c + "' at column " + std::to_string(x));
+      free.push_back(c == '.' || c == 'G' || c == 'S' || c == 'E');
     }
   }
   while (next_line(in, line, lineno))

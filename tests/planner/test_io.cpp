@@ -1,8 +1,11 @@
 // MovingAI readers and instance checks: good files load, bad ones give one clear error
 // naming file and line.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 #include "planner/error.hpp"
@@ -80,6 +83,40 @@ TEST(MovingAi, MapErrorsNameFileAndLine)
   expect_error([] { load_map(write_tmp("d.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@#.\n....\n")); },
                {"d.map:6", "'#'"});
   expect_error([] { load_map(write_tmp("e.map", "type octile\nheight 3\nwidth 4\nmap\n....\n")); }, {"e.map:", "ends after 1"});
+}
+
+// A 45-byte map claiming 100000 x 100000 cells used to allocate and zero 1.25 GB before
+// finding no rows. More cells than an int indexes are refused from the header; a smaller
+// claim costs memory only for the rows the file has. The second half runs in a child whose
+// address space may grow by 128 MiB only: sizing 46000 x 46000 flags (265 MB) from the
+// header throws std::bad_alloc there (Linux overcommit would hide it otherwise).
+TEST(MovingAi, HugeHeaderIsNotAllocated)
+{
+  const std::string head = "type octile\nheight 100000\nwidth 100000\nmap\n";
+  expect_error([&] { load_map(write_tmp("huge.map", head)); }, {"huge.map:4", "100000 x 100000 cells is too large"});
+#if defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the cap";
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  GTEST_SKIP() << "AddressSanitizer reserves more address space than the cap";
+#endif
+#endif
+  const std::string big = write_tmp("big.map", "type octile\nheight 46000\nwidth 46000\nmap\n");
+  auto load_capped = [&] {
+    long pages = 0;
+    std::ifstream("/proc/self/statm") >> pages;
+    const rlim_t limit = static_cast<rlim_t>(pages) * sysconf(_SC_PAGESIZE) + (128ul << 20);
+    const rlimit cap{limit, limit};
+    setrlimit(RLIMIT_AS, &cap);
+    try {
+      load_map(big);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      std::exit(dynamic_cast<const InputError*>(&e) ? 0 : 1);
+    }
+    std::exit(2);
+  };
+  EXPECT_EXIT(load_capped(), testing::ExitedWithCode(0), "big.map:5: map ends after 0 of 46000 rows");
 }
 
 TEST(MovingAi, ScenErrorsNameFileAndLine)
