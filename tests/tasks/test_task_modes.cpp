@@ -146,13 +146,15 @@ TEST(TaskPool, ReassignMovesUnopenedTasksToTheNearerAgent)
       EXPECT_EQ(pool.reassignments(), 0);
       continue;
     }
-    // Task 1 is unopened: it is matched again. Agent 0 from x=1: task 1 costs 1, task 2 4 -> task 1.
+    // Task 1 is unopened and agent 0 (x=1) is nearer to it than agent 1 (x=4): agent 0 takes it
+    // (cost 1 vs 4 for task 2); agent 1, now free, takes task 2 in the next round.
     EXPECT_EQ(pool.goals(), (Config{0, 5}));
     EXPECT_EQ(pool.task_of(0)->id, 1);
     EXPECT_EQ(pool.task_of(1)->id, 2);
     EXPECT_EQ(pool.reassignments(), 1);
-    // Agent 1 opens task 2 (one errand: done; reveals task 3 = line 3 at x=3, x=2) while agent 0
-    // still walks to task 1: agent 0 keeps it (cheapest) and agent 1 takes task 3.
+    // Agent 1 finishes task 2 (one errand; reveals task 3 = line 3 at x=3, x=2) while agent 0
+    // still walks to task 1: agent 1 (x=5) is not nearer to task 1 than agent 0 (x=1), so it
+    // may not take it and takes task 3.
     EXPECT_EQ(pool.update(2, {1, 5}), (std::vector<Event>{{2, 1, 2, 0}}));
     EXPECT_EQ(pool.task_of(0)->id, 1);
     EXPECT_EQ(pool.task_of(1)->id, 3);

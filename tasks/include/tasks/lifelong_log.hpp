@@ -17,7 +17,7 @@ struct RunInfo {          // what was run, for the log
 
 nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r);
 
-// Pool mode: `reassign` (unopened tasks matched again) and `numReassignments` (times a task
+// Pool mode: `reassign` (nearer free agents may take unopened tasks) and `numReassignments` (times a task
 // changed agent). Nothing for other modes.
 void add_task_fields(nlohmann::json& j, const TaskManager& tasks);
 
