@@ -33,8 +33,9 @@ json read_json(const std::string& path)
   if (!in) throw input_error(path, 0, "cannot open file");
   try {
     return json::parse(in);
-  } catch (const json::parse_error& e) {
-    // nlohmann reports a byte offset; keep the message on one line.
+  } catch (const json::exception& e) {
+    // parse_error, but also out_of_range for a number like 1e400: without the catch its
+    // message named no file. nlohmann reports a byte offset; keep the message on one line.
     throw input_error(path, 0, std::string("invalid JSON: ") + e.what());
   }
 }
@@ -55,6 +56,8 @@ long lookup_steps(const std::string& problem_dir, const std::string& stem)
     std::ifstream in(f);
     if (!in) continue;
     const json j = read_json(f);
+    // key() below throws json::invalid_iterator, naming no file, on an array.
+    if (!j.is_object()) throw input_error(f, 0, "expected a JSON object of instance name -> steps");
     long best = -1;
     size_t best_len = 0;
     for (auto it = j.begin(); it != j.end(); ++it) {
@@ -97,6 +100,10 @@ LorrProblem load_lorr_problem(const std::string& path)
     if (!j["numTasksReveal"].is_number() || !(j["numTasksReveal"].get<double>() > 0))
       throw input_error(path, 0, "field 'numTasksReveal' must be a positive number");
     p.num_tasks_reveal = j["numTasksReveal"].get<double>();
+    // The pool holds numTasksReveal x teamSize tasks: bound it as the YAML tasks.pool_size
+    // is (4.3e10 x 100 overflowed pool_size()'s int; 1e7 x 100 tasks would not fit in memory).
+    if (p.num_tasks_reveal * p.team_size > 1e7)
+      throw input_error(path, 0, "field 'numTasksReveal' x teamSize must be at most 10000000 tasks");
   }
   if (j.contains("version")) p.year = 2024;
   if (j.contains("taskAssignmentStrategy")) p.strategy = string_field(j, path, "taskAssignmentStrategy");

@@ -2,6 +2,8 @@
 // naming file:line.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
 #include "tasks/lorr_files.hpp"
@@ -62,6 +64,32 @@ TEST(LorrProblem, Errors)
   expect_error([&] { load_lorr_problem(nomap); }, {nomap, "mapFile"});
   const std::string team = ttest::temp_file("team.json", R"({"mapFile":"m","agentFile":"a","taskFile":"t","teamSize":-2})");
   expect_error([&] { load_lorr_problem(team); }, {team, "teamSize"});
+}
+
+// Found by libFuzzer: inputs the JSON parser or pool_size() could not represent.
+const std::string kProblemHead = R"({"mapFile":"m","agentFile":"a","taskFile":"t","teamSize":100,)";
+
+// nlohmann throws out_of_range, not parse_error, on 1e400: it escaped without the file name.
+TEST(LorrProblem, NumberOverflowNamesTheFile)
+{
+  const std::string p = test::temp_file("huge_number.json", kProblemHead + R"("numTasksReveal":1e400})");
+  expect_error([&] { load_lorr_problem(p); }, {p + ": invalid JSON: ", "number overflow parsing '1e400'"});
+}
+
+// 4.3e10 x 100 tasks: undefined behaviour converting to int (pool_size() returned teamSize).
+TEST(LorrProblem, HugeNumTasksRevealIsAnError)
+{
+  const std::string p = test::temp_file("reveal.json", kProblemHead + R"("numTasksReveal":42949672961.5})");
+  expect_error([&] { load_lorr_problem(p); }, {p + ": field 'numTasksReveal' x teamSize must be at most 10000000 tasks"});
+}
+
+// A simulation_time.json that is not an object threw json::invalid_iterator from key().
+TEST(LorrProblem, SimulationTimeMustBeAnObject)
+{
+  const std::string dir = test::temp_dir("lorr_simtime");
+  std::ofstream(dir + "/simulation_time.json") << "[600]";
+  const std::string p = test::temp_file("lorr_simtime/RANDOM-01.json", kProblemHead + R"("numTasksReveal":1.5})");
+  expect_error([&] { load_lorr_problem(p); }, {dir + "/simulation_time.json: expected a JSON object of instance name -> steps"});
 }
 
 TEST(LorrFiles, ReadsAgentsAndTasks)
