@@ -17,7 +17,10 @@ int TaskPool::chain_length(const Task& t)
   int& c = chain_by_line_[t.line];
   if (c < 0) {
     c = 0;
-    for (size_t k = 1; k < t.errands.size(); ++k) c += dist_.from_goal(t.errands[k], t.errands[k - 1]);
+    // Distances are symmetric (undirected graph): look each leg up in the table of its *start*.
+    // Tasks start at a few pick-up stations (352 cells on LoRR's WAREHOUSE) but end anywhere
+    // (24,768 cells), so tables per start errand are far fewer than tables per end errand.
+    for (size_t k = 1; k < t.errands.size(); ++k) c += dist_.from_goal(t.errands[k - 1], t.errands[k]);
   }
   return c;
 }
