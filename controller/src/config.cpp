@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -20,7 +21,26 @@ class Reader {
 
   [[noreturn]] void fail(const std::string& key, const std::string& what) const
   {
-    throw ConfigError(file_ + ": " + (key.empty() ? "" : key + ": ") + what);
+    throw ConfigError(file_ + ": " + one_line((key.empty() ? "" : key + ": ") + what));
+  }
+  // Control characters echoed from the YAML (a key or scalar "a\nb", yaml-cpp's "unknown
+  // escape character: " + the character) are written as escapes: the message stays one line.
+  static std::string one_line(const std::string& s)
+  {
+    std::string r;
+    for (const unsigned char c : s) {
+      if (c == '\n') r += "\\n";
+      else if (c == '\r') r += "\\r";
+      else if (c == '\t') r += "\\t";
+      else if (c < 0x20 || c == 0x7f) {
+        char hex[5];
+        std::snprintf(hex, sizeof hex, "\\x%02x", c);
+        r += hex;
+      } else {
+        r += static_cast<char>(c);
+      }
+    }
+    return r;
   }
 
   // A mapping with only the given keys (a missing section is an empty mapping).
@@ -29,6 +49,9 @@ class Reader {
     if (!n || n.IsNull()) return;
     if (!n.IsMap()) fail(key, "expected a mapping");
     for (const auto& kv : n) {
+      // A complex key ("? [a]: 1") is no scalar: as<std::string>() threw yaml-cpp's bare
+      // "bad conversion", naming neither the file nor the key path.
+      if (!kv.first.IsScalar()) fail(key, "expected plain key names, got a list or mapping as a key");
       const std::string k = kv.first.as<std::string>();
       if (!allowed.count(k)) {
         std::string list;

@@ -243,6 +243,14 @@ TEST(ControllerConfig, ErrorsNameTheKeyPath)
       {kNet + "fleet: {count: 3}\nsumo2: 1\n", "t.yaml: sumo2: unknown key"},
       {kNet + "fleet: [1, 2]\n", "t.yaml: fleet: expected a mapping"},
       {kNet + "fleet: {count: 3}\ntasks: {mode: forever}\n", "t.yaml: tasks.mode: 'forever' is not one of lifelong|one_shot"},
+      // Found by libFuzzer: a complex key threw yaml-cpp's "bad conversion" (no file, no key).
+      {kNet + "fleet: {count: 3}\nrun:\n  ? [tick_s]\n  : 1\n", "t.yaml: run: expected plain key names"},
+      {kNet + "? {fleet: 1}\n: 3\n", "t.yaml: expected plain key names"},
+      // ... and line breaks echoed from the YAML made the message two lines.
+      {kNet + "fleet: {count: 3}\nplanner: {budget_ms: \"a\\nb\"}\n",
+       "t.yaml: planner.budget_ms: expected a number, got 'a\\nb'"},
+      {kNet + "fleet: {count: 3}\nplanner" + std::string(1, '\0') + "\n  solver: pibt\n",
+       "t.yaml: not valid YAML: line 5: unknown escape character: \\n"},
   };
   for (const Case& c : cases) {
     const std::string msg = config_error(c.yaml);
