@@ -102,7 +102,10 @@ class Reader {
     fs::path f(out);
     if (f.is_relative()) f = fs::path(base_) / f;
     f = f.lexically_normal();
-    if (!fs::is_regular_file(f)) fail(join(key, k), "file '" + f.string() + "' not found");
+    // The error_code overload: a name longer than NAME_MAX threw filesystem_error.
+    std::error_code ec;
+    if (!fs::is_regular_file(f, ec))
+      fail(join(key, k), "file '" + f.string() + "' not found" + (ec ? " (" + ec.message() + ")" : std::string()));
     out = f.string();
   }
   // One cell: a vertex id, a station / junction id, or {lane: L, pos: P}.

@@ -246,6 +246,9 @@ TEST(ControllerConfig, ErrorsNameTheKeyPath)
       // Found by libFuzzer: a complex key threw yaml-cpp's "bad conversion" (no file, no key).
       {kNet + "fleet: {count: 3}\nrun:\n  ? [tick_s]\n  : 1\n", "t.yaml: run: expected plain key names"},
       {kNet + "? {fleet: 1}\n: 3\n", "t.yaml: expected plain key names"},
+      // ... a file name longer than NAME_MAX threw std::filesystem::filesystem_error ...
+      {"sumo:\n  net: " + std::string(300, 'n') + "\nfleet: {count: 3}\n",
+       "t.yaml: sumo.net: file '" + std::string(RTLACAM_CONFIGS) + "/" + std::string(300, 'n') + "' not found (File name too long)"},
       // ... and line breaks echoed from the YAML made the message two lines.
       {kNet + "fleet: {count: 3}\nplanner: {budget_ms: \"a\\nb\"}\n",
        "t.yaml: planner.budget_ms: expected a number, got 'a\\nb'"},
