@@ -22,7 +22,7 @@ int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file;
-  bool reset_priorities = false, reassign = true;
+  bool reset_priorities = false, reassign = false;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -38,7 +38,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_flag("--reassign,!--no-reassign", reassign,
                "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
-               "(default; --no-reassign keeps every assignment until the task is done)");
+               "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");

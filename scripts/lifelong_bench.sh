@@ -23,15 +23,15 @@ $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-greedy" --budget
 $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian" --budget-ms 100 --assigner hungarian \
   --title "LoRR 2024 random-32-32-20, pool/hungarian" \
   --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
-# Baseline in the same run: assignments kept until the task is done (--no-reassign).
-$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-greedy-keep" --budget-ms $BUDGETS --assigner greedy --no-reassign \
-  --title "LoRR 2024 random-32-32-20, pool/greedy, no reassignment" \
+# Task reassignment (--reassign) beside the default (assignments kept) in the same run.
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-greedy-reassign" --budget-ms $BUDGETS --assigner greedy --reassign \
+  --title "LoRR 2024 random-32-32-20, pool/greedy, reassignment" \
   --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
-$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian-keep" --budget-ms 100 --assigner hungarian --no-reassign \
-  --title "LoRR 2024 random-32-32-20, pool/hungarian, no reassignment" \
+$PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/2024-hungarian-reassign" --budget-ms 100 --assigner hungarian --reassign \
+  --title "LoRR 2024 random-32-32-20, pool/hungarian, reassignment" \
   --problems $L/2024/random.domain/RANDOM-0{1,2,3,4,5}.json
 for a in greedy hungarian; do
-  $PY scripts/compare_reassign.py "$OUT/2024-$a/results.json" "$OUT/2024-$a-keep/results.json" --png "$OUT/2024-$a-reassign.png" | tee "$OUT/2024-$a-reassign.md"
+  $PY scripts/compare_reassign.py "$OUT/2024-$a-reassign/results.json" "$OUT/2024-$a/results.json" --png "$OUT/2024-$a-reassign.png" | tee "$OUT/2024-$a-reassign.md"
 done
 $PY scripts/plot_lifelong.py -o "$OUT/MR23-I-05_completions.png" "$OUT"/2023/MR23-I-05_{pibt,naive,rtlacam}_100ms.json
 
@@ -40,5 +40,14 @@ if [ "$SKIP_WAREHOUSE" != 1 ]; then
     --title "warehouse_large (MR23-I-10), first 1,000 agents" --problems $L/2023/warehouse.domain/MR23-I-10.json
   $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/warehouse-2000" --budget-ms 100 --agents 2000 --steps 1000 \
     --title "warehouse_large (MR23-I-10), first 2,000 agents" --problems $L/2023/warehouse.domain/MR23-I-10.json
+fi
+# Full-size LoRR warehouses, 10,000 agents x 5,000 steps (1-6 min and ~6 GB each): FULL_WAREHOUSE=1.
+if [ "${FULL_WAREHOUSE:-0}" = 1 ]; then
+  $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/MR23-I-10-full" --budget-ms 100 \
+    --title "warehouse_large (MR23-I-10), 10,000 agents" --problems $L/2023/warehouse.domain/MR23-I-10.json
+  $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/WAREHOUSE-full" --budget-ms 100 --solvers pibt rtlacam \
+    --title "LoRR 2024 WAREHOUSE, 10,000 agents" --problems $L/2024/warehouse.domain/WAREHOUSE.json
+  $PY scripts/lifelong_sweep.py --bin "$BIN" --out-dir "$OUT/WAREHOUSE-full-reassign" --budget-ms 100 --solvers rtlacam --reassign \
+    --title "LoRR 2024 WAREHOUSE, 10,000 agents, reassignment" --problems $L/2024/warehouse.domain/WAREHOUSE.json
 fi
 echo "tables: $OUT/*/table.md"

@@ -56,7 +56,7 @@ def main():
     ap.add_argument("--out-dir", required=True)
     ap.add_argument("--title", default="")
     ap.add_argument("--reuse", action="store_true", help="keep existing logs instead of re-running")
-    ap.add_argument("--no-reassign", action="store_true", help="pool: keep assignments until done (the baseline)")
+    ap.add_argument("--reassign", action="store_true", help="pool: nearer free agents may take unopened tasks")
     args = ap.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
     extra = {"cli": [], "tag": ""}
@@ -66,9 +66,9 @@ def main():
     if args.steps:
         extra["cli"] += ["--steps", str(args.steps)]
         extra["tag"] += f"t{args.steps}"
-    if args.no_reassign:
-        extra["cli"] += ["--no-reassign"]
-        extra["tag"] += "keep"
+    if args.reassign:
+        extra["cli"] += ["--reassign"]
+        extra["tag"] += "steal"
 
     rows = []
     for p in args.problems:
@@ -84,7 +84,7 @@ def main():
              "|---|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---:|"]
     for j in rows:
         best = LORR_BEST.get(j["instance"]) if not args.agents else None
-        mode = j["mode"] + ("/" + j["assigner"] + ("" if j.get("reassign", True) else "/keep") if j["mode"] == "pool" else "")
+        mode = j["mode"] + ("/" + j["assigner"] + ("/reassign" if j.get("reassign") else "") if j["mode"] == "pool" else "")
         lines.append(f"| {j['instance']} | {j['teamSize']} | {j['makespan']} | {mode} | {j['solver']} | {j['budgetMs']:g} | "
                      f"{j['numTaskFinished']} | {j['throughput']:.2f} | {best if best else '-'} | "
                      f"{j['plannerTimes']['p99']:.2f} | {j['plannerTimes']['max']:.1f} | {j['numPlannerErrors']} |")

@@ -150,13 +150,14 @@ TEST(ControllerLifelong, HungarianPoolRuns)
   cfg.tasks.assigner = "hungarian";
   cfg.fleet.count = 8;
   cfg.tasks.pool_size = 0;  // 1.5 x fleet
+  cfg.tasks.reassign = true;
   Controller c(cfg);
   const Metrics m = c.run();
   expect_clean_lifelong_run(cfg, c, m);
   EXPECT_GE(m.errands_finished, 5);
   const nlohmann::json j = read_json(cfg.output.dir + "/lifelong.json");
   EXPECT_EQ(j["assigner"], "hungarian");
-  EXPECT_EQ(j["reassign"], true);  // the default
+  EXPECT_EQ(j["reassign"], true);
   EXPECT_TRUE(j["numReassignments"].is_number_integer());
 }
 

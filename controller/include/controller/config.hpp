@@ -86,7 +86,7 @@ struct TasksSection {
   std::string assigner = "greedy";         // pool: greedy | hungarian
   int pool_size = 0;                       // pool: revealed tasks; 0 = ceil(1.5 x fleet.count)
   int k_nearest = 32;                      // hungarian: candidate tasks per AGV
-  bool reassign = true;                    // pool: a nearer free AGV may take an unopened task
+  bool reassign = false;                   // pool: a nearer free AGV may take an unopened task
   std::string log = "lifelong.json";       // in output.dir
 
   bool lifelong() const { return mode == "lifelong"; }
