@@ -1,7 +1,6 @@
 // MovingAI readers and instance checks: good files load, bad ones give one clear error
 // naming file and line.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -10,6 +9,7 @@
 
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
+#include "address_cap.hpp"
 #include "temp_path.hpp"
 
 using namespace planner;
@@ -94,28 +94,9 @@ TEST(MovingAi, HugeHeaderIsNotAllocated)
 {
   const std::string head = "type octile\nheight 100000\nwidth 100000\nmap\n";
   expect_error([&] { load_map(write_tmp("huge.map", head)); }, {"huge.map:4", "100000 x 100000 cells is too large"});
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer reserves more address space than the cap";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "AddressSanitizer reserves more address space than the cap";
-#endif
-#endif
+  RTLACAM_SKIP_UNDER_ASAN();
   const std::string big = write_tmp("big.map", "type octile\nheight 46000\nwidth 46000\nmap\n");
-  auto load_capped = [&] {
-    long pages = 0;
-    std::ifstream("/proc/self/statm") >> pages;
-    const rlim_t limit = static_cast<rlim_t>(pages) * sysconf(_SC_PAGESIZE) + (128ul << 20);
-    const rlimit cap{limit, limit};
-    setrlimit(RLIMIT_AS, &cap);
-    try {
-      load_map(big);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s\n", e.what());
-      std::exit(dynamic_cast<const InputError*>(&e) ? 0 : 1);
-    }
-    std::exit(2);
-  };
+  auto load_capped = [&] { test::exit_after_capped(test::address_space_now() + (128ul << 20), [&] { load_map(big); }); };
   EXPECT_EXIT(load_capped(), testing::ExitedWithCode(0), "big.map:5: map ends after 0 of 46000 rows");
 }
 

@@ -1,6 +1,5 @@
 // Weights file: round trip, and every malformed file is one clear InputError naming it.
 #include <gtest/gtest.h>
-#include <sys/resource.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include "planner/error.hpp"
 #include "policy/actions.hpp"
 #include "policy/weights_file.hpp"
+#include "address_cap.hpp"
 #include "temp_path.hpp"
 
 using namespace policy;
@@ -156,32 +156,13 @@ TEST(WeightsFile, BadHeaders)
 // without overcommit or under ulimit -v (the apps then said just "std::bad_alloc").
 TEST(WeightsFile, HugeClaimedLayerIsTruncationNotAnAllocation)
 {
-#if defined(__SANITIZE_ADDRESS__)
-  GTEST_SKIP() << "AddressSanitizer reserves more address space than the cap";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-  GTEST_SKIP() << "AddressSanitizer reserves more address space than the cap";
-#endif
-#endif
+  RTLACAM_SKIP_UNDER_ASAN();
   std::vector<char> b(kWeightsMagic, kWeightsMagic + 8);
   for (uint32_t v : {kWeightsVersion, 32u, 4u, 5u, 2u, 65536u, 16900u})
     b.insert(b.end(), reinterpret_cast<char*>(&v), reinterpret_cast<char*>(&v) + 4);
   const std::string bad = temp_path("huge_layer.bin");
   write_bytes(bad, b);
-  auto load_capped = [&] {
-    const rlimit cap{1ul << 31, 1ul << 31};
-    setrlimit(RLIMIT_AS, &cap);
-    try {
-      load_weights(bad);
-    } catch (const planner::InputError& e) {
-      std::fprintf(stderr, "%s\n", e.what());
-      std::exit(0);
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "%s\n", e.what());
-      std::exit(1);
-    }
-    std::exit(2);
-  };
+  auto load_capped = [&] { test::exit_after_capped(1ul << 31, [&] { load_weights(bad); }); };
   EXPECT_EXIT(load_capped(), testing::ExitedWithCode(0),
               "truncated file: layer 0 weights needs 4430233600 bytes at offset 36, only 0 left");
 }
