@@ -172,25 +172,13 @@ run_one() {
               --timeout-s "$TIMEOUT" --seed "$SEED" --json)
   [[ "$c" != "-" ]] && args+=(--cutoff-ms "$c")
   [[ "$SWAP" == 0 ]] && args+=(--no-swap)
-  if [[ "$s" == pibt ]]; then args+=(--max-steps "$PIBT_MAX_STEPS"); else args+=(--max-steps "$MAX_STEPS"); fi
-  local out err rc=0 line msg
-  err=$(mktemp)
-  out=$("$BENCH" "${args[@]}" 2>"$err") || rc=$?
-  line=$(printf '%s\n' "$out" | grep -m1 '^{' || true)
-  if [[ $rc -eq 0 && -n "$line" ]]; then
-    # add the run key, scen index, timeout and step limit to the bench's JSON object
-    line="{\"run_key\":\"$key\",\"scen_k\":$k,\"timeout_s\":$TIMEOUT,\"max_steps\":$([[ $s == pibt ]] && echo "$PIBT_MAX_STEPS" || echo "$MAX_STEPS"),${line#\{}"
-    { flock 9; printf '%s\n' "$line" >>"$RESULTS"; } 9>>"$RESULTS.lock"
-    msg=$(printf '%s' "$line" | sed -n 's/.*"solved":\([a-z]*\).*"total_planning_ms":\([0-9.e+-]*\).*/solved=\1 t=\2ms/p')
-    [[ "$line" == *'"valid":false'* ]] && msg="$msg INVALID PLAN"
-  else
-    msg="CRASH rc=$rc (see $ERRORS)"
-    { flock 9; printf 'rc=%s %s %s :: %s\n' "$rc" "$BENCH" "${args[*]}" "$(tr '\n' ' ' <"$err" | cut -c1-500)" >>"$ERRORS"; } 9>>"$RESULTS.lock"
-  fi
-  rm -f "$err"
+  local steps=$MAX_STEPS
+  [[ "$s" == pibt ]] && steps=$PIBT_MAX_STEPS
+  args+=(--max-steps "$steps")
+  bench_record "\"run_key\":\"$key\",\"scen_k\":$k,\"timeout_s\":$TIMEOUT,\"max_steps\":$steps" "${args[@]}"
   local done
   done=$(count_done)
-  printf '[%d/%d] %-24s N=%-4s scen=%-2s %-7s cutoff=%-5s %s\n' "$done" "$TOTAL" "$m" "$n" "$k" "$s" "$c" "$msg"
+  printf '[%d/%d] %-24s N=%-4s scen=%-2s %-7s cutoff=%-5s %s\n' "$done" "$TOTAL" "$m" "$n" "$k" "$s" "$c" "$MSG"
 }
 run_pending fig2 "$ALL" "$TODO" "$JOBS"
 

@@ -132,23 +132,10 @@ run_one() {
   [[ "$series" == *-policy || "$series" == cspibt ]] && args+=(--policy "$POLICY")
   [[ "$solver" == cspibt || "$solver" == pibt ]] && steps=$PIBT_MAX_STEPS
   args+=(--max-steps "$steps")
-  local out err rc=0 line msg
-  err=$(mktemp)
-  out=$("$BENCH" "${args[@]}" 2>"$err") || rc=$?
-  line=$(printf '%s\n' "$out" | grep -m1 '^{' || true)
-  if [[ $rc -eq 0 && -n "$line" ]]; then
-    line="{\"run_key\":\"$key\",\"series\":\"$series\",\"scen_k\":$k,\"timeout_s\":$TIMEOUT,\"max_steps\":$steps,${line#\{}"
-    { flock 9; printf '%s\n' "$line" >>"$RESULTS"; } 9>>"$RESULTS.lock"
-    msg=$(printf '%s' "$line" | sed -n 's/.*"solved":\([a-z]*\).*"total_planning_ms":\([0-9.e+-]*\).*/solved=\1 t=\2ms/p')
-    [[ "$line" == *'"valid":false'* ]] && msg="$msg INVALID PLAN"
-  else
-    msg="CRASH rc=$rc (see $ERRORS)"
-    { flock 9; printf 'rc=%s %s %s :: %s\n' "$rc" "$BENCH" "${args[*]}" "$(tr '\n' ' ' <"$err" | cut -c1-500)" >>"$ERRORS"; } 9>>"$RESULTS.lock"
-  fi
-  rm -f "$err"
+  bench_record "\"run_key\":\"$key\",\"series\":\"$series\",\"scen_k\":$k,\"timeout_s\":$TIMEOUT,\"max_steps\":$steps" "${args[@]}"
   local done
   done=$(count_done)
-  printf '[%d/%d] N=%-4s scen=%-2s %-15s %s\n' "$done" "$TOTAL" "$n" "$k" "$series" "$msg"
+  printf '[%d/%d] N=%-4s scen=%-2s %-15s %s\n' "$done" "$TOTAL" "$n" "$k" "$series" "$MSG"
 }
 run_pending fig3 "$ALL" "$TODO" "$JOBS"
 
