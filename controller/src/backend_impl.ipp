@@ -26,6 +26,16 @@ auto guarded(const char* what, F&& f) -> decltype(f())
 class ApiBackend : public SumoBackend {
  public:
   bool running() const override { return running_; }
+  void close() override
+  {
+    if (!running_) return;
+    running_ = false;
+    try {
+      api::Simulation::close();
+    } catch (const std::exception&) {
+      // A broken simulation or a lost connection: nothing left to report.
+    }
+  }
 
   void step() override
   {

@@ -25,18 +25,7 @@ class LibsumoBackend : public ApiBackend {
     guarded("load", [&] { api::Simulation::load(args); });
     running_ = true;
   }
-  void close() override
-  {
-    if (!running_) return;
-    running_ = false;
-    try {
-      api::Simulation::close();
-    } catch (const std::exception&) {
-      // Closing a broken simulation: nothing left to report.
-    }
-  }
   std::string name() const override { return "libsumo"; }
-
 };
 
 }  // namespace

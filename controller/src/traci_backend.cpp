@@ -46,16 +46,6 @@ class TraciBackend : public ApiBackend {
     }
     running_ = true;
   }
-  void close() override
-  {
-    if (!running_) return;
-    running_ = false;
-    try {
-      api::Simulation::close();
-    } catch (const std::exception&) {
-      // The connection may already be gone; nothing left to report.
-    }
-  }
   std::string name() const override { return "traci"; }
 
   // One context subscription on a junction with a range covering any net: SUMO sends the
