@@ -6,18 +6,9 @@
 
 #include "planner/graph.hpp"
 #include "planner/instance.hpp"
+#include "grid.hpp"
 
 namespace test {
-
-// '.' free, anything else blocked; all rows the same width.
-inline planner::Graph grid(const std::vector<std::string>& rows)
-{
-  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.at(0).size());
-  std::vector<bool> free(static_cast<size_t>(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) free[static_cast<size_t>(y) * w + x] = rows[y].at(x) == '.';
-  return planner::Graph::from_grid(w, h, free);
-}
 
 // Cells as (x = column, y = row).
 inline planner::Config at(const planner::Graph& g, const std::vector<std::pair<int, int>>& cells)

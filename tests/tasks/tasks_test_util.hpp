@@ -12,21 +12,14 @@
 
 #include "planner/graph.hpp"
 #include "tasks/lorr_files.hpp"
+#include "grid.hpp"
 #include "temp_path.hpp"
 
 namespace ttest {
 
 inline const std::string kData = RTLACAM_TEST_DATA "/tasks/lorr";
 
-// '.' free, anything else blocked.
-inline planner::Graph grid(const std::vector<std::string>& rows)
-{
-  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.at(0).size());
-  std::vector<bool> free(static_cast<size_t>(w) * h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) free[static_cast<size_t>(y) * w + x] = rows[y].at(x) == '.';
-  return planner::Graph::from_grid(w, h, free);
-}
+using test::grid;  // '.' free, anything else blocked
 
 inline planner::Vertex at(const planner::Graph& g, int x, int y) { return g.at(x, y); }
 

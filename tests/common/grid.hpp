@@ -1,0 +1,20 @@
+#pragma once
+// Tiny test grids from strings, shared by the planner, policy and task-layer tests.
+#include <string>
+#include <vector>
+
+#include "planner/graph.hpp"
+
+namespace test {
+
+// '.' free, anything else blocked; all rows the same width.
+inline planner::Graph grid(const std::vector<std::string>& rows)
+{
+  const int h = static_cast<int>(rows.size()), w = static_cast<int>(rows.at(0).size());
+  std::vector<bool> free(static_cast<size_t>(w) * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) free[static_cast<size_t>(y) * w + x] = rows[y].at(x) == '.';
+  return planner::Graph::from_grid(w, h, free);
+}
+
+}  // namespace test
