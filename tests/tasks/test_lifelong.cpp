@@ -151,11 +151,10 @@ TEST_P(LorrRuns, Pool2024ValidatorClean)
       // An opened task never changes agent: all errands of a task, in order, by one agent.
       std::map<long, std::pair<int, int>> by_task;  // task -> (agent, next errand)
       for (const Event& e : r.events) {
-        auto [it, fresh] = by_task.emplace(e.task, std::make_pair(e.agent, 0));
-        EXPECT_EQ(it->second.first, e.agent) << "task " << e.task << " changed agent after it opened";
-        EXPECT_EQ(it->second.second, e.errand) << "task " << e.task;
-        it->second.second = e.errand + 1;
-        (void)fresh;
+        auto& [agent, next] = by_task.emplace(e.task, std::make_pair(e.agent, 0)).first->second;
+        EXPECT_EQ(agent, e.agent) << "task " << e.task << " changed agent after it opened";
+        EXPECT_EQ(next, e.errand) << "task " << e.task;
+        next = e.errand + 1;
       }
     }
 }
