@@ -2,11 +2,13 @@
 """Pool-mode task reassignment vs keeping every assignment, from two lifelong_sweep.py
 result files of the same problems, solvers and budgets (measured in the same bench run).
 
-  compare_reassign.py NEW.json BASE.json [--png out.png]
+  compare_reassign.py REASSIGN.json KEEP.json [--png out.png]
 
-e.g. out/lifelong/2024-greedy/results.json out/lifelong/2024-greedy-keep/results.json. The PNG
-shows throughput vs agents per solver at the largest budget, with and without reassignment.
+e.g. out/lifelong/2024-greedy-reassign/results.json out/lifelong/2024-greedy/results.json
+(scripts/lifelong_bench.sh). The PNG shows throughput vs agents per solver at the largest
+budget, with and without reassignment.
 """
+import argparse
 import json
 import sys
 
@@ -16,18 +18,14 @@ def key(j):
 
 
 def main():
-    argv = sys.argv[1:]
-    png = None
-    if "--png" in argv:
-        i = argv.index("--png")
-        png = argv[i + 1]
-        del argv[i:i + 2]
-    if len(argv) != 2:
-        sys.exit(__doc__)
-    sys.argv[1:] = argv
-    with open(sys.argv[1]) as f:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("new", help="results.json of the --reassign sweep")
+    ap.add_argument("base", help="results.json of the same sweep without it")
+    ap.add_argument("--png", help="write the plot here")
+    args = ap.parse_args()
+    with open(args.new) as f:
         new = {key(j): j for j in json.load(f)}
-    with open(sys.argv[2]) as f:
+    with open(args.base) as f:
         base = {key(j): j for j in json.load(f)}
     print("| instance | agents | assigner | solver | budget ms | keep tasks/step | reassign tasks/step | ratio | reassignments |")
     print("|---|---:|---|---|---:|---:|---:|---:|---:|")
@@ -45,8 +43,8 @@ def main():
         print(f"\nratio reassign/keep over {len(ratios)} runs: min {ratios[0]:.2f}, median {ratios[len(ratios) // 2]:.2f}, "
               f"max {ratios[-1]:.2f}")
 
-    if png:
-        plot(new, base, png)
+    if args.png:
+        plot(new, base, args.png)
 
 
 def plot(new, base, png):
