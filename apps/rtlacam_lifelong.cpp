@@ -1,5 +1,6 @@
 // rtlacam-lifelong: a lifelong run on a LoRR problem (no SUMO). Prints a summary JSON
-// (the log without events); --out writes the full log; progress goes to stderr.
+// (the log without per-step lists); --out writes the full LoRR / PlanViz log; progress goes
+// to stderr.
 #include <CLI/CLI.hpp>
 #include <fstream>
 #include <iostream>
@@ -21,7 +22,8 @@ using namespace tasks;
 int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
-  std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file;
+  std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file, action_model = "grid4";
+  int rotation_window = 3;
   bool reset_priorities = false, reassign = false;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
@@ -49,7 +51,13 @@ int main(int argc, char** argv)
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions per step (deterministic); 0 = none");
   app.add_option("--seed", seed, "random seed")->capture_default_str();
-  app.add_option("--out", out_file, "write the full JSON log (with events) here");
+  app.add_option("--action-model", action_model, "grid4 (4-connected moves) | rotation (LoRR MAPF_T: heading, a step per quarter turn)")
+      ->check(CLI::IsMember({"grid4", "rotation"}))
+      ->capture_default_str();
+  app.add_option("--rotation-window", rotation_window, "rotation: plan steps the planner may run ahead of the slowest robot")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--out", out_file, "write the full LoRR / PlanViz log (paths, events, tasks) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
   CLI11_PARSE(app, argc, argv);
@@ -83,6 +91,9 @@ int main(int argc, char** argv)
     opt.pref = pref.get();
     opt.keep_priorities = !reset_priorities;
     opt.steps = steps;
+    opt.action_model = parse_action_model(action_model);
+    opt.rotation_window = rotation_window;
+    opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);
     if (budget_expansions > 0) opt.budget.expansions = budget_expansions;
     // Progress: steps done, throughput so far, p99 latency so far.
@@ -96,13 +107,13 @@ int main(int argc, char** argv)
         if (planner::ms_since(last) < progress_s * 1000 && s.t != steps) return;
         last = planner::Clock::now();
         std::cerr << "[" << pr.name << " " << solver << " " << budget_ms << "ms] step " << s.t << "/" << steps
-                  << "  errands " << done << "  throughput " << static_cast<double>(done) / s.t << "/step  p99 "
+                  << "  errands " << done << "  errandThroughput " << static_cast<double>(done) / s.t << "/step  p99 "
                   << summarize(lat).p99 << " ms" << std::endl;
       };
 
     const LifelongResult r = run_lifelong(g, starts, *tm, solver, seed, opt);
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
-    nlohmann::json j = lifelong_log(info, r);
+    nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
     if (pref) j["policy"] = policy_file;
     j["keepPriorities"] = !reset_priorities;
     add_task_fields(j, *tm);
@@ -111,7 +122,9 @@ int main(int argc, char** argv)
       if (!out) throw planner::input_error(out_file, 0, "cannot write file");
       out << j.dump() << "\n";
     }
-    j.erase("events");
+    for (const char* k : {"events", "plannerTimes", "start", "actualPaths", "plannerPaths", "tasks", "actualSchedule",
+                          "plannerSchedule", "errors"})
+      j.erase(k);
     std::cout << j.dump(2) << std::endl;
     if (r.planner_errors > 0) {
       std::cerr << "rtlacam-lifelong: invalid move: " << r.first_error << std::endl;

@@ -7,7 +7,7 @@ namespace tasks {
 nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
 {
   nlohmann::json j;
-  j["actionModel"] = "grid4";  // LoRR: "MAPF_T" (heading, turning costs a step); ours: 4-connected moves
+  j["actionModel"] = lorr_name(r.action_model);
   j["problem"] = info.problem;
   j["solver"] = info.solver;
   j["mode"] = info.mode;
@@ -19,10 +19,13 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   j["numTaskFinished"] = r.tasks_finished;
   j["numErrandFinished"] = r.errands_finished;
   const double steps = r.steps > 0 ? static_cast<double>(r.steps) : 1.0;
-  j["throughput"] = static_cast<double>(r.tasks_finished) / steps;
+  j["taskThroughput"] = static_cast<double>(r.tasks_finished) / steps;
   j["errandThroughput"] = static_cast<double>(r.errands_finished) / steps;
   const PlannerTimes pt = summarize(r.planner_ms);
-  j["plannerTimes"] = {{"mean", pt.mean}, {"p50", pt.p50}, {"p99", pt.p99}, {"max", pt.max}};
+  j["plannerTimeStats"] = {{"mean", pt.mean}, {"p50", pt.p50}, {"p99", pt.p99}, {"max", pt.max}};
+  nlohmann::json times = nlohmann::json::array();
+  for (double ms : r.planner_ms) times.push_back(ms / 1000.0);  // LoRR: seconds
+  j["plannerTimes"] = std::move(times);
   j["setupMs"] = r.setup_ms;
   j["taskLayerMs"] = r.task_ms;
   j["wallMs"] = r.wall_ms;
@@ -31,7 +34,7 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   j["numPlannerErrors"] = r.planner_errors;
   if (!r.first_error.empty()) j["firstPlannerError"] = r.first_error;
   nlohmann::json ev = nlohmann::json::array();
-  for (const Event& e : r.events) ev.push_back({e.t, e.agent, e.task, e.errand});
+  for (const Event& e : r.events) ev.push_back({e.t, e.agent, e.task, e.errand + 1});
   j["events"] = std::move(ev);
   return j;
 }

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "planner/validator.hpp"
 #include "tasks/lifelong_goal.hpp"
+#include "tasks/rotation_executor.hpp"
 #include "tasks/solver.hpp"
 
 namespace tasks {
@@ -42,10 +44,17 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
                             const std::string& solver, uint64_t seed, const LifelongOptions& opt)
 {
   LifelongResult r;
+  r.action_model = opt.action_model;
+  r.starts = starts;
+  const bool rotation = opt.action_model == ActionModel::Rotation;
+  const bool letters = opt.record_actions && g.is_grid();
+  if (letters) r.actions.assign(starts.size(), std::string());
   const auto wall0 = Clock::now();
   auto t0 = Clock::now();
   tasks.start(starts);
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, opt.pref, opt.keep_priorities);
+  std::unique_ptr<RotationExecutor> exec;
+  if (rotation) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
   r.setup_ms = ms_since(t0);
   r.epochs = 1;
 
@@ -54,21 +63,49 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     StepRecord rec;
     rec.t = t;
     rec.epoch = r.epochs;
+    planner::Budget b = opt.budget;
+    b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
     t0 = Clock::now();
-    p->search(opt.budget);
-    const planner::Config next = p->next();
+    const bool plan_now = !rotation || exec->can_accept();
+    planner::Config next;
+    if (plan_now) {
+      p->search(b);
+      next = p->next();
+    }
     rec.planner_ms = ms_since(t0) + carry_ms;
     rec.explored = p->explored();
 
-    const std::string err = planner::Validator::check_transition(g, p->current(), next);
-    if (!err.empty()) {
-      if (r.planner_errors++ == 0) r.first_error = "step " + std::to_string(t) + ": " + err;
+    if (plan_now) {
+      const std::string err = planner::Validator::check_transition(g, p->current(), next);
+      if (!err.empty() && r.planner_errors++ == 0) {
+        r.first_error = "step " + std::to_string(t) + ": " + err;
+        r.first_error_t = t;
+      }
+      if (letters && !rotation)
+        for (size_t i = 0; i < next.size(); ++i) r.actions[i] += grid4_letter(g, p->current()[i], next[i]);
+      p->commit();
     }
-    p->commit();
+    const planner::Config* real = &p->current();
+    if (rotation) {
+      if (plan_now) exec->push(p->current());
+      const planner::Config before = exec->positions();
+      const std::string& act = exec->step();
+      // The executed step is checked like a planned one: cells, adjacency, vertex and swap conflicts.
+      const std::string err = planner::Validator::check_transition(g, before, exec->positions());
+      if (!err.empty() && r.planner_errors++ == 0) {
+        r.first_error = "step " + std::to_string(t) + " (executed): " + err;
+        r.first_error_t = t;
+      }
+      if (letters)
+        for (size_t i = 0; i < act.size(); ++i) r.actions[i] += act[i];
+      real = &exec->positions();
+    }
 
-    // advance_epoch, split to time the task layer apart from the planner.
+    // advance_epoch, split to time the task layer apart from the planner. Errands complete
+    // on the robots' real cells; the planner's new epoch starts at its own current
+    // configuration (the plan frontier under rotation).
     t0 = Clock::now();
-    const std::vector<Event> ev = tasks.update(t, p->current());
+    const std::vector<Event> ev = tasks.update(t, *real);
     r.task_ms += ms_since(t0);
     t0 = Clock::now();
     if (!ev.empty()) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
@@ -81,6 +118,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     r.steps = t;
     if (opt.on_step) opt.on_step(rec);
   }
+  if (rotation) r.final_headings = exec->headings();
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();

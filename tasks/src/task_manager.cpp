@@ -8,6 +8,7 @@ void TaskManager::start(const planner::Config& positions)
 {
   holding_.assign(positions.size(), -1);
   goals_ = positions;
+  now_ = 0;
   on_start(positions);
   refresh_goals(positions);
 }
@@ -15,6 +16,7 @@ void TaskManager::start(const planner::Config& positions)
 std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
 {
   std::vector<Event> events;
+  now_ = t;
   for (int a = 0; a < num_agents(); ++a) {
     const int s = holding_[a];
     if (s < 0) continue;
@@ -27,6 +29,7 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       ++tasks_finished_;
       const Task done = k;
       holding_[a] = -1;
+      assignments_.push_back({t, a, -1});
       drop(s);
       on_finished(a, done);
     }
@@ -55,6 +58,7 @@ Task TaskManager::make_task(long id) const
 int TaskManager::add_task(Task t)
 {
   t.agent = -1;
+  revealed_.push_back({t.id, t.line, now_});
   if (!free_slots_.empty()) {
     const int s = free_slots_.back();
     free_slots_.pop_back();
@@ -70,6 +74,7 @@ void TaskManager::give(int agent, int s)
   slots_[s].agent = agent;
   holding_[agent] = s;
   ++tasks_assigned_;
+  assignments_.push_back({now_, agent, slots_[s].id});
 }
 
 void TaskManager::release(int agent)
@@ -78,6 +83,7 @@ void TaskManager::release(int agent)
   if (s < 0) return;
   slots_[s].agent = -1;
   holding_[agent] = -1;
+  assignments_.push_back({now_, agent, -1});
   --tasks_assigned_;  // counts tasks handed out for good, not matching rounds
 }
 

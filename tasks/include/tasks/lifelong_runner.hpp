@@ -10,6 +10,15 @@
 // tree at the current configuration (set_goals); while nothing completes it keeps its tree,
 // explored table and constraints, which is what makes it escape deadlocks and livelocks
 // that PIBT and the naive variant fall into.
+//
+// Rotation (LoRR MAPF_T): the planner still plans cell moves; each step it commits one
+// configuration when the RotationExecutor's window has room, and the executor turns the
+// committed moves into F/R/C/W actions (see rotation_executor.hpp). Errands complete on the
+// robots' real cells; the new goals go to the planner at its plan frontier.
+//
+// Budget: the set_goals that starts an epoch is planning work for the next step; it is
+// counted in that step's time and taken out of its search budget (at least one expansion
+// still runs), so a step's planner time is the budget unless set_goals alone exceeds it.
 #include <functional>
 #include <string>
 #include <vector>
@@ -17,6 +26,7 @@
 #include "planner/budget.hpp"
 #include "planner/graph.hpp"
 #include "planner/realtime_planner.hpp"
+#include "tasks/action_model.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace tasks {
@@ -41,6 +51,9 @@ struct LifelongOptions {
   std::function<void(const StepRecord&)> on_step;  // optional, after every step
   planner::ActionPreference* pref = nullptr;       // optional move order (learned policy)
   bool keep_priorities = true;                     // see planner::LacamOptions
+  ActionModel action_model = ActionModel::Grid4;
+  int rotation_window = 3;     // rotation: plan steps the planner may run ahead of the slowest robot
+  bool record_actions = false; // keep every robot's action letters (LoRR actualPaths)
 };
 
 struct PlannerTimes {
@@ -59,7 +72,12 @@ struct LifelongResult {
   double wall_ms = 0;
   long planner_errors = 0;
   std::string first_error;          // first validator message, "" when clean
+  long first_error_t = 0;           // its step
   uint64_t expansions = 0;
+  ActionModel action_model = ActionModel::Grid4;
+  planner::Config starts;
+  std::vector<std::string> actions;  // per robot, one LoRR letter per step (record_actions)
+  std::vector<int> final_headings;   // rotation only
 };
 
 // Starts the tasks at `starts`, builds `solver` (see make_planner) and runs.

@@ -34,4 +34,18 @@ struct Event {
   bool operator==(const Event& o) const { return t == o.t && agent == o.agent && task == o.task && errand == o.errand; }
 };
 
+// A task as revealed (for the LoRR log's `tasks`): sequence id, file line, step revealed.
+struct TaskRecord {
+  long id = -1;
+  int line = -1;
+  long revealed = 0;  // 0 = at the start, t = at the end of step t
+};
+
+// An agent's task changed at the end of step t (0 = start): `task` = Task::id, -1 = none.
+struct Assignment {
+  long t = 0;
+  int agent = -1;
+  long task = -1;
+};
+
 }  // namespace tasks

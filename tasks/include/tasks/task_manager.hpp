@@ -41,6 +41,11 @@ class TaskManager {
   long errands_finished() const { return errands_finished_; }
   long tasks_finished() const { return tasks_finished_; }
   long tasks_assigned() const { return tasks_assigned_; }
+  // History for the LoRR log: every task made live (reveal order), every change of an
+  // agent's task (time order).
+  const std::vector<TaskRecord>& revealed_tasks() const { return revealed_; }
+  const std::vector<Assignment>& assignments() const { return assignments_; }
+  const TaskFile& file() const { return *file_; }
 
  protected:
   // A task of the stream by sequence number (line = id mod file size).
@@ -67,6 +72,9 @@ class TaskManager {
  private:
   void refresh_goals(const planner::Config& positions);
 
+  long now_ = 0;  // step of the current start()/update(), for the history
+  std::vector<TaskRecord> revealed_;
+  std::vector<Assignment> assignments_;
   std::vector<Task> slots_;
   std::vector<int> free_slots_;
   planner::Config goals_;

@@ -1,0 +1,36 @@
+#pragma once
+// Action models of the League of Robot Runners, as LoRR's logs spell them.
+//
+//   grid4    -- 4-connected moves, one cell per step (PlanViz's "MAPF": U D L R W)
+//   rotation -- LoRR's "MAPF_T": state = cell + heading; F (forward one cell), R (turn
+//               clockwise), C (turn counter-clockwise), W (wait); each takes one step and
+//               a turn keeps the robot on its cell. All robots start facing east.
+//
+// Headings are LoRR's: 0 east, 1 south, 2 west, 3 north (clockwise = +1). PlanViz's
+// "MAPF" letters are its own (U = row + 1, D = row - 1, L = column - 1, R = column + 1):
+// we write what PlanViz replays.
+#include <string>
+
+#include "planner/graph.hpp"
+
+namespace tasks {
+
+enum class ActionModel { Grid4, Rotation };
+
+// "grid4" | "rotation"; throws std::invalid_argument otherwise.
+ActionModel parse_action_model(const std::string& s);
+std::string to_string(ActionModel m);
+// The `actionModel` value of a LoRR log: "MAPF" (grid4) or "MAPF_T" (rotation).
+std::string lorr_name(ActionModel m);
+
+constexpr char kHeadingLetter[4] = {'E', 'S', 'W', 'N'};
+
+// Heading of the move u -> v between 4-neighbours on a grid graph (0..3 as above).
+int heading_of_move(const planner::Graph& g, planner::Vertex u, planner::Vertex v);
+// PlanViz "MAPF" letter of a grid4 move (W when u == v).
+char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v);
+// The turn that brings heading h nearer to d (h != d): 'R' (clockwise) or 'C'. A half turn
+// goes clockwise.
+char turn_toward(int h, int d);
+
+}  // namespace tasks

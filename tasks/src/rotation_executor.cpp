@@ -1,0 +1,86 @@
+#include "tasks/rotation_executor.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "tasks/action_model.hpp"
+
+namespace tasks {
+
+RotationExecutor::RotationExecutor(const planner::Graph& g, const planner::Config& starts, int window)
+    : g_(g), window_(window), pos_(starts), heading_(starts.size(), 0), progress_(starts.size(), 0),
+      visits_(static_cast<size_t>(g.size()))
+{
+  if (window < 1) throw std::invalid_argument("rotation window must be >= 1");
+  if (!g.is_grid()) throw std::invalid_argument("the rotation model needs a grid graph");
+  plan_.push_back(starts);
+  for (int i = 0; i < static_cast<int>(starts.size()); ++i) visits_[starts[i]].push_back({i, 0});
+}
+
+void RotationExecutor::push(const planner::Config& next)
+{
+  const planner::Config& last = plan_.back();
+  ++frontier_;
+  for (int i = 0; i < static_cast<int>(next.size()); ++i)
+    if (next[i] != last[i]) visits_[next[i]].push_back({i, frontier_});
+  plan_.push_back(next);
+}
+
+bool RotationExecutor::moves(int i)
+{
+  enum { Unknown = 0, Visiting, Yes, No };
+  if (!want_[i]) return false;
+  if (memo_[i] == Visiting) return true;  // a cycle of followers: all go together
+  if (memo_[i] != Unknown) return memo_[i] == Yes;
+  memo_[i] = Visiting;
+  const std::vector<Visit>& q = visits_[target_[i]];
+  const long enter = progress_[i] + 1;
+  auto mine = [&](const Visit& v) { return v.agent == i && v.start == enter; };
+  bool ok = false;
+  if (mine(q.front())) ok = true;
+  else if (q.size() >= 2 && mine(q[1])) {
+    const int j = q.front().agent;  // earlier visitor: must be there and leave now
+    ok = pos_[j] == target_[i] && moves(j);
+  }
+  memo_[i] = ok ? Yes : No;
+  return ok;
+}
+
+const std::string& RotationExecutor::step()
+{
+  const int n = static_cast<int>(pos_.size());
+  actions_.assign(static_cast<size_t>(n), 'W');
+  want_.assign(static_cast<size_t>(n), 0);
+  memo_.assign(static_cast<size_t>(n), 0);
+  target_.assign(static_cast<size_t>(n), -1);
+  for (int i = 0; i < n; ++i) {
+    while (progress_[i] < frontier_ && at(progress_[i] + 1, i) == pos_[i]) ++progress_[i];  // plan waits are free
+    if (progress_[i] == frontier_) continue;
+    target_[i] = at(progress_[i] + 1, i);
+    const int d = heading_of_move(g_, pos_[i], target_[i]);
+    if (d != heading_[i]) actions_[i] = turn_toward(heading_[i], d);
+    else want_[i] = 1;
+  }
+  std::vector<int> movers;
+  for (int i = 0; i < n; ++i)
+    if (moves(i)) movers.push_back(i);
+  for (int i : movers) {
+    std::vector<Visit>& q = visits_[pos_[i]];
+    q.erase(q.begin());  // i's visit of its old cell ends (it was the front one)
+    pos_[i] = target_[i];
+    ++progress_[i];
+    actions_[i] = 'F';
+  }
+  for (int i = 0; i < n; ++i) {
+    if (actions_[i] == 'R') heading_[i] = (heading_[i] + 1) % 4;
+    else if (actions_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;
+  }
+  min_progress_ = n > 0 ? *std::min_element(progress_.begin(), progress_.end()) : frontier_;
+  while (base_ < min_progress_) {
+    plan_.erase(plan_.begin());
+    ++base_;
+  }
+  return actions_;
+}
+
+}  // namespace tasks
