@@ -23,7 +23,8 @@ int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file, action_model = "grid4";
-  int rotation_window = 3;
+  int rotation_window = 8;
+  bool no_heading_ties = false;
   bool reset_priorities = false, reassign = false;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
@@ -57,6 +58,7 @@ int main(int argc, char** argv)
   app.add_option("--rotation-window", rotation_window, "rotation: plan steps the planner may run ahead of the slowest robot")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--out", out_file, "write the full LoRR / PlanViz log (paths, events, tasks) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
@@ -93,6 +95,7 @@ int main(int argc, char** argv)
     opt.steps = steps;
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;
+    opt.heading_ties = !no_heading_ties;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);
     if (budget_expansions > 0) opt.budget.expansions = budget_expansions;

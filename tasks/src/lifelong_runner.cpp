@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "planner/validator.hpp"
+#include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/rotation_executor.hpp"
 #include "tasks/solver.hpp"
@@ -52,7 +53,15 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   const auto wall0 = Clock::now();
   auto t0 = Clock::now();
   tasks.start(starts);
-  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, opt.pref, opt.keep_priorities);
+  // Rotation: PIBT breaks distance ties by the turns a move needs (unless a policy orders moves).
+  std::unique_ptr<HeadingPreference> heading;
+  planner::ActionPreference* pref = opt.pref;
+  if (rotation && !pref && opt.heading_ties) {
+    heading = std::make_unique<HeadingPreference>(g, starts);
+    heading->set_max_dist_tables(2 * starts.size() + 256);
+    pref = heading.get();
+  }
+  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities);
   std::unique_ptr<RotationExecutor> exec;
   if (rotation) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
   r.setup_ms = ms_since(t0);
@@ -84,6 +93,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       if (letters && !rotation)
         for (size_t i = 0; i < next.size(); ++i) r.actions[i] += grid4_letter(g, p->current()[i], next[i]);
       p->commit();
+      if (heading) heading->committed(p->current());
     }
     const planner::Config* real = &p->current();
     if (rotation) {

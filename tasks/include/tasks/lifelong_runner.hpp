@@ -52,7 +52,8 @@ struct LifelongOptions {
   planner::ActionPreference* pref = nullptr;       // optional move order (learned policy)
   bool keep_priorities = true;                     // see planner::LacamOptions
   ActionModel action_model = ActionModel::Grid4;
-  int rotation_window = 3;     // rotation: plan steps the planner may run ahead of the slowest robot
+  int rotation_window = 8;     // rotation: plan steps the planner may run ahead of the slowest robot
+  bool heading_ties = true;    // rotation: HeadingPreference orders PIBT's equally near moves
   bool record_actions = false; // keep every robot's action letters (LoRR actualPaths)
 };
 
