@@ -58,7 +58,7 @@ void expect_clean_lifelong_run(const Config& cfg, const Controller& c, const Met
   EXPECT_EQ(planner::validate_plan(c.map().graph, plan.front(), plan.back(), plan, false), "");
 
   const nlohmann::json j = read_json(cfg.output.dir + "/" + cfg.tasks.log);
-  for (const char* k : {"actionModel", "teamSize", "numTaskFinished", "numErrandFinished", "makespan", "throughput",
+  for (const char* k : {"actionModel", "teamSize", "numTaskFinished", "numErrandFinished", "makespan", "taskThroughput",
                         "errandThroughput", "plannerTimes", "numPlannerErrors", "events", "mode", "assigner", "solver",
                         "budgetMs", "seed", "epochs"})
     EXPECT_TRUE(j.contains(k)) << k;
@@ -67,9 +67,9 @@ void expect_clean_lifelong_run(const Config& cfg, const Controller& c, const Met
   EXPECT_EQ(j["numPlannerErrors"], 0);
   EXPECT_EQ(j["numErrandFinished"], m.errands_finished);
   EXPECT_EQ(j["numTaskFinished"], m.tasks_finished);
-  EXPECT_DOUBLE_EQ(j["throughput"].get<double>(), static_cast<double>(m.tasks_finished) / m.ticks);
+  EXPECT_DOUBLE_EQ(j["taskThroughput"].get<double>(), static_cast<double>(m.tasks_finished) / m.ticks);
   EXPECT_EQ(j["mode"], cfg.tasks.assignment);
-  for (const char* k : {"mean", "p50", "p99", "max"}) EXPECT_TRUE(j["plannerTimes"].contains(k)) << k;
+  for (const char* k : {"mean", "p50", "p99", "max"}) EXPECT_TRUE(j["plannerTimeStats"].contains(k)) << k;
   ASSERT_EQ(static_cast<long long>(j["events"].size()), m.errands_finished);
 
   // Every event: the AGV stands on the errand's cell at the end of tick t (plan[t]).
@@ -77,7 +77,7 @@ void expect_clean_lifelong_run(const Config& cfg, const Controller& c, const Met
   long last_t = 0;
   for (const auto& e : j["events"]) {
     const long t = e[0], task = e[2];
-    const int agent = e[1], errand = e[3];
+    const int agent = e[1], errand = e[3].get<int>() - 1;  // LoRR: errands done
     ASSERT_GE(t, 1);
     ASSERT_LE(t, m.ticks);
     EXPECT_GE(t, last_t);

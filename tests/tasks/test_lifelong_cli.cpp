@@ -41,7 +41,7 @@ TEST(LifelongCli, RoundRobinLogHasTheLorrFields)
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream in(log);
   const auto j = nlohmann::json::parse(in);
-  EXPECT_EQ(j["actionModel"], "grid4");
+  EXPECT_EQ(j["actionModel"], "MAPF");  // PlanViz's name for 4-connected moves
   EXPECT_EQ(j["teamSize"], 100);
   EXPECT_EQ(j["mode"], "roundrobin");
   EXPECT_EQ(j["assigner"], "none");
@@ -50,13 +50,21 @@ TEST(LifelongCli, RoundRobinLogHasTheLorrFields)
   EXPECT_EQ(j["seed"], 3);
   EXPECT_EQ(j["numPlannerErrors"], 0);
   EXPECT_EQ(j["numTaskFinished"], j["numErrandFinished"]);
-  EXPECT_EQ(j["events"].size(), j["numErrandFinished"].get<size_t>());
-  EXPECT_EQ(j["events"][0].size(), 4u);  // [t, agent, task, errand]
-  EXPECT_DOUBLE_EQ(j["throughput"].get<double>(), j["numTaskFinished"].get<double>() / 100.0);
-  for (const char* k : {"mean", "p50", "p99", "max"}) EXPECT_TRUE(j["plannerTimes"].contains(k)) << k;
+  EXPECT_EQ(j["version"], "2023 LoRR");
+  ASSERT_EQ(j["events"].size(), 100u);  // LoRR 2023: per agent [task, t, "assigned" | "finished"]
+  size_t finished = 0;
+  for (const auto& ev : j["events"])
+    for (const auto& e : ev) finished += e[2] == "finished";
+  EXPECT_EQ(finished, j["numErrandFinished"].get<size_t>());
+  EXPECT_DOUBLE_EQ(j["taskThroughput"].get<double>(), j["numTaskFinished"].get<double>() / 100.0);
+  EXPECT_FALSE(j.contains("throughput"));  // one name per quantity
+  for (const char* k : {"mean", "p50", "p99", "max"}) EXPECT_TRUE(j["plannerTimeStats"].contains(k)) << k;
+  EXPECT_EQ(j["plannerTimes"].size(), 100u);  // LoRR: seconds per step
+  EXPECT_EQ(j["actualPaths"].size(), 100u);
   // stdout: the same summary without events.
   const auto s = nlohmann::json::parse(r.out);
   EXPECT_FALSE(s.contains("events"));
+  EXPECT_FALSE(s.contains("actualPaths"));
   EXPECT_EQ(s["numTaskFinished"], j["numTaskFinished"]);
 }
 

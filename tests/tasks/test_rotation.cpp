@@ -1,0 +1,248 @@
+// The rotation action model (LoRR MAPF_T): RotationExecutor turns committed cell moves into
+// F/R/C/W actions (a step per quarter turn, plan order per cell), and a lifelong run with it
+// stays validator-clean; the actions replay to the robots' real cells and every event
+// happens on its errand's cell. Also the LoRR log of such a run (lorr_log).
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "planner/movingai.hpp"
+#include "planner/validator.hpp"
+#include "tasks/lifelong_log.hpp"
+#include "tasks/lifelong_runner.hpp"
+#include "tasks/lorr_problem.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/rotation_executor.hpp"
+#include "tasks/task_pool.hpp"
+#include "tasks_test_util.hpp"
+
+using namespace tasks;
+using planner::Config;
+
+namespace {
+
+std::string run_until_idle(RotationExecutor& ex, int max_steps, int agent)
+{
+  std::string acts;
+  for (int s = 0; s < max_steps; ++s) acts += ex.step()[static_cast<size_t>(agent)];
+  return acts;
+}
+
+// Replays MAPF_T letters from (cell, heading): the cell after each step.
+planner::Vertex apply(const planner::Graph& g, planner::Vertex v, int& h, char a)
+{
+  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
+  if (a == 'R') h = (h + 1) % 4;
+  else if (a == 'C') h = (h + 3) % 4;
+  else if (a == 'F') v = g.at(g.cell_x(v) + dx[h], g.cell_y(v) + dy[h]);
+  return v;
+}
+
+}  // namespace
+
+TEST(RotationExecutor, TurnsCostAStepAndRobotsStartFacingEast)
+{
+  const auto g = ttest::grid({"...", "..."});
+  RotationExecutor ex(g, {g.at(0, 0)}, 8);
+  ex.push({g.at(1, 0)});  // east: straight ahead
+  ex.push({g.at(1, 1)});  // south: one clockwise turn first
+  ex.push({g.at(0, 1)});  // west: one more clockwise turn
+  EXPECT_EQ(run_until_idle(ex, 6, 0), "FRFRFW");
+  EXPECT_EQ(ex.positions()[0], g.at(0, 1));
+  EXPECT_EQ(ex.headings()[0], 2);
+  RotationExecutor back(g, {g.at(1, 0)}, 8);
+  back.push({g.at(0, 0)});  // behind it: a half turn (two steps), then forward
+  EXPECT_EQ(run_until_idle(back, 4, 0), "RRFW");
+  RotationExecutor up(g, {g.at(0, 1)}, 8);
+  up.push({g.at(0, 0)});  // north: counter-clockwise
+  EXPECT_EQ(run_until_idle(up, 2, 0), "CF");
+}
+
+TEST(RotationExecutor, FollowersMoveTogetherAndWaitForTheCellsEarlierVisitor)
+{
+  const auto g = ttest::grid({"....", "...."});
+  // A (0,0) and B (1,0) both go east: B leaves the cell A enters in the same step.
+  RotationExecutor ex(g, {g.at(0, 0), g.at(1, 0)}, 8);
+  ex.push({g.at(1, 0), g.at(2, 0)});
+  EXPECT_EQ(ex.step(), "FF");
+  // Now B turns south first (a step) while A wants B's cell: A waits for B to leave.
+  ex.push({g.at(2, 0), g.at(2, 1)});
+  EXPECT_EQ(ex.step(), "WR");
+  EXPECT_EQ(ex.step(), "FF");
+  EXPECT_EQ(ex.positions(), (Config{g.at(2, 0), g.at(2, 1)}));
+}
+
+TEST(RotationExecutor, WindowBoundsHowFarThePlanRunsAhead)
+{
+  const auto g = ttest::grid({"....."});
+  RotationExecutor ex(g, {g.at(4, 0)}, 2);  // must turn around: two steps before its first move
+  EXPECT_TRUE(ex.can_accept());
+  ex.push({g.at(3, 0)});
+  ex.push({g.at(2, 0)});
+  EXPECT_FALSE(ex.can_accept());
+  ex.step(), ex.step();
+  EXPECT_FALSE(ex.can_accept());  // still turning
+  ex.step();                      // first move
+  EXPECT_TRUE(ex.can_accept());
+}
+
+TEST(RotationExecutor, RandomValidPlansExecuteWithoutConflictsInPlanOrder)
+{
+  // Random cell-space plans (random valid steps of 12 robots on a 6x6 grid), executed with
+  // turns: every executed step passes the validator, each robot visits the plan's cells in
+  // order, and all reach the plan's last configuration (no deadlock).
+  const auto g = ttest::grid({"......", "......", "..#...", "......", "...#..", "......"});
+  planner::Rng rng(7);
+  Config c;
+  for (int v = 0; v < g.size() && c.size() < 12; v += 3) c.push_back(v);
+  for (int trial = 0; trial < 20; ++trial) {
+    RotationExecutor ex(g, c, 4);
+    std::vector<std::vector<planner::Vertex>> plan_cells(c.size()), done_cells(c.size());
+    for (size_t i = 0; i < c.size(); ++i) plan_cells[i].push_back(c[i]), done_cells[i].push_back(c[i]);
+    Config cur = c;
+    int pushed = 0;
+    for (int step = 0; step < 400; ++step) {
+      if (pushed < 60 && ex.can_accept()) {
+        Config next = cur;  // each robot tries a random neighbour, kept if the step stays valid
+        for (size_t i = 0; i < cur.size(); ++i) {
+          const auto nb = g.neighbors(cur[i]);
+          Config trial_c = next;
+          trial_c[i] = nb[static_cast<size_t>(rng.uniform() * static_cast<float>(nb.size())) % nb.size()];
+          if (planner::Validator::check_transition(g, cur, trial_c).empty()) next = trial_c;
+        }
+        ASSERT_EQ(planner::Validator::check_transition(g, cur, next), "");
+        for (size_t i = 0; i < cur.size(); ++i)
+          if (next[i] != cur[i]) plan_cells[i].push_back(next[i]);
+        ex.push(next);
+        cur = next;
+        ++pushed;
+      }
+      const Config before = ex.positions();
+      ex.step();
+      ASSERT_EQ(planner::Validator::check_transition(g, before, ex.positions()), "") << "trial " << trial << " step " << step;
+      for (size_t i = 0; i < cur.size(); ++i)
+        if (ex.positions()[i] != before[i]) done_cells[i].push_back(ex.positions()[i]);
+    }
+    EXPECT_EQ(ex.positions(), cur) << "trial " << trial;
+    EXPECT_EQ(done_cells, plan_cells) << "trial " << trial;
+    c = cur;
+  }
+}
+
+TEST(RotationRun, LifelongRunIsValidAndEventsHappenOnTheRobotsRealCells)
+{
+  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2023/random.domain/MR23-I-04.json");
+  const planner::Graph g = planner::load_map(pr.map_file);
+  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
+  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  RoundRobin rr(file);
+  LifelongOptions opt;
+  opt.steps = 150;
+  opt.budget = planner::Budget::expansion_count(50);
+  opt.action_model = ActionModel::Rotation;
+  opt.record_actions = true;
+  const LifelongResult r = run_lifelong(g, starts, rr, "rtlacam", 1, opt);
+  EXPECT_EQ(r.planner_errors, 0) << r.first_error;
+  ASSERT_GT(r.errands_finished, 20);
+  // Replay: cells per step from the letters.
+  std::vector<Config> at(static_cast<size_t>(opt.steps) + 1, starts);
+  std::vector<int> h(starts.size(), 0);
+  size_t turns = 0;
+  for (long t = 1; t <= opt.steps; ++t) {
+    at[t] = at[t - 1];
+    for (size_t i = 0; i < starts.size(); ++i) {
+      const char a = r.actions[i][static_cast<size_t>(t - 1)];
+      ASSERT_TRUE(a == 'F' || a == 'R' || a == 'C' || a == 'W') << a;
+      turns += a == 'R' || a == 'C';
+      at[t][i] = apply(g, at[t - 1][i], h[i], a);
+      ASSERT_GE(at[t][i], 0);
+    }
+    ASSERT_EQ(planner::Validator::check_transition(g, at[t - 1], at[t]), "") << "step " << t;
+  }
+  EXPECT_GT(turns, 0u);
+  EXPECT_EQ(h, r.final_headings);
+  for (const Event& e : r.events) {
+    const auto& errands = file->tasks[static_cast<size_t>(e.task % file->size())];
+    EXPECT_EQ(at[static_cast<size_t>(e.t)][e.agent], errands[static_cast<size_t>(e.errand)]);
+  }
+}
+
+TEST(LorrLog, PoolEventsCountErrandsDoneAndScheduleTasksThatExist)
+{
+  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2024/random.domain/RANDOM-01.json");
+  const planner::Graph g = planner::load_map(pr.map_file);
+  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
+  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  TaskPool pool(file, g, pr.pool_size(), make_assigner("greedy", 32));
+  LifelongOptions opt;
+  opt.steps = 120;
+  opt.budget = planner::Budget::expansion_count(20);
+  opt.action_model = ActionModel::Rotation;
+  opt.record_actions = true;
+  const LifelongResult r = run_lifelong(g, starts, pool, "rtlacam", 0, opt);
+  const nlohmann::json j = lorr_log({"p", "rtlacam", "pool", "greedy", pr.team_size, 0, 0}, r, pool, g);
+  EXPECT_EQ(j["version"], "2024 LoRR");
+  EXPECT_EQ(j["actionModel"], "MAPF_T");
+  EXPECT_EQ(j["plannerTimes"].size(), 120u);
+  ASSERT_EQ(j["events"].size(), r.events.size());
+  std::map<long, nlohmann::json> tasks;
+  for (const auto& t : j["tasks"]) tasks[t[0].get<long>()] = t;
+  ASSERT_GT(r.events.size(), 0u);
+  for (size_t k = 0; k < r.events.size(); ++k) {
+    const auto& e = j["events"][k];
+    EXPECT_EQ(e[3].get<int>(), r.events[k].errand + 1);  // LoRR: errands done, 1 for the first
+    ASSERT_TRUE(tasks.count(e[2].get<long>()));
+    EXPECT_LE(tasks[e[2].get<long>()][1].get<long>(), e[0].get<long>());  // revealed before it finished
+  }
+  std::set<long> scheduled;
+  for (const auto& s : j["actualSchedule"]) {
+    const std::string str = s;
+    size_t p = 0;
+    while (p < str.size()) {
+      const size_t colon = str.find(':', p), comma = str.find(',', p);
+      const long task = std::stol(str.substr(colon + 1, comma - colon - 1));
+      if (task >= 0) EXPECT_TRUE(tasks.count(task)) << task;
+      scheduled.insert(task);
+      p = comma == std::string::npos ? str.size() : comma + 1;
+    }
+  }
+  EXPECT_GE(scheduled.size(), static_cast<size_t>(pr.team_size));
+}
+
+TEST(LorrLog, RoundRobinTaskIdsAreLorrsAssignmentCounter)
+{
+  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2023/random.domain/MR23-I-04.json");
+  const planner::Graph g = planner::load_map(pr.map_file);
+  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
+  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  RoundRobin rr(file);
+  LifelongOptions opt;
+  opt.steps = 100;
+  opt.budget = planner::Budget::expansion_count(20);
+  opt.record_actions = true;
+  const LifelongResult r = run_lifelong(g, starts, rr, "rtlacam", 0, opt);
+  const nlohmann::json j = lorr_log({"p", "rtlacam", "roundrobin", "greedy", pr.team_size, 0, 0}, r, rr, g);
+  EXPECT_EQ(j["version"], "2023 LoRR");
+  EXPECT_EQ(j["actionModel"], "MAPF");
+  const auto& ts = j["tasks"];
+  ASSERT_EQ(ts.size(), static_cast<size_t>(pr.team_size + r.tasks_finished));  // one more per finished task
+  for (size_t i = 0; i < ts.size(); ++i) EXPECT_EQ(ts[i][0].get<size_t>(), i);
+  // First tasks: agent a gets LoRR task a at t = 0; finished events name the task it held.
+  long finished = 0;
+  for (int a = 0; a < pr.team_size; ++a) {
+    const auto& ev = j["events"][static_cast<size_t>(a)];
+    ASSERT_GE(ev.size(), 1u);
+    EXPECT_EQ(ev[0], nlohmann::json({a, 0, "assigned"}));
+    long held = a;
+    for (size_t k = 1; k < ev.size(); ++k) {
+      if (ev[k][2] == "finished") {
+        EXPECT_EQ(ev[k][0].get<long>(), held);
+        ++finished;
+      } else {
+        held = ev[k][0].get<long>();
+      }
+    }
+  }
+  EXPECT_EQ(finished, r.tasks_finished);
+}
