@@ -30,6 +30,7 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   j["taskLayerMs"] = r.task_ms;
   j["wallMs"] = r.wall_ms;
   j["epochs"] = r.epochs;
+  if (r.action_model == ActionModel::Rotation) j["windowFullSteps"] = r.window_full;
   j["expansions"] = r.expansions;
   j["numPlannerErrors"] = r.planner_errors;
   if (!r.first_error.empty()) j["firstPlannerError"] = r.first_error;

@@ -22,6 +22,17 @@ std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p
   return events;
 }
 
+namespace {
+
+bool has_pending(const TaskManager& tasks, const planner::Config& at)
+{
+  for (int a = 0; a < tasks.num_agents(); ++a)
+    if (tasks.busy(a) && at[a] != tasks.goals()[a]) return true;
+  return false;
+}
+
+}  // namespace
+
 PlannerTimes summarize(std::vector<double> ms)
 {
   PlannerTimes s;
@@ -76,6 +87,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
     t0 = Clock::now();
     const bool plan_now = !rotation || exec->can_accept();
+    if (!plan_now) ++r.window_full;
     planner::Config next;
     if (plan_now) {
       p->search(b);
@@ -118,9 +130,14 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     const std::vector<Event> ev = tasks.update(t, *real);
     r.task_ms += ms_since(t0);
     t0 = Clock::now();
-    if (!ev.empty()) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
-    carry_ms = ev.empty() ? 0.0 : ms_since(t0);
-    if (!ev.empty()) ++r.epochs;
+    // Rotation: the plan frontier runs ahead of the robots, so it can reach a goal before
+    // the robot does. Its epoch's goal test then holds and RT-LaCAM would only wait; a new
+    // epoch at the frontier (that agent no longer pending) keeps the others' plans going.
+    // The robot still completes the errand when it physically gets there.
+    const bool replan = !ev.empty() || (rotation && plan_now && p->at_goal() && has_pending(tasks, p->current()));
+    if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
+    carry_ms = replan ? ms_since(t0) : 0.0;
+    if (replan) ++r.epochs;
     rec.completed = static_cast<int>(ev.size());
     rec.new_epoch = !ev.empty();
     r.events.insert(r.events.end(), ev.begin(), ev.end());

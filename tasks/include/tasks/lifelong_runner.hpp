@@ -79,6 +79,7 @@ struct LifelongResult {
   planner::Config starts;
   std::vector<std::string> actions;  // per robot, one LoRR letter per step (record_actions)
   std::vector<int> final_headings;   // rotation only
+  long window_full = 0;              // rotation: steps the planner waited for the slowest robot
 };
 
 // Starts the tasks at `starts`, builds `solver` (see make_planner) and runs.
