@@ -17,13 +17,14 @@
 #include "planner/runner.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
+#include "tasks/rotation_executor.hpp"
 
 using namespace planner;
 
 int main(int argc, char** argv)
 {
   CLI::App app{"RT-LaCAM benchmark: interleaved planning and execution on a MovingAI instance"};
-  std::string map_file, scen_file, solver = "rtlacam", out_file, policy_file;
+  std::string map_file, scen_file, solver = "rtlacam", out_file, policy_file, action_model = "grid4";
   int agents = 0;
   double cutoff_ms = 1.0, timeout_s = 60.0;
   uint64_t budget_expansions = 0, seed = 0;
@@ -45,6 +46,10 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
+  app.add_option("--action-model", action_model,
+                 "grid4 | rotation (LoRR MAPF_T: the executed cell plan is run with headings; adds rotation_* fields)")
+      ->check(CLI::IsMember({"grid4", "rotation"}))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (solver == "cspibt" && policy_file.empty()) {
     std::cerr << "rtlacam-bench: --solver cspibt needs --policy WEIGHTS" << std::endl;
@@ -63,7 +68,7 @@ int main(int argc, char** argv)
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
     ropt.timeout_ms = timeout_s * 1000.0;
     ropt.max_steps = max_steps;
-    ropt.record_plan = !out_file.empty();
+    ropt.record_plan = !out_file.empty() || action_model == "rotation";
 
     // The policy: loaded before the clock starts (a one-off, like reading the map).
     policy::Model model;
@@ -119,6 +124,16 @@ int main(int argc, char** argv)
       j["policy"] = policy_file;
       j["policy_inferences"] = pref->inferences();
       j["policy_ms"] = pref->observation_ms() + pref->forward_ms();
+    }
+    j["action_model"] = action_model;
+    if (action_model == "rotation") {
+      const tasks::RotationRun rr = tasks::run_with_rotation(g, r.plan);
+      j["rotation_makespan"] = rr.makespan;
+      j["rotation_soc"] = rr.soc;
+      j["rotation_turns"] = rr.turns;
+      j["valid"] = r.validation_error.empty() && rr.error.empty();
+      if (!rr.error.empty() && r.validation_error.empty()) r.validation_error = "rotation: " + rr.error;
+      if (!rr.error.empty()) j["validation_error"] = r.validation_error;
     }
     std::cout << (compact ? j.dump() : j.dump(2)) << std::endl;
 

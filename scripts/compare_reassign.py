@@ -34,9 +34,9 @@ def main():
         if k not in base:
             continue
         n, b = new[k], base[k]
-        r = n["throughput"] / b["throughput"] if b["throughput"] > 0 else float("inf")
+        r = n["taskThroughput"] / b["taskThroughput"] if b["taskThroughput"] > 0 else float("inf")
         ratios.append(r)
-        print(f"| {k[0]} | {n['teamSize']} | {k[1]} | {k[2]} | {k[3]:g} | {b['throughput']:.3f} | {n['throughput']:.3f} | "
+        print(f"| {k[0]} | {n['teamSize']} | {k[1]} | {k[2]} | {k[3]:g} | {b['taskThroughput']:.3f} | {n['taskThroughput']:.3f} | "
               f"{r:.2f} | {n.get('numReassignments', '-')} |")
     if ratios:
         ratios.sort()
@@ -61,7 +61,7 @@ def plot(new, base, png):
     assigner = next(iter(new))[1]
     for solver in ["pibt", "naive", "rtlacam"]:
         for data, style, label in [(new, "-", "reassign"), (base, ":", "keep")]:
-            pts = sorted((j["teamSize"], j["throughput"]) for k, j in data.items() if k[2] == solver and k[3] == budget)
+            pts = sorted((j["teamSize"], j["taskThroughput"]) for k, j in data.items() if k[2] == solver and k[3] == budget)
             if pts:
                 ax.plot(*zip(*pts), style, marker="o", color=colors[solver], label=f"{solver} {label}")
     ax.set_xlabel("agents")

@@ -86,8 +86,8 @@ def main():
         best = LORR_BEST.get(j["instance"]) if not args.agents else None
         mode = j["mode"] + ("/" + j["assigner"] + ("/reassign" if j.get("reassign") else "") if j["mode"] == "pool" else "")
         lines.append(f"| {j['instance']} | {j['teamSize']} | {j['makespan']} | {mode} | {j['solver']} | {j['budgetMs']:g} | "
-                     f"{j['numTaskFinished']} | {j['throughput']:.2f} | {best if best else '-'} | "
-                     f"{j['plannerTimes']['p99']:.2f} | {j['plannerTimes']['max']:.1f} | {j['numPlannerErrors']} |")
+                     f"{j['numTaskFinished']} | {j['taskThroughput']:.2f} | {best if best else '-'} | "
+                     f"{j['plannerTimeStats']['p99']:.2f} | {j['plannerTimeStats']['max']:.1f} | {j['numPlannerErrors']} |")
     table = "\n".join(lines) + "\n"
     with open(os.path.join(args.out_dir, "table.md"), "w") as f:
         f.write(table)
@@ -104,7 +104,7 @@ def main():
     styles = {"pibt": "o-", "naive": "s--", "rtlacam": "^-"}
     for s in args.solvers:
         for b in args.budget_ms:
-            pts = sorted((j["teamSize"], j["throughput"]) for j in rows if j["solver"] == s and j["budgetMs"] == b)
+            pts = sorted((j["teamSize"], j["taskThroughput"]) for j in rows if j["solver"] == s and j["budgetMs"] == b)
             if pts:
                 ax.plot([p[0] for p in pts], [p[1] for p in pts], styles.get(s, "x-"), label=f"{s} {b:g} ms",
                         alpha=0.5 + 0.5 * (b == max(args.budget_ms)))

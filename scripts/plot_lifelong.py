@@ -28,8 +28,12 @@ def main():
             j = json.load(f)
         T = j["makespan"]
         per_step = [0] * (T + 1)
-        for t, _agent, _task, _errand in j["events"]:
-            per_step[t] += 1
+        for e in j["events"]:
+            if j.get("version") == "2023 LoRR":  # per agent: [task, t, "assigned" | "finished"]
+                for task, t, what in e:
+                    per_step[t] += what == "finished"
+            else:  # [t, agent, task, errands done]
+                per_step[e[0]] += 1
         cum, c = [], 0
         for t in range(T + 1):
             c += per_step[t]

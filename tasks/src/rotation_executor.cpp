@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "planner/validator.hpp"
 #include "tasks/action_model.hpp"
 
 namespace tasks {
@@ -81,6 +82,32 @@ const std::string& RotationExecutor::step()
     ++base_;
   }
   return actions_;
+}
+
+RotationRun run_with_rotation(const planner::Graph& g, const std::vector<planner::Config>& plan)
+{
+  RotationRun out;
+  if (plan.empty()) return out;
+  RotationExecutor ex(g, plan.front(), static_cast<int>(std::max<size_t>(plan.size(), 1)));
+  for (size_t k = 1; k < plan.size(); ++k) ex.push(plan[k]);
+  std::vector<long> last(plan.front().size(), 0);
+  // Every robot needs at most 3 steps per plan step (two turns and a move) once the ones
+  // before it are through: bounds the loop even if something were wrong.
+  const long limit = 3 * static_cast<long>(plan.size()) * static_cast<long>(plan.front().size()) + 3;
+  for (long t = 1; ex.positions() != plan.back() && t <= limit; ++t) {
+    const planner::Config before = ex.positions();
+    const std::string& act = ex.step();
+    const std::string err = planner::Validator::check_transition(g, before, ex.positions());
+    if (!err.empty() && out.error.empty()) out.error = "step " + std::to_string(t) + ": " + err;
+    for (size_t i = 0; i < act.size(); ++i) {
+      if (act[i] != 'W') last[i] = t;
+      out.turns += act[i] == 'R' || act[i] == 'C';
+    }
+    out.makespan = t;
+  }
+  if (ex.positions() != plan.back() && out.error.empty()) out.error = "the robots did not reach the plan's end";
+  for (long l : last) out.soc += l;
+  return out;
 }
 
 }  // namespace tasks

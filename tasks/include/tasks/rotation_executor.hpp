@@ -71,4 +71,13 @@ class RotationExecutor {
   std::string actions_;
 };
 
+// A whole cell-space plan C_0..C_T run under MAPF_T (one-shot MAPF: rtlacam-bench
+// --action-model rotation): timesteps until every robot stands on C_T, sum over robots of
+// the step of its last action, and the first executed step that fails the validator.
+struct RotationRun {
+  long makespan = 0, soc = 0, turns = 0;
+  std::string error;  // "" when every step is valid
+};
+RotationRun run_with_rotation(const planner::Graph& g, const std::vector<planner::Config>& plan);
+
 }  // namespace tasks
