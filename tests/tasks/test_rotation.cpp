@@ -15,6 +15,7 @@
 #include "tasks/roundrobin.hpp"
 #include "tasks/rotation_executor.hpp"
 #include "tasks/task_pool.hpp"
+#include "cli_run.hpp"
 #include "tasks_test_util.hpp"
 
 using namespace tasks;
@@ -245,4 +246,34 @@ TEST(LorrLog, RoundRobinTaskIdsAreLorrsAssignmentCounter)
     }
   }
   EXPECT_EQ(finished, r.tasks_finished);
+}
+
+TEST(RotationRun, OneShotPlanRunsWithHeadingsAndTurnsCostSteps)
+{
+  const auto g = ttest::grid({"....", "....", "...."});
+  // Two robots cross paths in cell space; with headings it takes longer but stays valid.
+  std::vector<Config> plan = {{g.at(0, 0), g.at(3, 2)}, {g.at(1, 0), g.at(3, 1)}, {g.at(1, 1), g.at(3, 0)},
+                              {g.at(1, 2), g.at(2, 0)}};
+  const RotationRun r = run_with_rotation(g, plan);
+  EXPECT_EQ(r.error, "");
+  // Robot 0: F, R, F, F (4 steps). Robot 1 faces east, must face north: C, F, F, C, F (5).
+  EXPECT_EQ(r.makespan, 5);
+  EXPECT_EQ(r.soc, 9);
+  EXPECT_EQ(r.turns, 3);
+}
+
+TEST(RotationRun, BenchReportsTheRotationRunOfTheExecutedPlan)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const auto r = test::run_cli(RTLACAM_BENCH_BIN, "--map " + dir + "random-32-32-20.map --scen " + dir +
+                                                      "random-32-32-20-random-1.scen -N 50 --solver rtlacam --json "
+                                                      "--budget-expansions 10 --action-model rotation");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["action_model"], "rotation");
+  EXPECT_EQ(j["valid"], true);
+  EXPECT_TRUE(j["solved"].get<bool>());
+  EXPECT_GE(j["rotation_makespan"].get<long>(), j["makespan"].get<long>());  // turns only add steps
+  EXPECT_GT(j["rotation_soc"].get<long>(), j["soc"].get<long>());
+  EXPECT_GT(j["rotation_turns"].get<long>(), 0);
 }
