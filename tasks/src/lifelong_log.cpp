@@ -23,6 +23,8 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   j["errandThroughput"] = static_cast<double>(r.errands_finished) / steps;
   const PlannerTimes pt = summarize(r.planner_ms);
   j["plannerTimeStats"] = {{"mean", pt.mean}, {"p50", pt.p50}, {"p99", pt.p99}, {"max", pt.max}};
+  const PlannerTimes es = summarize(r.epoch_start_ms);
+  j["epochStartStats"] = {{"mean", es.mean}, {"p50", es.p50}, {"p99", es.p99}, {"max", es.max}};
   nlohmann::json times = nlohmann::json::array();
   for (double ms : r.planner_ms) times.push_back(ms / 1000.0);  // LoRR: seconds
   j["plannerTimes"] = std::move(times);

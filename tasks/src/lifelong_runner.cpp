@@ -94,6 +94,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       next = p->next();
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
+    rec.epoch_start_ms = carry_ms;
     rec.explored = p->explored();
 
     if (plan_now) {
@@ -142,6 +143,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     rec.new_epoch = !ev.empty();
     r.events.insert(r.events.end(), ev.begin(), ev.end());
     r.planner_ms.push_back(rec.planner_ms);
+    r.epoch_start_ms.push_back(rec.epoch_start_ms);
     r.steps = t;
     if (opt.on_step) opt.on_step(rec);
   }

@@ -277,3 +277,26 @@ TEST(RotationRun, BenchReportsTheRotationRunOfTheExecutedPlan)
   EXPECT_GT(j["rotation_soc"].get<long>(), j["soc"].get<long>());
   EXPECT_GT(j["rotation_turns"].get<long>(), 0);
 }
+
+TEST(LifelongTiming, EpochStartIsChargedToTheStepAfterACompletion)
+{
+  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2023/random.domain/MR23-I-04.json");
+  const planner::Graph g = planner::load_map(pr.map_file);
+  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
+  RoundRobin rr(std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g)));
+  LifelongOptions opt;
+  opt.steps = 80;
+  opt.budget = planner::Budget::expansion_count(5);
+  std::vector<StepRecord> recs;
+  opt.on_step = [&](const StepRecord& s) { recs.push_back(s); };
+  const LifelongResult r = run_lifelong(g, starts, rr, "rtlacam", 0, opt);
+  ASSERT_EQ(r.epoch_start_ms.size(), 80u);
+  int charged = 0;
+  for (size_t k = 0; k < recs.size(); ++k) {
+    const bool after_completion = k > 0 && recs[k - 1].completed > 0;
+    EXPECT_EQ(r.epoch_start_ms[k] > 0, after_completion) << "step " << k + 1;
+    EXPECT_LE(r.epoch_start_ms[k], r.planner_ms[k]);
+    charged += after_completion;
+  }
+  EXPECT_GT(charged, 10);
+}

@@ -39,6 +39,7 @@ std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p
 struct StepRecord {      // what one step did (for tests and progress output)
   long t = 0;
   double planner_ms = 0;
+  double epoch_start_ms = 0;  // the set_goals that started this step's epoch (in planner_ms)
   int completed = 0;     // errands completed at the end of this step
   bool new_epoch = false;
   size_t explored = 0;   // planner's explored table after search, before any reset
@@ -68,6 +69,7 @@ struct LifelongResult {
   long epochs = 0;                  // set_goals calls, the initial goals included
   std::vector<Event> events;
   std::vector<double> planner_ms;   // per step: search + next (+ set_goals of its epoch start)
+  std::vector<double> epoch_start_ms;  // per step: the set_goals part of planner_ms (0 without a new epoch)
   double setup_ms = 0;              // first assignment + planner construction
   double task_ms = 0;               // task layer (completions, reveals, assignment) over all steps
   double wall_ms = 0;
