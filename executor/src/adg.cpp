@@ -108,6 +108,25 @@ void Adg::finish(int id)
   ++done_count_;
 }
 
+int Adg::chain_candidate(int agent) const
+{
+  const auto& q = queue_[agent];
+  return head_[agent] + 1 < q.size() ? q[head_[agent] + 1] : -1;
+}
+
+bool Adg::chainable(int id) const
+{
+  const Action& a = actions_[id];
+  return a.state == State::Pending && a.group < 0 && a.prev >= 0 && actions_[a.prev].state == State::Running &&
+         dep_done(a.handover);
+}
+
+void Adg::start_chained(int id)
+{
+  if (!chainable(id)) throw std::logic_error("Adg::start_chained: action " + std::to_string(id) + " is not chainable");
+  actions_[id].state = State::Running;
+}
+
 long long Adg::progress(int agent) const
 {
   const int id = next_action(agent);

@@ -67,6 +67,13 @@ class Adg {
   void start(int id);
   // Running -> Done.
   void finish(int id);
+  // Chaining (a physical agent that need not stop between two moves): the agent's action
+  // after its first undone one (-1 if none), and whether it may start before that one is
+  // done: pending, in no group, its hand-over done -- the cell it enters is free; the
+  // type-1 edge only orders the agent's own moves, which its motion along the path keeps.
+  int chain_candidate(int agent) const;
+  bool chainable(int id) const;
+  void start_chained(int id);  // throws unless chainable
   // Members of the action's group (just the action itself when it has none).
   std::vector<int> group_of(int id) const;
 
