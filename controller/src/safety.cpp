@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <unordered_map>
 
 #include "controller/sumo_error.hpp"
 
@@ -18,9 +17,14 @@ Claim Safety::locate(const std::string& lane, double pos) const
 {
   auto it = map_.lane_aisle.find(lane);
   if (it == map_.lane_aisle.end()) return {};
-  const gridify::Aisle& a = map_.aisles[it->second.first];
+  return locate(*it, pos);
+}
+
+Claim Safety::locate(const std::pair<const std::string, std::pair<int, bool>>& lane, double pos) const
+{
+  const gridify::Aisle& a = map_.aisles[lane.second.first];
   // Offset from junction A in cells.
-  const double k = (it->second.second ? pos : a.length_ba - pos) / a.spacing;
+  const double k = (lane.second.second ? pos : a.length_ba - pos) / a.spacing;
   const double kc = std::min<double>(std::max(k, 0.0), a.steps);
   const double r = std::round(kc);
   if (std::fabs(kc - r) * a.spacing <= 1e-6) return {a.cells[static_cast<size_t>(r)], -1};
@@ -35,9 +39,11 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
   ++epoch_;
   char when[64];
   std::snprintf(when, sizeof when, "t=%.3f s: ", t);
-  std::unordered_map<std::string, std::vector<std::pair<std::pair<double, double>, int>>> on_lane;
+  // (lane key, back, front, agent); lane key = 2 x aisle + (ab lane).
+  bodies_.clear();
   for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
-    const Claim c = locate(poses[i].lane, poses[i].pos);
+    auto la = map_.lane_aisle.find(poses[i].lane);
+    const Claim c = la == map_.lane_aisle.end() ? Claim{} : locate(*la, poses[i].pos);
     if (c.a < 0)
       throw ControlError(when + std::string("AGV ") + ids[i] + " is off the aisles (lane '" + poses[i].lane + "')");
     for (planner::Vertex v : {c.a, c.b}) {
@@ -56,17 +62,21 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
       }
     }
     // The body on its lane: [front - length, front].
-    on_lane[poses[i].lane].push_back({{poses[i].pos - length_, poses[i].pos}, i});
+    bodies_.push_back({2 * la->second.first + la->second.second, poses[i].pos - length_, poses[i].pos, i});
   }
-  for (auto& [lane, l] : on_lane) {
-    std::sort(l.begin(), l.end());
-    size_t far = 0;  // the body reaching furthest so far
-    for (size_t k = 1; k < l.size(); ++k) {
-      if (l[k].first.first < l[far].first.second - 1e-9)
-        throw ControlError(when + std::string("AGVs ") + ids[l[far].second] + " and " + ids[l[k].second] +
-                           " overlap on lane " + lane + " (bodies intersect)");
-      if (l[k].first.second > l[far].first.second) far = k;
+  std::sort(bodies_.begin(), bodies_.end(), [](const Body& x, const Body& y) {
+    return x.lane != y.lane ? x.lane < y.lane : x.back < y.back;
+  });
+  size_t far = 0;  // on the current lane, the body reaching furthest so far
+  for (size_t k = 1; k < bodies_.size(); ++k) {
+    if (bodies_[k].lane != bodies_[far].lane) {
+      far = k;
+      continue;
     }
+    if (bodies_[k].back < bodies_[far].front - 1e-9)
+      throw ControlError(when + std::string("AGVs ") + ids[bodies_[far].agent] + " and " + ids[bodies_[k].agent] +
+                         " overlap on lane " + poses[bodies_[k].agent].lane + " (bodies intersect)");
+    if (bodies_[k].front > bodies_[far].front) far = k;
   }
 }
 

@@ -39,7 +39,15 @@ class Safety {
   long long checks() const { return checks_; }
 
  private:
+  Claim locate(const std::pair<const std::string, std::pair<int, bool>>& lane, double pos) const;
+  struct Body {
+    int lane;
+    double back, front;
+    int agent;
+  };
+
   const gridify::CellMap& map_;
+  std::vector<Body> bodies_;
   double length_;
   std::vector<int> owner_;         // cell -> agent claiming it, valid where stamp_ == epoch_
   std::vector<unsigned> stamp_;
