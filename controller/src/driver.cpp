@@ -63,10 +63,20 @@ void Driver::before_step()
     for (double d : g.dist) rem += d;
     double v = 0;
     if (rem > 1e-12) {
-      if (delays_.stopped(i)) {
+      // A rotation (group) drives as one: at its slowest member's speed, and every
+      // member brakes when one is stopped.
+      bool held = delays_.stopped(i);
+      double factor = delays_.factor(i);
+      if (adg_.action(g.run.front()).group >= 0)
+        for (int m : adg_.group_of(g.run.front())) {
+          const int j = adg_.action(m).agent;
+          held = held || delays_.stopped(j);
+          factor = std::min(factor, delays_.factor(j));
+        }
+      if (held) {
         v = std::max(0.0, g.v - p_.decel * p_.dt);
       } else {
-        const double vmax = p_.max_speed * delays_.factor(i);
+        const double vmax = p_.max_speed * factor;
         v = std::min({vmax, g.v + p_.accel * p_.dt, std::sqrt(2 * p_.decel * rem)});
       }
       // Land on the cell, a nanometre short: SUMO moves a front exactly at a lane's end

@@ -70,11 +70,17 @@ void GraphExecution::tick_adg()
     for (int m : group) go = go && !delays_.stopped(adg_->action(m).agent);
     if (!go) continue;
     adg_->start(id);
-    for (int m : group) left_[adg_->action(m).agent] = delays_.move_ticks(adg_->action(m).agent);
+    // A rotation moves as one: at its slowest member's pace, held by any stopped member.
+    int ticks = 1;
+    for (int m : group) ticks = std::max(ticks, delays_.move_ticks(adg_->action(m).agent));
+    for (int m : group) left_[adg_->action(m).agent] = ticks;
   }
   for (int i = 0; i < n; ++i) {
     const int id = adg_->next_action(i);
-    if (id < 0 || adg_->action(id).state != State::Running || delays_.stopped(i)) continue;
+    if (id < 0 || adg_->action(id).state != State::Running) continue;
+    bool held = false;
+    for (int m : adg_->group_of(id)) held = held || delays_.stopped(adg_->action(m).agent);
+    if (held) continue;
     if (--left_[i] == 0) {
       adg_->finish(id);
       pos_[i] = adg_->action(id).to;

@@ -41,7 +41,7 @@ TEST(DelayModel, BernoulliRateAndDurationsMatchTheSpec)
   for (int k = 0; k < ticks; ++k) {
     m.tick(k);
     for (int i = 0; i < n; ++i) {
-      if (m.stopped(i)) {  // NOLINT
+      if (m.stopped(i)) {
         ++run[i];
       } else if (run[i] > 0) {
         min_len = std::min(min_len, run[i]);
@@ -75,7 +75,9 @@ TEST(DelayModel, PoissonFractionSlowdownAndStuck)
   for (int k = 0; k < 100; ++k) {
     m.tick(k);
     for (int i = 0; i < n; ++i) ever[i] |= m.stopped(i);
-    if (k >= 10 && k < 70) EXPECT_TRUE(m.stopped(7)) << k;
+    if (k >= 10 && k < 70) {
+      EXPECT_TRUE(m.stopped(7)) << k;
+    }
   }
   int stoppers = 0;
   for (int i = 0; i < n; ++i) stoppers += ever[i] && i != 7;

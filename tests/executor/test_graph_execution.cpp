@@ -46,7 +46,9 @@ Outcome run(const planner::Graph& g, const planner::Instance& ins, const DelaySp
     }
   }
   out.finished = ex.finished();
-  if (out.finished) EXPECT_EQ(ex.positions(), ins.goals);
+  if (out.finished) {
+    EXPECT_EQ(ex.positions(), ins.goals);
+  }
   out.stats = ex.stats();
   out.stop_ticks = ex.delays().stop_ticks();
   return out;
