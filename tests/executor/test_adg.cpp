@@ -111,3 +111,27 @@ TEST(Adg, RejectsAConfigurationOfTheWrongSize)
   Adg adg({0, 1});
   EXPECT_THROW(adg.append({0}), std::invalid_argument);
 }
+
+TEST(Adg, ChainingNeedsTheHandOverNotTheOwnPreviousMove)
+{
+  // Line 0-1-2-3-4: agent 0 drives 0->1->2; agent 1 leaves 2 for 3 at step 0.
+  Adg adg({0, 2});
+  adg.append({1, 3});
+  adg.append({2, 3});
+  const int first = adg.next_action(0), second = adg.chain_candidate(0);
+  ASSERT_GE(second, 0);
+  EXPECT_EQ(adg.action(second).from, 1);
+  EXPECT_FALSE(adg.chainable(second));  // its own first move is not running yet
+  adg.start(first);
+  EXPECT_FALSE(adg.chainable(second));  // cell 2 not handed over: agent 1 has not arrived
+  EXPECT_THROW(adg.start_chained(second), std::logic_error);
+  const int lead = adg.next_action(1);
+  adg.start(lead);
+  adg.finish(lead);
+  EXPECT_TRUE(adg.chainable(second));
+  adg.start_chained(second);
+  adg.finish(first);
+  adg.finish(second);
+  EXPECT_TRUE(adg.done());
+  EXPECT_EQ(adg.at(0), 2);
+}

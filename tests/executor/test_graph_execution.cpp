@@ -6,6 +6,7 @@
 #include <set>
 
 #include "executor/graph_execution.hpp"
+#include "grid.hpp"
 #include "planner/movingai.hpp"
 #include "planner/rt_lacam.hpp"
 #include "planner/validator.hpp"
@@ -131,4 +132,37 @@ TEST(GraphExecution, CheckRejectsBadOptions)
   o = {};
   o.mode = "async";
   EXPECT_EQ(check(o).rfind("executor: ", 0), 0u);
+}
+
+TEST(GraphExecution, RotationWithASlowMemberMovesAsOne)
+{
+  // A 2x2 block; four agents rotate once, agent 0 at half speed: all four arrive together.
+  const planner::Graph g = test::grid({"..", ".."});
+  // Vertices: 0 (0,0) 1 (1,0) 2 (0,1) 3 (1,1); clockwise 0->1->3->2->0.
+  struct Script : planner::RealtimePlanner {
+    std::vector<planner::Config> s{{0, 1, 3, 2}, {1, 3, 2, 0}};
+    size_t k = 0;
+    planner::Config goals_{1, 3, 2, 0};
+    planner::Status search(const planner::Budget&) override { return planner::Status::Searching; }
+    const planner::Config& next() override { return s[std::min(k + 1, s.size() - 1)]; }
+    void commit() override { k = std::min(k + 1, s.size() - 1); }
+    void set_goals(const planner::Config&, planner::GoalTest) override {}
+    const planner::Config& current() const override { return s[k]; }
+    const planner::Config& goals() const override { return goals_; }
+    bool at_goal() const override { return k + 1 == s.size(); }
+    uint64_t expansions() const override { return 0; }
+    size_t explored() const override { return 0; }
+    std::string name() const override { return "script"; }
+  } p;
+  DelaySpec d;
+  d.slow = {{0, 0.5}};
+  GraphExecution ex(p, d, ExecOptions{});
+  planner::Validator val(g, {0, 1, 3, 2}, {1, 3, 2, 0});
+  ex.tick({0, 1});
+  EXPECT_EQ(ex.positions(), (planner::Config{0, 1, 3, 2}));  // nobody arrived after one tick
+  EXPECT_TRUE(val.step(ex.positions()));
+  ex.tick({0, 1});
+  EXPECT_EQ(ex.positions(), (planner::Config{1, 3, 2, 0}));
+  EXPECT_TRUE(val.step(ex.positions())) << val.error();
+  EXPECT_TRUE(ex.finished());
 }
