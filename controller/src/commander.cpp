@@ -230,6 +230,11 @@ void Commander::verify(const planner::Config& at, double tol)
       if (std::find(present.begin(), present.end(), agv_[i].id) == present.end()) failed(i, e);
     throw;
   }
+  verify(now, tol);
+}
+
+void Commander::verify(const std::vector<VehiclePose>& now, double tol)
+{
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     Agv& a = agv_[i];
     const VehiclePose& p = now[i];

@@ -56,7 +56,7 @@ void Run::loop_lockstep()
     epoch_ms_ = 0;
 
     t0 = Clock::now();
-    cmd_->verify(to, c_.tolerance);
+    cmd_->verify(last_poses_, c_.tolerance);  // poses read after the tick's last step
     control_.push_back(ctl + ms_since(t0));
     cur = to;
     if (!held) next.clear();

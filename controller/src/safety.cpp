@@ -42,7 +42,10 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
   // (lane key, back, front, agent); lane key = 2 x aisle + (ab lane).
   bodies_.clear();
   for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
-    auto la = map_.lane_aisle.find(poses[i].lane);
+    // Most AGVs stay on their lane from one step to the next: skip the hash lookup then.
+    if (static_cast<size_t>(i) >= lane_cache_.size()) lane_cache_.resize(i + 1, map_.lane_aisle.end());
+    auto la = lane_cache_[i];
+    if (la == map_.lane_aisle.end() || la->first != poses[i].lane) la = lane_cache_[i] = map_.lane_aisle.find(poses[i].lane);
     const Claim c = la == map_.lane_aisle.end() ? Claim{} : locate(*la, poses[i].pos);
     if (c.a < 0)
       throw ControlError(when + std::string("AGV ") + ids[i] + " is off the aisles (lane '" + poses[i].lane + "')");

@@ -60,6 +60,8 @@ class Commander {
   // a ControlError. Reads all poses with one SumoBackend::poses() call (request_poses()
   // before the tick's last step lets a back end batch it).
   void verify(const planner::Config& at, double tol);
+  // The same with poses already read after the tick's last step (no second read).
+  void verify(const std::vector<VehiclePose>& now, double tol);
 
   // The commanded pose of an agent (where its front must be after the tick).
   const gridify::SumoPose& pose(int agent) const { return agv_[agent].pose; }

@@ -14,6 +14,7 @@
 //     claims above catch a head-on pass.)
 // Each violation is a ControlError naming the AGVs, the lane and the time.
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "controller/sumo_backend.hpp"
@@ -48,6 +49,7 @@ class Safety {
 
   const gridify::CellMap& map_;
   std::vector<Body> bodies_;
+  std::vector<std::unordered_map<std::string, std::pair<int, bool>>::const_iterator> lane_cache_;
   double length_;
   std::vector<int> owner_;         // cell -> agent claiming it, valid where stamp_ == epoch_
   std::vector<unsigned> stamp_;
