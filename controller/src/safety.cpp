@@ -59,7 +59,8 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
       if (exclusive || c.b < 0) {
         if (stamp_[v] == epoch_)
           throw ControlError(when + std::string("AGVs ") + ids[owner_[v]] + " and " + ids[i] + " overlap at cell " +
-                             std::to_string(v));
+                             std::to_string(v) + " (" + poses[owner_[v]].lane + " " + std::to_string(poses[owner_[v]].pos) +
+                             ", " + poses[i].lane + " " + std::to_string(poses[i].pos) + ")");
         stamp_[v] = epoch_;
         owner_[v] = i;
       }
