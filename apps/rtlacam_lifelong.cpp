@@ -2,6 +2,7 @@
 // (the log without per-step lists); --out writes the full LoRR / PlanViz log; progress goes
 // to stderr.
 #include <CLI/CLI.hpp>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -10,6 +11,7 @@
 #include "planner/movingai.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
+#include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_files.hpp"
@@ -31,6 +33,11 @@ int main(int argc, char** argv)
   uint64_t budget_expansions = 0, seed = 0;
   int k_nearest = 32, agents = 0;
   bool quiet = false;
+  // Execution under delays (executor/): off unless --executor is given.
+  std::string executor_mode;
+  executor::ExecOptions exec;
+  executor::DelaySpec delays;
+  std::vector<std::string> slow, stuck;
   app.add_option("--problem", problem_file, "LoRR problem JSON")->required();
   app.add_option("--steps", steps, "steps to simulate (default: the instance's simulation_time)");
   app.add_option("--agents", agents, "use only the first N agents of the team (default: teamSize)")->check(CLI::PositiveNumber);
@@ -62,6 +69,18 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the full LoRR / PlanViz log (paths, events, tasks) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
+  app.add_option("--executor", executor_mode, "execute commits under delays: lockstep | adg (default: none, every commit is executed at once)")
+      ->check(CLI::IsMember({"lockstep", "adg"}));
+  app.add_option("--window", exec.window, "adg: committed configurations ahead of the slowest agent (>= 1)")->capture_default_str();
+  app.add_option("--delay-kind", delays.kind, "none | bernoulli | poisson")->capture_default_str();
+  app.add_option("--delay-p", delays.p, "bernoulli: per agent per step probability that a stop starts");
+  app.add_option("--delay-rate", delays.rate, "poisson: stop events per agent per step");
+  app.add_option("--delay-min", delays.min_ticks, "shortest stop, steps")->capture_default_str();
+  app.add_option("--delay-max", delays.max_ticks, "longest stop, steps")->capture_default_str();
+  app.add_option("--delay-fraction", delays.fraction, "share of the agents that ever stop")->capture_default_str();
+  app.add_option("--delay-seed", delays.seed, "seed of the delays")->capture_default_str();
+  app.add_option("--slow", slow, "AGENT:FACTOR, a slowed agent (factor in (0, 1]); repeatable");
+  app.add_option("--stuck", stuck, "AGENT:AT:STEPS, an agent stopped from step AT for STEPS; repeatable");
   CLI11_PARSE(app, argc, argv);
 
   try {
@@ -114,9 +133,47 @@ int main(int argc, char** argv)
                   << summarize(lat).p99 << " ms" << std::endl;
       };
 
-    const LifelongResult r = run_lifelong(g, starts, *tm, solver, seed, opt);
+    LifelongExecResult xr;
+    if (!executor_mode.empty() && opt.action_model != ActionModel::Grid4)
+      throw planner::InputError("--executor runs grid4 plans; --action-model rotation has its own executor");
+    if (!executor_mode.empty()) {
+      exec.mode = executor_mode;
+      for (const std::string& s : slow) {
+        executor::Slowdown d;
+        if (std::sscanf(s.c_str(), "%d:%lf", &d.agent, &d.factor) != 2)
+          throw planner::InputError("--slow '" + s + "': expected AGENT:FACTOR");
+        delays.slow.push_back(d);
+      }
+      for (const std::string& s : stuck) {
+        executor::Stuck d;
+        if (std::sscanf(s.c_str(), "%d:%lld:%lld", &d.agent, &d.at, &d.ticks) != 3)
+          throw planner::InputError("--stuck '" + s + "': expected AGENT:AT:STEPS");
+        delays.stuck.push_back(d);
+      }
+      if (std::string e = executor::check(exec); !e.empty()) throw planner::InputError("--" + e);
+      if (std::string e = executor::check(delays, pr.team_size); !e.empty()) throw planner::InputError("--delay " + e);
+      xr = run_lifelong_exec(g, starts, *tm, solver, seed, opt, delays, exec);
+    } else if (delays.kind != "none" || !slow.empty() || !stuck.empty()) {
+      throw planner::InputError("delay options need --executor lockstep|adg");
+    } else {
+      xr.life = run_lifelong(g, starts, *tm, solver, seed, opt);
+    }
+    const LifelongResult& r = xr.life;
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
+    if (!executor_mode.empty())
+      j["executor"] = {{"mode", exec.mode},
+                       {"window", exec.window},
+                       {"delayKind", delays.kind},
+                       {"delayP", delays.p},
+                       {"delayRate", delays.rate},
+                       {"delayTicks", {delays.min_ticks, delays.max_ticks}},
+                       {"commits", xr.exec.commits},
+                       {"moves", xr.exec.moves},
+                       {"dependencyWaits", xr.exec.dependency_waits},
+                       {"lockstepWaits", xr.exec.lockstep_waits},
+                       {"delayAgentTicks", xr.exec.delay_ticks},
+                       {"maxTicksWithoutErrand", xr.max_gap}};
     if (pref) j["policy"] = policy_file;
     j["keepPriorities"] = !reset_priorities;
     add_task_fields(j, *tm);

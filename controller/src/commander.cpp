@@ -102,20 +102,21 @@ void Commander::failed(int agent, const SumoError& e)
   throw e;
 }
 
-void Commander::command(const planner::Config& cur, const planner::Config& next)
+void Commander::command(const planner::Config& cur, const planner::Config& next, int ticks)
 {
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     try {
-      command(i, cur[i], next[i]);
+      command(i, cur[i], next[i], ticks);
     } catch (const SumoError& e) {
       failed(i, e);
     }
   }
 }
 
-void Commander::command(int i, planner::Vertex u, planner::Vertex v)
+void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
 {
   {
+    const double tick_ = this->tick_ * ticks;
     Agv& a = agv_[i];
     if (u == v) {
       set_speed(a, 0);
@@ -146,12 +147,72 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v)
       set_route(a, {here.edge, back.edge, continuation(back.edge)});
       sumo_.move_to(a.id, target.lane, turned);
       ++stats_.move_to;
+      ++stats_.turns;
       set_speed(a, (target.pos - turned) / tick_);
     } else {
       throw ControlError("agent " + std::to_string(i) + ": no scheme-S command for the move " + std::to_string(u) +
                          " -> " + std::to_string(v) + " from lane " + a.pose.lane);
     }
     a.pose = target;
+  }
+}
+
+bool Commander::needs_rest(int i, planner::Vertex u, planner::Vertex v) const
+{
+  const Agv& a = agv_[i];
+  const gridify::SumoPose target = map_.pose_entering(u, v);
+  if (target.lane == a.pose.lane) return false;
+  const Lane& here = lane(a.pose.lane);
+  if (map_.cells[u].kind == gridify::CellKind::Junction) return !connected(here.edge, lane(target.lane).edge);
+  return true;  // reversal inside an aisle
+}
+
+void Commander::drive(int i, double speed)
+{
+  try {
+    set_speed(agv_[i], speed);
+  } catch (const SumoError& e) {
+    failed(i, e);
+  }
+}
+
+double Commander::begin_move(int i, planner::Vertex u, planner::Vertex v)
+{
+  Agv& a = agv_[i];
+  try {
+    const gridify::SumoPose target = map_.pose_entering(u, v);
+    const Lane& here = lane(a.pose.lane);
+    double d = 0;
+    if (target.lane == a.pose.lane) {
+      d = target.pos - a.pose.pos;
+    } else if (map_.cells[u].kind == gridify::CellKind::Junction) {
+      const std::string& out = lane(target.lane).edge;
+      set_route(a, {here.edge, out, continuation(out)});
+      if (connected(here.edge, out)) {
+        d = target.pos;
+      } else {
+        sumo_.move_to(a.id, target.lane, target.pos);  // a real jump: counted, reported
+        ++stats_.move_to;
+        ++stats_.jumps;
+      }
+    } else if (target.lane == here.opposite) {
+      // Turn in place: the AGV stands on its cell (needs_rest); its front stays on the
+      // cell centre, only the lane (heading) changes. No distance is covered.
+      const Lane& back = lane(target.lane);
+      const double turned = back.length - a.pose.pos;
+      set_route(a, {here.edge, back.edge, continuation(back.edge)});
+      sumo_.move_to(a.id, target.lane, turned);
+      ++stats_.move_to;
+      ++stats_.turns;
+      d = target.pos - turned;
+    } else {
+      throw ControlError("agent " + std::to_string(i) + ": no command for the move " + std::to_string(u) + " -> " +
+                         std::to_string(v) + " from lane " + a.pose.lane);
+    }
+    a.pose = target;
+    return d;
+  } catch (const SumoError& e) {
+    failed(i, e);
   }
 }
 
@@ -169,6 +230,11 @@ void Commander::verify(const planner::Config& at, double tol)
       if (std::find(present.begin(), present.end(), agv_[i].id) == present.end()) failed(i, e);
     throw;
   }
+  verify(now, tol);
+}
+
+void Commander::verify(const std::vector<VehiclePose>& now, double tol)
+{
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     Agv& a = agv_[i];
     const VehiclePose& p = now[i];

@@ -182,7 +182,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("", "not valid YAML: line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   if (!root.IsMap()) r.fail("", "expected a mapping with sections sumo, grid, fleet, planner, tasks, run, output");
-  r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "output"});
+  r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "delays", "output"});
 
   Config c;
   c.path = name;
@@ -233,12 +233,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
   if (c.fleet.count < 1) r.fail("fleet.starts", "must list at least one cell");
   const YAML::Node v = f["vtype"];
-  r.keys(v, "fleet.vtype", {"length", "width", "min_gap", "accel", "decel"});
+  r.keys(v, "fleet.vtype", {"length", "width", "min_gap", "accel", "decel", "max_speed"});
   r.number(v, "fleet.vtype", "length", c.fleet.vtype.length, 0, true);
   r.number(v, "fleet.vtype", "width", c.fleet.vtype.width, 0, true);
   r.number(v, "fleet.vtype", "min_gap", c.fleet.vtype.min_gap, 0);
   r.number(v, "fleet.vtype", "accel", c.fleet.vtype.accel, 0, true);
   r.number(v, "fleet.vtype", "decel", c.fleet.vtype.decel, 0, true);
+  r.number(v, "fleet.vtype", "max_speed", c.fleet.vtype.max_speed, 0, true);
   if (c.fleet.vtype.length + c.fleet.vtype.min_gap > c.grid.cell_length + 1e-9)
     r.fail("fleet.vtype", "length + min_gap (" + Reader::fmt(c.fleet.vtype.length + c.fleet.vtype.min_gap) +
                               ") exceeds grid.cell_length (" + Reader::fmt(c.grid.cell_length) +
@@ -308,7 +309,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
 
   const YAML::Node u = root["run"];
-  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s"});
+  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s", "executor", "window"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -318,9 +319,66 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
   r.number(u, "run", "progress_s", c.run.progress_s, 0);
+  r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg"});
+  r.integer(u, "run", "window", c.run.window, 1, 1000000);
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
+
+  // Delays: seconds -> ticks (rounded up), then executor::check for the ranges.
+  const YAML::Node d = root["delays"];
+  r.keys(d, "delays", {"kind", "p", "rate", "duration_s", "fraction", "seed", "slow", "stuck"});
+  executor::DelaySpec& ds = c.delays.spec;
+  auto ticks = [&](double sec) { return static_cast<long long>(std::ceil(sec / c.run.tick_s - 1e-9)); };
+  r.choice(d, "delays", "kind", ds.kind, {"none", "bernoulli", "poisson"});
+  r.get(d, "delays", "p", ds.p, "a number");
+  r.get(d, "delays", "rate", ds.rate, "a number");
+  r.number(d, "delays", "fraction", ds.fraction, 0, true);
+  r.get(d, "delays", "seed", ds.seed, "a non-negative integer");
+  if (d && d.IsMap() && d["duration_s"]) {
+    const YAML::Node n = d["duration_s"];
+    if (!n.IsSequence() || n.size() != 2) r.fail("delays.duration_s", "expected [min, max] seconds");
+    double lo = 0, hi = 0;
+    try {
+      lo = n[0].as<double>();
+      hi = n[1].as<double>();
+    } catch (const YAML::Exception&) {
+      r.fail("delays.duration_s", "expected [min, max] seconds");
+    }
+    if (!(lo > 0) || !(hi >= lo) || !std::isfinite(hi))
+      r.fail("delays.duration_s", "needs 0 < min <= max, got [" + Reader::fmt(lo) + ", " + Reader::fmt(hi) + "]");
+    ds.min_ticks = ticks(lo);
+    ds.max_ticks = ticks(hi);
+  }
+  auto agent_list = [&](const char* k, auto&& each) {
+    if (!d || !d.IsMap() || !d[k]) return;
+    const YAML::Node l = d[k];
+    const std::string key = std::string("delays.") + k;
+    if (!l.IsSequence()) r.fail(key, "expected a list of mappings");
+    for (size_t i = 0; i < l.size(); ++i) each(l[i], key + "[" + std::to_string(i) + "]");
+  };
+  agent_list("slow", [&](const YAML::Node& n, const std::string& key) {
+    r.keys(n, key, {"agent", "factor"});
+    executor::Slowdown sd;
+    r.get(n, key, "agent", sd.agent, "an integer");
+    r.get(n, key, "factor", sd.factor, "a number");
+    ds.slow.push_back(sd);
+  });
+  agent_list("stuck", [&](const YAML::Node& n, const std::string& key) {
+    r.keys(n, key, {"agent", "at_s", "for_s"});
+    double at = 0, dur = 0;
+    executor::Stuck st;
+    r.get(n, key, "agent", st.agent, "an integer");
+    r.number(n, key, "at_s", at, 0);
+    r.number(n, key, "for_s", dur, 0, true);
+    st.at = static_cast<long long>(std::floor(at / c.run.tick_s + 1e-9));
+    st.ticks = ticks(dur);
+    ds.stuck.push_back(st);
+  });
+  if (const std::string e = executor::check(ds, c.fleet.count); !e.empty()) {
+    const size_t colon = e.find(": ");
+    r.fail("delays." + e.substr(0, colon), e.substr(colon + 2));
+  }
 
   const YAML::Node w = root["output"];
   r.keys(w, "output", {"dir", "plan"});

@@ -89,6 +89,19 @@ nlohmann::json Metrics::to_json() const
                    {"move_to", commands.move_to},
                    {"jumps", commands.jumps}};
   j["resyncs"] = commands.resyncs;
+  j["turns_in_place"] = commands.turns;
+  j["teleports_or_jumps"] = commands.jumps + commands.resyncs;
+  j["collisions"] = error.find("overlap") != std::string::npos || error.find("colliding") != std::string::npos ? 1 : 0;
+  j["executor"] = {{"mode", executor},
+                   {"window", window},
+                   {"commits", commits},
+                   {"dependency_waits", dependency_waits},
+                   {"lockstep_waits", lockstep_waits},
+                   {"delay_agent_ticks", delay_agent_ticks},
+                   {"delay_stops", delay_stops},
+                   {"chained", chained},
+                   {"safety_checks", safety_checks},
+                   {"ms_per_step", latency_json(executor_ms_per_step)}};
   j["max_position_error_m"] = commands.max_error;
   return j;
 }

@@ -25,6 +25,8 @@ struct CommandStats {
   long long speed = 0, route = 0, move_to = 0;  // calls sent
   long long jumps = 0;     // turns SUMO has no connection for: done by moveTo at once
   long long resyncs = 0;   // verify() found an AGV off its cell and moved it back
+  long long turns = 0;     // in-aisle reversals: moveTo onto the opposite lane at the mirrored
+                           // position of an AGV standing on its cell (front stays put)
   double max_error = 0;    // largest position error seen by verify(), metres
   long long total() const { return speed + route + move_to; }
 };
@@ -39,14 +41,27 @@ class Commander {
   // and speed 0. They enter the network at the next SUMO step.
   void insert(const planner::Config& starts);
 
-  // Commands for the move cur -> next (one tick). Agents with cur == next wait.
-  void command(const planner::Config& cur, const planner::Config& next);
+  // Commands for the move cur -> next (one tick; `ticks` > 1: stretched over that many
+  // ticks, all AGVs at 1 / ticks of the speed). Agents with cur == next wait.
+  void command(const planner::Config& cur, const planner::Config& next, int ticks = 1);
+
+  // adg executor: prepares the move u -> v of one AGV whose commanded pose is cell u
+  // (route, or the turn of a reversal) and returns the distance its front travels. The
+  // speed is the caller's (drive()). A reversal or an unconnected turn needs the AGV at
+  // rest on u (needs_rest()): the front does not move, only the heading flips.
+  double begin_move(int agent, planner::Vertex u, planner::Vertex v);
+  bool needs_rest(int agent, planner::Vertex u, planner::Vertex v) const;
+  void drive(int agent, double speed);
+  // SUMO ids in agent order.
+  const std::vector<std::string>& ids() const { return ids_; }
 
   // After the tick: every AGV must be on the pose of its cell in `at` within `tol`
   // metres; off by more -> moveTo back (counted in resyncs). An AGV missing from SUMO is
   // a ControlError. Reads all poses with one SumoBackend::poses() call (request_poses()
   // before the tick's last step lets a back end batch it).
   void verify(const planner::Config& at, double tol);
+  // The same with poses already read after the tick's last step (no second read).
+  void verify(const std::vector<VehiclePose>& now, double tol);
 
   // The commanded pose of an agent (where its front must be after the tick).
   const gridify::SumoPose& pose(int agent) const { return agv_[agent].pose; }
@@ -68,7 +83,7 @@ class Commander {
     planner::Vertex end = -1;  // junction cell at the end of the lane
   };
 
-  void command(int agent, planner::Vertex u, planner::Vertex v);
+  void command(int agent, planner::Vertex u, planner::Vertex v, int ticks);
   // A SUMO call on an AGV failed: a ControlError if the AGV is gone, else rethrows.
   [[noreturn]] void failed(int agent, const SumoError& e);
   const Lane& lane(const std::string& id) const;

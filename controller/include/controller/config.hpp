@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "executor/delay_model.hpp"
+
 namespace controller {
 
 struct ConfigError : std::runtime_error {
@@ -44,9 +46,11 @@ struct GridSection {
   bool drop_one_way = false;
 };
 
-// The AGV vType of scheme S; maxSpeed and emergencyDecel are derived (cell/tick, vmax/dt).
+// The AGV vType. Lockstep (scheme S) derives maxSpeed (cell/tick) and emergencyDecel
+// (vmax/dt); the adg executor drives with accel / decel / max_speed (m/s^2, m/s).
 struct VType {
   double length = 0.8, width = 0.6, min_gap = 0.1, accel = 2.0, decel = 2.0;
+  double max_speed = 1.0;
 };
 
 struct FleetSection {
@@ -100,6 +104,14 @@ struct RunSection {
   double gui_delay_ms = 100;         // sumo-gui's --delay (a watchable pace; 0 = flat out)
   int port = 0;                      // traci: connect to a running SUMO instead of starting one
   double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
+  std::string executor = "lockstep"; // lockstep (all AGVs one cell per tick) | adg (executor/)
+  int window = 4;                    // adg: committed configurations ahead of the slowest AGV
+};
+
+// Delays (executor/delay_model.hpp), durations in seconds in the YAML, ticks here.
+struct DelaysSection {
+  executor::DelaySpec spec;
+  bool any() const { return spec.kind != "none" || !spec.slow.empty() || !spec.stuck.empty(); }
 };
 
 struct OutputSection {
@@ -115,6 +127,7 @@ struct Config {
   PlannerSection planner;
   TasksSection tasks;
   RunSection run;
+  DelaysSection delays;
   OutputSection output;
 
   int steps_per_tick() const;  // tick_s / step_length (validated to be a whole number)

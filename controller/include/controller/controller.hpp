@@ -3,12 +3,16 @@
 //
 //   gridify(net) -> CellMap; fleet -> starts/goals; start SUMO; insert the AGVs
 //   every SUMO step:  planner.search(budget)            (thinking while the AGVs move)
-//   every tick (tick_s / step_length steps), at its start:
+//   run.executor: lockstep -- every tick (tick_s / step_length steps), at its start:
 //       next = planner.next(); planner.commit()         (reroot at once: the search goes on
 //                                                        from where the AGVs are heading)
 //       validator.step(next); commander.command(cur, next)   (scheme S)
-//   at its end: commander.verify(next)                  (exact poses, else moveTo + count)
-//   after every SUMO step: no AGV arrived, teleported or collided.
+//     at its end: commander.verify(next)                (exact poses, else moveTo + count)
+//   run.executor: adg -- the planner commits up to run.window configurations ahead into an
+//     action dependency graph; the Driver starts each AGV's moves when released and
+//     drives it with accel / decel (driver.hpp)
+//   after every SUMO step: no AGV arrived, teleported or collided, and Safety: no overlap,
+//   every AGV on its committed path (safety.hpp).
 // Any violation stops the run with a one-line error in Metrics::error; the outputs
 // (SUMO files, metrics.json, plan.txt) are written in every case.
 #include <functional>
@@ -21,6 +25,8 @@
 #include "planner/realtime_planner.hpp"
 
 namespace controller {
+
+class Run;
 
 // The solver named by planner.solver on this graph and instance; `pref` orders PIBT's
 // moves (a learned policy), `test` replaces "all at goals" (lifelong runs).
@@ -51,6 +57,7 @@ class Controller {
   const std::vector<planner::Config>& plan() const { return plan_; }
 
  private:
+  friend class Run;  // the phases of run() (src/run.hpp)
   Config cfg_;
   gridify::CellMap map_;
   std::vector<planner::Config> plan_;

@@ -33,6 +33,19 @@ struct Metrics {
   Latency control_ms_per_tick;  // commands + verification
   CommandStats commands;
 
+  // Executor (run.executor) and delays. teleports_or_jumps = SUMO teleports are errors
+  // (the run stops), so this is moveTo jumps + re-syncs: must be 0.
+  std::string executor = "lockstep";
+  int window = 1;
+  long long dependency_waits = 0;   // adg: agent-steps a committed move waited for its dependencies
+  long long lockstep_waits = 0;     // lockstep: ticks all AGVs waited for a stopped one
+  long long delay_agent_ticks = 0;  // agent-ticks stopped by the delay model
+  long long delay_stops = 0;        // stops injected
+  long long chained = 0;            // adg: moves started without stopping in between
+  long long safety_checks = 0;      // SUMO steps checked by Safety (overlap / on path)
+  long long commits = 0;            // configurations the planner committed
+  Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
+
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;
   long long errands_finished = 0, tasks_finished = 0, epochs = 0;

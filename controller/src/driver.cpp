@@ -1,0 +1,141 @@
+#include "controller/driver.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "controller/sumo_error.hpp"
+
+namespace controller {
+
+Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
+    : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents())
+{
+}
+
+void Driver::begin(int id)
+{
+  const executor::Action& a = adg_.action(id);
+  Agv& g = agv_[a.agent];
+  g.run.push_back(id);
+  g.dist.push_back(cmd_.begin_move(a.agent, a.from, a.to));
+  g.target.push_back(cmd_.pose(a.agent));
+}
+
+void Driver::before_step()
+{
+  const int n = adg_.num_agents();
+  for (int i = 0; i < n; ++i) {
+    Agv& g = agv_[i];
+    const bool stopped = delays_.stopped(i);
+    st_.delay_steps += stopped;
+    if (stopped) continue;
+    if (g.run.empty()) {
+      const int id = adg_.next_action(i);
+      if (id < 0) continue;
+      if (!adg_.released(id)) {
+        ++st_.dependency_waits;
+        continue;
+      }
+      const std::vector<int> group = adg_.group_of(id);
+      bool go = true;
+      for (int m : group) {
+        const int j = adg_.action(m).agent;
+        go = go && !delays_.stopped(j) && agv_[j].run.empty() &&
+             (!cmd_.needs_rest(j, adg_.action(m).from, adg_.action(m).to) || agv_[j].rest_steps > 0);
+      }
+      if (!go) continue;
+      adg_.start(id);
+      for (int m : group) begin(m);
+    } else if (g.run.size() == 1) {
+      // Chain the next move if its cell is already handed over: no braking in between.
+      const int id = adg_.chain_candidate(i);
+      if (id < 0 || !adg_.chainable(id)) continue;
+      const executor::Action& a = adg_.action(id);
+      if (cmd_.needs_rest(i, a.from, a.to)) continue;
+      adg_.start_chained(id);
+      begin(id);
+      ++st_.chained;
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    Agv& g = agv_[i];
+    double rem = -g.done;
+    for (double d : g.dist) rem += d;
+    double v = 0;
+    if (rem > 1e-12) {
+      // A rotation (group) drives as one: at its slowest member's speed, and every
+      // member brakes when one is stopped.
+      bool held = delays_.stopped(i);
+      double factor = delays_.factor(i);
+      if (adg_.action(g.run.front()).group >= 0)
+        for (int m : adg_.group_of(g.run.front())) {
+          const int j = adg_.action(m).agent;
+          held = held || delays_.stopped(j);
+          factor = std::min(factor, delays_.factor(j));
+        }
+      if (held) {
+        v = std::max(0.0, g.v - p_.decel * p_.dt);
+      } else {
+        const double vmax = p_.max_speed * factor;
+        v = std::min({vmax, g.v + p_.accel * p_.dt, std::sqrt(2 * p_.decel * rem)});
+      }
+      // Land on the cell, a nanometre short: SUMO moves a front exactly at a lane's end
+      // onto the next edge of its route, which would leave the junction cell's pose.
+      if (v * p_.dt >= rem - 1e-9) v = std::max(0.0, rem - 1e-9) / p_.dt;
+    }
+    g.v = v;
+    cmd_.drive(i, v);
+  }
+}
+
+void Driver::after_step(const std::vector<VehiclePose>& poses)
+{
+  for (int i = 0; i < adg_.num_agents(); ++i) {
+    Agv& g = agv_[i];
+    if (g.run.empty()) {
+      ++g.rest_steps;
+      continue;
+    }
+    g.done += g.v * p_.dt;
+    // SUMO's position is the truth where it is on the target lane (no drift accumulates).
+    if (poses[i].lane == g.target.front().lane) g.done = g.dist.front() - (g.target.front().pos - poses[i].pos);
+    while (!g.run.empty() && g.done >= g.dist.front() - 2e-9) {
+      g.done = std::max(0.0, g.done - g.dist.front());
+      const int id = g.run.front();
+      g.run.erase(g.run.begin());
+      g.dist.erase(g.dist.begin());
+      g.target.erase(g.target.begin());
+      adg_.finish(id);
+      if (g.run.empty()) {
+        // Arrived and (the speed profile ensures) at rest: the front must be on the cell.
+        const gridify::SumoPose& want = cmd_.pose(i);
+        const double err = poses[i].lane == want.lane ? std::fabs(poses[i].pos - want.pos) : INFINITY;
+        if (err > 1e-6)
+          throw ControlError("AGV " + cmd_.ids()[i] + " arrived off its cell: lane " + poses[i].lane + " pos " +
+                             std::to_string(poses[i].pos) + ", expected " + want.lane + " " + std::to_string(want.pos));
+        st_.max_error = std::max(st_.max_error, err);
+        g.done = 0;
+        g.rest_steps = 0;
+      }
+    }
+  }
+}
+
+std::vector<std::vector<planner::Vertex>> Driver::allowed() const
+{
+  std::vector<std::vector<planner::Vertex>> out(agv_.size());
+  for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
+    out[i].push_back(adg_.at(i));
+    for (int id : agv_[i].run) out[i].push_back(adg_.action(id).to);
+  }
+  return out;
+}
+
+bool Driver::idle() const
+{
+  for (const Agv& g : agv_)
+    if (!g.run.empty()) return false;
+  return true;
+}
+
+}  // namespace controller

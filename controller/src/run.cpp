@@ -1,0 +1,248 @@
+#include "run.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "controller/fleet.hpp"
+#include "controller/lifelong.hpp"
+#include "controller/sumo_error.hpp"
+#include "controller/sumo_options.hpp"
+#include "gridify/gridifier.hpp"
+#include "planner/error.hpp"
+#include "planner/plan_io.hpp"
+#include "policy/weights_file.hpp"
+#include "tasks/lifelong_goal.hpp"
+#include "tasks/lifelong_log.hpp"
+
+namespace controller {
+
+namespace fs = std::filesystem;
+using planner::Clock;
+using planner::ms_since;
+
+namespace {
+
+std::string join_ids(const std::vector<std::string>& ids)
+{
+  std::string s;
+  for (size_t i = 0; i < ids.size() && i < 5; ++i) s += (i ? ", " : "") + ids[i];
+  if (ids.size() > 5) s += ", ... (" + std::to_string(ids.size()) + " in all)";
+  return s;
+}
+
+// SUMO must never act on its own: after each step, nothing arrived, teleported or collided.
+void check_events(SumoBackend& sumo, double t)
+{
+  char when[64];
+  std::snprintf(when, sizeof when, "t=%.3f s: ", t);
+  std::vector<std::string> ids = sumo.arrived();
+  if (!ids.empty())
+    throw ControlError(when + std::string("AGV(s) left the network: ") + join_ids(ids) +
+                       " (arrived at a route end or removed behind the controller's back)");
+  ids = sumo.teleported();
+  if (!ids.empty()) throw ControlError(when + std::string("SUMO teleported AGV(s): ") + join_ids(ids));
+  ids = sumo.colliding();
+  if (!ids.empty()) throw ControlError(when + std::string("SUMO reports colliding AGV(s): ") + join_ids(ids));
+}
+
+}  // namespace
+
+void Run::prepare()
+{
+  m_.config = cfg_.path;
+  m_.net = cfg_.sumo.net;
+  m_.solver = cfg_.planner.solver;
+  m_.policy = cfg_.planner.policy;
+  m_.tick_s = cfg_.run.tick_s;
+  m_.step_length = cfg_.sumo.step_length;
+  m_.budget_ms = cfg_.planner.budget_ms;
+  m_.mode = cfg_.tasks.mode;
+  m_.executor = cfg_.run.executor;
+  m_.window = cfg_.run.executor == "adg" ? cfg_.run.window : 1;
+  if (cfg_.tasks.lifelong()) m_.assignment = cfg_.tasks.assignment;
+
+  gridify::GridifyOptions go;
+  go.cell_length = cfg_.grid.cell_length;
+  go.tolerance = cfg_.grid.tolerance;
+  go.snap = cfg_.grid.snap;
+  go.drop_one_way = cfg_.grid.drop_one_way;
+  go.additional = cfg_.sumo.additional;
+  try {
+    c_.map_ = gridify::gridify(cfg_.sumo.net, go);
+  } catch (const planner::InputError& e) {
+    throw ConfigError(cfg_.path + ": sumo.net: " + e.what());
+  }
+  ins_ = make_instance(cfg_, c_.map_);
+  const planner::Graph& g = c_.map_.graph;
+  m_.agents = ins_.num_agents();
+  m_.cells = g.size();
+  if (!cfg_.tasks.lifelong()) m_.soc_lb = ins_.soc_lower_bound(g);
+  if (cfg_.tasks.lifelong()) tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
+  // The learned policy (CS-PIBT move order). Its observations are grid windows: the net
+  // must be an axis-aligned lattice (gridify then attaches the grid view). The planner
+  // tells it the goals (ActionPreference::set_goals), so it starts with none.
+  if (!cfg_.planner.policy.empty()) {
+    if (!g.is_grid())
+      throw ConfigError(cfg_.path + ": planner.policy: needs a net whose cells lie on a lattice ('" + cfg_.sumo.net +
+                        "' does not: its observations are grid windows)");
+    try {
+      model_ = policy::load_weights(cfg_.planner.policy);
+    } catch (const planner::InputError& e) {
+      throw ConfigError(cfg_.path + ": planner.policy: " + e.what());
+    }
+    pref_ = std::make_unique<policy::PolicyPreference>(g, model_, planner::Config{});
+  }
+  dir_ = cfg_.output.dir;
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (!fs::is_directory(dir_)) throw ConfigError(cfg_.path + ": output.dir: cannot create '" + dir_ + "'");
+  for (const gridify::Aisle& a : c_.map_.aisles) max_spacing_ = std::max(max_spacing_, a.spacing);
+
+  sumo_ = make_backend(cfg_.run);
+  m_.backend = sumo_->name();
+  cmd_ = std::make_unique<Commander>(c_.map_, *sumo_, cfg_.run.tick_s);
+  safety_ = std::make_unique<Safety>(c_.map_, cfg_.fleet.vtype.length);
+  planner::Config goals = ins_.goals;
+  planner::GoalTest goal_test;
+  auto setup0 = Clock::now();
+  if (tm_) {
+    // Duplicate goals are normal here (two AGVs sent to one station): the lifelong goal
+    // test ("some AGV not yet arrived stands on its goal") never needs distinct goals.
+    tm_->start(ins_.starts);
+    goals = tm_->goals();
+    goal_test = tasks::lifelong_goal_test(*tm_, ins_.starts);
+  }
+  p_ = make_planner(cfg_.planner, g, ins_.starts, goals, pref_.get(), goal_test);
+  if (tm_) {
+    // Thousands of goal cells over a run: keep the tables in use plus a few hundred recent.
+    p_->set_max_dist_tables(2 * ins_.starts.size() + 256);
+    life_.setup_ms = ms_since(setup0);
+    life_.epochs = 1;
+  }
+  val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
+  delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
+  budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
+                            cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
+  k_ = cfg_.steps_per_tick();
+  plan_step_.reserve(static_cast<size_t>(std::min<long long>(cfg_.run.max_ticks, 100000)) * k_);
+}
+
+std::vector<VehiclePose> Run::poses()
+{
+  try {
+    return sumo_->poses(cmd_->ids());
+  } catch (const SumoError& e) {
+    if (!sumo_->running()) throw;
+    cmd_->verify(p_->current(), 1e9);  // names an AGV that is gone, if one is
+    throw;
+  }
+}
+
+void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive)
+{
+  auto t0 = Clock::now();
+  p_->search(budget_);
+  const double ms = ms_since(t0);
+  plan_step_.push_back(ms);
+  plan_in_tick_ += ms;
+  sumo_->request_poses();
+  t0 = Clock::now();
+  sumo_->step();
+  sumo_step_.push_back(ms_since(t0));
+  check_events(*sumo_, sumo_->time());
+  t0 = Clock::now();
+  last_poses_ = poses();
+  for (size_t i = 0; i < last_poses_.size(); ++i)
+    if (last_poses_[i].lane.empty())
+      throw ControlError("AGV " + cmd_->ids()[i] + " (agent " + std::to_string(i) +
+                         ") is not in SUMO any more (removed behind the controller's back?)");
+  safety_->check(last_poses_, allowed, cmd_->ids(), sumo_->time(), exclusive);
+  exec_step_.push_back(ms_since(t0));
+}
+
+void Run::start_sumo()
+{
+  sumo_->start(sumo_args(cfg_, dir_, write_vtype_file(cfg_, dir_, max_spacing_), cmd_->needs_ignore_route_errors()));
+  cmd_->insert(ins_.starts);
+  // Insertion step (the AGVs are pending until it): no safety check before they exist.
+  p_->search(budget_);
+  sumo_->step();
+  check_events(*sumo_, sumo_->time());
+  const std::vector<std::string> waiting = sumo_->pending();
+  if (!waiting.empty()) throw ControlError("SUMO could not insert AGV(s) on their start cells: " + join_ids(waiting));
+  cmd_->verify(ins_.starts, c_.tolerance);
+}
+
+void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
+{
+  // The tick boundary of the task layer. Errands completed at the end of tick t (1-based,
+  // against where the AGVs really are) start a new epoch: new goals, a fresh tree rooted
+  // at the planner's current configuration, and one search slice so the next tick has a
+  // first move (a fresh tree's only node is the root).
+  life_.planner_ms.push_back(tick_planner_ms);
+  auto t0 = Clock::now();
+  const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
+  if (!ev.empty()) {
+    p_->set_goals(tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+    val_->set_goals(tm_->goals());
+    p_->search(budget_);
+    ++life_.epochs;
+    life_.events.insert(life_.events.end(), ev.begin(), ev.end());
+    epoch_ms_ = ms_since(t0);
+  } else {
+    life_.task_ms += ms_since(t0);
+  }
+  m_.errands_finished = tm_->errands_finished();
+  m_.tasks_finished = tm_->tasks_finished();
+}
+
+void Run::progress_line(const planner::Config& executed)
+{
+  if (cfg_.run.progress_s <= 0 || std::chrono::duration<double>(Clock::now() - last_progress_).count() < cfg_.run.progress_s)
+    return;
+  last_progress_ = Clock::now();
+  const double wall = ms_since(wall0_) / 1000;
+  if (tm_) {
+    std::fprintf(stderr,
+                 "[rtlacam-sumo] tick %lld/%lld  errands %lld (%.3f/tick)  tasks %lld (%.3f/tick)  planner p99 %.2f "
+                 "ms/tick  wall %.1f s (%.0fx real time)\n",
+                 m_.ticks, cfg_.run.max_ticks, m_.errands_finished, m_.errand_throughput(), m_.tasks_finished,
+                 m_.throughput(), tasks::summarize(life_.planner_ms).p99, wall,
+                 wall > 0 ? m_.ticks * cfg_.run.tick_s / wall : 0.0);
+  } else {
+    int at_goal = 0;
+    for (int i = 0; i < ins_.num_agents(); ++i) at_goal += executed[i] == ins_.goals[i];
+    std::fprintf(stderr, "[rtlacam-sumo] tick %lld/%lld  at goal %d/%d  sim %.1f s  wall %.1f s (%.0fx real time)\n",
+                 m_.ticks, cfg_.run.max_ticks, at_goal, ins_.num_agents(), m_.ticks * cfg_.run.tick_s, wall,
+                 wall > 0 ? m_.ticks * cfg_.run.tick_s / wall : 0.0);
+  }
+}
+
+Metrics Run::execute()
+{
+  wall0_ = Clock::now();
+  prepare();  // ConfigError propagates: nothing started yet
+  c_.plan_ = {ins_.starts};
+  loop0_ = last_progress_ = Clock::now();
+  try {
+    start_sumo();
+    loop0_ = Clock::now();
+    if (cfg_.run.executor == "adg")
+      loop_adg();
+    else
+      loop_lockstep();
+  } catch (const ControlError& e) {
+    m_.error = e.what();
+    ++m_.violations;
+  } catch (const SumoError& e) {
+    m_.error = e.what();
+  } catch (const std::exception& e) {
+    m_.error = std::string("controller: ") + e.what();
+  }
+  finish();
+  return m_;
+}
+
+}  // namespace controller

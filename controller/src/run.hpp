@@ -1,0 +1,70 @@
+#pragma once
+// Run: one Controller::run() split into its phases (private to controller/):
+//   prepare()        everything that can be wrong with the input -> ConfigError, before SUMO
+//   start_sumo()     back end, vType, insertion, start poses checked
+//   loop_lockstep()  run.executor: lockstep -- all AGVs one configuration per tick (scheme S)
+//   loop_adg()       run.executor: adg -- the ADG releases moves, AGVs drive physically
+//   finish()         metrics.json, the lifelong log, plan.txt
+// step() is the one SUMO step both loops share: planner slice, SUMO, event and safety checks.
+#include <memory>
+
+#include "controller/commander.hpp"
+#include "controller/controller.hpp"
+#include "controller/driver.hpp"
+#include "controller/safety.hpp"
+#include "executor/adg.hpp"
+#include "executor/delay_model.hpp"
+#include "planner/instance.hpp"
+#include "planner/validator.hpp"
+#include "policy/policy_preference.hpp"
+#include "tasks/lifelong_runner.hpp"
+#include "tasks/task_manager.hpp"
+
+namespace controller {
+
+class Run {
+ public:
+  Run(const Config& cfg, Controller& c) : cfg_(cfg), c_(c) {}
+  Metrics execute();
+
+ private:
+  void prepare();
+  void start_sumo();
+  void loop_lockstep();
+  void loop_adg();
+  void finish();
+
+  // One SUMO step: a planner slice first (timed), then SUMO, its events, and Safety with
+  // the cells each AGV may occupy now.
+  void step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive);
+  std::vector<VehiclePose> poses();
+  // Lifelong: completions at the end of tick `t` against the executed positions.
+  void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
+  void progress_line(const planner::Config& executed);
+  bool out_of_ticks() const { return m_.ticks >= cfg_.run.max_ticks; }
+
+  const Config& cfg_;
+  Controller& c_;
+  Metrics m_;
+  planner::Instance ins_;
+  std::unique_ptr<tasks::TaskManager> tm_;
+  policy::Model model_;
+  std::unique_ptr<policy::PolicyPreference> pref_;
+  std::string dir_;
+  double max_spacing_ = 0;
+  std::unique_ptr<SumoBackend> sumo_;
+  std::unique_ptr<Commander> cmd_;
+  std::unique_ptr<Safety> safety_;
+  std::unique_ptr<planner::RealtimePlanner> p_;
+  std::unique_ptr<planner::Validator> val_;
+  std::unique_ptr<executor::DelayModel> delays_;
+  tasks::LifelongResult life_;
+  planner::Budget budget_;
+  int k_ = 1;
+  std::vector<double> plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
+  double plan_in_tick_ = 0, epoch_ms_ = 0;
+  std::vector<VehiclePose> last_poses_;
+  planner::Clock::time_point wall0_, loop0_, last_progress_;
+};
+
+}  // namespace controller

@@ -1,0 +1,207 @@
+// The two tick loops of Run (run.hpp): lockstep (scheme S) and adg (executor/ + Driver),
+// and the final phase writing the outputs.
+#include <fstream>
+
+#include "controller/sumo_error.hpp"
+#include "planner/plan_io.hpp"
+#include "run.hpp"
+#include "tasks/lifelong_log.hpp"
+
+namespace controller {
+
+using planner::Clock;
+using planner::ms_since;
+
+// Lockstep: one committed configuration per tick, all AGVs together. With delays the whole
+// fleet waits while a mover is stopped, and a step with a slowed mover is stretched over
+// ceil(1 / factor) ticks for everybody ("all wait for the slowest").
+void Run::loop_lockstep()
+{
+  planner::Config cur = ins_.starts;
+  planner::Config next;  // committed, not yet executed
+  for (;;) {
+    if (!tm_ && p_->at_goal() && next.empty()) {
+      m_.solved = true;
+      break;
+    }
+    if (out_of_ticks()) break;
+    if (c_.on_tick) c_.on_tick(m_.ticks, *sumo_);
+    delays_->tick(m_.ticks);
+
+    auto t0 = Clock::now();
+    if (next.empty()) {
+      next = p_->next();
+      p_->commit();
+      ++m_.commits;
+    }
+    bool held = false;
+    int ticks = 1;
+    for (int i = 0; i < ins_.num_agents(); ++i) {
+      if (next[i] == cur[i]) continue;
+      held = held || delays_->stopped(i);
+      ticks = std::max(ticks, delays_->move_ticks(i));
+    }
+    const planner::Config& to = held ? cur : next;
+    if (held) ++m_.lockstep_waits;
+    if (!val_->step(to)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
+    cmd_->command(cur, to, ticks);
+    double ctl = ms_since(t0);
+
+    std::vector<std::vector<planner::Vertex>> allowed(ins_.num_agents());
+    for (int i = 0; i < ins_.num_agents(); ++i) allowed[i] = {cur[i], to[i]};
+    plan_in_tick_ = 0;
+    for (int s = 0; s < k_ * ticks; ++s) step(allowed, false);
+    plan_tick_.push_back(plan_in_tick_);
+    const double tick_planner_ms = plan_in_tick_ + epoch_ms_;
+    epoch_ms_ = 0;
+
+    t0 = Clock::now();
+    cmd_->verify(last_poses_, c_.tolerance);  // poses read after the tick's last step
+    control_.push_back(ctl + ms_since(t0));
+    cur = to;
+    if (!held) next.clear();
+    c_.plan_.push_back(cur);
+    m_.ticks += ticks;
+    m_.makespan = val_->steps();  // executed steps only (a tick cut short by an error is not)
+    m_.soc = val_->sum_of_costs();
+    if (tm_) lifelong_tick(cur, tick_planner_ms);  // completions need moves: none while held
+    progress_line(cur);
+  }
+}
+
+// ADG: the planner commits up to run.window configurations ahead of the slowest AGV
+// (never a pure wait), the Adg releases each AGV's moves, the Driver drives them.
+void Run::loop_adg()
+{
+  executor::Adg adg(ins_.starts);
+  DriveParams dp;
+  dp.dt = cfg_.sumo.step_length;
+  dp.accel = cfg_.fleet.vtype.accel;
+  dp.decel = cfg_.fleet.vtype.decel;
+  dp.max_speed = cfg_.fleet.vtype.max_speed;
+  Driver drv(*cmd_, adg, *delays_, dp);
+  auto executed = [&] {
+    planner::Config c(ins_.num_agents());
+    for (int i = 0; i < ins_.num_agents(); ++i) c[i] = adg.at(i);
+    return c;
+  };
+  for (;;) {
+    if (!tm_ && p_->at_goal() && adg.done()) {
+      m_.solved = true;
+      break;
+    }
+    if (out_of_ticks()) break;
+    if (c_.on_tick) c_.on_tick(m_.ticks, *sumo_);
+    delays_->tick(m_.ticks);
+    plan_in_tick_ = 0;
+    double ctl = 0;
+    for (int s = 0; s < k_; ++s) {
+      auto t0 = Clock::now();
+      // Keep the window full. Commits never get ahead of what the ADG honours: any valid
+      // plan is honoured, so the window only bounds how far the plan runs ahead.
+      while (adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal()) {
+        const planner::Config next = p_->next();
+        if (next == p_->current()) break;  // the search has nothing beyond the root yet
+        p_->commit();
+        if (!val_->step(next))
+          throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
+        adg.append(next);
+        c_.plan_.push_back(next);
+        ++m_.commits;
+      }
+      const double commit_ms = ms_since(t0);
+      plan_in_tick_ += commit_ms;
+      t0 = Clock::now();
+      drv.before_step();
+      const double before_ms = ms_since(t0);
+      step(drv.allowed(), true);
+      t0 = Clock::now();
+      drv.after_step(last_poses_);
+      ctl += before_ms + ms_since(t0);
+      exec_step_.back() += before_ms + ms_since(t0);
+    }
+    plan_tick_.push_back(plan_in_tick_);
+    control_.push_back(ctl);
+    ++m_.ticks;
+    m_.makespan = m_.ticks;
+    m_.soc = val_->sum_of_costs();
+    m_.dependency_waits = drv.stats().dependency_waits;
+    m_.chained = drv.stats().chained;
+    const planner::Config now = executed();
+    if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
+    progress_line(now);
+  }
+  m_.dependency_waits = drv.stats().dependency_waits;
+  m_.chained = drv.stats().chained;
+}
+
+void Run::finish()
+{
+  if (m_.error.empty()) {
+    try {
+      m_.sim_s = sumo_->time();
+    } catch (const SumoError&) {
+    }
+  }
+  m_.loop_s = ms_since(loop0_) / 1000;
+  sumo_->close();  // flushes SUMO's output files
+
+  m_.expansions = p_->expansions();
+  m_.planner_ms_per_step = Latency::of(plan_step_);
+  m_.planner_ms_per_tick = Latency::of(plan_tick_);
+  m_.sumo_ms_per_step = Latency::of(sumo_step_);
+  m_.control_ms_per_tick = Latency::of(control_);
+  m_.executor_ms_per_step = Latency::of(exec_step_);
+  m_.commands = cmd_->stats();
+  m_.delay_agent_ticks = delays_->stop_ticks();
+  m_.delay_stops = delays_->stops();
+  m_.safety_checks = safety_->checks();
+  m_.wall_s = ms_since(wall0_) / 1000;
+  if (m_.sim_s == 0) m_.sim_s = m_.ticks * cfg_.run.tick_s;
+
+  const planner::Graph& g = c_.map_.graph;
+  if (tm_) {
+    m_.epochs = life_.epochs;
+    life_.steps = m_.ticks;
+    life_.errands_finished = m_.errands_finished;
+    life_.tasks_finished = m_.tasks_finished;
+    life_.expansions = m_.expansions;
+    life_.wall_ms = m_.wall_s * 1000;
+    life_.planner_errors = m_.violations;
+    if (m_.violations > 0) life_.first_error = m_.error;
+    tasks::RunInfo info;
+    info.problem = cfg_.path;
+    info.solver = p_->name();
+    info.mode = cfg_.tasks.assignment;
+    info.assigner = cfg_.tasks.assigner;
+    info.team_size = m_.agents;
+    info.budget_ms = cfg_.planner.budget_ms;
+    info.seed = cfg_.tasks.seed;
+    nlohmann::json j = tasks::lifelong_log(info, life_);
+    tasks::add_task_fields(j, *tm_);
+    j["tickS"] = cfg_.run.tick_s;
+    j["backend"] = m_.backend;
+    j["expansionsPerSumoStep"] = cfg_.planner.expansions;
+    j["taskCount"] = static_cast<long long>(cfg_.tasks.random_tasks ? cfg_.tasks.count : cfg_.tasks.list.size());
+    j["executor"] = cfg_.run.executor;
+    if (!m_.error.empty()) j["error"] = m_.error;
+    std::ofstream(dir_ + "/" + cfg_.tasks.log) << j.dump(2) << '\n';
+  }
+  std::ofstream(dir_ + "/metrics.json") << m_.to_json().dump(2) << '\n';
+  if (cfg_.output.plan) {
+    planner::PlanHeader h;
+    h.map_file = cfg_.sumo.net;
+    h.solver = p_->name();
+    h.solved = m_.solved;
+    h.soc = m_.soc;
+    h.soc_lb = m_.soc_lb;
+    h.makespan = m_.makespan;
+    h.comp_time_ms = m_.planner_ms_per_step.mean * m_.planner_ms_per_step.count;
+    h.extra = {{"backend", m_.backend}, {"ticks", std::to_string(m_.ticks)}, {"error", m_.error},
+               {"executor", cfg_.run.executor}};
+    std::ofstream out(dir_ + "/plan.txt");
+    planner::write_plan(out, g, ins_.starts, tm_ ? tm_->goals() : ins_.goals, c_.plan_, h);
+  }
+}
+
+}  // namespace controller

@@ -1,0 +1,87 @@
+#include "controller/safety.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "controller/sumo_error.hpp"
+
+namespace controller {
+
+Safety::Safety(const gridify::CellMap& map, double length)
+    : map_(map), length_(length), owner_(map.graph.size(), -1), stamp_(map.graph.size(), 0)
+{
+}
+
+Claim Safety::locate(const std::string& lane, double pos) const
+{
+  auto it = map_.lane_aisle.find(lane);
+  if (it == map_.lane_aisle.end()) return {};
+  return locate(*it, pos);
+}
+
+Claim Safety::locate(const std::pair<const std::string, std::pair<int, bool>>& lane, double pos) const
+{
+  const gridify::Aisle& a = map_.aisles[lane.second.first];
+  // Offset from junction A in cells.
+  const double k = (lane.second.second ? pos : a.length_ba - pos) / a.spacing;
+  const double kc = std::min<double>(std::max(k, 0.0), a.steps);
+  const double r = std::round(kc);
+  if (std::fabs(kc - r) * a.spacing <= 1e-6) return {a.cells[static_cast<size_t>(r)], -1};
+  const size_t lo = static_cast<size_t>(std::floor(kc));
+  return {a.cells[lo], a.cells[std::min(lo + 1, a.cells.size() - 1)]};
+}
+
+void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std::vector<planner::Vertex>>& allowed,
+                   const std::vector<std::string>& ids, double t, bool exclusive)
+{
+  ++checks_;
+  ++epoch_;
+  char when[64];
+  std::snprintf(when, sizeof when, "t=%.3f s: ", t);
+  // (lane key, back, front, agent); lane key = 2 x aisle + (ab lane).
+  bodies_.clear();
+  for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
+    // Most AGVs stay on their lane from one step to the next: skip the hash lookup then.
+    if (static_cast<size_t>(i) >= lane_cache_.size()) lane_cache_.resize(i + 1, map_.lane_aisle.end());
+    auto la = lane_cache_[i];
+    if (la == map_.lane_aisle.end() || la->first != poses[i].lane) la = lane_cache_[i] = map_.lane_aisle.find(poses[i].lane);
+    const Claim c = la == map_.lane_aisle.end() ? Claim{} : locate(*la, poses[i].pos);
+    if (c.a < 0)
+      throw ControlError(when + std::string("AGV ") + ids[i] + " is off the aisles (lane '" + poses[i].lane + "')");
+    for (planner::Vertex v : {c.a, c.b}) {
+      if (v < 0) continue;
+      const auto& al = allowed[i];
+      if (std::find(al.begin(), al.end(), v) == al.end())
+        throw ControlError(when + std::string("AGV ") + ids[i] + " is at cell " + std::to_string(v) + " (lane " +
+                           poses[i].lane + " pos " + std::to_string(poses[i].pos) +
+                           "), not on its committed path");
+      if (exclusive || c.b < 0) {
+        if (stamp_[v] == epoch_)
+          throw ControlError(when + std::string("AGVs ") + ids[owner_[v]] + " and " + ids[i] + " overlap at cell " +
+                             std::to_string(v) + " (" + poses[owner_[v]].lane + " " + std::to_string(poses[owner_[v]].pos) +
+                             ", " + poses[i].lane + " " + std::to_string(poses[i].pos) + ")");
+        stamp_[v] = epoch_;
+        owner_[v] = i;
+      }
+    }
+    // The body on its lane: [front - length, front].
+    bodies_.push_back({2 * la->second.first + la->second.second, poses[i].pos - length_, poses[i].pos, i});
+  }
+  std::sort(bodies_.begin(), bodies_.end(), [](const Body& x, const Body& y) {
+    return x.lane != y.lane ? x.lane < y.lane : x.back < y.back;
+  });
+  size_t far = 0;  // on the current lane, the body reaching furthest so far
+  for (size_t k = 1; k < bodies_.size(); ++k) {
+    if (bodies_[k].lane != bodies_[far].lane) {
+      far = k;
+      continue;
+    }
+    if (bodies_[k].back < bodies_[far].front - 1e-9)
+      throw ControlError(when + std::string("AGVs ") + ids[bodies_[far].agent] + " and " + ids[bodies_[k].agent] +
+                         " overlap on lane " + poses[bodies_[k].agent].lane + " (bodies intersect)");
+    if (bodies_[k].front > bodies_[far].front) far = k;
+  }
+}
+
+}  // namespace controller

@@ -1,0 +1,102 @@
+#pragma once
+// Adg: the action dependency graph of Hönig et al., "Persistent and Robust Execution of
+// MAPF Schedules in Warehouses" (RA-L 2019), built incrementally over the configurations a
+// real-time planner commits.
+//
+// Every move of an agent between two committed configurations is an Action (waits are
+// dropped: under delays, "wait one tick" has no meaning). Edges:
+//   type 1: an agent's actions in plan order;
+//   type 2: the action entering a cell v depends on the most recent earlier-or-same-step
+//           action of ANOTHER agent that left v (the cell hand-over order of the plan).
+// An action is released when all its dependencies are done; it is done when the agent
+// has arrived (its whole body) on the target cell.
+//
+// Why the executed motion is collision-free: a cell is entered only after its previous
+// occupant has arrived elsewhere (type 2; earlier occupants left before that one entered,
+// by induction), and an agent's actions run in order (type 1). So at any time each cell is
+// claimed by at most one agent (claims = the cell an agent stands on, or both ends of the
+// move it is executing): no vertex conflict, no swap, no following into a moving body.
+// Why it never deadlocks under finite delays: dependencies point from plan step t to step
+// t' >= t, so within a valid plan they form a DAG -- except rotation cycles (a->b->c->a in
+// one step, which MAPF allows). Those are bound into one Group: its members are released
+// together when the dependencies from outside the group are done, and start together.
+// A DAG with finite delays always has an action whose dependencies are done, hence
+// progress; with RT-LaCAM's completeness (it reaches the goals in finitely many commits)
+// every committed step is eventually executed (tested in tests/executor/).
+//
+// append() only needs the plan to be valid (vertex/swap-free, moves along edges): the
+// committed window may run ahead of execution by any amount, the ADG honours it.
+#include <cstdint>
+#include <vector>
+
+#include "planner/config.hpp"
+
+namespace executor {
+
+enum class State : uint8_t { Pending, Running, Done };
+
+struct Action {
+  int agent = -1;
+  planner::Vertex from = -1, to = -1;
+  long long step = 0;      // plan step: configuration `step` -> `step + 1`
+  int prev = -1;           // type 1: the agent's previous action (-1: none)
+  int handover = -1;       // type 2: the other agent's action leaving `to` (-1: none)
+  int group = -1;          // rotation cycle this action belongs to (-1: none)
+  State state = State::Pending;
+};
+
+class Adg {
+ public:
+  explicit Adg(const planner::Config& start);
+
+  // Appends the step tail() -> next (a valid MAPF step). Returns the number of actions added.
+  int append(const planner::Config& next);
+
+  int num_agents() const { return static_cast<int>(tail_.size()); }
+  long long steps() const { return steps_; }              // configurations appended
+  const planner::Config& tail() const { return tail_; }   // last appended configuration
+  const Action& action(int id) const { return actions_[id]; }
+  int num_actions() const { return static_cast<int>(actions_.size()); }
+
+  // The agent's first action not done (running or pending), -1 if none.
+  int next_action(int agent) const;
+  // Pending and every dependency done (for a group member: every member's outside
+  // dependencies done).
+  bool released(int id) const;
+  // Pending -> Running; a group member starts its whole group. Throws if not released.
+  void start(int id);
+  // Running -> Done.
+  void finish(int id);
+  // Chaining (a physical agent that need not stop between two moves): the agent's action
+  // after its first undone one (-1 if none), and whether it may start before that one is
+  // done: pending, in no group, its hand-over done -- the cell it enters is free; the
+  // type-1 edge only orders the agent's own moves, which its motion along the path keeps.
+  int chain_candidate(int agent) const;
+  bool chainable(int id) const;
+  void start_chained(int id);  // throws unless chainable
+  // Members of the action's group (just the action itself when it has none).
+  std::vector<int> group_of(int id) const;
+
+  // Where the agent is for the plan: target of its last done action (or its start).
+  planner::Vertex at(int agent) const { return at_[agent]; }
+  // The plan step the agent's next undone action belongs to, steps() if it has none:
+  // min over agents is how far execution has got into the committed window.
+  long long progress(int agent) const;
+  long long min_progress() const;
+  bool done() const { return done_count_ == static_cast<long long>(actions_.size()); }
+  long long actions_done() const { return done_count_; }
+
+ private:
+  bool outside_deps_done(int id) const;
+  bool dep_done(int dep) const { return dep < 0 || actions_[dep].state == State::Done; }
+
+  planner::Config tail_, at_;
+  std::vector<Action> actions_;
+  std::vector<std::vector<int>> queue_;  // per agent: action ids in order
+  std::vector<size_t> head_;             // per agent: index of its first undone action in queue_
+  std::vector<int> last_leave_;          // per cell: last action that left it
+  std::vector<std::vector<int>> groups_;
+  long long steps_ = 0, done_count_ = 0;
+};
+
+}  // namespace executor

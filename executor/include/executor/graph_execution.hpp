@@ -1,0 +1,76 @@
+#pragma once
+// GraphExecution: executes what a real-time planner commits on the MAPF graph itself,
+// tick by tick, under a DelayModel -- the SUMO-free twin of the controller's executor, so
+// rtlacam-lifelong / benches and SUMO runs can be compared under the same delay switches.
+//
+//   lockstep : the committed configurations are executed one after the other by all agents
+//              together; a step ends when its slowest mover has arrived (a stopped mover
+//              holds everybody: "all wait for the slowest").
+//   adg      : the planner commits up to `window` configurations ahead of the slowest
+//              agent into an Adg; every tick each agent that is not stopped starts its next
+//              action once released, and arrives after DelayModel::move_ticks ticks of
+//              progress. Agents progress asynchronously.
+// In both a stopped agent stays put. positions() after each tick is the executed
+// configuration: an agent counts as on its source cell until it has arrived, so the
+// sequence of positions is itself a MAPF plan (tests validate it).
+#include <memory>
+#include <string>
+
+#include "executor/adg.hpp"
+#include "executor/delay_model.hpp"
+#include "planner/budget.hpp"
+#include "planner/realtime_planner.hpp"
+
+namespace executor {
+
+struct ExecOptions {
+  std::string mode = "adg";  // adg | lockstep
+  int window = 4;            // W >= 1: committed configurations ahead of the slowest agent
+};
+
+// "" if usable, else "<key>: what is wrong".
+std::string check(const ExecOptions& o);
+
+struct ExecStats {
+  long long ticks = 0;
+  long long commits = 0;          // configurations committed by the planner
+  long long moves = 0;            // actions completed
+  long long dependency_waits = 0; // agent-ticks: not stopped, has a committed move, not released
+  long long delay_ticks = 0;      // agent-ticks stopped (DelayModel)
+  long long lockstep_waits = 0;   // lockstep: agent-ticks a ready mover waited for others
+};
+
+class GraphExecution {
+ public:
+  GraphExecution(planner::RealtimePlanner& p, const DelaySpec& d, const ExecOptions& o);
+
+  // One tick: the planner searches once with `b`, commits to keep the window full (never a
+  // wait: that has no action), delays are drawn, released actions start, moves progress.
+  void tick(const planner::Budget& b);
+  // Every committed configuration executed and the planner stands on its goals.
+  bool finished() const;
+  const planner::Config& positions() const { return pos_; }
+  const ExecStats& stats() const { return st_; }
+  const Adg& adg() const { return *adg_; }
+  const DelayModel& delays() const { return delays_; }
+  // New goals (lifelong): only where the committed window is fully executed, so the
+  // planner's current configuration is where the agents really are.
+  bool idle() const { return adg_->done() && pending_.empty(); }
+
+ private:
+  void top_up();
+  void tick_adg();
+  void tick_lockstep();
+
+  planner::RealtimePlanner& p_;
+  ExecOptions o_;
+  DelayModel delays_;
+  std::unique_ptr<Adg> adg_;
+  std::vector<int> left_;        // adg: ticks of progress the running action still needs
+  planner::Config pos_;
+  planner::Config pending_;      // lockstep: the committed configuration being executed (empty: none)
+  int lock_done_ = 0;            // lockstep: ticks of progress made on it
+  ExecStats st_;
+};
+
+}  // namespace executor

@@ -1,0 +1,114 @@
+#include "executor/graph_execution.hpp"
+
+#include <algorithm>
+
+namespace executor {
+
+std::string check(const ExecOptions& o)
+{
+  if (o.mode != "adg" && o.mode != "lockstep") return "executor: '" + o.mode + "' is not adg or lockstep";
+  if (o.window < 1) return "window: " + std::to_string(o.window) + " is not >= 1";
+  return "";
+}
+
+GraphExecution::GraphExecution(planner::RealtimePlanner& p, const DelaySpec& d, const ExecOptions& o)
+    : p_(p), o_(o), delays_(d, static_cast<int>(p.current().size())),
+      adg_(std::make_unique<Adg>(p.current())), left_(p.current().size(), 0), pos_(p.current())
+{
+}
+
+bool GraphExecution::finished() const { return p_.at_goal() && idle(); }
+
+void GraphExecution::top_up()
+{
+  if (o_.mode == "lockstep") {
+    // One configuration at a time, executed by all together.
+    if (!pending_.empty() || p_.at_goal()) return;
+    const planner::Config next = p_.next();
+    if (next == p_.current()) return;
+    p_.commit();
+    pending_ = next;
+    lock_done_ = 0;
+    ++st_.commits;
+    return;
+  }
+  while (adg_->steps() - adg_->min_progress() < o_.window && !p_.at_goal()) {
+    const planner::Config next = p_.next();
+    if (next == p_.current()) break;  // nothing found beyond the root yet: search on
+    p_.commit();
+    adg_->append(next);
+    ++st_.commits;
+  }
+}
+
+void GraphExecution::tick(const planner::Budget& b)
+{
+  p_.search(b);
+  top_up();
+  delays_.tick(st_.ticks);
+  if (o_.mode == "lockstep")
+    tick_lockstep();
+  else
+    tick_adg();
+  ++st_.ticks;
+  st_.delay_ticks = delays_.stop_ticks();
+}
+
+void GraphExecution::tick_adg()
+{
+  const int n = adg_->num_agents();
+  // Starts first, on the dependency states of the tick's beginning.
+  for (int i = 0; i < n; ++i) {
+    const int id = adg_->next_action(i);
+    if (id < 0 || adg_->action(id).state != State::Pending) continue;
+    if (!adg_->released(id)) {
+      if (!delays_.stopped(i)) ++st_.dependency_waits;
+      continue;
+    }
+    const std::vector<int> group = adg_->group_of(id);
+    bool go = true;
+    for (int m : group) go = go && !delays_.stopped(adg_->action(m).agent);
+    if (!go) continue;
+    adg_->start(id);
+    // A rotation moves as one: at its slowest member's pace, held by any stopped member.
+    int ticks = 1;
+    for (int m : group) ticks = std::max(ticks, delays_.move_ticks(adg_->action(m).agent));
+    for (int m : group) left_[adg_->action(m).agent] = ticks;
+  }
+  for (int i = 0; i < n; ++i) {
+    const int id = adg_->next_action(i);
+    if (id < 0 || adg_->action(id).state != State::Running) continue;
+    bool held = false;
+    for (int m : adg_->group_of(id)) held = held || delays_.stopped(adg_->action(m).agent);
+    if (held) continue;
+    if (--left_[i] == 0) {
+      adg_->finish(id);
+      pos_[i] = adg_->action(id).to;
+      ++st_.moves;
+    }
+  }
+}
+
+void GraphExecution::tick_lockstep()
+{
+  if (pending_.empty()) return;  // nothing committed
+  const int n = static_cast<int>(pos_.size());
+  bool held = false;
+  int need = 1;
+  for (int i = 0; i < n; ++i) {
+    if (pending_[i] == pos_[i]) continue;
+    held = held || delays_.stopped(i);
+    need = std::max(need, delays_.move_ticks(i));
+  }
+  if (held) {
+    for (int i = 0; i < n; ++i) st_.lockstep_waits += pending_[i] != pos_[i] && !delays_.stopped(i);
+    return;
+  }
+  if (++lock_done_ < need) return;
+  for (int i = 0; i < n; ++i) st_.moves += pending_[i] != pos_[i];
+  pos_ = pending_;
+  pending_.clear();
+  lock_done_ = 0;
+}
+
+}  // namespace executor

@@ -1,0 +1,137 @@
+// Adg: type-1 / type-2 edges, rotation groups, release order.
+#include <gtest/gtest.h>
+
+#include "executor/adg.hpp"
+#include "grid.hpp"
+
+using executor::Adg;
+using executor::State;
+
+namespace {
+
+// Runs every released action to completion, one at a time, and returns how many finished.
+int drain(Adg& adg)
+{
+  int done = 0;
+  for (bool any = true; any;) {
+    any = false;
+    for (int i = 0; i < adg.num_agents(); ++i) {
+      const int id = adg.next_action(i);
+      if (id < 0 || !adg.released(id)) continue;
+      const std::vector<int> g = adg.group_of(id);
+      adg.start(id);
+      for (int m : g) {
+        adg.finish(m);
+        ++done;
+      }
+      any = true;
+    }
+  }
+  return done;
+}
+
+}  // namespace
+
+TEST(Adg, WaitsAreDroppedAndAgentOrderIsKept)
+{
+  Adg adg({0, 5});
+  EXPECT_EQ(adg.append({1, 5}), 1);
+  EXPECT_EQ(adg.append({1, 5}), 0);  // all wait: no action
+  EXPECT_EQ(adg.append({2, 6}), 2);
+  EXPECT_EQ(adg.steps(), 3);
+  const int a0 = adg.next_action(0);
+  EXPECT_EQ(adg.action(a0).from, 0);
+  EXPECT_EQ(adg.action(a0).to, 1);
+  const int a1 = a0 + 1;  // agent 0's second move (appended before agent 1's)
+  EXPECT_EQ(adg.action(a1).prev, a0);
+  EXPECT_FALSE(adg.released(a1));  // type 1: after its first move
+  adg.start(a0);
+  EXPECT_THROW(adg.start(a0), std::logic_error);
+  adg.finish(a0);
+  EXPECT_TRUE(adg.released(a1));
+  EXPECT_EQ(adg.at(0), 1);
+  EXPECT_EQ(adg.progress(0), 2);
+  EXPECT_EQ(adg.progress(1), 2);
+  EXPECT_EQ(adg.min_progress(), 2);
+}
+
+TEST(Adg, FollowingWaitsForTheLeaderToArrive)
+{
+  // A line 0-1-2-3: agent 0 at 1 follows agent 1 at 2 to the right.
+  Adg adg({1, 2});
+  adg.append({2, 3});
+  const int lead = adg.next_action(1), follow = adg.next_action(0);
+  EXPECT_EQ(adg.action(follow).handover, lead);
+  EXPECT_TRUE(adg.released(lead));
+  EXPECT_FALSE(adg.released(follow));
+  adg.start(lead);
+  EXPECT_FALSE(adg.released(follow));  // leaving is not enough: it must have arrived
+  adg.finish(lead);
+  EXPECT_TRUE(adg.released(follow));
+}
+
+TEST(Adg, HandOverWaitsForTheLastEarlierOccupant)
+{
+  // Agent 0 leaves cell 5 at step 0; agent 1 enters it at step 2 even though agent 0 is late.
+  Adg adg({5, 3});
+  adg.append({6, 3});
+  adg.append({6, 4});
+  adg.append({6, 5});
+  const int enter = adg.next_action(1) + 1;
+  EXPECT_EQ(adg.action(enter).to, 5);
+  EXPECT_EQ(adg.action(enter).handover, adg.next_action(0));
+  adg.start(adg.next_action(1));
+  adg.finish(adg.next_action(1));
+  EXPECT_FALSE(adg.released(enter));
+  adg.start(adg.next_action(0));
+  adg.finish(adg.next_action(0));
+  EXPECT_TRUE(adg.released(enter));
+}
+
+TEST(Adg, RotationCycleIsOneGroupThatStartsTogether)
+{
+  // 2x2 block 0 1 / 2 3: four agents rotate clockwise 0->1->3->2->0 in one step.
+  Adg adg({0, 1, 3, 2});
+  adg.append({1, 3, 2, 0});
+  const int a = adg.next_action(0);
+  EXPECT_EQ(adg.group_of(a).size(), 4u);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(adg.released(adg.next_action(i)));
+  adg.start(a);
+  for (int i = 0; i < 4; ++i) EXPECT_EQ(adg.action(adg.next_action(i)).state, State::Running);
+  // A later step depends on the group like on any action.
+  adg.append({3, 2, 0, 1});  // rotate once more: a second group after the first
+  EXPECT_FALSE(adg.released(adg.num_actions() - 1));
+  for (int i = 0; i < 4; ++i) adg.finish(adg.next_action(i));
+  EXPECT_EQ(drain(adg), adg.num_actions() - 4);
+  EXPECT_TRUE(adg.done());
+}
+
+TEST(Adg, RejectsAConfigurationOfTheWrongSize)
+{
+  Adg adg({0, 1});
+  EXPECT_THROW(adg.append({0}), std::invalid_argument);
+}
+
+TEST(Adg, ChainingNeedsTheHandOverNotTheOwnPreviousMove)
+{
+  // Line 0-1-2-3-4: agent 0 drives 0->1->2; agent 1 leaves 2 for 3 at step 0.
+  Adg adg({0, 2});
+  adg.append({1, 3});
+  adg.append({2, 3});
+  const int first = adg.next_action(0), second = adg.chain_candidate(0);
+  ASSERT_GE(second, 0);
+  EXPECT_EQ(adg.action(second).from, 1);
+  EXPECT_FALSE(adg.chainable(second));  // its own first move is not running yet
+  adg.start(first);
+  EXPECT_FALSE(adg.chainable(second));  // cell 2 not handed over: agent 1 has not arrived
+  EXPECT_THROW(adg.start_chained(second), std::logic_error);
+  const int lead = adg.next_action(1);
+  adg.start(lead);
+  adg.finish(lead);
+  EXPECT_TRUE(adg.chainable(second));
+  adg.start_chained(second);
+  adg.finish(first);
+  adg.finish(second);
+  EXPECT_TRUE(adg.done());
+  EXPECT_EQ(adg.at(0), 2);
+}

@@ -1,0 +1,94 @@
+// Lifelong runs through the executor (tasks/lifelong_exec.hpp): without delays lockstep is
+// exactly the plain runner; under delays every executed step is valid, errands keep
+// completing, and rtlacam-lifelong rejects bad delay switches with one line.
+#include <gtest/gtest.h>
+
+#include "cli_run.hpp"
+#include "planner/movingai.hpp"
+#include "tasks/lifelong_exec.hpp"
+#include "tasks/lorr_files.hpp"
+#include "tasks/lorr_problem.hpp"
+#include "tasks/task_pool.hpp"
+#include "tasks_test_util.hpp"
+
+using namespace tasks;
+
+namespace {
+
+struct Lorr {
+  LorrProblem p;
+  planner::Graph g;
+  planner::Config starts;
+  std::shared_ptr<const TaskFile> file;
+  Lorr()
+      : p(load_lorr_problem(ttest::kData + "/2024/random.domain/RANDOM-01.json")), g(planner::load_map(p.map_file)),
+        starts(load_lorr_agents(p.agent_file, g, p.team_size)),
+        file(std::make_shared<const TaskFile>(load_lorr_tasks(p.task_file, g)))
+  {
+  }
+  std::unique_ptr<TaskPool> pool() const { return std::make_unique<TaskPool>(file, g, p.pool_size(), make_assigner("greedy"), false); }
+};
+
+LifelongOptions options(long steps)
+{
+  LifelongOptions opt;
+  opt.steps = steps;
+  opt.budget = planner::Budget{0, 50};  // expansions only: deterministic
+  return opt;
+}
+
+}  // namespace
+
+TEST(LifelongExec, LockstepWithoutDelaysIsThePlainRunner)
+{
+  Lorr L;
+  auto a = L.pool(), b = L.pool();
+  const LifelongResult plain = run_lifelong(L.g, L.starts, *a, "rtlacam", 0, options(200));
+  executor::ExecOptions o;
+  o.mode = "lockstep";
+  const LifelongExecResult x = run_lifelong_exec(L.g, L.starts, *b, "rtlacam", 0, options(200), {}, o);
+  EXPECT_EQ(x.life.planner_errors, 0) << x.life.first_error;
+  EXPECT_GT(plain.errands_finished, 50);
+  EXPECT_EQ(x.life.errands_finished, plain.errands_finished);
+  ASSERT_EQ(x.life.events.size(), plain.events.size());
+  for (size_t k = 0; k < plain.events.size(); ++k) {
+    EXPECT_EQ(x.life.events[k].t, plain.events[k].t);
+    EXPECT_EQ(x.life.events[k].agent, plain.events[k].agent);
+  }
+}
+
+TEST(LifelongExec, AdgUnderDelaysKeepsCompletingErrands)
+{
+  Lorr L;
+  for (double p : {0.01, 0.05}) {
+    auto pool = L.pool();
+    executor::DelaySpec d;
+    d.kind = "bernoulli";
+    d.p = p;
+    d.min_ticks = 1;
+    d.max_ticks = 5;
+    d.slow = {{0, 0.5}};
+    executor::ExecOptions o;
+    o.window = 4;
+    const LifelongExecResult x = run_lifelong_exec(L.g, L.starts, *pool, "rtlacam", 0, options(400), d, o);
+    EXPECT_EQ(x.life.planner_errors, 0) << x.life.first_error;  // every executed step valid
+    EXPECT_GT(x.life.errands_finished, 50) << p;
+    EXPECT_LT(x.max_gap, 60) << p;  // errands keep completing
+    EXPECT_GT(x.exec.delay_ticks, 0);
+  }
+}
+
+TEST(LifelongExec, CliRejectsBadDelaySwitchesWithOneLine)
+{
+  const std::string prob = "--problem " + ttest::kData + "/2024/random.domain/RANDOM-01.json --steps 5 --quiet ";
+  for (const std::string bad : {"--executor adg --delay-kind bernoulli --delay-p 1.5", "--executor adg --window 0",
+                                "--executor adg --delay-min 3 --delay-max 2", "--delay-p 0.1 --delay-kind bernoulli",
+                                "--executor adg --slow 0:2", "--executor adg --stuck 0:1"}) {
+    const test::CliResult r = test::run_cli(RTLACAM_LIFELONG_BIN, prob + bad);
+    EXPECT_EQ(r.code, 2) << bad << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << "\n" << r.err;
+  }
+  const test::CliResult ok = test::run_cli(RTLACAM_LIFELONG_BIN, prob + "--executor adg --delay-kind bernoulli --delay-p 0.1");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"executor\""), std::string::npos);
+}
