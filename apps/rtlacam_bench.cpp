@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
 #include "planner/naive_rt_lacam.hpp"
@@ -45,10 +46,11 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
-  CLI11_PARSE(app, argc, argv);
+  cli::add_version(app, "rtlacam-bench");
+  RTLACAM_PARSE(app, argc, argv);
   if (solver == "cspibt" && policy_file.empty()) {
     std::cerr << "rtlacam-bench: --solver cspibt needs --policy WEIGHTS" << std::endl;
-    return 2;
+    return cli::kBadInput;
   }
 
   try {
@@ -138,14 +140,14 @@ int main(int argc, char** argv)
     }
     if (!r.validation_error.empty()) {
       std::cerr << "rtlacam-bench: invalid plan: " << r.validation_error << std::endl;
-      return 3;
+      return cli::kInvalidPlan;
     }
-    return 0;
+    return r.solved ? cli::kOk : cli::kUnsolved;
   } catch (const InputError& e) {
     std::cerr << "rtlacam-bench: " << e.what() << std::endl;
-    return 2;
+    return cli::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "rtlacam-bench: error: " << e.what() << std::endl;
-    return 1;
+    return cli::kRuntimeError;
   }
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
 #include "policy/policy_preference.hpp"
@@ -52,7 +53,8 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the full JSON log (with events) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
-  CLI11_PARSE(app, argc, argv);
+  cli::add_version(app, "rtlacam-lifelong");
+  RTLACAM_PARSE(app, argc, argv);
 
   try {
     LorrProblem pr = load_lorr_problem(problem_file);

@@ -73,8 +73,18 @@ TEST(BenchCli, BadInputGivesOneLineAndNonZeroExit)
   };
   for (auto& c : cases) {
     Result r = run(c.args);
-    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_EQ(r.code, 2) << c.args;
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << "stderr: " << r.err;
     EXPECT_EQ(r.out, "") << c.args;
   }
+}
+
+TEST(BenchCli, UnsolvedExitsFourAndStillPrintsTheResult)
+{
+  // Two steps cannot bring 50 agents to their goals: the step limit comes first.
+  Result r = run("--map " + kMap + " --scen " + kScen + " -N 50 --solver pibt --max-steps 2 --json");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.out.find("\"solved\":false"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"step_limit\":true"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"valid\":true"), std::string::npos) << r.out;
 }
