@@ -46,6 +46,8 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
+  double progress_s = 2;
+  app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   cli::add_version(app, "rtlacam-bench");
   RTLACAM_PARSE(app, argc, argv);
   if (solver == "cspibt" && policy_file.empty()) {
@@ -66,6 +68,19 @@ int main(int argc, char** argv)
     ropt.timeout_ms = timeout_s * 1000.0;
     ropt.max_steps = max_steps;
     ropt.record_plan = !out_file.empty();
+    // Progress on stderr for runs longer than --progress-s (stdout stays one JSON object).
+    const auto started = Clock::now();
+    auto last = started;
+    if (progress_s > 0) {
+      ropt.progress_ms = progress_s * 1000;
+      ropt.on_progress = [&](const RunResult& s) {
+        if (ms_since(last) < progress_s * 1000) return;
+        last = Clock::now();
+        std::cerr << "[rtlacam-bench] " << solver << " N=" << agents << ": " << s.iterations << " iterations, planning "
+                  << s.total_planning_ms / 1000 << " s of " << timeout_s << " s, " << s.expansions
+                  << " expansions, wall " << ms_since(started) / 1000 << " s" << std::endl;
+      };
+    }
 
     // The policy: loaded before the clock starts (a one-off, like reading the map).
     policy::Model model;

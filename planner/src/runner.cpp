@@ -55,6 +55,10 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
       break;
     }
     if (opt.record_plan) r.plan.push_back(p.current());
+    if (opt.on_progress) {
+      r.expansions = p.expansions();
+      opt.on_progress(r);
+    }
   }
   r.p99_iteration_ms = percentile(std::move(times), 0.99);
   r.soc = val.sum_of_costs();
@@ -72,7 +76,19 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
   DistTable dist(g);
   Lacam lacam(g, dist, lopt, pref);
   lacam.reset(starts, goals);
-  lacam.search(Budget::time_ms(opt.timeout_ms));
+  if (!opt.on_progress) {
+    lacam.search(Budget::time_ms(opt.timeout_ms));
+  } else {
+    // The same search in slices (search() continues where it stopped), reporting between them.
+    while (lacam.search(Budget::time_ms(std::min(opt.progress_ms, opt.timeout_ms - ms_since(t0)))) ==
+               Status::Searching &&
+           ms_since(t0) < opt.timeout_ms) {
+      r.total_planning_ms = ms_since(t0);
+      r.expansions = lacam.expansions();
+      r.explored = lacam.explored();
+      opt.on_progress(r);
+    }
+  }
   r.total_planning_ms = r.max_iteration_ms = r.p99_iteration_ms = ms_since(t0);
   r.iterations = 1;
   r.expansions = lacam.expansions();
