@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "controller/commander.hpp"
+#include "controller/display.hpp"
 #include "controller/fleet.hpp"
 #include "controller/lifelong.hpp"
 #include "controller/sumo_error.hpp"
@@ -48,6 +49,11 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
 
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r)
 {
+  if (r.gui && r.port == 0) {
+    // sumo-gui without a display dies at once and TraCI would retry for seconds: say so now.
+    const std::string why = display_problem();
+    if (!why.empty()) throw SumoError("sumo-gui: " + why);
+  }
   if (r.gui) return make_traci_backend("sumo-gui", r.port);
   if (r.backend == "traci") return make_traci_backend("sumo", r.port);
   return make_libsumo_backend();
