@@ -16,6 +16,7 @@
 
 #include "planner/budget.hpp"
 #include "planner/graph.hpp"
+#include "planner/latency.hpp"
 #include "planner/realtime_planner.hpp"
 #include "tasks/task_manager.hpp"
 
@@ -43,9 +44,7 @@ struct LifelongOptions {
   bool keep_priorities = true;                     // see planner::LacamOptions
 };
 
-struct PlannerTimes {
-  double mean = 0, p50 = 0, p99 = 0, max = 0;
-};
+using PlannerTimes = planner::Latency;  // one p99 definition for all layers
 PlannerTimes summarize(std::vector<double> ms);
 
 struct LifelongResult {
