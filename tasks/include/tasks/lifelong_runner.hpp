@@ -17,6 +17,7 @@
 #include "planner/budget.hpp"
 #include "planner/graph.hpp"
 #include "planner/latency.hpp"
+#include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
 #include "tasks/task_manager.hpp"
 

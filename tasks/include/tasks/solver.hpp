@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace tasks {
