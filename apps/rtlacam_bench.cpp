@@ -11,11 +11,9 @@
 #include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
-#include "planner/naive_rt_lacam.hpp"
-#include "planner/pibt_planner.hpp"
 #include "planner/plan_io.hpp"
-#include "planner/rt_lacam.hpp"
 #include "planner/runner.hpp"
+#include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
 
@@ -33,8 +31,8 @@ int main(int argc, char** argv)
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
-  app.add_option("--solver", solver, "pibt | lacam | rtlacam | naive | cspibt (pibt ordered by --policy)")
-      ->check(CLI::IsMember({"pibt", "lacam", "rtlacam", "naive", "cspibt"}))
+  app.add_option("--solver", solver, solver_names() + " (cspibt: pibt ordered by --policy)")
+      ->check(CLI::IsMember(solver_list()))
       ->capture_default_str();
   app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions,
@@ -50,7 +48,7 @@ int main(int argc, char** argv)
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   cli::add_version(app, "rtlacam-bench");
   RTLACAM_PARSE(app, argc, argv);
-  if (solver == "cspibt" && policy_file.empty()) {
+  if (needs_policy(parse_solver(solver)) && policy_file.empty()) {
     std::cerr << "rtlacam-bench: --solver cspibt needs --policy WEIGHTS" << std::endl;
     return cli::kBadInput;
   }
@@ -91,16 +89,13 @@ int main(int argc, char** argv)
     }
 
     RunResult r;
-    if (solver == "lacam") {
+    if (!is_realtime(parse_solver(solver))) {
       r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt, pref.get());
     } else {
       // Construction (distance tables, the root node) counts as planning time, as it
       // does inside run_full_horizon for LaCAM.
       const auto t0 = Clock::now();
-      std::unique_ptr<RealtimePlanner> p;
-      if (solver == "rtlacam") p = std::make_unique<RtLacam>(g, ins.starts, ins.goals, lopt, pref.get());
-      else if (solver == "naive") p = std::make_unique<NaiveRtLacam>(g, ins.starts, ins.goals, lopt, pref.get());
-      else p = std::make_unique<PibtPlanner>(g, ins.starts, ins.goals, lopt, pref.get());
+      std::unique_ptr<RealtimePlanner> p = make_planner(parse_solver(solver), g, ins.starts, ins.goals, lopt, pref.get());
       const double setup_ms = ms_since(t0);
       r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
       r.total_planning_ms += setup_ms;

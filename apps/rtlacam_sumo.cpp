@@ -10,6 +10,7 @@
 #include "cli.hpp"
 #include "controller/controller.hpp"
 #include "planner/error.hpp"
+#include "planner/solver.hpp"
 
 using namespace controller;
 
@@ -23,7 +24,8 @@ int main(int argc, char** argv)
   app.add_option("config", path, "scenario YAML (config/<scenario>.yaml)")->required();
   app.add_flag("--gui", gui, "watch it live in sumo-gui (through TraCI)");
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
-  app.add_option("--solver", solver, "override planner.solver")->check(CLI::IsMember({"rtlacam", "naive", "pibt", "cspibt"}));
+  app.add_option("--solver", solver, "override planner.solver: " + planner::solver_names(true))
+      ->check(CLI::IsMember(planner::solver_list(true)));
   app.add_option("--policy", policy_file, "override planner.policy: learned policy weights (PIBT tries moves in its order)")
       ->check(CLI::ExistingFile);
   app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
@@ -39,7 +41,7 @@ int main(int argc, char** argv)
     if (!backend.empty()) cfg.run.backend = backend;
     if (!solver.empty()) cfg.planner.solver = solver;
     if (!policy_file.empty()) cfg.planner.policy = policy_file;
-    if (cfg.planner.solver == "cspibt" && cfg.planner.policy.empty())
+    if (planner::needs_policy(planner::parse_solver(cfg.planner.solver)) && cfg.planner.policy.empty())
       throw ConfigError(path + ": planner.solver: cspibt needs planner.policy (or --policy WEIGHTS)");
     if (port > 0) {
       cfg.run.port = port;

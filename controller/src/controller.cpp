@@ -14,10 +14,8 @@
 #include "controller/sumo_options.hpp"
 #include "gridify/gridifier.hpp"
 #include "planner/error.hpp"
-#include "planner/naive_rt_lacam.hpp"
-#include "planner/pibt_planner.hpp"
 #include "planner/plan_io.hpp"
-#include "planner/rt_lacam.hpp"
+#include "planner/solver.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
@@ -39,12 +37,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.swap = p.swap;
   opt.seed = p.seed;
   opt.keep_priorities = p.keep_priorities;
-  if (p.solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, pref, std::move(test));
-  if (p.solver == "pibt" || p.solver == "cspibt") {
-    if (p.solver == "cspibt" && !pref) throw std::invalid_argument("solver cspibt needs a policy (planner.policy)");
-    return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, pref, std::move(test));
-  }
-  return std::make_unique<planner::RtLacam>(g, starts, goals, opt, pref, std::move(test));
+  return planner::make_planner(planner::parse_solver(p.solver), g, starts, goals, opt, pref, std::move(test));
 }
 
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r)

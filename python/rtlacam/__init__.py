@@ -14,6 +14,7 @@ Configurations are lists of vertex ids. Bad input raises rtlacam.InputError (a
 ValueError naming the file and line). See python/README.md.
 """
 from ._rtlacam import (  # noqa: F401
+    SOLVERS,
     __version__,
     Graph,
     Instance,
@@ -30,5 +31,3 @@ from ._rtlacam import (  # noqa: F401
     run,
     validate_plan,
 )
-
-SOLVERS = ("rtlacam", "naive", "pibt", "cspibt")

@@ -13,6 +13,7 @@
 #include "planner/movingai.hpp"
 #include "planner/plan_io.hpp"
 #include "planner/runner.hpp"
+#include "planner/solver.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
@@ -22,7 +23,6 @@
 #include "tasks/lorr_files.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
 #include "tasks/task_pool.hpp"
 
 namespace py = pybind11;
@@ -111,6 +111,7 @@ PYBIND11_MODULE(_rtlacam, m)
 {
   m.doc() = "RT-LaCAM (Real-Time LaCAM, SoCS 2025): real-time MAPF planners, validator, lifelong runs";
   m.attr("__version__") = RTLACAM_VERSION;
+  m.attr("SOLVERS") = solver_list();  // lacam: run() only (plans once); the others: make_planner
 
   // Bad input (a file:line message) is ValueError in Python; other errors RuntimeError.
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
@@ -188,11 +189,13 @@ PYBIND11_MODULE(_rtlacam, m)
             if (v < 0 || v >= g.size()) throw std::invalid_argument("start vertex out of range");
           for (Vertex v : goals)
             if (v < 0 || v >= g.size()) throw std::invalid_argument("goal vertex out of range");
-          return tasks::make_planner(solver, g, starts, goals, {}, seed, pref);
+          LacamOptions opt;
+          opt.seed = seed;
+          return make_planner(parse_solver(solver), g, starts, goals, opt, pref);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
         py::arg("policy") = nullptr, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
-        "solver: rtlacam | naive | pibt | cspibt (cspibt needs policy=PolicyPreference)");
+        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference)");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
@@ -201,16 +204,17 @@ PYBIND11_MODULE(_rtlacam, m)
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
           ropt.max_steps = max_steps;
+          const Solver s = parse_solver(solver);
+          LacamOptions lopt;
+          lopt.seed = seed;
           std::unique_ptr<RealtimePlanner> p;
-          if (solver != "lacam") p = tasks::make_planner(solver, g, ins.starts, ins.goals, {}, seed, pref);
+          if (is_realtime(s)) p = make_planner(s, g, ins.starts, ins.goals, lopt, pref);
           RunResult r;
           {
             py::gil_scoped_release unlocked;
             if (p) {
               r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
             } else {
-              LacamOptions lopt;
-              lopt.seed = seed;
               r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt, pref);
             }
           }

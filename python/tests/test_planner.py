@@ -12,6 +12,10 @@ def test_version_matches_the_apps():
     assert rtlacam.__version__.count(".") == 2
 
 
+def test_solvers_come_from_the_planner_factory():
+    assert rtlacam.SOLVERS == ["pibt", "lacam", "rtlacam", "naive", "cspibt"]
+
+
 def test_load_map_and_scen(grid, scen):
     assert (grid.width, grid.height) == (32, 32)
     assert len(grid) == 819  # free cells of random-32-32-20
@@ -36,6 +40,8 @@ def test_bad_input_is_a_value_error_naming_the_file(tmp_path, grid):
         rtlacam.make_planner("magic", grid, [0], [0])
     with pytest.raises(ValueError, match="cspibt needs a policy"):
         rtlacam.make_planner("cspibt", grid, [0], [0])
+    with pytest.raises(ValueError, match="not a real-time planner"):
+        rtlacam.make_planner("lacam", grid, [0], [0])
     with pytest.raises(ValueError, match="out of range"):
         rtlacam.make_planner("rtlacam", grid, [len(grid)], [0])
 
