@@ -358,8 +358,19 @@ TEST(ControllerScenario, ExternalSumoStartedBareRunsTheConfiguredSimulation)
   ASSERT_GT(pid, 0);
   Controller c(cfg);
   const Metrics m = c.run();
-  ::kill(pid, SIGKILL);
-  ::waitpid(pid, nullptr, 0);
+  // The controller's close ends that SUMO, which writes its outputs and exits by itself.
+  int status = 0;
+  pid_t done = 0;
+  for (int i = 0; i < 200 && done == 0; ++i) {
+    done = ::waitpid(pid, &status, WNOHANG);
+    if (done == 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  if (done == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+  }
+  ASSERT_EQ(done, pid) << "the external SUMO did not exit after the run";
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(cfg.output.dir + "/sumo.log");
   expect_exact_solved_run(cfg, c, m);
   for (const char* f : {"fcd.xml", "tripinfo.xml", "summary.xml", "collision.xml"})
     EXPECT_TRUE(fs::exists(cfg.output.dir + "/" + f)) << f << " not written by the external SUMO";
