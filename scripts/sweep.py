@@ -9,7 +9,8 @@ result file); every other non-empty cell becomes an option of the app, `--COLUMN
     r32-50-1-rtlacam,data/movingai/random-32-32-20.map,data/movingai/random-32-32-20-random-1.scen,50,rtlacam,1,5
 
 Every run, whatever executes it, goes through `sweep.py run CSV OUT ROW`, which writes
-OUT/results/KEY.json (the app's JSON line with "run_key" first) or, when the app fails
+OUT/results/KEY.json (the app's JSON line with "run_key" first, plus the row's cells the
+app does not echo, e.g. "timeout_s") or, when the app fails
 (exit 1 or 2, or no JSON), OUT/errors/KEY.txt; exit 0 (solved), 4 (unsolved / limit) and 3
 (invalid plan: "valid":false in the result) are all results. So both back ends leave the
 same files, a finished run is never redone, and `collect` joins them into one JSONL.
@@ -43,7 +44,7 @@ def fail(msg):
 
 
 def read_runs(path):
-    """The rows of the sweep CSV as (key, [args]) in file order; errors name file:line."""
+    """The rows of the sweep CSV as (key, [args], {column: cell}) in file order; errors name file:line."""
     try:
         f = open(path, newline="")
     except OSError as e:
@@ -72,7 +73,7 @@ def read_runs(path):
             if val == "" or val.lower() == "false":
                 continue
             args += [opt] if val.lower() == "true" else [opt, val]
-        runs.append((key, args))
+        runs.append((key, args, cells))
     if not runs:
         fail(f"{path}: no runs")
     return runs
@@ -84,14 +85,14 @@ def result_path(out, key):
 
 def pending_rows(runs, out):
     """1-based row numbers of the runs without a result file."""
-    return [i + 1 for i, (key, _) in enumerate(runs) if not os.path.exists(result_path(out, key))]
+    return [i + 1 for i, (key, *_) in enumerate(runs) if not os.path.exists(result_path(out, key))]
 
 
 def cmd_run(a):
     runs = read_runs(a.csv)
     if not 1 <= a.row <= len(runs):
         fail(f"row {a.row} out of range 1..{len(runs)}")
-    key, args = runs[a.row - 1]
+    key, args, cells = runs[a.row - 1]
     if os.path.exists(result_path(a.out, key)):
         return 0
     cmd = [a.app, *args, "--json"]
@@ -99,6 +100,8 @@ def cmd_run(a):
     line = next((l for l in p.stdout.splitlines() if l.startswith("{")), None)
     if p.returncode in RESULT_CODES and line:
         rec = {"run_key": key, **json.loads(line)}
+        for col, val in cells.items():  # the row's settings the app does not echo (e.g. timeout_s)
+            rec.setdefault(col, val)
         os.makedirs(os.path.join(a.out, "results"), exist_ok=True)
         tmp = result_path(a.out, key) + f".tmp{os.getpid()}"
         with open(tmp, "w") as f:
@@ -179,7 +182,7 @@ def cmd_slurm(a):
 def cmd_collect(a):
     runs = read_runs(a.csv)
     missing = 0
-    for key, _ in runs:
+    for key, *_ in runs:
         try:
             with open(result_path(a.out, key)) as f:
                 sys.stdout.write(f.read())
