@@ -8,8 +8,9 @@ function(rtlacam_library name)
   set_target_properties(${name} PROPERTIES
     EXPORT_NAME ${name}
     OUTPUT_NAME rtlacam_${name}
-    # The Python module links these static archives into a shared object.
-    POSITION_INDEPENDENT_CODE ON)
+    # The Python module (and any shared library of a user) links these static archives
+    # into a shared object.
+    POSITION_INDEPENDENT_CODE ${RTLACAM_PIC})
   # PIC alone would stop GCC inlining calls to our own non-static functions (they could be
   # interposed in a shared object); nobody interposes them, so keep the -O3 planner fast.
   if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" OR CMAKE_CXX_COMPILER_ID STREQUAL "Clang")

@@ -13,6 +13,13 @@ for f in lib/cmake/rtlacam/rtlacam-config.cmake lib/cmake/rtlacam/rtlacam-config
 done
 "$tmp/prefix/bin/rtlacam-bench" --version | grep -q '^rtlacam-bench [0-9]' \
   || { echo "test_install: installed rtlacam-bench --version is wrong" >&2; exit 1; }
+# The Python package, when the bindings were built: importable from the prefix.
+if [[ -d "$build/python/rtlacam" ]]; then
+  v=$(PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" /usr/bin/python3 -c "import rtlacam; print(rtlacam.__version__)") \
+    || { echo "test_install: the installed rtlacam Python package does not import" >&2; exit 1; }
+  [[ "$v" == "$("$tmp/prefix/bin/rtlacam-bench" --version | cut -d' ' -f2)" ]] \
+    || { echo "test_install: Python package version $v differs from the apps'" >&2; exit 1; }
+fi
 cmake -S "$src/tests/install/consumer" -B "$tmp/consumer" -DCMAKE_PREFIX_PATH="$tmp/prefix" \
   -DCMAKE_BUILD_TYPE=Release >"$tmp/configure.log" || { cat "$tmp/configure.log" >&2; exit 1; }
 cmake --build "$tmp/consumer" >"$tmp/build.log" 2>&1 || { cat "$tmp/build.log" >&2; exit 1; }
