@@ -8,13 +8,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
-#include "planner/naive_rt_lacam.hpp"
-#include "planner/pibt_planner.hpp"
 #include "planner/plan_io.hpp"
-#include "planner/rt_lacam.hpp"
 #include "planner/runner.hpp"
+#include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
 #include "tasks/rotation_executor.hpp"
@@ -33,8 +32,8 @@ int main(int argc, char** argv)
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
-  app.add_option("--solver", solver, "pibt | lacam | rtlacam | naive | cspibt (pibt ordered by --policy)")
-      ->check(CLI::IsMember({"pibt", "lacam", "rtlacam", "naive", "cspibt"}))
+  app.add_option("--solver", solver, solver_names() + " (cspibt: pibt ordered by --policy)")
+      ->check(CLI::IsMember(solver_list()))
       ->capture_default_str();
   app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions,
@@ -50,10 +49,13 @@ int main(int argc, char** argv)
                  "grid4 | rotation (LoRR MAPF_T: the executed cell plan is run with headings; adds rotation_* fields)")
       ->check(CLI::IsMember({"grid4", "rotation"}))
       ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
-  if (solver == "cspibt" && policy_file.empty()) {
+  double progress_s = 2;
+  app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
+  cli::add_version(app, "rtlacam-bench");
+  RTLACAM_PARSE(app, argc, argv);
+  if (needs_policy(parse_solver(solver)) && policy_file.empty()) {
     std::cerr << "rtlacam-bench: --solver cspibt needs --policy WEIGHTS" << std::endl;
-    return 2;
+    return cli::kBadInput;
   }
 
   try {
@@ -69,6 +71,19 @@ int main(int argc, char** argv)
     ropt.timeout_ms = timeout_s * 1000.0;
     ropt.max_steps = max_steps;
     ropt.record_plan = !out_file.empty() || action_model == "rotation";
+    // Progress on stderr for runs longer than --progress-s (stdout stays one JSON object).
+    const auto started = Clock::now();
+    auto last = started;
+    if (progress_s > 0) {
+      ropt.progress_ms = progress_s * 1000;
+      ropt.on_progress = [&](const RunResult& s) {
+        if (ms_since(last) < progress_s * 1000) return;
+        last = Clock::now();
+        std::cerr << "[rtlacam-bench] " << solver << " N=" << agents << ": " << s.iterations << " iterations, planning "
+                  << s.total_planning_ms / 1000 << " s of " << timeout_s << " s, " << s.expansions
+                  << " expansions, wall " << ms_since(started) / 1000 << " s" << std::endl;
+      };
+    }
 
     // The policy: loaded before the clock starts (a one-off, like reading the map).
     policy::Model model;
@@ -79,16 +94,13 @@ int main(int argc, char** argv)
     }
 
     RunResult r;
-    if (solver == "lacam") {
+    if (!is_realtime(parse_solver(solver))) {
       r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt, pref.get());
     } else {
       // Construction (distance tables, the root node) counts as planning time, as it
       // does inside run_full_horizon for LaCAM.
       const auto t0 = Clock::now();
-      std::unique_ptr<RealtimePlanner> p;
-      if (solver == "rtlacam") p = std::make_unique<RtLacam>(g, ins.starts, ins.goals, lopt, pref.get());
-      else if (solver == "naive") p = std::make_unique<NaiveRtLacam>(g, ins.starts, ins.goals, lopt, pref.get());
-      else p = std::make_unique<PibtPlanner>(g, ins.starts, ins.goals, lopt, pref.get());
+      std::unique_ptr<RealtimePlanner> p = make_planner(parse_solver(solver), g, ins.starts, ins.goals, lopt, pref.get());
       const double setup_ms = ms_since(t0);
       r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
       r.total_planning_ms += setup_ms;
@@ -153,14 +165,14 @@ int main(int argc, char** argv)
     }
     if (!r.validation_error.empty()) {
       std::cerr << "rtlacam-bench: invalid plan: " << r.validation_error << std::endl;
-      return 3;
+      return cli::kInvalidPlan;
     }
-    return 0;
+    return r.solved ? cli::kOk : cli::kUnsolved;
   } catch (const InputError& e) {
     std::cerr << "rtlacam-bench: " << e.what() << std::endl;
-    return 2;
+    return cli::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "rtlacam-bench: error: " << e.what() << std::endl;
-    return 1;
+    return cli::kRuntimeError;
   }
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "cli.hpp"
 #include "gridify/gridifier.hpp"
 #include "gridify/json_writer.hpp"
 #include "gridify/movingai_map.hpp"
@@ -28,7 +29,8 @@ int main(int argc, char** argv)
   app.add_option("--map", map, "write a MovingAI .map (axis-aligned grid nets only)");
   app.add_option("--json", json, "write cells, SUMO poses and edges as JSON");
   app.add_flag("--quiet,-q", quiet, "print nothing but errors");
-  CLI11_PARSE(app, argc, argv);
+  cli::add_version(app, "rtlacam-gridify");
+  RTLACAM_PARSE(app, argc, argv);
 
   try {
     auto t0 = std::chrono::steady_clock::now();
@@ -52,7 +54,10 @@ int main(int argc, char** argv)
     else std::cout << "  not a MovingAI grid: " << why << '\n';
   } catch (const planner::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
-    return 1;
+    return cli::kBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return cli::kRuntimeError;
   }
   return 0;
 }

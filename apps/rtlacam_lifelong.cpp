@@ -7,8 +7,10 @@
 #include <iostream>
 #include <memory>
 
+#include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
+#include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_exec.hpp"
@@ -53,8 +55,8 @@ int main(int argc, char** argv)
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
-  app.add_option("--solver", solver, "pibt | naive | rtlacam | cspibt (pibt ordered by --policy)")
-      ->check(CLI::IsMember({"pibt", "naive", "rtlacam", "cspibt"}))
+  app.add_option("--solver", solver, planner::solver_names(true) + " (cspibt: pibt ordered by --policy)")
+      ->check(CLI::IsMember(planner::solver_list(true)))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions per step (deterministic); 0 = none");
@@ -81,7 +83,8 @@ int main(int argc, char** argv)
   app.add_option("--delay-seed", delays.seed, "seed of the delays")->capture_default_str();
   app.add_option("--slow", slow, "AGENT:FACTOR, a slowed agent (factor in (0, 1]); repeatable");
   app.add_option("--stuck", stuck, "AGENT:AT:STEPS, an agent stopped from step AT for STEPS; repeatable");
-  CLI11_PARSE(app, argc, argv);
+  cli::add_version(app, "rtlacam-lifelong");
+  RTLACAM_PARSE(app, argc, argv);
 
   try {
     LorrProblem pr = load_lorr_problem(problem_file);
@@ -102,7 +105,7 @@ int main(int argc, char** argv)
     // The policy is told the goals by the planner (ActionPreference::set_goals).
     policy::Model model;
     std::unique_ptr<policy::PolicyPreference> pref;
-    if (solver == "cspibt" && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
+    if (planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     if (!policy_file.empty()) {
       model = policy::load_weights(policy_file);
       pref = std::make_unique<policy::PolicyPreference>(g, model, planner::Config{});

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/lacam.hpp"
 #include "planner/movingai.hpp"
@@ -142,7 +143,8 @@ int main(int argc, char** argv)
   time->add_option("--scen", t.scen, "MovingAI .scen file")->required();
   time->add_option("--agents,-N", t.agents, "number of agents")->check(CLI::PositiveNumber)->capture_default_str();
   time->add_option("--reps", t.reps, "timed configurations")->check(CLI::PositiveNumber)->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
+  cli::add_version(app, "rtlacam-policy");
+  RTLACAM_PARSE(app, argc, argv);
 
   try {
     if (*dump) return run_dump(d);

@@ -1,13 +1,16 @@
 // rtlacam-sumo: a SUMO warehouse run in which RT-LaCAM drives every AGV cell by cell.
-// Exit codes: 0 every AGV reached its goal (lifelong: run.max_ticks ran clean); 2 a
-// one-shot run where run.max_ticks ended first; 1 an error
-// (bad config, SUMO failure, a violation) -- metrics.json is written in every case but
-// the config error.
+// Exit codes (apps/cli.hpp): 0 every AGV reached its goal (lifelong: run.max_ticks ran
+// clean); 2 bad config or command line; 3 an invalid MAPF step; 4 a one-shot run where
+// run.max_ticks ended first; 1 any other error (SUMO failure, a position check) --
+// metrics.json is written in every case but the config error.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
 
+#include "cli.hpp"
 #include "controller/controller.hpp"
+#include "planner/error.hpp"
+#include "planner/solver.hpp"
 
 using namespace controller;
 
@@ -21,14 +24,16 @@ int main(int argc, char** argv)
   app.add_option("config", path, "scenario YAML (config/<scenario>.yaml)")->required();
   app.add_flag("--gui", gui, "watch it live in sumo-gui (through TraCI)");
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
-  app.add_option("--solver", solver, "override planner.solver")->check(CLI::IsMember({"rtlacam", "naive", "pibt", "cspibt"}));
+  app.add_option("--solver", solver, "override planner.solver: " + planner::solver_names(true))
+      ->check(CLI::IsMember(planner::solver_list(true)));
   app.add_option("--policy", policy_file, "override planner.policy: learned policy weights (PIBT tries moves in its order)")
       ->check(CLI::ExistingFile);
   app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
       ->check(CLI::Range(1, 65535));
   app.add_option("--max-ticks", max_ticks, "override run.max_ticks")->check(CLI::PositiveNumber);
   app.add_option("--out", out, "override output.dir");
-  CLI11_PARSE(app, argc, argv);
+  cli::add_version(app, "rtlacam-sumo");
+  RTLACAM_PARSE(app, argc, argv);
 
   try {
     Config cfg = load_config(path);
@@ -36,7 +41,7 @@ int main(int argc, char** argv)
     if (!backend.empty()) cfg.run.backend = backend;
     if (!solver.empty()) cfg.planner.solver = solver;
     if (!policy_file.empty()) cfg.planner.policy = policy_file;
-    if (cfg.planner.solver == "cspibt" && cfg.planner.policy.empty())
+    if (planner::needs_policy(planner::parse_solver(cfg.planner.solver)) && cfg.planner.policy.empty())
       throw ConfigError(path + ": planner.solver: cspibt needs planner.policy (or --policy WEIGHTS)");
     if (port > 0) {
       cfg.run.port = port;
@@ -71,11 +76,17 @@ int main(int argc, char** argv)
                 m.commands.total(), m.commands.resyncs, m.commands.max_error, m.violations, cfg.output.dir.c_str());
     if (!m.error.empty()) {
       std::cerr << "error: " << m.error << '\n';
-      return 1;
+      return m.violations > 0 ? cli::kInvalidPlan : cli::kRuntimeError;
     }
-    return m.solved || cfg.tasks.lifelong() ? 0 : 2;
+    return m.solved || cfg.tasks.lifelong() ? cli::kOk : cli::kUnsolved;
+  } catch (const ConfigError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return cli::kBadInput;
+  } catch (const planner::InputError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return cli::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "error: " << e.what() << '\n';
-    return 1;
+    return cli::kRuntimeError;
   }
 }

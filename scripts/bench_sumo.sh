@@ -31,7 +31,7 @@ run() {  # name, then the command prefix (e.g. taskset -c 1)
   local rc=0
   "$@" "$APP" "$CONFIG" --backend "$backend" --max-ticks "$TICKS" --out "$OUT/$name" \
     > "$OUT/$name.log" 2>&1 || rc=$?
-  if [ "$rc" -ne 0 ] && [ "$rc" -ne 2 ]; then  # 2: tick limit first (expected)
+  if [ "$rc" -ne 0 ] && [ "$rc" -ne 4 ]; then  # 4: tick limit first (expected)
     echo "bench_sumo: $name failed (exit $rc):" >&2; tail -5 "$OUT/$name.log" >&2; exit 1
   fi
 }

@@ -9,6 +9,8 @@ PKGS=(
   libpugixml-dev libexpat1-dev
   sumo sumo-tools
   python3 python3-matplotlib
+  pybind11-dev python3-dev python3-pytest
+  parallel
 )
 missing=()
 for p in "${PKGS[@]}"; do

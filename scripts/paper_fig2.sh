@@ -33,6 +33,8 @@ Usage: scripts/paper_fig2.sh [options]
   -j, --jobs P           parallel runs (default 2)
   --no-plot              do not call the plot script
   --dry-run              print the run list and exit
+  --csv FILE             write the runs as a sweep CSV for scripts/sweep.py (GNU parallel on
+                         several hosts, or a Slurm job array; docs/sweeps.md) and exit
   -h, --help             this help
 
 Environment: PYTHON (default /usr/bin/python3, needs matplotlib) runs scripts/plot_fig2.py.
@@ -62,6 +64,7 @@ SWAP=1
 JOBS=2
 PLOT=1
 DRY=0
+CSV=""
 
 need() { [[ $# -ge 2 && -n "$2" ]] || { echo "paper_fig2.sh: $1 needs a value" >&2; exit 2; }; }
 while [[ $# -gt 0 ]]; do
@@ -82,6 +85,7 @@ while [[ $# -gt 0 ]]; do
     -j|--jobs) need "$@"; JOBS="$2"; shift 2 ;;
     --no-plot) PLOT=0; shift ;;
     --dry-run) DRY=1; shift ;;
+    --csv) need "$@"; CSV="$2"; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "paper_fig2.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -132,7 +136,7 @@ OUT_DIR="$(cd "$OUT_DIR" && pwd)"
 RESULTS="$OUT_DIR/results.jsonl"
 ERRORS="$OUT_DIR/errors.log"
 touch "$RESULTS"
-: >"$ERRORS"   # crashes of earlier invocations are retried below (they are not in results)
+[[ -n "$CSV" ]] || : >"$ERRORS"   # crashes of earlier invocations are retried below (they are not in results)
 
 # ---- run list: one line "key map k N solver cutoff" per run -----------------------------
 # key identifies a run for resuming: map|scen|N|solver|cutoff|seed|swap|timeout
@@ -155,6 +159,20 @@ for m in $MAPS; do
     done
   done
 done
+if [[ -n "$CSV" ]]; then  # the same runs for scripts/sweep.py (paths relative to the checkout)
+  {
+    echo "key,map,scen,agents,solver,cutoff_ms,timeout_s,seed,no_swap,max_steps"
+    while read -r key m k n s c; do
+      steps=$MAX_STEPS
+      [[ "$s" == pibt ]] && steps=$PIBT_MAX_STEPS
+      [[ "$c" == "-" ]] && c=""
+      echo "${key//|/_},data/movingai/$m.map,data/movingai/$m-random-$k.scen,$n,$s,$c,$TIMEOUT,$SEED,$([[ $SWAP == 0 ]] && echo true || echo false),$steps"
+    done <"$ALL"
+  } >"$CSV"
+  rm -f "$ALL"
+  echo "fig2 sweep: $(($(wc -l <"$CSV") - 1)) runs written to $CSV (scripts/sweep.py parallel|slurm $CSV OUT; then collect)"
+  exit 0
+fi
 source "$(dirname "${BASH_SOURCE[0]}")/lib/sweep.sh"
 pending_runs "$ALL" "$RESULTS" "$TODO"
 

@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "planner/solver.hpp"
+
 namespace controller {
 namespace {
 
@@ -247,9 +249,10 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node p = root["planner"];
   r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities"});
-  r.choice(p, "planner", "solver", c.planner.solver, {"rtlacam", "naive", "pibt", "cspibt"});
+  const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
+  r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
   r.file(p, "planner", "policy", c.planner.policy, false);
-  if (c.planner.solver == "cspibt" && c.planner.policy.empty())
+  if (planner::needs_policy(planner::parse_solver(c.planner.solver)) && c.planner.policy.empty())
     r.fail("planner.solver", "cspibt needs planner.policy (a weights file)");
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");

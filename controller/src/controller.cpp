@@ -2,9 +2,9 @@
 
 #include "run.hpp"
 
-#include "planner/naive_rt_lacam.hpp"
-#include "planner/pibt_planner.hpp"
-#include "planner/rt_lacam.hpp"
+#include "controller/display.hpp"
+#include "controller/sumo_error.hpp"
+#include "planner/solver.hpp"
 
 namespace controller {
 
@@ -17,16 +17,16 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.swap = p.swap;
   opt.seed = p.seed;
   opt.keep_priorities = p.keep_priorities;
-  if (p.solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, pref, std::move(test));
-  if (p.solver == "pibt" || p.solver == "cspibt") {
-    if (p.solver == "cspibt" && !pref) throw std::invalid_argument("solver cspibt needs a policy (planner.policy)");
-    return std::make_unique<planner::PibtPlanner>(g, starts, goals, opt, pref, std::move(test));
-  }
-  return std::make_unique<planner::RtLacam>(g, starts, goals, opt, pref, std::move(test));
+  return planner::make_planner(planner::parse_solver(p.solver), g, starts, goals, opt, pref, std::move(test));
 }
 
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r)
 {
+  if (r.gui && r.port == 0) {
+    // sumo-gui without a display dies at once and TraCI would retry for seconds: say so now.
+    const std::string why = display_problem();
+    if (!why.empty()) throw SumoError("sumo-gui: " + why);
+  }
   if (r.gui) return make_traci_backend("sumo-gui", r.port);
   if (r.backend == "traci") return make_traci_backend("sumo", r.port);
   return make_libsumo_backend();

@@ -6,20 +6,6 @@
 
 namespace controller {
 
-Latency Latency::of(std::vector<double> ms)
-{
-  Latency l;
-  l.count = static_cast<long long>(ms.size());
-  if (ms.empty()) return l;
-  std::sort(ms.begin(), ms.end());
-  auto at = [&](double q) { return ms[std::min(ms.size() - 1, static_cast<size_t>(std::ceil(q * ms.size())) - 1)]; };
-  l.mean = std::accumulate(ms.begin(), ms.end(), 0.0) / ms.size();
-  l.p50 = at(0.50);
-  l.p99 = at(0.99);
-  l.max = ms.back();
-  return l;
-}
-
 static nlohmann::json latency_json(const Latency& l)
 {
   return {{"count", l.count}, {"mean", l.mean}, {"p50", l.p50}, {"p99", l.p99}, {"max", l.max}};

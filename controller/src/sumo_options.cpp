@@ -37,10 +37,12 @@ std::string write_vtype_file(const Config& cfg, const std::string& dir, double m
 std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,
                                    bool ignore_route_errors)
 {
+  // The stations file too: sumo-gui (and an external SUMO) shows them; SUMO checks them.
+  const std::string additional = cfg.sumo.additional.empty() ? vtype_file : vtype_file + "," + cfg.sumo.additional;
   std::vector<std::string> a{"-n",
                              cfg.sumo.net,
                              "-a",
-                             vtype_file,
+                             additional,
                              "--step-length",
                              num(cfg.sumo.step_length),
                              "--time-to-teleport",

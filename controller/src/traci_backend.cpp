@@ -1,11 +1,17 @@
 // TraciBackend: SUMO over a TraCI socket (libtraci). Either starts `sumo`/`sumo-gui` as a
 // child (libtraci popen()s the command joined by spaces, unquoted: paths with spaces
-// break, so they are refused here) or connects to a SUMO already listening on a port.
+// break, so they are refused here) or connects to a SUMO already listening on a port and
+// reloads it (TraCI load) with the run's options: the net, the `agv` vType and stations,
+// the step length and the configured outputs -- an external SUMO started with only
+// `--remote-port P` (or anything else) then runs exactly the configured simulation.
 // Every call is a round trip (~12-40 us), so the controller reads poses once per tick.
 #include <libsumo/libtraci.h>
 
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
+#include <set>
+#include <sstream>
 
 #include "controller/sumo_backend.hpp"
 #include "controller/sumo_error.hpp"
@@ -16,6 +22,23 @@ namespace {
 namespace api = libtraci;
 constexpr bool kOverSocket = true;
 #include "backend_impl.ipp"
+
+// An external SUMO resolves file names against its own working directory: pass absolute
+// ones (comma-separated lists too).
+std::vector<std::string> absolute_files(std::vector<std::string> args)
+{
+  static const std::set<std::string> kFileOptions{"-n", "--net-file", "-a", "--additional-files", "-r",
+                                                  "--route-files", "--fcd-output", "--tripinfo-output",
+                                                  "--summary-output", "--collision-output"};
+  for (size_t i = 0; i + 1 < args.size(); ++i) {
+    if (!kFileOptions.count(args[i])) continue;
+    std::stringstream in(args[i + 1]);
+    std::string item, out;
+    while (std::getline(in, item, ',')) out += (out.empty() ? "" : ",") + std::filesystem::absolute(item).string();
+    args[i + 1] = out;
+  }
+  return args;
+}
 
 class TraciBackend : public ApiBackend {
  public:
@@ -35,6 +58,7 @@ class TraciBackend : public ApiBackend {
     if (::sigaction(SIGPIPE, nullptr, &old) == 0 && old.sa_handler == SIG_DFL) std::signal(SIGPIPE, SIG_IGN);
     if (port_ > 0) {
       guarded("connect", [&] { api::Simulation::init(port_, kRetries); });
+      guarded("load", [&] { api::Simulation::load(absolute_files(args)); });
     } else {
       std::vector<std::string> cmd{binary_};
       for (const std::string& a : args) {

@@ -2,27 +2,17 @@
 
 #include <algorithm>
 
+#include "planner/latency.hpp"
 #include "planner/validator.hpp"
 
 namespace planner {
-namespace {
-
-double percentile(std::vector<float> v, double q)
-{
-  if (v.empty()) return 0;
-  size_t k = static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
-
-}  // namespace
 
 RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts, const Config& goals,
                        const RunOptions& opt)
 {
   RunResult r;
   Validator val(g, starts, goals);
-  std::vector<float> times;
+  std::vector<double> times;
   if (opt.record_plan) r.plan.push_back(starts);
   while (true) {
     if (p.at_goal()) {
@@ -42,7 +32,7 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
     p.next();
     p.commit();
     const double dt = ms_since(t0);
-    times.push_back(static_cast<float>(dt));
+    times.push_back(dt);
     r.total_planning_ms += dt;
     r.max_iteration_ms = std::max(r.max_iteration_ms, dt);
     ++r.iterations;
@@ -55,8 +45,12 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
       break;
     }
     if (opt.record_plan) r.plan.push_back(p.current());
+    if (opt.on_progress) {
+      r.expansions = p.expansions();
+      opt.on_progress(r);
+    }
   }
-  r.p99_iteration_ms = percentile(std::move(times), 0.99);
+  r.p99_iteration_ms = Latency::of(std::move(times)).p99;
   r.soc = val.sum_of_costs();
   r.makespan = val.steps();
   r.expansions = p.expansions();
@@ -72,7 +66,19 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
   DistTable dist(g);
   Lacam lacam(g, dist, lopt, pref);
   lacam.reset(starts, goals);
-  lacam.search(Budget::time_ms(opt.timeout_ms));
+  if (!opt.on_progress) {
+    lacam.search(Budget::time_ms(opt.timeout_ms));
+  } else {
+    // The same search in slices (search() continues where it stopped), reporting between them.
+    while (lacam.search(Budget::time_ms(std::min(opt.progress_ms, opt.timeout_ms - ms_since(t0)))) ==
+               Status::Searching &&
+           ms_since(t0) < opt.timeout_ms) {
+      r.total_planning_ms = ms_since(t0);
+      r.expansions = lacam.expansions();
+      r.explored = lacam.explored();
+      opt.on_progress(r);
+    }
+  }
   r.total_planning_ms = r.max_iteration_ms = r.p99_iteration_ms = ms_since(t0);
   r.iterations = 1;
   r.expansions = lacam.expansions();

@@ -26,7 +26,8 @@ bench_record() {
   err=$(mktemp)
   out=$("$BENCH" "$@" 2>"$err") || rc=$?
   line=$(printf '%s\n' "$out" | grep -m1 '^{' || true)
-  if [[ $rc -eq 0 && -n "$line" ]]; then
+  # 0 solved, 4 unsolved (a limit first), 3 invalid plan (flagged below): all results.
+  if [[ ( $rc -eq 0 || $rc -eq 3 || $rc -eq 4 ) && -n "$line" ]]; then
     line="{$fields,${line#\{}"
     { flock 9; printf '%s\n' "$line" >>"$RESULTS"; } 9>>"$RESULTS.lock"
     MSG=$(printf '%s' "$line" | sed -n 's/.*"solved":\([a-z]*\).*"total_planning_ms":\([0-9.e+-]*\).*/solved=\1 t=\2ms/p')

@@ -33,24 +33,7 @@ bool has_pending(const TaskManager& tasks, const planner::Config& at)
 
 }  // namespace
 
-PlannerTimes summarize(std::vector<double> ms)
-{
-  PlannerTimes s;
-  if (ms.empty()) return s;
-  std::sort(ms.begin(), ms.end());
-  double sum = 0;
-  for (double x : ms) sum += x;
-  s.mean = sum / static_cast<double>(ms.size());
-  // Nearest-rank percentiles.
-  auto pct = [&](double q) {
-    const size_t k = static_cast<size_t>(std::ceil(q * static_cast<double>(ms.size())));
-    return ms[std::min(ms.size() - 1, k > 0 ? k - 1 : 0)];
-  };
-  s.p50 = pct(0.50);
-  s.p99 = pct(0.99);
-  s.max = ms.back();
-  return s;
-}
+PlannerTimes summarize(std::vector<double> ms) { return planner::Latency::of(std::move(ms)); }
 
 LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& starts, TaskManager& tasks,
                             const std::string& solver, uint64_t seed, const LifelongOptions& opt)

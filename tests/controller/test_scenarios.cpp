@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -341,5 +342,71 @@ TEST(ControllerFault, AgvMissingAtVerificationIsNamed)
       EXPECT_NE(std::string(e.what()).find("AGV agv2 (agent 2)"), std::string::npos) << e.what();
     }
     sumo->close();
+  }
+}
+
+// The README's external-SUMO recipe: `sumo --remote-port P -n NET` knows no `agv` vType,
+// no stations and no outputs; the controller reloads it with the run's options, so the run
+// completes exactly and the configured outputs are written (not silently dropped).
+TEST(ControllerScenario, ExternalSumoStartedBareRunsTheConfiguredSimulation)
+{
+  Config cfg = scenario("small_warehouse.yaml", "external_bare");
+  const int port = free_port();
+  cfg.run.backend = "traci";
+  cfg.run.port = port;
+  const pid_t pid = spawn_sumo({"-n", cfg.sumo.net}, port, cfg.output.dir + "/sumo.log");
+  ASSERT_GT(pid, 0);
+  Controller c(cfg);
+  const Metrics m = c.run();
+  // The controller's close ends that SUMO, which writes its outputs and exits by itself.
+  int status = 0;
+  pid_t done = 0;
+  for (int i = 0; i < 200 && done == 0; ++i) {
+    done = ::waitpid(pid, &status, WNOHANG);
+    if (done == 0) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  if (done == 0) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, nullptr, 0);
+  }
+  ASSERT_EQ(done, pid) << "the external SUMO did not exit after the run";
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << slurp(cfg.output.dir + "/sumo.log");
+  expect_exact_solved_run(cfg, c, m);
+  for (const char* f : {"fcd.xml", "tripinfo.xml", "summary.xml", "collision.xml"})
+    EXPECT_TRUE(fs::exists(cfg.output.dir + "/" + f)) << f << " not written by the external SUMO";
+  EXPECT_NE(slurp(cfg.output.dir + "/fcd.xml").find("<vehicle id="), std::string::npos);
+}
+
+// The stations file goes to SUMO with the vType (sumo-gui draws it).
+TEST(ControllerScenario, SumoGetsTheStationsFile)
+{
+  Config cfg = scenario("small_warehouse.yaml", "stations_arg");
+  ASSERT_FALSE(cfg.sumo.additional.empty());
+  const std::vector<std::string> a = sumo_args(cfg, cfg.output.dir, "agv.add.xml", false);
+  auto it = std::find(a.begin(), a.end(), "-a");
+  ASSERT_NE(it, a.end());
+  EXPECT_EQ(*(it + 1), "agv.add.xml," + cfg.sumo.additional);
+}
+
+// --gui without a display: one line "cannot open display", at once (no TraCI retries).
+TEST(ControllerScenario, GuiWithoutDisplayIsOneLineAtOnce)
+{
+  Config cfg = scenario("small_warehouse.yaml", "nodisplay");
+  for (const char* display : {"", ":97"}) {  // unset; a display no X server serves
+    const std::string cmd = std::string(display[0] ? "DISPLAY=" : "env -u DISPLAY") + display + " " +
+                            RTLACAM_SUMO_APP + " " + cfg.path + " --gui --out " + cfg.output.dir + " 2>&1";
+    const auto t0 = std::chrono::steady_clock::now();
+    std::FILE* app = ::popen(cmd.c_str(), "r");
+    ASSERT_NE(app, nullptr);
+    std::string out;
+    char line[4096];
+    while (std::fgets(line, sizeof line, app)) out += line;
+    const int status = ::pclose(app);
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    ASSERT_TRUE(WIFEXITED(status)) << out;
+    EXPECT_EQ(WEXITSTATUS(status), 1) << out;
+    EXPECT_NE(out.find("cannot open display"), std::string::npos) << out;
+    EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+    EXPECT_LT(s, 5.0) << out;
   }
 }

@@ -183,13 +183,14 @@ TEST(GridifyErrors, BadCellLength)
   EXPECT_TRUE(has(error_of(data("tiny.net.xml"), opt), "cell_length must be a positive number"));
 }
 
-// The CLI prints the one-line error and exits non-zero.
+// The CLI prints the one-line error and exits 2 (bad input).
 TEST(GridifyErrors, CliExitsNonZeroWithTheMessage)
 {
   std::string log = temp_dir() + "/err.txt";
   std::string cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("oneway.net.xml") + "' 2> '" + log + "' > /dev/null";
   int rc = std::system(cmd.c_str());
-  EXPECT_NE(rc, 0);
+  ASSERT_TRUE(WIFEXITED(rc));
+  EXPECT_EQ(WEXITSTATUS(rc), 2);
   std::ifstream in(log);
   std::stringstream ss;
   ss << in.rdbuf();

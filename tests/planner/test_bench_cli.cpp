@@ -73,8 +73,37 @@ TEST(BenchCli, BadInputGivesOneLineAndNonZeroExit)
   };
   for (auto& c : cases) {
     Result r = run(c.args);
-    EXPECT_NE(r.code, 0) << c.args;
+    EXPECT_EQ(r.code, 2) << c.args;
     EXPECT_NE(r.err.find(c.expect), std::string::npos) << "stderr: " << r.err;
     EXPECT_EQ(r.out, "") << c.args;
+  }
+}
+
+TEST(BenchCli, UnsolvedExitsFourAndStillPrintsTheResult)
+{
+  // Two steps cannot bring 50 agents to their goals: the step limit comes first.
+  Result r = run("--map " + kMap + " --scen " + kScen + " -N 50 --solver pibt --max-steps 2 --json");
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_NE(r.out.find("\"solved\":false"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"step_limit\":true"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"valid\":true"), std::string::npos) << r.out;
+}
+
+TEST(BenchCli, ProgressLinesGoToStderrOnlyForLongRuns)
+{
+  // A short run under the default --progress-s 2: silent on stderr.
+  Result quiet = run("--map " + kMap + " --scen " + kScen + " -N 20 --solver rtlacam --json");
+  ASSERT_EQ(quiet.code, 0) << quiet.err;
+  EXPECT_EQ(quiet.err, "");
+  // Progress every 0.1 ms: lines for the iterations (rtlacam) and for slices of the one
+  // full-horizon search (lacam); stdout stays one JSON line with the same result.
+  for (std::string solver : {"rtlacam", "lacam"}) {
+    Result r = run("--map " + kMap + " --scen " + kScen + " -N 150 --solver " + solver +
+                   " --json --budget-expansions 1 --cutoff-ms 1000 --progress-s 0.0001");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.err.rfind("[rtlacam-bench] " + solver + " N=150: ", 0), 0u) << r.err;
+    EXPECT_GE(std::count(r.err.begin(), r.err.end(), '\n'), 2) << r.err;
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 1) << r.out;
+    EXPECT_NE(r.out.find("\"solved\":true"), std::string::npos) << r.out;
   }
 }

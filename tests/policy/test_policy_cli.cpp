@@ -30,7 +30,9 @@ TEST(PolicyCli, BenchRunsEverySolverWithThePolicy)
     SCOPED_TRACE(solver);
     const Result r = run(RTLACAM_BENCH_BIN, kInstance + " -N 30 --solver " + solver + " --policy " + kWeights +
                                                 " --json --budget-expansions 5 --max-steps 300");
-    EXPECT_EQ(r.code, 0) << r.err;
+    // 4: unsolved within --max-steps (cspibt/pibt/naive may not reach every goal); still a result.
+    const bool solved = r.out.find("\"solved\":true") != std::string::npos;
+    EXPECT_EQ(r.code, solved ? 0 : 4) << r.err;
     EXPECT_NE(r.out.find("\"valid\":true"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\"solver\":\"" + solver + "\""), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("\"policy\":\"" + kWeights + "\""), std::string::npos) << r.out;

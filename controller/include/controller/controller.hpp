@@ -22,6 +22,7 @@
 #include "controller/metrics.hpp"
 #include "controller/sumo_backend.hpp"
 #include "gridify/cell_map.hpp"
+#include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace controller {

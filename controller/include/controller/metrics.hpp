@@ -6,15 +6,12 @@
 #include <vector>
 
 #include "controller/commander.hpp"
+#include "planner/latency.hpp"
 
 namespace controller {
 
-// Summary of a sample of durations in milliseconds.
-struct Latency {
-  long long count = 0;
-  double mean = 0, p50 = 0, p99 = 0, max = 0;
-  static Latency of(std::vector<double> ms);
-};
+// Summary of a sample of durations in milliseconds (one p99 definition for all layers).
+using Latency = planner::Latency;
 
 struct Metrics {
   std::string config, net, backend, solver, error;  // error: "" when the run was clean

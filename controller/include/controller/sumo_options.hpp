@@ -1,5 +1,6 @@
 #pragma once
 // The SUMO side of a run: the AGV vType file and the command-line options of scheme S.
+//   -n net -a agv.add.xml[,stations]            (stations: sumo.additional, shown in sumo-gui)
 //   --step-length dt --time-to-teleport -1      (waiting AGVs are never teleported)
 //   --collision.action warn --collision.mingap-factor 0   (report physical overlaps only,
 //                                                          never remove or teleport)

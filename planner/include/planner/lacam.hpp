@@ -26,14 +26,9 @@
 #include "planner/hnode.hpp"
 #include "planner/pibt.hpp"
 #include "planner/rng.hpp"
+#include "planner/search_types.hpp"
 
 namespace planner {
-
-enum class Status { Searching, Solved, NoSolution };
-const char* to_string(Status s);
-
-// Goal test on a configuration of num_agents() vertices. Empty: all agents at goals.
-using GoalTest = std::function<bool(const Vertex* config)>;
 
 struct LacamOptions {
   bool swap = true;    // PIBT swap operation (LaCAM*); off for paper-faithful vanilla runs

@@ -6,6 +6,7 @@
 // the goal the agents follow that path to the end without replanning: a fresh search from
 // each point of a found path restarts PIBT's priorities and can walk back, which would
 // make the baseline fail even with budgets that solve the whole instance.
+#include "planner/lacam.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace planner {

@@ -2,6 +2,7 @@
 // PibtPlanner: PIBT alone as a real-time planner (no search): each iteration is one PIBT
 // step with dynamic priorities. Incomplete; the paper's PIBT baseline.
 #include "planner/priority.hpp"
+#include "planner/lacam.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace planner {

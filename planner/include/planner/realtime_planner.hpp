@@ -14,7 +14,7 @@
 
 #include "planner/budget.hpp"
 #include "planner/config.hpp"
-#include "planner/lacam.hpp"
+#include "planner/search_types.hpp"
 
 namespace planner {
 

@@ -16,6 +16,7 @@
 // is a valid move, and search() never changes parent pointers.
 #include <vector>
 
+#include "planner/lacam.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace planner {

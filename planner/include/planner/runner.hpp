@@ -4,6 +4,7 @@
 // cumulative planning time passes the timeout, or a step limit is reached. Full-horizon
 // LaCAM plans once and executes the whole path. Every executed step goes through the
 // Validator.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,11 +14,17 @@
 
 namespace planner {
 
+struct RunResult;
+
 struct RunOptions {
   Budget per_iteration = Budget::time_ms(1.0);
   double timeout_ms = 60000;     // cumulative planning time
   long long max_steps = 100000;  // executed steps
   bool record_plan = true;       // keep every configuration (for --out)
+  // Progress: called with the result so far after every iteration (full horizon: about
+  // every progress_ms of search). Empty: no calls, and LaCAM searches in one piece.
+  std::function<void(const RunResult&)> on_progress;
+  double progress_ms = 1000;
 };
 
 struct RunResult {

@@ -25,6 +25,8 @@
 
 #include "planner/budget.hpp"
 #include "planner/graph.hpp"
+#include "planner/latency.hpp"
+#include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
 #include "tasks/action_model.hpp"
 #include "tasks/task_manager.hpp"
@@ -58,9 +60,7 @@ struct LifelongOptions {
   bool record_actions = false; // keep every robot's action letters (LoRR actualPaths)
 };
 
-struct PlannerTimes {
-  double mean = 0, p50 = 0, p99 = 0, max = 0;
-};
+using PlannerTimes = planner::Latency;  // one p99 definition for all layers
 PlannerTimes summarize(std::vector<double> ms);
 
 struct LifelongResult {

@@ -1,18 +1,16 @@
 #pragma once
-// The three real-time planners of the lifelong comparison behind RealtimePlanner:
-//   pibt    -- PIBT alone, one step per iteration (no search)
-//   naive   -- naive RT-LaCAM: a fresh LaCAM search every iteration
-//   rtlacam -- RT-LaCAM: one persistent search per progress epoch
-//   cspibt  -- PIBT whose move order comes from `pref` (a learned policy): CS-PIBT
-// `pref` (optional for the others) orders PIBT's moves inside any of them.
+// The real-time planners of the lifelong comparison (planner/solver.hpp: pibt, naive,
+// rtlacam, cspibt), set up for lifelong runs: a seed, kept PIBT priorities and a cap on
+// the distance tables of goals no agent has any more.
 #include <memory>
 #include <string>
 
+#include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace tasks {
 
-// Throws std::invalid_argument for other names, and for cspibt without `pref`.
+// Throws std::invalid_argument for other names (lacam too), and for cspibt without `pref`.
 std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::GoalTest test, uint64_t seed,

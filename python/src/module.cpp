@@ -1,0 +1,246 @@
+// rtlacam._rtlacam: the planner, the learned policy and lifelong runs for Python.
+// Configurations are lists of vertex ids (planner::Config <-> list[int]); no numpy needed.
+// Objects that C++ holds by reference (a planner's Graph, a policy's Model) are kept
+// alive from Python with keep_alive, so no call can outlive what it points to.
+#include <pybind11/functional.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "planner/error.hpp"
+#include "planner/movingai.hpp"
+#include "planner/plan_io.hpp"
+#include "planner/runner.hpp"
+#include "planner/solver.hpp"
+#include "planner/validator.hpp"
+#include "policy/policy_preference.hpp"
+#include "policy/weights_file.hpp"
+#include "tasks/assigner.hpp"
+#include "tasks/lifelong_log.hpp"
+#include "tasks/lifelong_runner.hpp"
+#include "tasks/lorr_files.hpp"
+#include "tasks/lorr_problem.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/task_pool.hpp"
+
+namespace py = pybind11;
+using namespace planner;
+
+namespace {
+
+// A budget from keyword arguments: wall clock and/or expansions (both none: unlimited).
+Budget make_budget(py::object time_ms, py::object expansions)
+{
+  Budget b = Budget::unlimited();
+  if (!time_ms.is_none()) b.ms = time_ms.cast<double>();
+  if (!expansions.is_none()) b.expansions = expansions.cast<uint64_t>();
+  return b;
+}
+
+// JSON -> Python objects through the json module (the log is small; one copy is fine).
+py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+py::dict run_result(const RunResult& r)
+{
+  py::dict d;
+  d["solved"] = r.solved;
+  d["no_solution"] = r.no_solution;
+  d["timed_out"] = r.timed_out;
+  d["step_limit"] = r.step_limit;
+  d["valid"] = r.validation_error.empty();
+  d["validation_error"] = r.validation_error;
+  d["total_planning_ms"] = r.total_planning_ms;
+  d["max_iteration_ms"] = r.max_iteration_ms;
+  d["p99_iteration_ms"] = r.p99_iteration_ms;
+  d["iterations"] = r.iterations;
+  d["soc"] = r.soc;
+  d["makespan"] = r.makespan;
+  d["expansions"] = r.expansions;
+  d["explored"] = r.explored;
+  d["plan"] = r.plan;
+  return d;
+}
+
+// The lifelong runner on a LoRR problem, as rtlacam-lifelong runs it; returns its JSON log.
+py::object lifelong(const std::string& problem_file, const std::string& solver, long steps, double budget_ms,
+                    uint64_t budget_expansions, std::string mode, const std::string& assigner, uint64_t seed,
+                    int agents, bool reassign, const std::string& policy_file)
+{
+  using namespace tasks;
+  LorrProblem pr = load_lorr_problem(problem_file);
+  if (agents > pr.team_size)
+    throw input_error(problem_file, 0, "agents=" + std::to_string(agents) + " but teamSize is " + std::to_string(pr.team_size));
+  if (agents > 0) pr.team_size = agents;
+  const Graph g = load_map(pr.map_file);
+  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
+  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  if (mode.empty()) mode = pr.default_mode();
+  if (steps < 0) steps = pr.simulation_time;
+  if (steps < 0) throw input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass steps=");
+  std::unique_ptr<TaskManager> tm;
+  if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
+  else if (mode == "pool") tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner), reassign);
+  else throw std::invalid_argument("mode must be roundrobin or pool, not '" + mode + "'");
+  policy::Model model;
+  std::unique_ptr<policy::PolicyPreference> pref;
+  if (!policy_file.empty()) {
+    model = policy::load_weights(policy_file);
+    pref = std::make_unique<policy::PolicyPreference>(g, model, Config{});
+  }
+  LifelongOptions opt;
+  opt.pref = pref.get();
+  opt.steps = steps;
+  opt.budget = Budget::time_ms(budget_ms);
+  if (budget_expansions > 0) opt.budget.expansions = budget_expansions;
+  LifelongResult r;
+  {
+    py::gil_scoped_release unlocked;  // a long run: let other Python threads go on
+    r = run_lifelong(g, starts, *tm, solver, seed, opt);
+  }
+  nlohmann::json j = lifelong_log(RunInfo{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed}, r);
+  if (pref) j["policy"] = policy_file;
+  add_task_fields(j, *tm);
+  return to_python(j);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_rtlacam, m)
+{
+  m.doc() = "RT-LaCAM (Real-Time LaCAM, SoCS 2025): real-time MAPF planners, validator, lifelong runs";
+  m.attr("__version__") = RTLACAM_VERSION;
+  m.attr("SOLVERS") = solver_list();  // lacam: run() only (plans once); the others: make_planner
+
+  // Bad input (a file:line message) is ValueError in Python; other errors RuntimeError.
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+  py::class_<Graph>(m, "Graph", "MAPF graph: dense vertex ids, undirected edges; MovingAI grids have (x, y)")
+      .def_property_readonly("size", &Graph::size)
+      .def("__len__", &Graph::size)
+      .def_property_readonly("num_edges", &Graph::num_edges)
+      .def_property_readonly("width", &Graph::width)
+      .def_property_readonly("height", &Graph::height)
+      .def_readonly("name", &Graph::name)
+      .def("neighbors", [](const Graph& g, Vertex v) {
+        if (v < 0 || v >= g.size()) throw py::index_error("vertex out of range");
+        auto s = g.neighbors(v);
+        return std::vector<Vertex>(s.begin(), s.end());
+      })
+      .def("adjacent", &Graph::adjacent)
+      .def("at", &Graph::at, py::arg("x"), py::arg("y"), "vertex at column x, row y (-1: obstacle / off the map)")
+      .def("xy", [](const Graph& g, Vertex v) {
+        if (!g.is_grid() || v < 0 || v >= g.size()) throw py::index_error("not a grid vertex");
+        return py::make_tuple(g.cell_x(v), g.cell_y(v));
+      });
+
+  py::class_<Instance>(m, "Instance", "starts and goals of the agents")
+      .def_readonly("starts", &Instance::starts)
+      .def_readonly("goals", &Instance::goals)
+      .def_property_readonly("num_agents", &Instance::num_agents)
+      .def("soc_lower_bound", &Instance::soc_lower_bound);
+
+  m.def("load_map", &load_map, py::arg("path"), "MovingAI .map -> Graph");
+  m.def("load_scen", &load_scen, py::arg("path"), py::arg("graph"), py::arg("agents"),
+        "first `agents` rows of a MovingAI .scen on `graph` -> Instance");
+
+  py::class_<RealtimePlanner>(m, "Planner", "search(budget) / next() / commit() / set_goals(): see RealtimePlanner")
+      .def("search", [](RealtimePlanner& p, py::object time_ms, py::object expansions) {
+             Status s;
+             {
+               py::gil_scoped_release unlocked;
+               s = p.search(make_budget(time_ms, expansions));
+             }
+             return std::string(to_string(s));
+           },
+           py::arg("time_ms") = py::none(), py::arg("expansions") = py::none(),
+           "think for a wall-clock budget and/or a number of LaCAM expansions; returns the status")
+      .def("next", &RealtimePlanner::next, "the configuration to move to now")
+      .def("commit", &RealtimePlanner::commit, "the agents are there: advance (reroot)")
+      .def("step", [](RealtimePlanner& p, py::object time_ms, py::object expansions) {
+             return p.step(make_budget(time_ms, expansions));
+           },
+           py::arg("time_ms") = py::none(), py::arg("expansions") = py::none(), "search + next")
+      .def("set_goals", [](RealtimePlanner& p, const Config& goals) { p.set_goals(goals); }, py::arg("goals"),
+           "new goals: a new search rooted at the current configuration")
+      .def_property_readonly("current", &RealtimePlanner::current)
+      .def_property_readonly("goals", &RealtimePlanner::goals)
+      .def_property_readonly("at_goal", &RealtimePlanner::at_goal)
+      .def_property_readonly("exhausted", &RealtimePlanner::exhausted)
+      .def_property_readonly("expansions", &RealtimePlanner::expansions)
+      .def_property_readonly("explored", &RealtimePlanner::explored)
+      .def_property_readonly("name", &RealtimePlanner::name);
+
+  py::class_<policy::Model>(m, "Policy", "a learned one-step policy (weights file)");
+  m.def("load_policy", &policy::load_weights, py::arg("path"));
+
+  // The preference must outlive the planner and keep its Graph and Model alive.
+  py::class_<policy::PolicyPreference>(m, "PolicyPreference")
+      .def(py::init<const Graph&, const policy::Model&, const Config&>(), py::arg("graph"), py::arg("policy"),
+           py::arg("goals"), py::keep_alive<1, 2>(), py::keep_alive<1, 3>());
+
+  m.def("make_planner",
+        [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
+           policy::PolicyPreference* pref) {
+          if (static_cast<int>(starts.size()) != static_cast<int>(goals.size()))
+            throw std::invalid_argument("starts and goals differ in length");
+          for (Vertex v : starts)
+            if (v < 0 || v >= g.size()) throw std::invalid_argument("start vertex out of range");
+          for (Vertex v : goals)
+            if (v < 0 || v >= g.size()) throw std::invalid_argument("goal vertex out of range");
+          LacamOptions opt;
+          opt.seed = seed;
+          return make_planner(parse_solver(solver), g, starts, goals, opt, pref);
+        },
+        py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
+        py::arg("policy") = nullptr, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
+        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference)");
+
+  m.def("run",
+        [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
+           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref) {
+          RunOptions ropt;
+          ropt.per_iteration = make_budget(time_ms, expansions);
+          ropt.timeout_ms = timeout_ms;
+          ropt.max_steps = max_steps;
+          const Solver s = parse_solver(solver);
+          LacamOptions lopt;
+          lopt.seed = seed;
+          std::unique_ptr<RealtimePlanner> p;
+          if (is_realtime(s)) p = make_planner(s, g, ins.starts, ins.goals, lopt, pref);
+          RunResult r;
+          {
+            py::gil_scoped_release unlocked;
+            if (p) {
+              r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
+            } else {
+              r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt, pref);
+            }
+          }
+          return run_result(r);
+        },
+        py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
+        py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
+        py::arg("seed") = 0, py::arg("policy") = nullptr,
+        "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict");
+
+  py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; the paper's sum of costs")
+      .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),
+           py::arg("goals"), py::keep_alive<1, 2>())
+      .def("step", &Validator::step, py::arg("next"), "checks current -> next and advances; False on a violation")
+      .def("set_goals", &Validator::set_goals)
+      .def_property_readonly("ok", &Validator::ok)
+      .def_property_readonly("error", &Validator::error)
+      .def_property_readonly("current", &Validator::current)
+      .def_property_readonly("steps", &Validator::steps)
+      .def_property_readonly("sum_of_costs", &Validator::sum_of_costs);
+  m.def("validate_plan", &validate_plan, py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("plan"),
+        py::arg("require_goals") = true, "'' if the plan is valid, else the first violation");
+
+  m.def("lifelong", &lifelong, py::arg("problem"), py::arg("solver") = "rtlacam", py::arg("steps") = -1,
+        py::arg("budget_ms") = 100.0, py::arg("budget_expansions") = 0, py::arg("mode") = "",
+        py::arg("assigner") = "greedy", py::arg("seed") = 0, py::arg("agents") = 0, py::arg("reassign") = false,
+        py::arg("policy") = "",
+        "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict)");
+}

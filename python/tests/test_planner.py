@@ -1,0 +1,138 @@
+"""The planner from Python: maps, scenarios, every solver's search/next/commit, validator."""
+import subprocess
+import sys
+
+import pytest
+import rtlacam
+
+
+def test_version_matches_the_apps():
+    out = subprocess.run([sys.executable, "-m", "rtlacam", "--version"], capture_output=True, text=True, check=True)
+    assert out.stdout == f"rtlacam {rtlacam.__version__}\n"
+    assert rtlacam.__version__.count(".") == 2
+
+
+def test_solvers_come_from_the_planner_factory():
+    assert rtlacam.SOLVERS == ["pibt", "lacam", "rtlacam", "naive", "cspibt"]
+
+
+def test_load_map_and_scen(grid, scen):
+    assert (grid.width, grid.height) == (32, 32)
+    assert len(grid) == 819  # free cells of random-32-32-20
+    ins = rtlacam.load_scen(scen, grid, 10)
+    assert ins.num_agents == 10 and len(ins.starts) == len(ins.goals) == 10
+    v = ins.starts[0]
+    x, y = grid.xy(v)
+    assert grid.at(x, y) == v
+    for u in grid.neighbors(v):
+        assert grid.adjacent(u, v)
+    assert ins.soc_lower_bound(grid) > 0
+
+
+def test_bad_input_is_a_value_error_naming_the_file(tmp_path, grid):
+    bad = tmp_path / "bad.map"
+    bad.write_text("type octile\nheight 2\nwidth 2\nmap\n..\n.\n")
+    with pytest.raises(ValueError, match="bad.map:6"):
+        rtlacam.load_map(str(bad))
+    with pytest.raises(rtlacam.InputError, match="cannot open"):
+        rtlacam.load_map(str(tmp_path / "nope.map"))
+    with pytest.raises(ValueError, match="unknown solver"):
+        rtlacam.make_planner("magic", grid, [0], [0])
+    with pytest.raises(ValueError, match="cspibt needs a policy"):
+        rtlacam.make_planner("cspibt", grid, [0], [0])
+    with pytest.raises(ValueError, match="not a real-time planner"):
+        rtlacam.make_planner("lacam", grid, [0], [0])
+    with pytest.raises(ValueError, match="out of range"):
+        rtlacam.make_planner("rtlacam", grid, [len(grid)], [0])
+
+
+@pytest.mark.parametrize("solver", ["rtlacam", "naive", "pibt"])
+def test_search_next_commit_reaches_the_goals_with_valid_moves(grid, scen, solver):
+    ins = rtlacam.load_scen(scen, grid, 30)
+    p = rtlacam.make_planner(solver, grid, ins.starts, ins.goals, seed=1)
+    assert p.name == solver and p.current == ins.starts and p.goals == ins.goals
+    v = rtlacam.Validator(grid, ins.starts, ins.goals)
+    for _ in range(2000):
+        if p.at_goal:
+            break
+        p.search(expansions=5)
+        assert v.step(p.next()), v.error
+        p.commit()
+    assert p.at_goal and v.ok
+    assert p.current == ins.goals
+    assert v.sum_of_costs >= ins.soc_lower_bound(grid)
+
+
+def test_set_goals_starts_a_new_search_from_where_the_agents_are(grid, scen):
+    ins = rtlacam.load_scen(scen, grid, 10)
+    p = rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals)
+    while not p.at_goal:
+        p.step(expansions=10)
+        p.commit()
+    p.set_goals(ins.starts)  # and back again
+    assert not p.at_goal and p.goals == ins.starts
+    while not p.at_goal:
+        p.step(expansions=10)
+        p.commit()
+    assert p.current == ins.starts
+
+
+def test_validator_catches_conflicts_and_bad_moves(grid, scen):
+    a = rtlacam.load_scen(scen, grid, 1).starts[0]
+    n = grid.neighbors(a)[0]
+    starts, goals = [a, n], [n, a]
+    v = rtlacam.Validator(grid, starts, goals)
+    assert not v.step([a, a]) and "vertex conflict" in v.error
+    assert not v.step(starts), "the sequence stays invalid after a violation"
+    v = rtlacam.Validator(grid, starts, goals)
+    assert not v.step([n, a]) and "swap conflict" in v.error
+    far = next(u for u in range(len(grid)) if u not in (a, n) and not grid.adjacent(a, u))
+    v = rtlacam.Validator(grid, starts, goals)
+    assert not v.step([far, n]) and "not adjacent" in v.error
+    v = rtlacam.Validator(grid, starts, goals)
+    assert v.step(starts) and v.ok and v.steps == 1
+    assert rtlacam.validate_plan(grid, starts, goals, [starts], require_goals=False) == ""
+    assert "not the goals" in rtlacam.validate_plan(grid, starts, goals, [starts], require_goals=True)
+    assert "swap conflict" in rtlacam.validate_plan(grid, starts, goals, [starts, goals], require_goals=True)
+
+
+@pytest.mark.parametrize("solver", ["lacam", "rtlacam", "naive", "pibt"])
+def test_run_is_the_benchs_loop(grid, scen, solver):
+    ins = rtlacam.load_scen(scen, grid, 50)
+    r = rtlacam.run(solver, grid, ins, time_ms=None, expansions=20)
+    assert r["solved"] and r["valid"], r["validation_error"]
+    assert r["soc"] >= ins.soc_lower_bound(grid)
+    assert r["plan"][0] == ins.starts and r["plan"][-1] == ins.goals
+    assert rtlacam.validate_plan(grid, ins.starts, ins.goals, r["plan"]) == ""
+
+
+def test_step_limit_is_reported_unsolved(grid, scen):
+    ins = rtlacam.load_scen(scen, grid, 50)
+    r = rtlacam.run("pibt", grid, ins, max_steps=2)
+    assert not r["solved"] and r["step_limit"] and r["valid"]
+
+
+def test_learned_policy_drives_cspibt(grid, scen, weights):
+    ins = rtlacam.load_scen(scen, grid, 20)
+    pref = rtlacam.PolicyPreference(grid, rtlacam.load_policy(weights), ins.goals)
+    p = rtlacam.make_planner("cspibt", grid, ins.starts, ins.goals, policy=pref)
+    del pref  # the planner keeps it alive
+    v = rtlacam.Validator(grid, ins.starts, ins.goals)
+    for _ in range(300):
+        p.search(expansions=1)
+        assert v.step(p.next()), v.error
+        p.commit()
+    assert v.ok and v.steps == 300
+
+
+def test_graph_outlives_its_python_name(scen):
+    import gc
+    import os
+    from conftest import DATA
+    g = rtlacam.load_map(os.path.join(DATA, "planner", "random-32-32-20.map"))
+    ins = rtlacam.load_scen(scen, g, 5)
+    p = rtlacam.make_planner("rtlacam", g, ins.starts, ins.goals)
+    del g
+    gc.collect()
+    p.search(expansions=1000)
+    assert p.at_goal or p.next() is not None

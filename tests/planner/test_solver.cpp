@@ -1,0 +1,84 @@
+// The planner factory (planner/solver.hpp): names <-> Solver, the real-time planners it
+// builds (each one solving a small instance with valid moves), and its refusals.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <stdexcept>
+
+#include "grid.hpp"
+#include "planner/solver.hpp"
+#include "planner/validator.hpp"
+
+using namespace planner;
+
+namespace {
+
+// A stand-in for a learned policy: moves nearer the goal (Manhattan) first.
+struct TowardGoal : ActionPreference {
+  const Graph& g;
+  Config goals;
+  explicit TowardGoal(const Graph& graph) : g(graph) {}
+  void set_goals(const Config& gs) override { goals = gs; }
+  float score(int i, Vertex, Vertex to, Rng&) override
+  {
+    return static_cast<float>(std::abs(g.cell_x(to) - g.cell_x(goals[i])) + std::abs(g.cell_y(to) - g.cell_y(goals[i])));
+  }
+};
+
+}  // namespace
+
+TEST(Solver, NamesRoundTrip)
+{
+  EXPECT_EQ(solver_names(), "pibt | lacam | rtlacam | naive | cspibt");
+  EXPECT_EQ(solver_names(true), "pibt | rtlacam | naive | cspibt");
+  for (const std::string& n : solver_list()) EXPECT_EQ(to_string(parse_solver(n)), n);
+  EXPECT_EQ(solver_list(true).size(), solver_list().size() - 1);
+  EXPECT_TRUE(needs_policy(Solver::CsPibt));
+  EXPECT_FALSE(needs_policy(Solver::RtLacam));
+  EXPECT_FALSE(is_realtime(Solver::Lacam));
+}
+
+TEST(Solver, UnknownNameListsTheSolvers)
+{
+  try {
+    parse_solver("magic");
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "unknown solver 'magic' (pibt | lacam | rtlacam | naive | cspibt)");
+  }
+  EXPECT_THROW(parse_solver("RTLACAM"), std::invalid_argument);
+}
+
+TEST(Solver, EveryRealtimeSolverReachesTheGoalsWithValidMoves)
+{
+  // Two agents that must pass each other in a corridor with one siding.
+  const Graph g = test::grid({"....", ".#.."});
+  const Config starts{g.at(0, 0), g.at(3, 0)}, goals{g.at(3, 0), g.at(0, 0)};
+  for (const std::string& name : solver_list(true)) {
+    SCOPED_TRACE(name);
+    const Solver s = parse_solver(name);
+    TowardGoal pref(g);
+    auto p = make_planner(s, g, starts, goals, {}, needs_policy(s) ? &pref : nullptr);
+    EXPECT_EQ(p->name(), name == "cspibt" ? "pibt" : name);
+    Validator v(g, starts, goals);
+    for (int t = 0; t < 100 && !p->at_goal(); ++t) {
+      p->search(Budget::expansion_count(10));
+      ASSERT_TRUE(v.step(p->next())) << v.error();
+      p->commit();
+    }
+    EXPECT_TRUE(p->at_goal());
+  }
+}
+
+TEST(Solver, RefusesLacamAndCspibtWithoutAPolicy)
+{
+  const Graph g = test::grid({"..."});
+  const Config s{g.at(0, 0)}, t{g.at(2, 0)};
+  EXPECT_THROW(make_planner(Solver::Lacam, g, s, t), std::invalid_argument);
+  try {
+    make_planner(Solver::CsPibt, g, s, t);
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "solver cspibt needs a policy");
+  }
+}
