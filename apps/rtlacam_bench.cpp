@@ -28,7 +28,8 @@ int main(int argc, char** argv)
   double cutoff_ms = 1.0, timeout_s = 60.0;
   uint64_t budget_expansions = 0, seed = 0;
   long long max_steps = 100000;
-  bool compact = false, no_swap = false;
+  bool compact = false, no_swap = false, refine = true;
+  double anytime_ms = 0;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -42,6 +43,12 @@ int main(int argc, char** argv)
   app.add_option("--max-steps", max_steps, "limit on executed steps (iterative solvers)")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
+  app.add_flag("--refine,!--no-refine", refine,
+               "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
+      ->capture_default_str();
+  app.add_option("--anytime-ms", anytime_ms,
+                 "solver lacam with refine: keep refining until this much planning time in all (refine-after-solve)")
+      ->capture_default_str();
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
@@ -58,12 +65,14 @@ int main(int argc, char** argv)
     LacamOptions lopt;
     lopt.swap = !no_swap;
     lopt.seed = seed;
+    lopt.refine = refine;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
     ropt.timeout_ms = timeout_s * 1000.0;
     ropt.max_steps = max_steps;
     ropt.record_plan = !out_file.empty();
+    ropt.anytime_ms = anytime_ms;
 
     // The policy: loaded before the clock starts (a one-off, like reading the map).
     policy::Model model;
@@ -106,6 +115,8 @@ int main(int argc, char** argv)
     j["cutoff_ms"] = cutoff_ms;
     j["budget_expansions"] = budget_expansions;
     j["swap"] = !no_swap;
+    j["refine"] = refine;
+    j["anytime_ms"] = anytime_ms;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

@@ -26,7 +26,7 @@ Status NaiveRtLacam::search(const Budget& b)
     lacam_.reset(current_, goals_, test_);
     fresh_ = true;
   }
-  const Status s = lacam_.search(b);
+  const Status s = lacam_.search(b, true);  // naive: no refinement
   if (s == Status::Solved) solution_ = lacam_.path(lacam_.goal_node()), at_ = 0;
   return s;
 }

@@ -72,7 +72,9 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
   DistTable dist(g);
   Lacam lacam(g, dist, lopt, pref);
   lacam.reset(starts, goals);
-  lacam.search(Budget::time_ms(opt.timeout_ms));
+  lacam.search(Budget::time_ms(opt.timeout_ms), true);
+  const double left_ms = std::min(opt.anytime_ms, opt.timeout_ms) - ms_since(t0);
+  if (lacam.refining() && left_ms > 0) lacam.search(Budget::time_ms(left_ms));
   r.total_planning_ms = r.max_iteration_ms = r.p99_iteration_ms = ms_since(t0);
   r.iterations = 1;
   r.expansions = lacam.expansions();
