@@ -22,7 +22,7 @@ int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file;
-  bool reset_priorities = false, reassign = false;
+  bool reset_priorities = false, reassign = false, refine = true;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -40,6 +40,9 @@ int main(int argc, char** argv)
                "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
                "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_flag("--refine,!--no-refine", refine,
+               "rtlacam: LaCAM* refinement after each epoch's first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
+      ->capture_default_str();
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
@@ -82,6 +85,7 @@ int main(int argc, char** argv)
     LifelongOptions opt;
     opt.pref = pref.get();
     opt.keep_priorities = !reset_priorities;
+    opt.refine = refine;
     opt.steps = steps;
     opt.budget = planner::Budget::time_ms(budget_ms);
     if (budget_expansions > 0) opt.budget.expansions = budget_expansions;

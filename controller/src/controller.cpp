@@ -38,6 +38,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.swap = p.swap;
   opt.seed = p.seed;
   opt.keep_priorities = p.keep_priorities;
+  opt.refine = p.refine;
   if (p.solver == "naive") return std::make_unique<planner::NaiveRtLacam>(g, starts, goals, opt, pref, std::move(test));
   if (p.solver == "pibt" || p.solver == "cspibt") {
     if (p.solver == "cspibt" && !pref) throw std::invalid_argument("solver cspibt needs a policy (planner.policy)");

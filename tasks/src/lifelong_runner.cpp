@@ -45,7 +45,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   const auto wall0 = Clock::now();
   auto t0 = Clock::now();
   tasks.start(starts);
-  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, opt.pref, opt.keep_priorities);
+  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, opt.pref, opt.keep_priorities, opt.refine);
   r.setup_ms = ms_since(t0);
   r.epochs = 1;
 

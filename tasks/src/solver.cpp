@@ -11,11 +11,12 @@ namespace tasks {
 std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::GoalTest test, uint64_t seed,
-                                                       planner::ActionPreference* pref, bool keep_priorities)
+                                                       planner::ActionPreference* pref, bool keep_priorities, bool refine)
 {
   planner::LacamOptions opt;
   opt.seed = seed;
   opt.keep_priorities = keep_priorities;
+  opt.refine = refine;
   std::unique_ptr<planner::RealtimePlanner> p;
   if (solver == "cspibt" && !pref) throw std::invalid_argument("solver cspibt needs a policy");
   if (solver == "rtlacam") p = std::make_unique<planner::RtLacam>(g, starts, goals, opt, pref, std::move(test));

@@ -41,6 +41,7 @@ struct LifelongOptions {
   std::function<void(const StepRecord&)> on_step;  // optional, after every step
   planner::ActionPreference* pref = nullptr;       // optional move order (learned policy)
   bool keep_priorities = true;                     // see planner::LacamOptions
+  bool refine = true;                              // RT-LaCAM*: see planner::LacamOptions
 };
 
 struct PlannerTimes {
