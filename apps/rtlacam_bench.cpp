@@ -29,7 +29,7 @@ int main(int argc, char** argv)
   uint64_t budget_expansions = 0, seed = 0;
   long long max_steps = 100000;
   bool compact = false, no_swap = false, refine = true;
-  double anytime_ms = 0;
+  double anytime_ms = 0, restart_rate = LacamOptions{}.restart_rate;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -45,6 +45,8 @@ int main(int argc, char** argv)
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
   app.add_flag("--refine,!--no-refine", refine,
                "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
+      ->capture_default_str();
+  app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
   app.add_option("--anytime-ms", anytime_ms,
                  "solver lacam with refine: keep refining until this much planning time in all (refine-after-solve)")
@@ -66,6 +68,7 @@ int main(int argc, char** argv)
     lopt.swap = !no_swap;
     lopt.seed = seed;
     lopt.refine = refine;
+    lopt.restart_rate = restart_rate;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
