@@ -30,6 +30,8 @@ int main(int argc, char** argv)
   long long max_steps = 100000;
   bool compact = false, no_swap = false, refine = true;
   double anytime_ms = 0, restart_rate = LacamOptions{}.restart_rate;
+  bool lns = true;
+  int lns_window = LacamOptions{}.lns_window;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -46,6 +48,9 @@ int main(int argc, char** argv)
   app.add_flag("--refine,!--no-refine", refine,
                "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
       ->capture_default_str();
+  app.add_flag("--lns,!--no-lns", lns, "with --refine: LNS steps on the best path (lns_refiner.hpp)")
+      ->capture_default_str();
+  app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
   app.add_option("--anytime-ms", anytime_ms,
@@ -69,6 +74,8 @@ int main(int argc, char** argv)
     lopt.seed = seed;
     lopt.refine = refine;
     lopt.restart_rate = restart_rate;
+    lopt.lns = lns;
+    lopt.lns_window = lns_window;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
@@ -120,6 +127,8 @@ int main(int argc, char** argv)
     j["swap"] = !no_swap;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;
+    j["lns"] = lns;
+    j["lns_window"] = lns_window;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

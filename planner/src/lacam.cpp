@@ -17,7 +17,7 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
 }
@@ -36,6 +36,8 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   priorities_.reset();
   links_.reset();
   refining_ = refine_capped_ = false;
+  refine_iterations_ = 0;
+  lns_failures_ = 0;
   explored_.clear();
   explored_.set_num_agents(n_);
   open_.clear();
@@ -141,7 +143,7 @@ void Lacam::grow_lowlevel(HNode* H, const Constraint* L)
 Status Lacam::search(const Budget& b, bool until_solved)
 {
   const auto t0 = Clock::now();
-  const auto deadline = b.deadline_from(t0);
+  const auto deadline = deadline_ = b.deadline_from(t0);
   uint64_t done = 0;
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
     expand();

@@ -60,13 +60,20 @@ void Lacam::push_if_promising(HNode* h)
 // One LaCAM* iteration after the first solution (lacam3's loop body with H_goal set).
 Status Lacam::refine_expand()
 {
-  if (open_.empty()) {  // nothing cheaper is reachable: goal_'s path is optimal
-    refining_ = false;
-    return status_;
-  }
   if ((expansions_ & 63) == 0 && bytes_reserved() > opt_.refine_max_mb * (size_t{1} << 20)) {
     refining_ = false;
     refine_capped_ = true;
+    return status_;
+  }
+  const bool lns = opt_.lns && lns_failures_ < 1000 && config_equal(goal_->C, goals_.data(), n_);
+  if (lns && (open_.empty() || (refine_iterations_++ & 1) == 0)) {
+    ++expansions_;
+    if (lns_step()) lns_failures_ = 0;
+    else ++lns_failures_;
+    return status_;
+  }
+  if (open_.empty()) {  // nothing cheaper is reachable by LaCAM*
+    refining_ = false;
     return status_;
   }
   ++expansions_;
@@ -101,6 +108,38 @@ Status Lacam::refine_expand()
     push_if_promising(h);
   }
   return status_;
+}
+
+bool Lacam::lns_step()
+{
+  std::vector<Config> p = path(goal_);
+  if (!lns_.step(p, goals_, opt_.lns_agents, rng_, deadline_)) return false;
+  insert_path(p);
+  return true;
+}
+
+// The configurations of a valid path from the root become nodes (new ones as children of
+// their predecessor) and links; each link is rewired like a revisit, so the goal's g drops
+// to the path's cost (or less).
+HNode* Lacam::insert_path(const std::vector<Config>& p)
+{
+  HNode* prev = root_;
+  for (size_t t = 1; t < p.size(); ++t) {
+    const uint64_t hash = config_hash(p[t].data(), n_);
+    HNode* h = explored_.find(p[t].data(), hash);
+    if (h) {
+      link(prev, h);
+      rewrite(prev, h);
+    } else {
+      h = new_node(p[t].data(), prev, hash);
+      h->g = prev->g + edge_cost(prev->C, h->C);
+      h->h = heuristic(h->C);
+      link(prev, h);
+      explored_.insert(h);
+    }
+    prev = h;
+  }
+  return prev;
 }
 
 // Label-correcting Dijkstra from a new link's two ends: a node whose g drops takes the

@@ -22,7 +22,9 @@
 // restart_rate a revisit pushes the root instead (LaCAM*'s random insertion of the start).
 // goal_node()'s tree path is thus the best path known, and only gets cheaper. When Open
 // empties the path is optimal (among paths through known configurations, which then are all
-// that LaCAM* can reach) and refining() turns false.
+// that LaCAM* can reach) and, unless LNS still finds improvements, refining() turns false.
+// LacamOptions::lns interleaves LnsRefiner steps (lns_refiner.hpp): an improved path's
+// configurations are inserted as nodes/links and rewired like revisits.
 //
 // Rerooting with costs (sunk cost): the executed prefix is not counted, g is re-based at
 // the new root. After reroot(c), c has g = 0, the old root hangs under c with g =
@@ -52,6 +54,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/explored_table.hpp"
 #include "planner/hnode.hpp"
+#include "planner/lns_refiner.hpp"
 #include "planner/pibt.hpp"
 #include "planner/rng.hpp"
 
@@ -76,6 +79,11 @@ struct LacamOptions {
   bool refine = false;
   double restart_rate = 0.001;  // lacam3's RESTART_RATE
   size_t refine_max_mb = 512;   // refinement stops past this much search memory
+  // With refine: every other refinement iteration is one LnsRefiner step on the best path
+  // (lns_agents agents replanned); an improved path is inserted into the tree and rewired.
+  bool lns = true;
+  int lns_agents = 8;
+  int lns_window = 256; // time steps replanned per LNS step (the occupancy table is window x |V|)
 };
 
 class Lacam {
@@ -145,6 +153,8 @@ class Lacam {
   void rebase(HNode* new_root, HNode* old_root, bool explicit_costs);
   void push_if_promising(HNode* h);
   void grow_lowlevel(HNode* H, const Constraint* L);
+  bool lns_step();                          // one LnsRefiner step; inserts an improved path
+  HNode* insert_path(const std::vector<Config>& path);
 
   const Graph& g_;
   DistTable& dist_;
@@ -169,6 +179,10 @@ class Lacam {
   Status status_ = Status::NoSolution;
   uint64_t expansions_ = 0;
   bool refining_ = false, refine_capped_ = false;
+  LnsRefiner lns_;
+  uint64_t refine_iterations_ = 0;
+  int lns_failures_ = 0;  // in a row; LNS alone gives up after many
+  Clock::time_point deadline_ = Clock::time_point::max();  // of the running search() call
   uint64_t solved_expansions_ = 0;
   size_t solved_explored_ = 0;
   std::vector<HNode*> queue_;                    // scratch: rewrite / rebase
