@@ -147,6 +147,7 @@ TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
   Config cfg = scenario("large_warehouse.yaml", "large");
   cfg.planner.budget_ms = 0;  // deterministic
   cfg.planner.expansions = 20;
+  cfg.planner.refine = false;  // execution at scale; refinement: test_controller_refine
   Controller c(cfg);
   const Metrics m = c.run();
   expect_exact_solved_run(cfg, c, m);
@@ -161,6 +162,7 @@ TEST(ControllerScenario, HugeWarehouseThousandAgvsCompleteExactly)
   cfg.sumo.outputs = {false, false, true, true};
   cfg.planner.budget_ms = 0;  // deterministic
   cfg.planner.expansions = 5;
+  cfg.planner.refine = false;  // execution at scale; refinement: test_controller_refine
   Controller c(cfg);
   const Metrics m = c.run();
   expect_exact_solved_run(cfg, c, m);
