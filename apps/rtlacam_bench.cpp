@@ -32,6 +32,7 @@ int main(int argc, char** argv)
   double anytime_ms = 0, restart_rate = LacamOptions{}.restart_rate;
   bool lns = true;
   int lns_window = LacamOptions{}.lns_window;
+  int lns_agents = LacamOptions{}.lns_agents;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -50,6 +51,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_flag("--lns,!--no-lns", lns, "with --refine: LNS steps on the best path (lns_refiner.hpp)")
       ->capture_default_str();
+  app.add_option("--lns-agents", lns_agents, "agents replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
@@ -76,6 +78,7 @@ int main(int argc, char** argv)
     lopt.restart_rate = restart_rate;
     lopt.lns = lns;
     lopt.lns_window = lns_window;
+    lopt.lns_agents = lns_agents;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
@@ -129,6 +132,7 @@ int main(int argc, char** argv)
     j["anytime_ms"] = anytime_ms;
     j["lns"] = lns;
     j["lns_window"] = lns_window;
+    j["lns_agents"] = lns_agents;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

@@ -146,8 +146,10 @@ Status Lacam::search(const Budget& b, bool until_solved)
   const auto deadline = deadline_ = b.deadline_from(t0);
   uint64_t done = 0;
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
+    units_ = 1;
     expand();
-    if (++done >= b.expansions || Clock::now() >= deadline) break;
+    done += units_;
+    if (done >= b.expansions || Clock::now() >= deadline) break;
   }
   return status_;
 }

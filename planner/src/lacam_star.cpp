@@ -1,6 +1,7 @@
 // LaCAM* refinement of Lacam (the "LaCAM* refinement" section of lacam.hpp): neighbour
 // links, costs, the Dijkstra-style rewrite, the search after the first solution, and the
 // re-basing of g when RT-LaCAM reroots.
+#include <algorithm>
 #include <string>
 
 #include "planner/lacam.hpp"
@@ -70,6 +71,9 @@ Status Lacam::refine_expand()
     ++expansions_;
     if (lns_step()) lns_failures_ = 0;
     else ++lns_failures_;
+    // An expansion costs O(N) (one PIBT call); an LNS step O(T x N) and more: charge it in
+    // expansion-equivalents, so that a budget in expansions bounds the work too.
+    units_ = std::max<uint64_t>(1, lns_.work() / static_cast<uint64_t>(std::max(n_, 1)));
     return status_;
   }
   if (open_.empty()) {  // nothing cheaper is reachable by LaCAM*

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cstdlib>
 #include <queue>
-#include <tuple>
-#include <unordered_map>
 
 namespace planner {
 
@@ -24,35 +22,42 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   const size_t V = g_.size();
   const Vertex goal = goals[i], end = path[t1][i];
   const int32_t d_end = dist_.get(i, end);
-  struct Node {
-    Vertex v;
-    int t;
-    int64_t g;
-    int32_t parent;
-  };
-  std::vector<Node> nodes;
-  std::unordered_map<int64_t, int64_t> best;  // ((t - t0) * V + v) -> g
-  using Item = std::tuple<int64_t, int, int32_t>;  // f, -t (deeper first), node
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+  // Flat window x |V| table of best g, valid where its stamp is this call's (no hashing, no
+  // clearing, no allocation once grown: the step is real-time work).
+  const size_t W = static_cast<size_t>(t1 - t0 + 1);
+  if (best_.size() < W * V) {
+    best_.assign(W * V, 0);
+    stamp_.assign(W * V, 0);
+  }
+  if (++epoch_ == 0) {  // wrapped: stale stamps could collide
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    epoch_ = 1;
+  }
+  nodes_.clear();
+  open_ = {};
   auto h = [&](Vertex v) { return static_cast<int64_t>(std::abs(dist_.get(i, v) - d_end)); };
   auto slot = [&](int t, Vertex v) { return static_cast<size_t>(t - t0) * V + static_cast<size_t>(v); };
   const Vertex s = path[t0][i];
-  nodes.push_back({s, t0, 0, -1});
-  best[static_cast<int64_t>(slot(t0, s))] = 0;
-  open.push({h(s), -t0, 0});
+  nodes_.push_back({s, t0, 0, -1});
+  best_[slot(t0, s)] = 0;
+  stamp_[slot(t0, s)] = epoch_;
+  open_.push({h(s), -t0, 0});
   // Bound the work of one replan: a failing search would otherwise sweep |V| x window states.
-  const size_t limit = 32 * static_cast<size_t>(t1 - t0 + 1) + 1024;
-  for (size_t pops = 1; !open.empty() && nodes.size() < limit; ++pops) {
-    if ((pops & 255) == 0 && Clock::now() >= deadline) return false;
-    auto [f, negt, idx] = open.top();
-    open.pop();
-    const Node n = nodes[idx];
-    if (best[static_cast<int64_t>(slot(n.t, n.v))] < n.g) continue;
+  const size_t limit = 32 * W + 1024;
+  size_t pops = 0;
+  bool found = false;
+  while (!open_.empty() && nodes_.size() < limit) {
+    if ((++pops & 255) == 0 && Clock::now() >= deadline) break;
+    auto [f, negt, idx] = open_.top();
+    open_.pop();
+    const AstarNode n = nodes_[idx];
+    if (best_[slot(n.t, n.v)] < n.g) continue;
     if (n.t == t1) {
       if (n.v != end) continue;
-      out.assign(t1 - t0 + 1, -1);
-      for (int32_t k = idx; k >= 0; k = nodes[k].parent) out[nodes[k].t - t0] = nodes[k].v;
-      return true;
+      out.assign(W, -1);
+      for (int32_t k = idx; k >= 0; k = nodes_[k].parent) out[nodes_[k].t - t0] = nodes_[k].v;
+      found = true;
+      break;
     }
     if (t1 - n.t < h(n.v)) continue;  // cannot reach the end in time
     const auto nb = g_.neighbors(n.v);
@@ -65,23 +70,23 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
         if (j >= 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
       }
       const int64_t g = n.g + !(n.v == goal && u == goal);
-      auto [it, fresh] = best.emplace(static_cast<int64_t>(at), g);
-      if (!fresh) {
-        if (it->second <= g) continue;
-        it->second = g;
-      }
-      nodes.push_back({u, n.t + 1, g, idx});
-      open.push({g + h(u), -(n.t + 1), static_cast<int32_t>(nodes.size() - 1)});
+      if (stamp_[at] == epoch_ && best_[at] <= g) continue;
+      stamp_[at] = epoch_;
+      best_[at] = g;
+      nodes_.push_back({u, n.t + 1, g, idx});
+      open_.push({g + h(u), -(n.t + 1), static_cast<int32_t>(nodes_.size() - 1)});
     }
   }
-  return false;
+  work_ += nodes_.size() + pops;
+  return found;
 }
 
 bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng& rng, Clock::time_point deadline)
 {
   const int n = static_cast<int>(goals.size());
   const int T = static_cast<int>(path.size()) - 1;
-  if (T < 1 || n == 0) return false;
+  work_ = static_cast<uint64_t>(T + 1) * static_cast<uint64_t>(n);  // the cost pass below
+  if (T < 1 || n == 0 || Clock::now() >= deadline) return false;
   // A delayed agent seeds the neighbourhood: only where someone waits or detours can the
   // cost drop. One pass in time order (the configurations are stored by time step).
   std::vector<int64_t> cost(n, 0);
@@ -113,6 +118,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
         written_.push_back(key);
       }
 
+  work_ += written_.size();
   int64_t before = 0;
   for (int i : set) before += agent_cost(path, goals, i, t0, t1);
   rng.shuffle(set.data(), static_cast<int>(set.size()));

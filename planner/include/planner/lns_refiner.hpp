@@ -14,6 +14,9 @@
 // regenerate better configurations by chance); LaCAM* with LacamOptions::lns hands it the
 // configurations of an improved path instead (Lacam inserts and rewires them).
 #include <cstdint>
+#include <functional>
+#include <queue>
+#include <tuple>
 #include <vector>
 
 #include "planner/budget.hpp"
@@ -33,6 +36,10 @@ class LnsRefiner {
   bool step(std::vector<Config>& path, const Config& goals, int k, Rng& rng,
             Clock::time_point deadline = Clock::time_point::max());
 
+  // Work of the last step, in visited cells and A* states (the cost pass over the path, the
+  // occupancy table, the A* nodes and pops): a caller with a budget in expansions charges it.
+  uint64_t work() const { return work_; }
+
   // LaCAM* cost of agent i's path between steps t0 and t1.
   static int64_t agent_cost(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1);
 
@@ -45,6 +52,20 @@ class LnsRefiner {
   int window_;
   std::vector<int32_t> occ_;      // ((t - t0) * |V| + v) -> agent there, -1 free
   std::vector<size_t> written_;   // occupied slots, to clear
+  // replan()'s space-time A*, kept across calls (no allocation per step)
+  struct AstarNode {
+    Vertex v;
+    int t;
+    int64_t g;
+    int32_t parent;
+  };
+  using Item = std::tuple<int64_t, int, int32_t>;  // f, -t (deeper first), node
+  std::vector<AstarNode> nodes_;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open_;
+  std::vector<int64_t> best_;     // (t - t0) * |V| + v -> best g, valid where stamp_ == epoch_
+  std::vector<uint32_t> stamp_;
+  uint32_t epoch_ = 0;
+  uint64_t work_ = 0;
 };
 
 }  // namespace planner
