@@ -38,6 +38,7 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   refining_ = refine_capped_ = false;
   refine_iterations_ = 0;
   lns_failures_ = 0;
+  debt_ = 0;
   explored_.clear();
   explored_.set_num_agents(n_);
   open_.clear();
@@ -145,11 +146,23 @@ Status Lacam::search(const Budget& b, bool until_solved)
   const auto t0 = Clock::now();
   const auto deadline = deadline_ = b.deadline_from(t0);
   uint64_t done = 0;
+  // An LNS step larger than an expansions budget is paid off by the next calls (refinement
+  // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
+  if (refining_ && !until_solved && debt_ > 0) {
+    const uint64_t paid = std::min(debt_, b.expansions);
+    debt_ -= paid;
+    done = paid;
+    if (done >= b.expansions) return status_;
+  }
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
     units_ = 1;
     expand();
     done += units_;
-    if (done >= b.expansions || Clock::now() >= deadline) break;
+    if (done >= b.expansions) {
+      if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
+      break;
+    }
+    if (Clock::now() >= deadline) break;
   }
   return status_;
 }

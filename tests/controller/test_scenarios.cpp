@@ -147,7 +147,7 @@ TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
   Config cfg = scenario("large_warehouse.yaml", "large");
   cfg.planner.budget_ms = 0;  // deterministic
   cfg.planner.expansions = 20;
-  cfg.planner.refine = false;  // execution at scale; refinement: test_controller_refine
+  cfg.planner.refine = true;  // the default: RT-LaCAM* (LNS charged against the expansions budget)
   Controller c(cfg);
   const Metrics m = c.run();
   expect_exact_solved_run(cfg, c, m);
@@ -162,7 +162,7 @@ TEST(ControllerScenario, HugeWarehouseThousandAgvsCompleteExactly)
   cfg.sumo.outputs = {false, false, true, true};
   cfg.planner.budget_ms = 0;  // deterministic
   cfg.planner.expansions = 5;
-  cfg.planner.refine = false;  // execution at scale; refinement: test_controller_refine
+  cfg.planner.refine = true;  // the default: RT-LaCAM* (LNS charged against the expansions budget)
   Controller c(cfg);
   const Metrics m = c.run();
   expect_exact_solved_run(cfg, c, m);

@@ -100,7 +100,8 @@ class Lacam {
   Status expand();                   // one LaCAM (or, once solved, LaCAM*) iteration
   // Expands until solved (with refine: until refinement ends), exhausted or out of budget
   // (>= 1 expansion while there is anything to do). Against b.expansions an LNS step counts
-  // as its work (cells and A* states visited) / N expansions, a LaCAM(*) expansion as one.
+  // as its work (cells and A* states visited) / N expansions, a LaCAM(*) expansion as one;
+  // what a step overruns is paid off by the next calls (they refine less or not at all).
   // `until_solved`: return at the first solution instead of refining on.
   Status search(const Budget& b, bool until_solved = false);
   Status status() const { return status_; }
@@ -184,6 +185,7 @@ class Lacam {
   uint64_t refine_iterations_ = 0;
   int lns_failures_ = 0;  // in a row; LNS alone gives up after many
   uint64_t units_ = 1;    // budget charged for the last expand(): an LNS step counts its work / N
+  uint64_t debt_ = 0;     // expansions-budget units an LNS step overran, paid by the next search() calls
   Clock::time_point deadline_ = Clock::time_point::max();  // of the running search() call
   uint64_t solved_expansions_ = 0;
   size_t solved_explored_ = 0;
