@@ -4,6 +4,7 @@
 // configurations).
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <queue>
 
@@ -295,5 +296,36 @@ TEST(RtLacamStar, WallClockRunsAreValidAndTheMemoryCapHolds)
     if (cap_mb == 0) {
       EXPECT_TRUE(rt.lacam().refine_capped()) << "a 0 MB cap stops refinement at once";
     }
+  }
+}
+
+TEST(RtLacamStar, AnExpansionsBudgetBoundsLnsWork)
+{
+  // An LNS step costs O(T x N), an expansion O(N): against a budget in expansions the step
+  // is charged its work / N and what it overruns is paid by the next calls, which then do
+  // nothing. Without LNS every call does exactly one LaCAM* expansion.
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 100);
+  for (bool lns : {true, false}) {
+    SCOPED_TRACE(lns ? "lns" : "no lns");
+    DistTable dist(g);
+    LacamOptions opt = refine_opts(0);
+    opt.lns = lns;
+    Lacam lc(g, dist, opt);
+    lc.reset(r.starts, r.goals);
+    ASSERT_EQ(lc.search(Budget{}, true), Status::Solved);
+    int idle = 0, calls = 0;
+    for (; calls < 400 && lc.refining(); ++calls) {
+      const uint64_t e = lc.expansions();
+      lc.search(Budget{std::numeric_limits<double>::infinity(), 1});
+      const uint64_t done = lc.expansions() - e;
+      EXPECT_LE(done, 1u);
+      idle += done == 0;
+    }
+    ASSERT_GT(calls, 100);
+    if (lns) EXPECT_GT(idle, calls / 2);  // each LNS step is worth >= T (> 20) expansions
+    else EXPECT_EQ(idle, 0);
+    std::string why;
+    if (lc.refining()) EXPECT_TRUE(lc.check_costs(&why)) << why;
   }
 }
