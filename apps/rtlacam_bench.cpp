@@ -28,7 +28,11 @@ int main(int argc, char** argv)
   double cutoff_ms = 1.0, timeout_s = 60.0;
   uint64_t budget_expansions = 0, seed = 0;
   long long max_steps = 100000;
-  bool compact = false, no_swap = false;
+  bool compact = false, no_swap = false, refine = true;
+  double anytime_ms = 0, restart_rate = LacamOptions{}.restart_rate;
+  bool lns = true;
+  int lns_window = LacamOptions{}.lns_window;
+  int lns_agents = LacamOptions{}.lns_agents;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -42,6 +46,18 @@ int main(int argc, char** argv)
   app.add_option("--max-steps", max_steps, "limit on executed steps (iterative solvers)")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
+  app.add_flag("--refine,!--no-refine", refine,
+               "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
+      ->capture_default_str();
+  app.add_flag("--lns,!--no-lns", lns, "with --refine: LNS steps on the best path (lns_refiner.hpp)")
+      ->capture_default_str();
+  app.add_option("--lns-agents", lns_agents, "agents replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
+      ->capture_default_str();
+  app.add_option("--anytime-ms", anytime_ms,
+                 "solver lacam with refine: keep refining until this much planning time in all (refine-after-solve)")
+      ->capture_default_str();
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
@@ -65,6 +81,11 @@ int main(int argc, char** argv)
     LacamOptions lopt;
     lopt.swap = !no_swap;
     lopt.seed = seed;
+    lopt.refine = refine;
+    lopt.restart_rate = restart_rate;
+    lopt.lns = lns;
+    lopt.lns_window = lns_window;
+    lopt.lns_agents = lns_agents;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
@@ -84,6 +105,7 @@ int main(int argc, char** argv)
                   << " expansions, wall " << ms_since(started) / 1000 << " s" << std::endl;
       };
     }
+    ropt.anytime_ms = anytime_ms;
 
     // The policy: loaded before the clock starts (a one-off, like reading the map).
     policy::Model model;
@@ -123,6 +145,11 @@ int main(int argc, char** argv)
     j["cutoff_ms"] = cutoff_ms;
     j["budget_expansions"] = budget_expansions;
     j["swap"] = !no_swap;
+    j["refine"] = refine;
+    j["anytime_ms"] = anytime_ms;
+    j["lns"] = lns;
+    j["lns_window"] = lns_window;
+    j["lns_agents"] = lns_agents;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

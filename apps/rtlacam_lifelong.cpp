@@ -29,7 +29,7 @@ int main(int argc, char** argv)
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file, action_model = "grid4";
   int rotation_window = 8;
   bool no_heading_ties = false;
-  bool reset_priorities = false, reassign = false;
+  bool reset_priorities = false, reassign = false, refine = true;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -52,6 +52,9 @@ int main(int argc, char** argv)
                "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
                "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_flag("--refine,!--no-refine", refine,
+               "rtlacam: LaCAM* refinement after each epoch's first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
+      ->capture_default_str();
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
@@ -114,6 +117,7 @@ int main(int argc, char** argv)
     LifelongOptions opt;
     opt.pref = pref.get();
     opt.keep_priorities = !reset_priorities;
+    opt.refine = refine;
     opt.steps = steps;
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;

@@ -248,7 +248,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
                               "): AGVs on adjacent cells would overlap");
 
   const YAML::Node p = root["planner"];
-  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities"});
+  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine"});
   const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
   r.file(p, "planner", "policy", c.planner.policy, false);
@@ -259,6 +259,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.get(p, "planner", "seed", c.planner.seed, "a non-negative integer");
   r.flag(p, "planner", "swap", c.planner.swap);
   r.flag(p, "planner", "keep_priorities", c.planner.keep_priorities);
+  r.flag(p, "planner", "refine", c.planner.refine);
   if (c.planner.budget_ms == 0 && c.planner.expansions == 0)
     r.fail("planner.budget_ms", "0 needs planner.expansions > 0 (some limit per SUMO step)");
 

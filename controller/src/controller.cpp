@@ -17,6 +17,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.swap = p.swap;
   opt.seed = p.seed;
   opt.keep_priorities = p.keep_priorities;
+  opt.refine = p.refine;
   return planner::make_planner(planner::parse_solver(p.solver), g, starts, goals, opt, pref, std::move(test));
 }
 

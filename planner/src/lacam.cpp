@@ -17,7 +17,7 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
 }
@@ -34,6 +34,11 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   configs_.reset();
   orders_.reset();
   priorities_.reset();
+  links_.reset();
+  refining_ = refine_capped_ = false;
+  refine_iterations_ = 0;
+  lns_failures_ = 0;
+  debt_ = 0;
   explored_.clear();
   explored_.set_num_agents(n_);
   open_.clear();
@@ -83,12 +88,17 @@ bool Lacam::is_goal(const HNode* h) const
 
 Status Lacam::expand()
 {
+  if (refining_) return refine_expand();
   if (status_ != Status::Searching) return status_;
   if (open_.empty()) return status_ = Status::NoSolution;
   HNode* H = open_.back();
   if (is_goal(H)) {
     goal_ = H;
-    return status_ = Status::Solved;
+    status_ = Status::Solved;
+    solved_expansions_ = expansions_;
+    solved_explored_ = explored_.size();
+    if (opt_.refine) start_refining();
+    return status_;
   }
   ++expansions_;
   Constraint* L = H->pop();
@@ -96,44 +106,63 @@ Status Lacam::expand()
     open_.pop_back();
     return status_;
   }
-
-  // Grow the low-level tree lazily: children fix the next agent in H's order.
-  if (L->depth < n_) {
-    const int32_t i = H->order[L->depth];
-    const Vertex v = H->C[i];
-    const auto nb = g_.neighbors(v);
-    Vertex* moves = moves_.data();
-    int k = 0;
-    for (Vertex u : nb) moves[k++] = u;
-    moves[k++] = v;
-    rng_.shuffle(moves, k);
-    Constraint* kids = constraints_.alloc(k);
-    for (int m = 0; m < k; ++m) {
-      kids[m] = Constraint{L, nullptr, i, moves[m], L->depth + 1};
-      H->push(&kids[m]);
-    }
-  }
+  grow_lowlevel(H, L);
 
   if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
   const uint64_t hash = config_hash(scratch_.data(), n_);
   if (HNode* known = explored_.find(scratch_.data(), hash)) {
+    if (opt_.refine) link(H, known);
     open_.push_back(known);  // revisit: its next constraint yields another successor
   } else {
     HNode* h = new_node(scratch_.data(), H, hash);
+    if (opt_.refine) link(H, h);
     explored_.insert(h);
     open_.push_back(h);
   }
   return status_;
 }
 
-Status Lacam::search(const Budget& b)
+// Grow the low-level tree lazily: children fix the next agent in H's order.
+void Lacam::grow_lowlevel(HNode* H, const Constraint* L)
+{
+  if (L->depth >= n_) return;
+  const int32_t i = H->order[L->depth];
+  const Vertex v = H->C[i];
+  const auto nb = g_.neighbors(v);
+  Vertex* moves = moves_.data();
+  int k = 0;
+  for (Vertex u : nb) moves[k++] = u;
+  moves[k++] = v;
+  rng_.shuffle(moves, k);
+  Constraint* kids = constraints_.alloc(k);
+  for (int m = 0; m < k; ++m) {
+    kids[m] = Constraint{L, nullptr, i, moves[m], L->depth + 1};
+    H->push(&kids[m]);
+  }
+}
+
+Status Lacam::search(const Budget& b, bool until_solved)
 {
   const auto t0 = Clock::now();
-  const auto deadline = b.deadline_from(t0);
+  const auto deadline = deadline_ = b.deadline_from(t0);
   uint64_t done = 0;
-  while (status_ == Status::Searching) {
+  // An LNS step larger than an expansions budget is paid off by the next calls (refinement
+  // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
+  if (refining_ && !until_solved && debt_ > 0) {
+    const uint64_t paid = std::min(debt_, b.expansions);
+    debt_ -= paid;
+    done = paid;
+    if (done >= b.expansions) return status_;
+  }
+  while (status_ == Status::Searching || (refining_ && !until_solved)) {
+    units_ = 1;
     expand();
-    if (++done >= b.expansions || Clock::now() >= deadline) break;
+    done += units_;
+    if (done >= b.expansions) {
+      if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
+      break;
+    }
+    if (Clock::now() >= deadline) break;
   }
   return status_;
 }
@@ -158,9 +187,11 @@ void Lacam::reroot(const HNode* child)
 {
   if (child == root_) return;
   HNode* c = all_[child->id];  // non-const handle of the same node
-  root_->parent = c;
+  HNode* old = root_;
+  old->parent = c;
   c->parent = nullptr;
   root_ = c;
+  if (refining_) rebase(c, old, false);
 }
 
 bool Lacam::check_tree(std::string* why) const

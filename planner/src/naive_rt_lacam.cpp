@@ -3,10 +3,20 @@
 #include <algorithm>
 
 namespace planner {
+namespace {
+
+// Naive RT-LaCAM restarts every iteration: nothing to refine.
+LacamOptions without_refine(LacamOptions o)
+{
+  o.refine = false;
+  return o;
+}
+
+}  // namespace
 
 NaiveRtLacam::NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
                            ActionPreference* pref, GoalTest test)
-    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts)
+    : dist_(g), lacam_(g, dist_, without_refine(opt), pref), current_(starts)
 {
   set_goals(goals, std::move(test));
 }

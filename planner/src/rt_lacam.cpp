@@ -20,25 +20,21 @@ void RtLacam::set_goals(const Config& goals, GoalTest test)
   } else {
     lacam_.reset(current_, goals, std::move(test));
   }
-  goal_path_.clear();
   planned_ = promised_ = nullptr;
 }
 
 Status RtLacam::search(const Budget& b)
 {
-  if (lacam_.status() != Status::Searching) return lacam_.status();
+  if (lacam_.status() != Status::Searching && !lacam_.refining()) return lacam_.status();
   planned_ = nullptr;
-  const Status s = lacam_.search(b);
-  if (s == Status::Solved)
-    for (const HNode* h = lacam_.goal_node(); h; h = h->parent) goal_path_.push_back(h);
-  return s;
+  return lacam_.search(b);
 }
 
 const HNode* RtLacam::planned()
 {
   if (planned_) return planned_;
-  if (!goal_path_.empty()) return planned_ = goal_path_.size() >= 2 ? goal_path_[goal_path_.size() - 2] : lacam_.root();
-  return planned_ = lacam_.next_toward(lacam_.top());
+  const HNode* target = lacam_.goal_node() ? lacam_.goal_node() : lacam_.top();
+  return planned_ = lacam_.next_toward(target);
 }
 
 const Config& RtLacam::next()
@@ -53,16 +49,8 @@ void RtLacam::commit()
   const HNode* h = promised_ ? promised_ : planned();
   promised_ = nullptr;
   if (h == lacam_.root()) return;  // wait
-  const bool on_goal_path = goal_path_.size() >= 2 && goal_path_[goal_path_.size() - 2] == h;
   lacam_.reroot(h);
   planned_ = nullptr;
-  if (on_goal_path) {
-    goal_path_.pop_back();
-  } else if (!goal_path_.empty()) {
-    // The goal was found after next() promised a move off its path: walk it again.
-    goal_path_.clear();
-    for (const HNode* g = lacam_.goal_node(); g; g = g->parent) goal_path_.push_back(g);
-  }
   current_.assign(h->C, h->C + lacam_.num_agents());
 }
 

@@ -67,10 +67,10 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
   Lacam lacam(g, dist, lopt, pref);
   lacam.reset(starts, goals);
   if (!opt.on_progress) {
-    lacam.search(Budget::time_ms(opt.timeout_ms));
+    lacam.search(Budget::time_ms(opt.timeout_ms), true);
   } else {
     // The same search in slices (search() continues where it stopped), reporting between them.
-    while (lacam.search(Budget::time_ms(std::min(opt.progress_ms, opt.timeout_ms - ms_since(t0)))) ==
+    while (lacam.search(Budget::time_ms(std::min(opt.progress_ms, opt.timeout_ms - ms_since(t0))), true) ==
                Status::Searching &&
            ms_since(t0) < opt.timeout_ms) {
       r.total_planning_ms = ms_since(t0);
@@ -79,6 +79,8 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
       opt.on_progress(r);
     }
   }
+  const double left_ms = std::min(opt.anytime_ms, opt.timeout_ms) - ms_since(t0);
+  if (lacam.refining() && left_ms > 0) lacam.search(Budget::time_ms(left_ms));
   r.total_planning_ms = r.max_iteration_ms = r.p99_iteration_ms = ms_since(t0);
   r.iterations = 1;
   r.expansions = lacam.expansions();

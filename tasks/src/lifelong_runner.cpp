@@ -55,7 +55,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     heading->set_max_dist_tables(2 * starts.size() + 256);
     pref = heading.get();
   }
-  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities);
+  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
   std::unique_ptr<RotationExecutor> exec;
   if (rotation) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
   r.setup_ms = ms_since(t0);

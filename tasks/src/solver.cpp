@@ -9,11 +9,12 @@ namespace tasks {
 std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::GoalTest test, uint64_t seed,
-                                                       planner::ActionPreference* pref, bool keep_priorities)
+                                                       planner::ActionPreference* pref, bool keep_priorities, bool refine)
 {
   planner::LacamOptions opt;
   opt.seed = seed;
   opt.keep_priorities = keep_priorities;
+  opt.refine = refine;
   auto p = planner::make_planner(planner::parse_solver(solver), g, starts, goals, opt, pref, std::move(test));
   // A lifelong run visits thousands of goal cells: keep the tables in use plus a few
   // hundred recent ones, not one per cell ever visited.

@@ -148,6 +148,7 @@ TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
   Config cfg = scenario("large_warehouse.yaml", "large");
   cfg.planner.budget_ms = 0;  // deterministic
   cfg.planner.expansions = 20;
+  cfg.planner.refine = true;  // the default: RT-LaCAM* (LNS charged against the expansions budget)
   Controller c(cfg);
   const Metrics m = c.run();
   expect_exact_solved_run(cfg, c, m);
@@ -162,6 +163,7 @@ TEST(ControllerScenario, HugeWarehouseThousandAgvsCompleteExactly)
   cfg.sumo.outputs = {false, false, true, true};
   cfg.planner.budget_ms = 0;  // deterministic
   cfg.planner.expansions = 5;
+  cfg.planner.refine = true;  // the default: RT-LaCAM* (LNS charged against the expansions budget)
   Controller c(cfg);
   const Metrics m = c.run();
   expect_exact_solved_run(cfg, c, m);

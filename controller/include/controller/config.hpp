@@ -69,6 +69,7 @@ struct PlannerSection {
   uint64_t seed = 0;
   bool swap = true;
   bool keep_priorities = true;  // lifelong epochs keep PIBT priorities (planner::LacamOptions)
+  bool refine = true;           // RT-LaCAM*: LaCAM* refinement after the first solution (false: the paper)
 };
 
 // one_shot: one goal per AGV, the run ends when all are there. lifelong: a stream of tasks

@@ -18,6 +18,7 @@ class ExploredTable {
   void insert(HNode* node);  // node->hash must be set; the configuration must be new
   void clear();
   size_t size() const { return count_; }
+  size_t bytes_reserved() const { return slots_.capacity() * sizeof(HNode*) + filled_.capacity() * sizeof(uint32_t); }
 
  private:
   void grow();

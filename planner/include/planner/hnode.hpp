@@ -9,6 +9,13 @@
 // Constraint: a low-level node. It fixes agent `who` to vertex `where` and inherits the
 // fixes of its parent chain; `depth` is the number of fixed agents. Chaining (instead of
 // copying the who/where lists as the reference code does) makes creation O(1).
+//
+// Neighbor: one link of LaCAM*'s neighbour sets (Okumura, IJCAI-23): a configuration the
+// node was seen to connect to (a successor it generated, or a node that generated it).
+// Links are kept in both directions -- a valid transition reversed is valid, and the
+// paper's edge cost is symmetric -- so that a reroot can walk the tree both ways. `cost`
+// is computed lazily (-1 = not yet): recording links before the first solution then costs
+// a pointer push, not an O(N) comparison.
 #include <cstdint>
 
 #include "planner/graph.hpp"
@@ -23,6 +30,14 @@ struct Constraint {
   int32_t depth = 0;
 };
 
+struct HNode;
+
+struct Neighbor {
+  HNode* to = nullptr;
+  Neighbor* next = nullptr;
+  int32_t cost = -1;
+};
+
 struct HNode {
   const Vertex* C = nullptr;         // configuration, N entries
   const int32_t* order = nullptr;    // agents by descending priority
@@ -30,7 +45,10 @@ struct HNode {
   HNode* parent = nullptr;           // search-tree edge (reversed by RT-LaCAM's reroot)
   Constraint* head = nullptr;        // low-level queue
   Constraint* tail = nullptr;
+  Neighbor* neighbors = nullptr;      // LaCAM* neighbour set (LacamOptions::refine only)
   uint64_t hash = 0;
+  int64_t g = 0;                     // LaCAM*: cost of the tree path from the current root
+  int32_t h = 0;                     // LaCAM*: sum of distances to the goals (admissible)
   uint32_t id = 0;                   // creation index (0 = first root)
 
   void push(Constraint* c)

@@ -10,11 +10,41 @@
 // successor: this is what makes LaCAM complete. It reports NoSolution only after every
 // node's constraint tree is exhausted.
 //
+// LaCAM* refinement (LacamOptions::refine; Okumura, IJCAI-23, and lacam3's planner.cpp).
+// Cost: one per agent per action, 0 for an agent that stays on its goal. Before the first
+// solution nothing changes but the bookkeeping: each expansion records a neighbour link
+// (both directions) and the tree, the expansions and the explored set are exactly LaCAM's.
+// At the first solution every node gets g (cost of its tree path from the root) and h (sum
+// of distances), and the search goes on instead of stopping: nodes with g >= g(goal) are
+// popped, successors are pushed only when f = g + h < f(goal), every revisit adds a link and
+// runs a Dijkstra-style relaxation from the revisiting node (a node whose g drops takes the
+// relaxing node as its new parent, and the drop propagates), and with probability
+// restart_rate a revisit pushes the root instead (LaCAM*'s random insertion of the start).
+// goal_node()'s tree path is thus the best path known, and only gets cheaper. When Open
+// empties the path is optimal (among paths through known configurations, which then are all
+// that LaCAM* can reach) and, unless LNS still finds improvements, refining() turns false.
+// LacamOptions::lns interleaves LnsRefiner steps (lns_refiner.hpp): an improved path's
+// configurations are inserted as nodes/links and rewired like revisits.
+//
+// Rerooting with costs (sunk cost): the executed prefix is not counted, g is re-based at
+// the new root. After reroot(c), c has g = 0, the old root hangs under c with g =
+// cost(c, old root), and every other node keeps its parent; one walk over the tree from c
+// sets g(y) = g(x) + (g_old(y) - g_old(x)) along every unchanged edge x -> y (exact, since g
+// was exact before) and the one reversed edge's cost explicitly. O(nodes + links) per move,
+// only once refining. Before the first solution reroot() stays O(1) and g is computed once,
+// at the first solution, by the same walk with explicit edge costs.
+//
+// Memory: a link is 16 bytes and an expansion adds at most two, against a node's 12 bytes
+// per agent; the whole search (nodes, configurations, constraints, links) is capped by
+// refine_max_mb: past it, refinement stops and the best path so far is kept. The first
+// solution's search is never capped (completeness).
+//
 // The same object serves full-horizon LaCAM (search to the end, then path()),
 // RT-LaCAM (search a little, move to root's child toward the top, reroot(), continue)
 // and naive RT-LaCAM (reset() every iteration).
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "planner/action_preference.hpp"
@@ -24,6 +54,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/explored_table.hpp"
 #include "planner/hnode.hpp"
+#include "planner/lns_refiner.hpp"
 #include "planner/pibt.hpp"
 #include "planner/rng.hpp"
 #include "planner/search_types.hpp"
@@ -38,6 +69,16 @@ struct LacamOptions {
   // instances, but half the throughput in a small warehouse whose stations are dead-end
   // stubs (long-waiting agents crowd the stubs); so it is a choice, not a rule.
   bool keep_priorities = true;
+  // LaCAM* refinement after the first solution (see above). Off here, so that the library
+  // default stays the paper's RT-LaCAM; the apps switch it on by default.
+  bool refine = false;
+  double restart_rate = 0.001;  // lacam3's RESTART_RATE
+  size_t refine_max_mb = 512;   // refinement stops past this much search memory
+  // With refine: every other refinement iteration is one LnsRefiner step on the best path
+  // (lns_agents agents replanned); an improved path is inserted into the tree and rewired.
+  bool lns = true;
+  int lns_agents = 8;
+  int lns_window = 256; // time steps replanned per LNS step (the occupancy table is window x |V|)
 };
 
 class Lacam {
@@ -51,9 +92,23 @@ class Lacam {
   // agents that waited long keep winning conflicts), else distance / N.
   void reset(const Config& start, const Config& goals, GoalTest test = {}, const float* priorities = nullptr);
 
-  Status expand();                   // one LaCAM iteration
-  Status search(const Budget& b);    // expands until solved, exhausted or out of budget (>= 1 expansion)
+  Status expand();                   // one LaCAM (or, once solved, LaCAM*) iteration
+  // Expands until solved (with refine: until refinement ends), exhausted or out of budget
+  // (>= 1 expansion while there is anything to do). Against b.expansions an LNS step counts
+  // as its work (cells and A* states visited) / N expansions, a LaCAM(*) expansion as one;
+  // what a step overruns is paid off by the next calls (they refine less or not at all).
+  // `until_solved`: return at the first solution instead of refining on.
+  Status search(const Budget& b, bool until_solved = false);
   Status status() const { return status_; }
+  bool refining() const { return refining_; }        // solved, refine on, Open not empty, under the cap
+  bool refine_capped() const { return refine_capped_; }  // refinement stopped by refine_max_mb
+  size_t bytes_reserved() const;
+
+  // LaCAM*'s edge cost: agents that move or leave/are off their goal (symmetric).
+  int32_t edge_cost(const Vertex* a, const Vertex* b) const;
+  // Once solved with refine: g of the tree path root -> h equals the sum of edge costs
+  // along it, for every node (for tests; O(nodes * depth)).
+  bool check_costs(std::string* why = nullptr) const;
 
   int num_agents() const { return n_; }
   const Config& goals() const { return goals_; }
@@ -66,11 +121,15 @@ class Lacam {
   // The root's child on the tree path root -> target, or the root itself when target is
   // the root (or null).
   const HNode* next_toward(const HNode* target) const;
-  // RT-LaCAM's reroot: `child` (whose parent is the root) becomes the root by reversing
-  // the edge. Nothing else in the tree, the explored table or the constraints changes.
+  // RT-LaCAM's reroot: `child` (a neighbour of the root: its tree child, or, after LaCAM*
+  // rewired it, a former one) becomes the root, the old root hangs under it. Nothing else in
+  // the tree, the explored table or the constraints changes; g is re-based (above).
   void reroot(const HNode* child);
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
+  // expansions() and explored() when the current search found its first solution
+  uint64_t expansions_at_solution() const { return solved_expansions_; }
+  size_t explored_at_solution() const { return solved_explored_; }
   size_t explored() const { return explored_.size(); }
   size_t open_size() const { return open_.size(); }
 
@@ -81,6 +140,18 @@ class Lacam {
  private:
   HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities = nullptr);
   bool is_goal(const HNode* h) const;
+  // LaCAM* (lacam_star.cpp)
+  void link(HNode* a, HNode* b);           // neighbour links both ways, no duplicates
+  int32_t cost(HNode* from, Neighbor* e);  // lazily computed edge cost
+  int32_t heuristic(const Vertex* C);
+  void start_refining();                   // at the first solution: g, h for all
+  Status refine_expand();
+  void rewrite(HNode* a, HNode* b);        // Dijkstra-style relaxation from a new link
+  void rebase(HNode* new_root, HNode* old_root, bool explicit_costs);
+  void push_if_promising(HNode* h);
+  void grow_lowlevel(HNode* H, const Constraint* L);
+  bool lns_step();                          // one LnsRefiner step; inserts an improved path
+  HNode* insert_path(const std::vector<Config>& path);
 
   const Graph& g_;
   DistTable& dist_;
@@ -96,6 +167,7 @@ class Lacam {
   Arena<Vertex> configs_;
   Arena<int32_t> orders_;
   Arena<float> priorities_;
+  Arena<Neighbor> links_;
   ExploredTable explored_;
   std::vector<HNode*> open_;
   std::vector<HNode*> all_;   // every explored node, by id
@@ -103,6 +175,17 @@ class Lacam {
   HNode* goal_ = nullptr;
   Status status_ = Status::NoSolution;
   uint64_t expansions_ = 0;
+  bool refining_ = false, refine_capped_ = false;
+  LnsRefiner lns_;
+  uint64_t refine_iterations_ = 0;
+  int lns_failures_ = 0;  // in a row; LNS alone gives up after many
+  uint64_t units_ = 1;    // budget charged for the last expand(): an LNS step counts its work / N
+  uint64_t debt_ = 0;     // expansions-budget units an LNS step overran, paid by the next search() calls
+  Clock::time_point deadline_ = Clock::time_point::max();  // of the running search() call
+  uint64_t solved_expansions_ = 0;
+  size_t solved_explored_ = 0;
+  std::vector<HNode*> queue_;                    // scratch: rewrite / rebase
+  std::vector<std::pair<HNode*, int64_t>> walk_;  // scratch: rebase (node, its old g)
   Config scratch_;
   std::vector<Vertex> moves_;  // scratch: children of a constraint
 };

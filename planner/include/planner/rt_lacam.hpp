@@ -8,12 +8,16 @@
 // reroots the tree by reversing that one edge. The explored table and every constraint
 // survive, so revisits still force new successors and the search is the very same one
 // full-horizon LaCAM runs: same expansions, same explored set, hence complete, with no
-// deadlock or livelock. Once the goal is found the agents follow the tree path to it
-// without further search.
+// deadlock or livelock. Once the goal is found the agents follow the tree path to it: with
+// LacamOptions::refine off (the paper) without further search; with it on (RT-LaCAM*) the
+// search goes on as LaCAM* with every iteration's budget, and next() follows the best path
+// to the goal known now, re-read each iteration, so the path improves while the agents
+// move. Rerooting re-bases g at the new root (lacam.hpp): the executed prefix is sunk cost.
 //
 // commit() moves to the configuration next() last returned, even if search() ran in
-// between (an executor may keep thinking while the agents move): any child of the root
-// is a valid move, and search() never changes parent pointers.
+// between (an executor may keep thinking while the agents move): that node was the root's
+// tree child, hence a valid move; if LaCAM* re-parented it meanwhile, reroot() still makes
+// it the root (the link to the old root stays).
 #include <vector>
 
 #include "planner/lacam.hpp"
@@ -51,7 +55,6 @@ class RtLacam : public RealtimePlanner {
   Config current_;
   Config next_;
   GoalTest test_;
-  std::vector<const HNode*> goal_path_;  // goal first, root last, once solved
   const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
   std::vector<float> carried_;           // priorities carried into a new epoch

@@ -25,6 +25,10 @@ struct RunOptions {
   // every progress_ms of search). Empty: no calls, and LaCAM searches in one piece.
   std::function<void(const RunResult&)> on_progress;
   double progress_ms = 1000;
+  // Full-horizon LaCAM with LacamOptions::refine: after the first solution, LaCAM* keeps
+  // refining until this much planning time has passed in all (the "refine-after-solve"
+  // variant; 0 = execute the first solution).
+  double anytime_ms = 0;
 };
 
 struct RunResult {
@@ -46,7 +50,8 @@ struct RunResult {
 RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts, const Config& goals,
                        const RunOptions& opt);
 
-// Full-horizon LaCAM: one search (until solved, exhausted or the timeout), then execution.
+// Full-horizon LaCAM: one search (until solved, exhausted or the timeout; then, with refine,
+// LaCAM* until anytime_ms), then execution.
 RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& goals, LacamOptions lopt,
                            const RunOptions& opt, ActionPreference* pref = nullptr);
 

@@ -58,6 +58,7 @@ struct LifelongOptions {
   int rotation_window = 8;     // rotation: plan steps the planner may run ahead of the slowest robot
   bool heading_ties = true;    // rotation: HeadingPreference orders PIBT's equally near moves
   bool record_actions = false; // keep every robot's action letters (LoRR actualPaths)
+  bool refine = true;                              // RT-LaCAM*: see planner::LacamOptions
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers

@@ -1,7 +1,8 @@
 #pragma once
 // The real-time planners of the lifelong comparison (planner/solver.hpp: pibt, naive,
 // rtlacam, cspibt), set up for lifelong runs: a seed, kept PIBT priorities and a cap on
-// the distance tables of goals no agent has any more.
+// the distance tables of goals no agent has any more. `refine`: RT-LaCAM*, LaCAM*
+// refinement of the path to the epoch's goals (see planner/lacam.hpp).
 #include <memory>
 #include <string>
 
@@ -15,6 +16,6 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::GoalTest test, uint64_t seed,
                                                        planner::ActionPreference* pref = nullptr,
-                                                       bool keep_priorities = true);
+                                                       bool keep_priorities = true, bool refine = true);
 
 }  // namespace tasks

@@ -1,0 +1,71 @@
+#pragma once
+// LnsRefiner: large-neighbourhood improvement of a path of configurations C^0..C^T (the
+// refinement step of MAPF-LNS, Li et al. IJCAI-21, and of lacam3's refiner / Okumura's
+// iterative refinement). One step picks a few agents -- a random delayed agent and random
+// others -- and a random time window [t0, t0 + window] of the path, erases their moves in
+// the window and replans them one by one with space-time A* around everybody else's (same
+// positions at both ends of the window), and keeps the result only when their LaCAM* cost
+// (per action, 0 while staying on the goal) drops. The window keeps a step's cost small and
+// independent of the path length (the occupancy table is window x |V|), so steps fit in a
+// real-time budget. Every transition stays free of
+// vertex and swap conflicts, so the new path is a valid chain of LaCAM configurations.
+//
+// Why here: LaCAM*'s rewiring alone improves large instances slowly (it needs PIBT to
+// regenerate better configurations by chance); LaCAM* with LacamOptions::lns hands it the
+// configurations of an improved path instead (Lacam inserts and rewires them).
+#include <cstdint>
+#include <functional>
+#include <queue>
+#include <tuple>
+#include <vector>
+
+#include "planner/budget.hpp"
+#include "planner/config.hpp"
+#include "planner/dist_table.hpp"
+#include "planner/graph.hpp"
+#include "planner/rng.hpp"
+
+namespace planner {
+
+class LnsRefiner {
+ public:
+  LnsRefiner(const Graph& g, DistTable& dist, int window = 32) : g_(g), dist_(dist), window_(window) {}
+
+  // path[0] is fixed, path.back() must be the goals. Returns true when `path` was improved
+  // (rewritten in place). Gives up (false) at `deadline`: a real-time caller's budget holds.
+  bool step(std::vector<Config>& path, const Config& goals, int k, Rng& rng,
+            Clock::time_point deadline = Clock::time_point::max());
+
+  // Work of the last step, in visited cells and A* states (the cost pass over the path, the
+  // occupancy table, the A* nodes and pops): a caller with a budget in expansions charges it.
+  uint64_t work() const { return work_; }
+
+  // LaCAM* cost of agent i's path between steps t0 and t1.
+  static int64_t agent_cost(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1);
+
+ private:
+  bool replan(int i, const std::vector<Config>& path, const Config& goals, int t0, int t1, std::vector<Vertex>& out,
+              Clock::time_point deadline);
+
+  const Graph& g_;
+  DistTable& dist_;
+  int window_;
+  std::vector<int32_t> occ_;      // ((t - t0) * |V| + v) -> agent there, -1 free
+  std::vector<size_t> written_;   // occupied slots, to clear
+  // replan()'s space-time A*, kept across calls (no allocation per step)
+  struct AstarNode {
+    Vertex v;
+    int t;
+    int64_t g;
+    int32_t parent;
+  };
+  using Item = std::tuple<int64_t, int, int32_t>;  // f, -t (deeper first), node
+  std::vector<AstarNode> nodes_;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open_;
+  std::vector<int64_t> best_;     // (t - t0) * |V| + v -> best g, valid where stamp_ == epoch_
+  std::vector<uint32_t> stamp_;
+  uint32_t epoch_ = 0;
+  uint64_t work_ = 0;
+};
+
+}  // namespace planner
