@@ -21,7 +21,7 @@ LifelongExecResult run_lifelong_exec(const planner::Graph& g, const planner::Con
   auto t0 = Clock::now();
   tasks.start(starts);
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, opt.pref,
-                        opt.keep_priorities);
+                        opt.keep_priorities, opt.refine);
   r.setup_ms = ms_since(t0);
   r.epochs = 1;
   executor::GraphExecution ex(*p, delays, exec);
