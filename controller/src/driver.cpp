@@ -131,6 +131,15 @@ std::vector<std::vector<planner::Vertex>> Driver::allowed() const
   return out;
 }
 
+std::vector<int> Driver::groups() const
+{
+  std::vector<int> out(agv_.size(), -1);
+  for (size_t i = 0; i < agv_.size(); ++i)
+    for (int id : agv_[i].run)
+      if (adg_.action(id).group >= 0) out[i] = adg_.action(id).group;
+  return out;
+}
+
 bool Driver::idle() const
 {
   for (const Agv& g : agv_)

@@ -114,7 +114,7 @@ void Run::loop_adg()
       t0 = Clock::now();
       drv.before_step();
       const double before_ms = ms_since(t0);
-      step(drv.allowed(), true);
+      step(drv.allowed(), true, drv.groups());
       t0 = Clock::now();
       drv.after_step(last_poses_);
       ctl += before_ms + ms_since(t0);

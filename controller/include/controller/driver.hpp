@@ -47,6 +47,9 @@ class Driver {
   void after_step(const std::vector<VehiclePose>& poses);
   // Cells agent i may occupy now: where it stands for the ADG plus its running moves' targets.
   std::vector<std::vector<planner::Vertex>> allowed() const;
+  // Per AGV, the rotation group (executor::Adg) of its running move, -1 if none: Safety lets
+  // the members of one group share cell claims while they rotate.
+  std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
   const DriveStats& stats() const { return st_; }
 

@@ -7,7 +7,12 @@
 //     targets of the moves it executes);
 //   - no two AGVs stand on one cell; with `exclusive` (adg executor) no cell is even claimed
 //     by two (standing on it, or driving on a segment that ends at it): the ADG promises
-//     that, lockstep does not (a follower enters the cell its leader is leaving);
+//     that, lockstep does not (a follower enters the cell its leader is leaving). The one
+//     exception the ADG makes on purpose: the members of a rotation group (a->b->c->a in
+//     one step, executor/adg.hpp) start and drive together, each entering the cell the next
+//     one is leaving, so two members both in motion in the same group may share a cell
+//     claim (`group[i]`: the rotation group of agent i's running move, -1 if none); a
+//     member standing on a cell is never shared with;
 //   - no two bodies [front - length, front] intersect on one lane. (Not across the two
 //     lanes of an aisle: they lie side by side, and with the front on the cell centre two
 //     AGVs facing each other on adjacent cells have overlapping projections; the cell
@@ -35,7 +40,8 @@ class Safety {
 
   // allowed[i]: the cells agent i may claim now. Throws ControlError on a violation.
   void check(const std::vector<VehiclePose>& poses, const std::vector<std::vector<planner::Vertex>>& allowed,
-             const std::vector<std::string>& ids, double t, bool exclusive);
+             const std::vector<std::string>& ids, double t, bool exclusive,
+             const std::vector<int>& group = {});
 
   long long checks() const { return checks_; }
 
@@ -52,6 +58,7 @@ class Safety {
   std::vector<std::unordered_map<std::string, std::pair<int, bool>>::const_iterator> lane_cache_;
   double length_;
   std::vector<int> owner_;         // cell -> agent claiming it, valid where stamp_ == epoch_
+  std::vector<char> owner_moving_; // ... and whether that agent was between two cells
   std::vector<unsigned> stamp_;
   unsigned epoch_ = 0;
   long long checks_ = 0;
