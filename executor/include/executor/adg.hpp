@@ -19,7 +19,9 @@
 // Why it never deadlocks under finite delays: dependencies point from plan step t to step
 // t' >= t, so within a valid plan they form a DAG -- except rotation cycles (a->b->c->a in
 // one step, which MAPF allows). Those are bound into one Group: its members are released
-// together when the dependencies from outside the group are done, and start together.
+// together when the dependencies from outside the group are done, and start together; a
+// member's next action waits until the whole group is done (members share cell claims
+// while they rotate, so none may take part in anything else before the rotation ends).
 // A DAG with finite delays always has an action whose dependencies are done, hence
 // progress; with RT-LaCAM's completeness (it reaches the goals in finitely many commits)
 // every committed step is eventually executed (tested in tests/executor/).
@@ -69,7 +71,7 @@ class Adg {
   void finish(int id);
   // Chaining (a physical agent that need not stop between two moves): the agent's action
   // after its first undone one (-1 if none), and whether it may start before that one is
-  // done: pending, in no group, its hand-over done -- the cell it enters is free; the
+  // done: pending, neither it nor the running one in a group, its hand-over done -- the cell it enters is free; the
   // type-1 edge only orders the agent's own moves, which its motion along the path keeps.
   int chain_candidate(int agent) const;
   bool chainable(int id) const;
@@ -88,6 +90,10 @@ class Adg {
 
  private:
   bool outside_deps_done(int id) const;
+  // The type-1 dependency: the previous action done -- if it belongs to a rotation group,
+  // the whole group (a member that arrives first does not leave its cell, still claimed by
+  // the rotation, until every member has arrived).
+  bool prev_done(int id) const;
   bool dep_done(int dep) const { return dep < 0 || actions_[dep].state == State::Done; }
 
   planner::Config tail_, at_;
