@@ -12,6 +12,8 @@
 //   chain : while driving, it may also start the action after the running one if that
 //           one's hand-over dependency is done, so it need not brake on the cell between
 //           (at most two moves ahead: the braking distance at 1 m/s and 1 m/s^2 is 0.5 m);
+//   rotate: the members of a rotation group start together, drive at the slowest one's
+//           pace, cover equal fractions of their moves (arrive together) and brake together;
 //   stop  : a stopped AGV (DelayModel) brakes at `decel` where it is -- between cells is
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is

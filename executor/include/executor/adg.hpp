@@ -16,6 +16,8 @@
 // by induction), and an agent's actions run in order (type 1). So at any time each cell is
 // claimed by at most one agent (claims = the cell an agent stands on, or both ends of the
 // move it is executing): no vertex conflict, no swap, no following into a moving body.
+// The one exception is a running rotation group (below): its members share the ring's
+// cells while they rotate together, and none leaves the ring before all have arrived.
 // Why it never deadlocks under finite delays: dependencies point from plan step t to step
 // t' >= t, so within a valid plan they form a DAG -- except rotation cycles (a->b->c->a in
 // one step, which MAPF allows). Those are bound into one Group: its members are released
