@@ -96,6 +96,40 @@ bool Adg::released(int id) const
   return true;
 }
 
+bool Adg::outside_deps_started(int id) const
+{
+  const Action& a = actions_[id];
+  if (!prev_done(id)) return false;
+  if (a.handover >= 0 && !(a.group >= 0 && actions_[a.handover].group == a.group) &&
+      actions_[a.handover].state == State::Pending)
+    return false;
+  return true;
+}
+
+bool Adg::released_following(int id) const
+{
+  const Action& a = actions_[id];
+  if (a.state != State::Pending) return false;
+  if (a.group < 0) return outside_deps_started(id);
+  for (int m : groups_[a.group])
+    if (actions_[m].state != State::Pending || !outside_deps_started(m)) return false;
+  return true;
+}
+
+bool Adg::may_finish(int id) const
+{
+  const Action& a = actions_[id];
+  return a.state == State::Running &&
+         (a.handover < 0 || (a.group >= 0 && actions_[a.handover].group == a.group) || dep_done(a.handover));
+}
+
+void Adg::start_following(int id)
+{
+  if (!released_following(id))
+    throw std::logic_error("Adg::start_following: action " + std::to_string(id) + " is not released");
+  for (int m : group_of(id)) actions_[m].state = State::Running;
+}
+
 std::vector<int> Adg::group_of(int id) const
 {
   const int g = actions_[id].group;

@@ -67,8 +67,18 @@ class Adg {
   // Pending and every dependency done (for a group member: every member's outside
   // dependencies done).
   bool released(int id) const;
+  // Moving-block following (GraphExecution "adg-follow"): a follower may start entering v
+  // once the previous occupant has STARTED leaving v (its hand-over running or done), but
+  // may only arrive (may_finish) once that one has arrived elsewhere. Safe on the MAPF
+  // graph, where an agent occupies its source cell until it arrives: v is entered (occupied)
+  // only after its previous occupant has left it, as with released(); the follower only
+  // spends its travel time while the leader spends its own. Not for bodies with extent in
+  // SUMO: there the follower's front would have to keep behind the leader's back.
+  bool released_following(int id) const;
+  bool may_finish(int id) const;
   // Pending -> Running; a group member starts its whole group. Throws if not released.
   void start(int id);
+  void start_following(int id);  // throws unless released_following
   // Running -> Done.
   void finish(int id);
   // Chaining (a physical agent that need not stop between two moves): the agent's action
@@ -96,6 +106,7 @@ class Adg {
   // the whole group (a member that arrives first does not leave its cell, still claimed by
   // the rotation, until every member has arrived).
   bool prev_done(int id) const;
+  bool outside_deps_started(int id) const;
   bool dep_done(int dep) const { return dep < 0 || actions_[dep].state == State::Done; }
 
   planner::Config tail_, at_;
