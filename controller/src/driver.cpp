@@ -162,6 +162,18 @@ std::vector<int> Driver::groups() const
   return out;
 }
 
+std::string Driver::describe(int i) const
+{
+  std::string s = "agent " + std::to_string(i) + " at " + std::to_string(adg_.at(i)) + ", running [";
+  for (int id : agv_[i].run) {
+    const executor::Action& a = adg_.action(id);
+    s += " #" + std::to_string(id) + " " + std::to_string(a.from) + "->" + std::to_string(a.to) + " step " +
+         std::to_string(a.step) + " group " + std::to_string(a.group) + " handover " + std::to_string(a.handover);
+    if (a.handover >= 0) s += adg_.action(a.handover).state == executor::State::Done ? " (done)" : " (not done)";
+  }
+  return s + " ]";
+}
+
 bool Driver::idle() const
 {
   for (const Agv& g : agv_)

@@ -61,6 +61,7 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
         // Two members of one rotation group, both in motion: shared by design.
         const bool rotating = stamp_[v] == epoch_ && c.b >= 0 && owner_moving_[v] && group_of(i) >= 0 &&
                               group_of(i) == group_of(owner_[v]);
+        if (stamp_[v] == epoch_ && !rotating) last_overlap_ = {owner_[v], i};
         if (stamp_[v] == epoch_ && !rotating)
           throw ControlError(when + std::string("AGVs ") + ids[owner_[v]] + " and " + ids[i] + " overlap at cell " +
                              std::to_string(v) + " (" + poses[owner_[v]].lane + " " + std::to_string(poses[owner_[v]].pos) +

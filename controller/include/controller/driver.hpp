@@ -19,6 +19,7 @@
 //   finish: when the front reaches an action's target the action is done (its pose is
 //           checked against SUMO to 1e-6 m).
 // allowed() gives the cells each AGV may occupy now, for Safety.
+#include <string>
 #include <vector>
 
 #include "controller/commander.hpp"
@@ -53,6 +54,9 @@ class Driver {
   // the members of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
+  // Agent i's executor state in one line (where it is for the ADG, its running moves with
+  // group and hand-over): appended to a Safety error.
+  std::string describe(int i) const;
   const DriveStats& stats() const { return st_; }
 
  private:

@@ -44,6 +44,8 @@ class Safety {
              const std::vector<int>& group = {});
 
   long long checks() const { return checks_; }
+  // The two agents of the last cell overlap reported (-1, -1 if none): for diagnostics.
+  std::pair<int, int> last_overlap() const { return last_overlap_; }
 
  private:
   Claim locate(const std::pair<const std::string, std::pair<int, bool>>& lane, double pos) const;
@@ -62,6 +64,7 @@ class Safety {
   std::vector<unsigned> stamp_;
   unsigned epoch_ = 0;
   long long checks_ = 0;
+  std::pair<int, int> last_overlap_{-1, -1};
 };
 
 }  // namespace controller
