@@ -156,9 +156,14 @@ std::vector<std::vector<planner::Vertex>> Driver::allowed() const
 std::vector<int> Driver::groups() const
 {
   std::vector<int> out(agv_.size(), -1);
-  for (size_t i = 0; i < agv_.size(); ++i)
+  for (size_t i = 0; i < agv_.size(); ++i) {
     for (int id : agv_[i].run)
       if (adg_.action(id).group >= 0) out[i] = adg_.action(id).group;
+    // Arrived first: it stays in the rotation (on its cell) until every member has arrived.
+    const int last = adg_.last_done(static_cast<int>(i));
+    if (out[i] < 0 && last >= 0 && adg_.action(last).group >= 0 && !adg_.group_done(adg_.action(last).group))
+      out[i] = adg_.action(last).group;
+  }
   return out;
 }
 

@@ -9,7 +9,6 @@
 namespace controller {
 
 Safety::Safety(const gridify::CellMap& map, double length)
-    : map_(map), length_(length), owner_(map.graph.size(), -1), owner_moving_(map.graph.size(), 0), stamp_(map.graph.size(), 0)
 {
 }
 
@@ -58,9 +57,9 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
                            poses[i].lane + " pos " + std::to_string(poses[i].pos) +
                            "), not on its committed path");
       if (exclusive || c.b < 0) {
-        // Two members of one rotation group, both in motion: shared by design.
-        const bool rotating = stamp_[v] == epoch_ && c.b >= 0 && owner_moving_[v] && group_of(i) >= 0 &&
-                              group_of(i) == group_of(owner_[v]);
+        // Two members of one unfinished rotation group: shared by design (one may land on
+        // its cell a SUMO step before the other, whose move went through a junction).
+        const bool rotating = stamp_[v] == epoch_ && group_of(i) >= 0 && group_of(i) == group_of(owner_[v]);
         if (stamp_[v] == epoch_ && !rotating) last_overlap_ = {owner_[v], i};
         if (stamp_[v] == epoch_ && !rotating)
           throw ControlError(when + std::string("AGVs ") + ids[owner_[v]] + " and " + ids[i] + " overlap at cell " +
@@ -68,7 +67,6 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
                              ", " + poses[i].lane + " " + std::to_string(poses[i].pos) + ")");
         stamp_[v] = epoch_;
         owner_[v] = i;
-        owner_moving_[v] = c.b >= 0;
       }
     }
     // The body on its lane: [front - length, front].

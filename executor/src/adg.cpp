@@ -130,6 +130,13 @@ void Adg::start_following(int id)
   for (int m : group_of(id)) actions_[m].state = State::Running;
 }
 
+bool Adg::group_done(int g) const
+{
+  for (int m : groups_[g])
+    if (actions_[m].state != State::Done) return false;
+  return true;
+}
+
 std::vector<int> Adg::group_of(int id) const
 {
   const int g = actions_[id].group;

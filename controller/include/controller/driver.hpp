@@ -50,8 +50,9 @@ class Driver {
   void after_step(const std::vector<VehiclePose>& poses);
   // Cells agent i may occupy now: where it stands for the ADG plus its running moves' targets.
   std::vector<std::vector<planner::Vertex>> allowed() const;
-  // Per AGV, the rotation group (executor::Adg) of its running move, -1 if none: Safety lets
-  // the members of one group share cell claims while they rotate.
+  // Per AGV, the rotation group (executor::Adg) it takes part in -- of its running move, or
+  // of its last move while other members still drive -- -1 if none: Safety lets the members
+  // of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
   // Agent i's executor state in one line (where it is for the ADG, its running moves with

@@ -10,9 +10,9 @@
 //     that, lockstep does not (a follower enters the cell its leader is leaving). The one
 //     exception the ADG makes on purpose: the members of a rotation group (a->b->c->a in
 //     one step, executor/adg.hpp) start and drive together, each entering the cell the next
-//     one is leaving, so two members both in motion in the same group may share a cell
-//     claim (`group[i]`: the rotation group of agent i's running move, -1 if none); a
-//     member standing on a cell is never shared with;
+//     one is leaving, so two members of one unfinished group may share a cell claim
+//     (`group[i]`: the rotation group agent i takes part in, -1 if none; the body check
+//     below still keeps them apart on a lane);
 //   - no two bodies [front - length, front] intersect on one lane. (Not across the two
 //     lanes of an aisle: they lie side by side, and with the front on the cell centre two
 //     AGVs facing each other on adjacent cells have overlapping projections; the cell
@@ -60,7 +60,6 @@ class Safety {
   std::vector<std::unordered_map<std::string, std::pair<int, bool>>::const_iterator> lane_cache_;
   double length_;
   std::vector<int> owner_;         // cell -> agent claiming it, valid where stamp_ == epoch_
-  std::vector<char> owner_moving_; // ... and whether that agent was between two cells
   std::vector<unsigned> stamp_;
   unsigned epoch_ = 0;
   long long checks_ = 0;

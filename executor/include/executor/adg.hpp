@@ -88,6 +88,9 @@ class Adg {
   int chain_candidate(int agent) const;
   bool chainable(int id) const;
   void start_chained(int id);  // throws unless chainable
+  // The agent's last done action (-1 if none), and whether every member of group g is done.
+  int last_done(int agent) const { return head_[agent] > 0 ? queue_[agent][head_[agent] - 1] : -1; }
+  bool group_done(int g) const;
   // Members of the action's group (just the action itself when it has none).
   std::vector<int> group_of(int id) const;
 
