@@ -74,8 +74,8 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the full LoRR / PlanViz log (paths, events, tasks) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
-  app.add_option("--executor", executor_mode, "execute commits under delays: lockstep | adg (default: none, every commit is executed at once)")
-      ->check(CLI::IsMember({"lockstep", "adg"}));
+  app.add_option("--executor", executor_mode, "execute commits under delays: lockstep | adg | adg-follow (default: none, every commit is executed at once)")
+      ->check(CLI::IsMember({"lockstep", "adg", "adg-follow"}));
   app.add_option("--window", exec.window, "adg: committed configurations ahead of the slowest agent (>= 1)")->capture_default_str();
   app.add_option("--delay-kind", delays.kind, "none | bernoulli | poisson")->capture_default_str();
   app.add_option("--delay-p", delays.p, "bernoulli: per agent per step probability that a stop starts");

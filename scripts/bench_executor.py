@@ -5,7 +5,8 @@ For each delay probability p (Bernoulli, per AGV per tick, stops of 1-5 ticks):
   A. SUMO, large warehouse (200 AGVs, one-shot): makespan in ticks (1 tick = 1 s) for
      lockstep (scheme S, all wait for a stopped mover), adg with near-instant speed changes
      (accel = decel = 1000 m/s^2: the executor alone) and adg with physics (0.5 / 1.0 m/s^2).
-  B. MAPF graph, rtlacam-lifelong on LoRR RANDOM-01 (100 agents): errands per step.
+  B. MAPF graph, rtlacam-lifelong on LoRR RANDOM-01 (100 agents): errands per step, lockstep,
+     adg (Hoenig's rule) and adg-follow (moving-block following).
   C. SUMO, small warehouse lifelong (16 AGVs, 1000 ticks): errands per tick.
 Each run also reports its collisions / moveTo jumps (must be 0). Writes docs/executor_bench.md
 (markdown) and prints it.
@@ -79,7 +80,7 @@ def part_b(build, steps):
     prob = os.path.join(ROOT, "tests/data/tasks/lorr/2024/random.domain/RANDOM-01.json")
     for p in PS:
         row = [p]
-        for ex in ["lockstep", "adg"]:
+        for ex in ["lockstep", "adg", "adg-follow"]:
             r = subprocess.run([os.path.join(build, "apps", "rtlacam-lifelong"), "--problem", prob, "--budget-ms", "1",
                                 "--budget-expansions", "50", "--steps", str(steps), "--executor", ex, "--window", "4",
                                 "--delay-kind", "bernoulli", "--delay-p", str(p), "--delay-min", "1", "--delay-max", "5",
@@ -88,8 +89,8 @@ def part_b(build, steps):
             row.append(f"{j['numErrandFinished'] / steps:.3f} (K={j['executor']['maxTicksWithoutErrand']})")
             print(f"B p={p} {ex}: errands {j['numErrandFinished']} rc {r.returncode}", file=sys.stderr)
         rows.append(row)
-    head = "| p | lockstep | adg (W=4) |\n|---:|---:|---:|\n"
-    return head + "".join(f"| {r[0]} | {r[1]} | {r[2]} |\n" for r in rows)
+    head = "| p | lockstep | adg (W=4) | adg-follow (W=4) |\n|---:|---:|---:|---:|\n"
+    return head + "".join(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]} |\n" for r in rows)
 
 
 def part_c(build, tmp):

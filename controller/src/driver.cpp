@@ -57,6 +57,7 @@ void Driver::before_step()
       ++st_.chained;
     }
   }
+  std::vector<double> speed(n, 0.0);
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
     double rem = -g.done;
@@ -79,10 +80,31 @@ void Driver::before_step()
         const double vmax = p_.max_speed * factor;
         v = std::min({vmax, g.v + p_.accel * p_.dt, std::sqrt(2 * p_.decel * rem)});
       }
-      // Land on the cell, a nanometre short: SUMO moves a front exactly at a lane's end
-      // onto the next edge of its route, which would leave the junction cell's pose.
-      if (v * p_.dt >= rem - 1e-9) v = std::max(0.0, rem - 1e-9) / p_.dt;
     }
+    speed[i] = v;
+  }
+  // ... and its members arrive together: each covers the same fraction of its move as the
+  // member with the longest move (moves into a junction cell are shorter than a spacing),
+  // so none arrives on a cell another member's body has not yet left.
+  for (int i = 0; i < n; ++i) {
+    const Agv& g = agv_[i];
+    if (g.run.empty() || adg_.action(g.run.front()).group < 0) continue;
+    int lead = i;
+    for (int m : adg_.group_of(g.run.front())) {
+      const int j = adg_.action(m).agent;
+      if (agv_[j].dist.front() > agv_[lead].dist.front()) lead = j;
+    }
+    if (lead != i) speed[i] = speed[lead] * g.dist.front() / agv_[lead].dist.front();
+  }
+  for (int i = 0; i < n; ++i) {
+    Agv& g = agv_[i];
+    double rem = -g.done;
+    for (double d : g.dist) rem += d;
+    double v = speed[i];
+    // Land on the cell, a nanometre short: SUMO moves a front exactly at a lane's end
+    // onto the next edge of its route, which would leave the junction cell's pose.
+    if (rem > 1e-12 && v * p_.dt >= rem - 1e-9) v = std::max(0.0, rem - 1e-9) / p_.dt;
+    if (rem <= 1e-12) v = 0;
     g.v = v;
     cmd_.drive(i, v);
   }
@@ -129,6 +151,32 @@ std::vector<std::vector<planner::Vertex>> Driver::allowed() const
     for (int id : agv_[i].run) out[i].push_back(adg_.action(id).to);
   }
   return out;
+}
+
+std::vector<int> Driver::groups() const
+{
+  std::vector<int> out(agv_.size(), -1);
+  for (size_t i = 0; i < agv_.size(); ++i) {
+    for (int id : agv_[i].run)
+      if (adg_.action(id).group >= 0) out[i] = adg_.action(id).group;
+    // Arrived first: it stays in the rotation (on its cell) until every member has arrived.
+    const int last = adg_.last_done(static_cast<int>(i));
+    if (out[i] < 0 && last >= 0 && adg_.action(last).group >= 0 && !adg_.group_done(adg_.action(last).group))
+      out[i] = adg_.action(last).group;
+  }
+  return out;
+}
+
+std::string Driver::describe(int i) const
+{
+  std::string s = "agent " + std::to_string(i) + " at " + std::to_string(adg_.at(i)) + ", running [";
+  for (int id : agv_[i].run) {
+    const executor::Action& a = adg_.action(id);
+    s += " #" + std::to_string(id) + " " + std::to_string(a.from) + "->" + std::to_string(a.to) + " step " +
+         std::to_string(a.step) + " group " + std::to_string(a.group) + " handover " + std::to_string(a.handover);
+    if (a.handover >= 0) s += adg_.action(a.handover).state == executor::State::Done ? " (done)" : " (not done)";
+  }
+  return s + " ]";
 }
 
 bool Driver::idle() const

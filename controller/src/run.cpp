@@ -140,7 +140,7 @@ std::vector<VehiclePose> Run::poses()
   }
 }
 
-void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive)
+void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive, const std::vector<int>& groups)
 {
   auto t0 = Clock::now();
   p_->search(budget_);
@@ -158,7 +158,7 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
     if (last_poses_[i].lane.empty())
       throw ControlError("AGV " + cmd_->ids()[i] + " (agent " + std::to_string(i) +
                          ") is not in SUMO any more (removed behind the controller's back?)");
-  safety_->check(last_poses_, allowed, cmd_->ids(), sumo_->time(), exclusive);
+  safety_->check(last_poses_, allowed, cmd_->ids(), sumo_->time(), exclusive, groups);
   exec_step_.push_back(ms_since(t0));
 }
 

@@ -36,7 +36,7 @@ class Run {
 
   // One SUMO step: a planner slice first (timed), then SUMO, its events, and Safety with
   // the cells each AGV may occupy now.
-  void step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive);
+  void step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive, const std::vector<int>& groups = {});
   std::vector<VehiclePose> poses();
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);

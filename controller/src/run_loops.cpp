@@ -114,7 +114,13 @@ void Run::loop_adg()
       t0 = Clock::now();
       drv.before_step();
       const double before_ms = ms_since(t0);
-      step(drv.allowed(), true);
+      try {
+        step(drv.allowed(), true, drv.groups());
+      } catch (const ControlError& e) {
+        const auto [a, b] = safety_->last_overlap();
+        if (a < 0) throw;
+        throw ControlError(std::string(e.what()) + "; " + drv.describe(a) + "; " + drv.describe(b));
+      }
       t0 = Clock::now();
       drv.after_step(last_poses_);
       ctl += before_ms + ms_since(t0);

@@ -9,7 +9,6 @@
 namespace controller {
 
 Safety::Safety(const gridify::CellMap& map, double length)
-    : map_(map), length_(length), owner_(map.graph.size(), -1), stamp_(map.graph.size(), 0)
 {
 }
 
@@ -33,8 +32,9 @@ Claim Safety::locate(const std::pair<const std::string, std::pair<int, bool>>& l
 }
 
 void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std::vector<planner::Vertex>>& allowed,
-                   const std::vector<std::string>& ids, double t, bool exclusive)
+                   const std::vector<std::string>& ids, double t, bool exclusive, const std::vector<int>& group)
 {
+  auto group_of = [&](int i) { return static_cast<size_t>(i) < group.size() ? group[i] : -1; };
   ++checks_;
   ++epoch_;
   char when[64];
@@ -57,7 +57,11 @@ void Safety::check(const std::vector<VehiclePose>& poses, const std::vector<std:
                            poses[i].lane + " pos " + std::to_string(poses[i].pos) +
                            "), not on its committed path");
       if (exclusive || c.b < 0) {
-        if (stamp_[v] == epoch_)
+        // Two members of one unfinished rotation group: shared by design (one may land on
+        // its cell a SUMO step before the other, whose move went through a junction).
+        const bool rotating = stamp_[v] == epoch_ && group_of(i) >= 0 && group_of(i) == group_of(owner_[v]);
+        if (stamp_[v] == epoch_ && !rotating) last_overlap_ = {owner_[v], i};
+        if (stamp_[v] == epoch_ && !rotating)
           throw ControlError(when + std::string("AGVs ") + ids[owner_[v]] + " and " + ids[i] + " overlap at cell " +
                              std::to_string(v) + " (" + poses[owner_[v]].lane + " " + std::to_string(poses[owner_[v]].pos) +
                              ", " + poses[i].lane + " " + std::to_string(poses[i].pos) + ")");

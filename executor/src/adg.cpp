@@ -68,10 +68,20 @@ int Adg::next_action(int agent) const
   return head_[agent] < q.size() ? q[head_[agent]] : -1;
 }
 
+bool Adg::prev_done(int id) const
+{
+  const int p = actions_[id].prev;
+  if (p < 0) return true;
+  if (actions_[p].group < 0) return dep_done(p);
+  for (int m : groups_[actions_[p].group])
+    if (actions_[m].state != State::Done) return false;
+  return true;
+}
+
 bool Adg::outside_deps_done(int id) const
 {
   const Action& a = actions_[id];
-  if (!dep_done(a.prev)) return false;
+  if (!prev_done(id)) return false;
   if (a.handover >= 0 && !(a.group >= 0 && actions_[a.handover].group == a.group) && !dep_done(a.handover)) return false;
   return true;
 }
@@ -83,6 +93,47 @@ bool Adg::released(int id) const
   if (a.group < 0) return outside_deps_done(id);
   for (int m : groups_[a.group])
     if (actions_[m].state != State::Pending || !outside_deps_done(m)) return false;
+  return true;
+}
+
+bool Adg::outside_deps_started(int id) const
+{
+  const Action& a = actions_[id];
+  if (!prev_done(id)) return false;
+  if (a.handover >= 0 && !(a.group >= 0 && actions_[a.handover].group == a.group) &&
+      actions_[a.handover].state == State::Pending)
+    return false;
+  return true;
+}
+
+bool Adg::released_following(int id) const
+{
+  const Action& a = actions_[id];
+  if (a.state != State::Pending) return false;
+  if (a.group < 0) return outside_deps_started(id);
+  for (int m : groups_[a.group])
+    if (actions_[m].state != State::Pending || !outside_deps_started(m)) return false;
+  return true;
+}
+
+bool Adg::may_finish(int id) const
+{
+  const Action& a = actions_[id];
+  return a.state == State::Running &&
+         (a.handover < 0 || (a.group >= 0 && actions_[a.handover].group == a.group) || dep_done(a.handover));
+}
+
+void Adg::start_following(int id)
+{
+  if (!released_following(id))
+    throw std::logic_error("Adg::start_following: action " + std::to_string(id) + " is not released");
+  for (int m : group_of(id)) actions_[m].state = State::Running;
+}
+
+bool Adg::group_done(int g) const
+{
+  for (int m : groups_[g])
+    if (actions_[m].state != State::Done) return false;
   return true;
 }
 
@@ -118,7 +169,7 @@ bool Adg::chainable(int id) const
 {
   const Action& a = actions_[id];
   return a.state == State::Pending && a.group < 0 && a.prev >= 0 && actions_[a.prev].state == State::Running &&
-         dep_done(a.handover);
+         actions_[a.prev].group < 0 && dep_done(a.handover);
 }
 
 void Adg::start_chained(int id)

@@ -6,7 +6,8 @@ namespace executor {
 
 std::string check(const ExecOptions& o)
 {
-  if (o.mode != "adg" && o.mode != "lockstep") return "executor: '" + o.mode + "' is not adg or lockstep";
+  if (o.mode != "adg" && o.mode != "adg-follow" && o.mode != "lockstep")
+    return "executor: '" + o.mode + "' is not adg, adg-follow or lockstep";
   if (o.window < 1) return "window: " + std::to_string(o.window) + " is not >= 1";
   return "";
 }
@@ -61,7 +62,8 @@ void GraphExecution::tick_adg()
   for (int i = 0; i < n; ++i) {
     const int id = adg_->next_action(i);
     if (id < 0 || adg_->action(id).state != State::Pending) continue;
-    if (!adg_->released(id)) {
+    const bool follow = o_.mode == "adg-follow";
+    if (follow ? !adg_->released_following(id) : !adg_->released(id)) {
       if (!delays_.stopped(i)) ++st_.dependency_waits;
       continue;
     }
@@ -69,7 +71,10 @@ void GraphExecution::tick_adg()
     bool go = true;
     for (int m : group) go = go && !delays_.stopped(adg_->action(m).agent);
     if (!go) continue;
-    adg_->start(id);
+    if (follow)
+      adg_->start_following(id);
+    else
+      adg_->start(id);
     // A rotation moves as one: at its slowest member's pace, held by any stopped member.
     int ticks = 1;
     for (int m : group) ticks = std::max(ticks, delays_.move_ticks(adg_->action(m).agent));
@@ -81,10 +86,19 @@ void GraphExecution::tick_adg()
     bool held = false;
     for (int m : adg_->group_of(id)) held = held || delays_.stopped(adg_->action(m).agent);
     if (held) continue;
-    if (--left_[i] == 0) {
+    if (left_[i] > 0) --left_[i];
+  }
+  // Arrivals (travel done); a follower arrives only after its leader (adg-follow): repeat
+  // until no more arrive, so a train that moved together arrives in the same tick.
+  for (bool any = true; any;) {
+    any = false;
+    for (int i = 0; i < n; ++i) {
+      const int id = adg_->next_action(i);
+      if (id < 0 || adg_->action(id).state != State::Running || left_[i] > 0 || !adg_->may_finish(id)) continue;
       adg_->finish(id);
       pos_[i] = adg_->action(id).to;
       ++st_.moves;
+      any = true;
     }
   }
 }

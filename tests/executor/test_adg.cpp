@@ -106,6 +106,32 @@ TEST(Adg, RotationCycleIsOneGroupThatStartsTogether)
   EXPECT_TRUE(adg.done());
 }
 
+TEST(Adg, AMemberLeavesOnlyWhenTheWholeRotationHasArrived)
+{
+  // 2x3 block 0 1 4 / 2 3 5: the four agents rotate 0->1->3->2->0, then agent 0 goes on to
+  // 4. A member that arrives first (a shorter move into a junction cell) must not leave:
+  // the others still claim the cells of the ring (the huge AGV run's t=1695 s overlap).
+  Adg adg({0, 1, 3, 2});
+  adg.append({1, 3, 2, 0});
+  adg.append({4, 3, 2, 0});
+  const int rot = adg.next_action(0);
+  const int next = adg.chain_candidate(0);
+  ASSERT_GE(next, 0);
+  EXPECT_EQ(adg.action(next).to, 4);
+  adg.start(rot);
+  EXPECT_FALSE(adg.chainable(next));  // no chaining out of a running rotation
+  adg.finish(rot);
+  EXPECT_EQ(adg.next_action(0), next);
+  for (int i = 1; i < 4; ++i) {
+    EXPECT_FALSE(adg.released(next)) << "released with " << 4 - i << " members still rotating";
+    adg.finish(adg.next_action(i));
+  }
+  EXPECT_TRUE(adg.released(next));
+  adg.start(next);
+  adg.finish(next);
+  EXPECT_TRUE(adg.done());
+}
+
 TEST(Adg, RejectsAConfigurationOfTheWrongSize)
 {
   Adg adg({0, 1});

@@ -12,11 +12,14 @@
 //   chain : while driving, it may also start the action after the running one if that
 //           one's hand-over dependency is done, so it need not brake on the cell between
 //           (at most two moves ahead: the braking distance at 1 m/s and 1 m/s^2 is 0.5 m);
+//   rotate: the members of a rotation group start together, drive at the slowest one's
+//           pace, cover equal fractions of their moves (arrive together) and brake together;
 //   stop  : a stopped AGV (DelayModel) brakes at `decel` where it is -- between cells is
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is
 //           checked against SUMO to 1e-6 m).
 // allowed() gives the cells each AGV may occupy now, for Safety.
+#include <string>
 #include <vector>
 
 #include "controller/commander.hpp"
@@ -47,7 +50,14 @@ class Driver {
   void after_step(const std::vector<VehiclePose>& poses);
   // Cells agent i may occupy now: where it stands for the ADG plus its running moves' targets.
   std::vector<std::vector<planner::Vertex>> allowed() const;
+  // Per AGV, the rotation group (executor::Adg) it takes part in -- of its running move, or
+  // of its last move while other members still drive -- -1 if none: Safety lets the members
+  // of one group share cell claims while they rotate.
+  std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
+  // Agent i's executor state in one line (where it is for the ADG, its running moves with
+  // group and hand-over): appended to a Safety error.
+  std::string describe(int i) const;
   const DriveStats& stats() const { return st_; }
 
  private:

@@ -7,7 +7,12 @@
 //     targets of the moves it executes);
 //   - no two AGVs stand on one cell; with `exclusive` (adg executor) no cell is even claimed
 //     by two (standing on it, or driving on a segment that ends at it): the ADG promises
-//     that, lockstep does not (a follower enters the cell its leader is leaving);
+//     that, lockstep does not (a follower enters the cell its leader is leaving). The one
+//     exception the ADG makes on purpose: the members of a rotation group (a->b->c->a in
+//     one step, executor/adg.hpp) start and drive together, each entering the cell the next
+//     one is leaving, so two members of one unfinished group may share a cell claim
+//     (`group[i]`: the rotation group agent i takes part in, -1 if none; the body check
+//     below still keeps them apart on a lane);
 //   - no two bodies [front - length, front] intersect on one lane. (Not across the two
 //     lanes of an aisle: they lie side by side, and with the front on the cell centre two
 //     AGVs facing each other on adjacent cells have overlapping projections; the cell
@@ -35,9 +40,12 @@ class Safety {
 
   // allowed[i]: the cells agent i may claim now. Throws ControlError on a violation.
   void check(const std::vector<VehiclePose>& poses, const std::vector<std::vector<planner::Vertex>>& allowed,
-             const std::vector<std::string>& ids, double t, bool exclusive);
+             const std::vector<std::string>& ids, double t, bool exclusive,
+             const std::vector<int>& group = {});
 
   long long checks() const { return checks_; }
+  // The two agents of the last cell overlap reported (-1, -1 if none): for diagnostics.
+  std::pair<int, int> last_overlap() const { return last_overlap_; }
 
  private:
   Claim locate(const std::pair<const std::string, std::pair<int, bool>>& lane, double pos) const;
@@ -55,6 +63,7 @@ class Safety {
   std::vector<unsigned> stamp_;
   unsigned epoch_ = 0;
   long long checks_ = 0;
+  std::pair<int, int> last_overlap_{-1, -1};
 };
 
 }  // namespace controller

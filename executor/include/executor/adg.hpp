@@ -16,10 +16,14 @@
 // by induction), and an agent's actions run in order (type 1). So at any time each cell is
 // claimed by at most one agent (claims = the cell an agent stands on, or both ends of the
 // move it is executing): no vertex conflict, no swap, no following into a moving body.
+// The one exception is a running rotation group (below): its members share the ring's
+// cells while they rotate together, and none leaves the ring before all have arrived.
 // Why it never deadlocks under finite delays: dependencies point from plan step t to step
 // t' >= t, so within a valid plan they form a DAG -- except rotation cycles (a->b->c->a in
 // one step, which MAPF allows). Those are bound into one Group: its members are released
-// together when the dependencies from outside the group are done, and start together.
+// together when the dependencies from outside the group are done, and start together; a
+// member's next action waits until the whole group is done (members share cell claims
+// while they rotate, so none may take part in anything else before the rotation ends).
 // A DAG with finite delays always has an action whose dependencies are done, hence
 // progress; with RT-LaCAM's completeness (it reaches the goals in finitely many commits)
 // every committed step is eventually executed (tested in tests/executor/).
@@ -63,17 +67,30 @@ class Adg {
   // Pending and every dependency done (for a group member: every member's outside
   // dependencies done).
   bool released(int id) const;
+  // Moving-block following (GraphExecution "adg-follow"): a follower may start entering v
+  // once the previous occupant has STARTED leaving v (its hand-over running or done), but
+  // may only arrive (may_finish) once that one has arrived elsewhere. Safe on the MAPF
+  // graph, where an agent occupies its source cell until it arrives: v is entered (occupied)
+  // only after its previous occupant has left it, as with released(); the follower only
+  // spends its travel time while the leader spends its own. Not for bodies with extent in
+  // SUMO: there the follower's front would have to keep behind the leader's back.
+  bool released_following(int id) const;
+  bool may_finish(int id) const;
   // Pending -> Running; a group member starts its whole group. Throws if not released.
   void start(int id);
+  void start_following(int id);  // throws unless released_following
   // Running -> Done.
   void finish(int id);
   // Chaining (a physical agent that need not stop between two moves): the agent's action
   // after its first undone one (-1 if none), and whether it may start before that one is
-  // done: pending, in no group, its hand-over done -- the cell it enters is free; the
+  // done: pending, neither it nor the running one in a group, its hand-over done -- the cell it enters is free; the
   // type-1 edge only orders the agent's own moves, which its motion along the path keeps.
   int chain_candidate(int agent) const;
   bool chainable(int id) const;
   void start_chained(int id);  // throws unless chainable
+  // The agent's last done action (-1 if none), and whether every member of group g is done.
+  int last_done(int agent) const { return head_[agent] > 0 ? queue_[agent][head_[agent] - 1] : -1; }
+  bool group_done(int g) const;
   // Members of the action's group (just the action itself when it has none).
   std::vector<int> group_of(int id) const;
 
@@ -88,6 +105,11 @@ class Adg {
 
  private:
   bool outside_deps_done(int id) const;
+  // The type-1 dependency: the previous action done -- if it belongs to a rotation group,
+  // the whole group (a member that arrives first does not leave its cell, still claimed by
+  // the rotation, until every member has arrived).
+  bool prev_done(int id) const;
+  bool outside_deps_started(int id) const;
   bool dep_done(int dep) const { return dep < 0 || actions_[dep].state == State::Done; }
 
   planner::Config tail_, at_;

@@ -10,6 +10,9 @@
 //              agent into an Adg; every tick each agent that is not stopped starts its next
 //              action once released, and arrives after DelayModel::move_ticks ticks of
 //              progress. Agents progress asynchronously.
+//   adg-follow : adg with moving-block following (Adg::released_following): a follower
+//              travels while its leader does and arrives (in the same tick at the
+//              earliest) once the leader has arrived, so a train moves together.
 // In both a stopped agent stays put. positions() after each tick is the executed
 // configuration: an agent counts as on its source cell until it has arrived, so the
 // sequence of positions is itself a MAPF plan (tests validate it).
@@ -24,7 +27,7 @@
 namespace executor {
 
 struct ExecOptions {
-  std::string mode = "adg";  // adg | lockstep
+  std::string mode = "adg";  // adg | adg-follow | lockstep
   int window = 4;            // W >= 1: committed configurations ahead of the slowest agent
 };
 
