@@ -9,6 +9,7 @@
 namespace controller {
 
 Safety::Safety(const gridify::CellMap& map, double length)
+    : map_(map), length_(length), owner_(map.graph.size(), -1), stamp_(map.graph.size(), 0)
 {
 }
 
