@@ -135,19 +135,12 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
       } else {
         // No SUMO connection for this turn: jump there now (SUMO runs with
         // --ignore-route-errors in this case).
-        sumo_.move_to(a.id, target.lane, target.pos);
-        ++stats_.move_to;
-        ++stats_.jumps;
+        jump(a, target);
         set_speed(a, 0);
       }
     } else if (target.lane == here.opposite) {
       // Reversal inside an aisle: turn the vehicle round on the spot, then drive.
-      const Lane& back = lane(target.lane);
-      const double turned = back.length - a.pose.pos;
-      set_route(a, {here.edge, back.edge, continuation(back.edge)});
-      sumo_.move_to(a.id, target.lane, turned);
-      ++stats_.move_to;
-      ++stats_.turns;
+      const double turned = turn_round(a, here, target);
       set_speed(a, (target.pos - turned) / tick_);
     } else {
       throw ControlError("agent " + std::to_string(i) + ": no scheme-S command for the move " + std::to_string(u) +
@@ -155,6 +148,24 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
     }
     a.pose = target;
   }
+}
+
+void Commander::jump(Agv& a, const gridify::SumoPose& target)
+{
+  sumo_.move_to(a.id, target.lane, target.pos);
+  ++stats_.move_to;
+  ++stats_.jumps;
+}
+
+double Commander::turn_round(Agv& a, const Lane& here, const gridify::SumoPose& target)
+{
+  const Lane& back = lane(target.lane);
+  const double turned = back.length - a.pose.pos;
+  set_route(a, {here.edge, back.edge, continuation(back.edge)});
+  sumo_.move_to(a.id, target.lane, turned);
+  ++stats_.move_to;
+  ++stats_.turns;
+  return turned;
 }
 
 bool Commander::needs_rest(int i, planner::Vertex u, planner::Vertex v) const
@@ -191,20 +202,12 @@ double Commander::begin_move(int i, planner::Vertex u, planner::Vertex v)
       if (connected(here.edge, out)) {
         d = target.pos;
       } else {
-        sumo_.move_to(a.id, target.lane, target.pos);  // a real jump: counted, reported
-        ++stats_.move_to;
-        ++stats_.jumps;
+        jump(a, target);  // a real jump: counted, reported
       }
     } else if (target.lane == here.opposite) {
       // Turn in place: the AGV stands on its cell (needs_rest); its front stays on the
       // cell centre, only the lane (heading) changes. No distance is covered.
-      const Lane& back = lane(target.lane);
-      const double turned = back.length - a.pose.pos;
-      set_route(a, {here.edge, back.edge, continuation(back.edge)});
-      sumo_.move_to(a.id, target.lane, turned);
-      ++stats_.move_to;
-      ++stats_.turns;
-      d = target.pos - turned;
+      d = target.pos - turn_round(a, here, target);
     } else {
       throw ControlError("agent " + std::to_string(i) + ": no command for the move " + std::to_string(u) + " -> " +
                          std::to_string(v) + " from lane " + a.pose.lane);

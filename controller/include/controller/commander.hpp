@@ -91,6 +91,11 @@ class Commander {
   bool connected(const std::string& from, const std::string& to) const;
   void set_speed(Agv& a, double v);
   void set_route(Agv& a, std::vector<std::string> edges);
+  // A moveTo that SUMO cannot drive (no connection for the turn): counted as a jump.
+  void jump(Agv& a, const gridify::SumoPose& target);
+  // Reversal inside an aisle: route onto the opposite lane and turn the AGV round where it
+  // stands (front on the same point); returns its position on the opposite lane.
+  double turn_round(Agv& a, const Lane& here, const gridify::SumoPose& target);
 
   const gridify::CellMap& map_;
   SumoBackend& sumo_;
