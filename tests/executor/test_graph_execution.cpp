@@ -55,6 +55,18 @@ Outcome run(const planner::Graph& g, const planner::Instance& ins, const DelaySp
   return out;
 }
 
+// Bernoulli stops of 1..max_ticks ticks, probability p per agent per tick.
+DelaySpec bernoulli_stops(double p, int max_ticks, uint64_t seed)
+{
+  DelaySpec d;
+  d.kind = "bernoulli";
+  d.p = p;
+  d.min_ticks = 1;
+  d.max_ticks = max_ticks;
+  d.seed = seed;
+  return d;
+}
+
 }  // namespace
 
 TEST(GraphExecution, AdgUnderRandomDelaysNeverConflictsAndFinishes)
@@ -62,12 +74,7 @@ TEST(GraphExecution, AdgUnderRandomDelaysNeverConflictsAndFinishes)
   const planner::Graph g = planner::load_map(RTLACAM_MOVINGAI "/random-32-32-20.map");
   const planner::Instance ins = planner::load_scen(RTLACAM_MOVINGAI "/random-32-32-20-random-1.scen", g, 100);
   for (uint64_t seed = 0; seed < 4; ++seed) {
-    DelaySpec d;
-    d.kind = "bernoulli";
-    d.p = 0.05;
-    d.min_ticks = 1;
-    d.max_ticks = 10;
-    d.seed = seed;
+    DelaySpec d = bernoulli_stops(0.05, 10, seed);
     d.slow = {{0, 0.3}, {1, 0.7}};
     ExecOptions o;
     o.window = 1 + static_cast<int>(seed) * 3;
@@ -107,12 +114,7 @@ TEST(GraphExecution, LockstepWaitsForTheSlowestAdgDoesNot)
 {
   const planner::Graph g = planner::load_map(RTLACAM_MOVINGAI "/random-32-32-20.map");
   const planner::Instance ins = planner::load_scen(RTLACAM_MOVINGAI "/random-32-32-20-random-1.scen", g, 50);
-  DelaySpec d;
-  d.kind = "bernoulli";
-  d.p = 0.02;
-  d.min_ticks = 1;
-  d.max_ticks = 5;
-  d.seed = 7;
+  const DelaySpec d = bernoulli_stops(0.02, 5, 7);
   ExecOptions lock, adg;
   lock.mode = "lockstep";
   adg.window = 8;
@@ -130,12 +132,7 @@ TEST(GraphExecution, FollowingRuleIsValidUnderDelaysAndFasterThanHonigs)
   // agents (2 ticks a move) a fast follower must wait at the door of the leader's cell.
   const planner::Graph g = planner::load_map(RTLACAM_MOVINGAI "/random-32-32-20.map");
   const planner::Instance ins = planner::load_scen(RTLACAM_MOVINGAI "/random-32-32-20-random-1.scen", g, 50);
-  DelaySpec d;
-  d.kind = "bernoulli";
-  d.p = 0.02;
-  d.min_ticks = 1;
-  d.max_ticks = 5;
-  d.seed = 7;
+  DelaySpec d = bernoulli_stops(0.02, 5, 7);
   for (int i = 0; i < 50; i += 5) d.slow.push_back({i, 0.5});
   ExecOptions honig, follow;
   honig.window = follow.window = 8;
