@@ -1,6 +1,6 @@
 #pragma once
 // Helpers for the task-layer tests: tiny grids from strings, temporary files, task files
-// built from cells.
+// built from cells, bundled LoRR problems.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "planner/graph.hpp"
+#include "planner/movingai.hpp"
+#include "tasks/lorr_problem.hpp"
 #include "tasks/lorr_files.hpp"
 #include "grid.hpp"
 #include "temp_path.hpp"
@@ -38,6 +40,21 @@ inline std::shared_ptr<const tasks::TaskFile> task_file(const planner::Graph& g,
   }
   return f;
 }
+
+// A LoRR problem under tests/data/tasks/lorr (`rel` starts with '/') with its map, agents
+// and task file loaded.
+struct Lorr {
+  tasks::LorrProblem p;
+  planner::Graph g;
+  planner::Config starts;
+  std::shared_ptr<const tasks::TaskFile> file;
+  explicit Lorr(const std::string& rel)
+      : p(tasks::load_lorr_problem(kData + rel)), g(planner::load_map(p.map_file)),
+        starts(tasks::load_lorr_agents(p.agent_file, g, p.team_size)),
+        file(std::make_shared<const tasks::TaskFile>(tasks::load_lorr_tasks(p.task_file, g)))
+  {
+  }
+};
 
 // A file under the test's temporary directory with the given text.
 inline std::string temp_file(const std::string& name, const std::string& text)

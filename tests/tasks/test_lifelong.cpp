@@ -40,18 +40,6 @@ class Scripted : public planner::RealtimePlanner {
   size_t k_ = 0;
 };
 
-struct Lorr {
-  LorrProblem p;
-  planner::Graph g;
-  Config starts;
-  std::shared_ptr<const TaskFile> file;
-  explicit Lorr(const std::string& rel)
-      : p(load_lorr_problem(ttest::kData + rel)), g(planner::load_map(p.map_file)), starts(load_lorr_agents(p.agent_file, g, p.team_size)),
-        file(std::make_shared<const TaskFile>(load_lorr_tasks(p.task_file, g)))
-  {
-  }
-};
-
 // Longest run of consecutive steps without a completion, counting the tail.
 long longest_drought(const LifelongResult& r)
 {
@@ -89,7 +77,7 @@ TEST(Epochs, SetGoalsExactlyWhenAnErrandCompletes)
 
 TEST(Epochs, RtLacamKeepsItsTreeUntilACompletion)
 {
-  Lorr L("/2023/random.domain/MR23-I-04.json");
+  ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   RoundRobin rr(L.file);
   LifelongOptions opt;
   opt.steps = 120;
@@ -119,7 +107,7 @@ class LorrRuns : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(LorrRuns, RoundRobin2023ValidatorClean)
 {
-  Lorr L("/2023/random.domain/MR23-I-04.json");
+  ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   RoundRobin rr(L.file);
   LifelongOptions opt;
   opt.steps = 300;
@@ -135,7 +123,7 @@ TEST_P(LorrRuns, RoundRobin2023ValidatorClean)
 
 TEST_P(LorrRuns, Pool2024ValidatorClean)
 {
-  Lorr L("/2024/random.domain/RANDOM-01.json");
+  ttest::Lorr L("/2024/random.domain/RANDOM-01.json");
   for (const std::string assigner : {"greedy", "hungarian"})
     for (bool reassign : {false, true}) {
       SCOPED_TRACE(assigner + (reassign ? " reassign" : " keep"));

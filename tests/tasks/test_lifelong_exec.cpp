@@ -15,19 +15,12 @@ using namespace tasks;
 
 namespace {
 
-struct Lorr {
-  LorrProblem p;
-  planner::Graph g;
-  planner::Config starts;
-  std::shared_ptr<const TaskFile> file;
-  Lorr()
-      : p(load_lorr_problem(ttest::kData + "/2024/random.domain/RANDOM-01.json")), g(planner::load_map(p.map_file)),
-        starts(load_lorr_agents(p.agent_file, g, p.team_size)),
-        file(std::make_shared<const TaskFile>(load_lorr_tasks(p.task_file, g)))
-  {
-  }
-  std::unique_ptr<TaskPool> pool() const { return std::make_unique<TaskPool>(file, g, p.pool_size(), make_assigner("greedy"), false); }
-};
+const char* const kRandom01 = "/2024/random.domain/RANDOM-01.json";
+
+std::unique_ptr<TaskPool> make_pool(const ttest::Lorr& L)
+{
+  return std::make_unique<TaskPool>(L.file, L.g, L.p.pool_size(), make_assigner("greedy"), false);
+}
 
 LifelongOptions options(long steps)
 {
@@ -41,8 +34,8 @@ LifelongOptions options(long steps)
 
 TEST(LifelongExec, LockstepWithoutDelaysIsThePlainRunner)
 {
-  Lorr L;
-  auto a = L.pool(), b = L.pool();
+  const ttest::Lorr L(kRandom01);
+  auto a = make_pool(L), b = make_pool(L);
   const LifelongResult plain = run_lifelong(L.g, L.starts, *a, "rtlacam", 0, options(200));
   executor::ExecOptions o;
   o.mode = "lockstep";
@@ -59,9 +52,9 @@ TEST(LifelongExec, LockstepWithoutDelaysIsThePlainRunner)
 
 TEST(LifelongExec, AdgUnderDelaysKeepsCompletingErrands)
 {
-  Lorr L;
+  const ttest::Lorr L(kRandom01);
   for (double p : {0.01, 0.05}) {
-    auto pool = L.pool();
+    auto pool = make_pool(L);
     executor::DelaySpec d;
     d.kind = "bernoulli";
     d.p = p;

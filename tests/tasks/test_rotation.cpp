@@ -133,10 +133,11 @@ TEST(RotationExecutor, RandomValidPlansExecuteWithoutConflictsInPlanOrder)
 
 TEST(RotationRun, LifelongRunIsValidAndEventsHappenOnTheRobotsRealCells)
 {
-  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2023/random.domain/MR23-I-04.json");
-  const planner::Graph g = planner::load_map(pr.map_file);
-  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
-  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
+  const LorrProblem& pr = L.p;
+  const planner::Graph& g = L.g;
+  const Config& starts = L.starts;
+  const auto& file = L.file;
   RoundRobin rr(file);
   LifelongOptions opt;
   opt.steps = 150;
@@ -171,10 +172,11 @@ TEST(RotationRun, LifelongRunIsValidAndEventsHappenOnTheRobotsRealCells)
 
 TEST(LorrLog, PoolEventsCountErrandsDoneAndScheduleTasksThatExist)
 {
-  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2024/random.domain/RANDOM-01.json");
-  const planner::Graph g = planner::load_map(pr.map_file);
-  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
-  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  const ttest::Lorr L("/2024/random.domain/RANDOM-01.json");
+  const LorrProblem& pr = L.p;
+  const planner::Graph& g = L.g;
+  const Config& starts = L.starts;
+  const auto& file = L.file;
   TaskPool pool(file, g, pr.pool_size(), make_assigner("greedy", 32));
   LifelongOptions opt;
   opt.steps = 120;
@@ -213,10 +215,11 @@ TEST(LorrLog, PoolEventsCountErrandsDoneAndScheduleTasksThatExist)
 
 TEST(LorrLog, RoundRobinTaskIdsAreLorrsAssignmentCounter)
 {
-  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2023/random.domain/MR23-I-04.json");
-  const planner::Graph g = planner::load_map(pr.map_file);
-  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
-  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
+  const LorrProblem& pr = L.p;
+  const planner::Graph& g = L.g;
+  const Config& starts = L.starts;
+  const auto& file = L.file;
   RoundRobin rr(file);
   LifelongOptions opt;
   opt.steps = 100;
@@ -280,10 +283,11 @@ TEST(RotationRun, BenchReportsTheRotationRunOfTheExecutedPlan)
 
 TEST(LifelongTiming, EpochStartIsChargedToTheStepAfterACompletion)
 {
-  const LorrProblem pr = load_lorr_problem(ttest::kData + "/2023/random.domain/MR23-I-04.json");
-  const planner::Graph g = planner::load_map(pr.map_file);
-  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
-  RoundRobin rr(std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g)));
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
+  const LorrProblem& pr = L.p;
+  const planner::Graph& g = L.g;
+  const Config& starts = L.starts;
+  RoundRobin rr(L.file);
   LifelongOptions opt;
   opt.steps = 80;
   opt.budget = planner::Budget::expansion_count(5);
