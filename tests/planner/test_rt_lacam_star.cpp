@@ -326,6 +326,8 @@ TEST(RtLacamStar, AnExpansionsBudgetBoundsLnsWork)
     if (lns) EXPECT_GT(idle, calls / 2);  // each LNS step is worth >= T (> 20) expansions
     else EXPECT_EQ(idle, 0);
     std::string why;
-    if (lc.refining()) EXPECT_TRUE(lc.check_costs(&why)) << why;
+    if (lc.refining()) {
+      EXPECT_TRUE(lc.check_costs(&why)) << why;
+    }
   }
 }
