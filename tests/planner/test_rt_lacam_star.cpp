@@ -234,7 +234,7 @@ TEST(RtLacamStar, TheFollowedPathNeverGetsCostlier)
 TEST(RtLacamStar, EveryLnsNeighbourhoodKeepsTheFollowedPathValidAndNeverCostlier)
 {
   Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
-  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-3.scen", g, 80);
+  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-2.scen", g, 80);
   for (auto nbh : {LnsNeighbourhood::blocking, LnsNeighbourhood::intersection, LnsNeighbourhood::adaptive}) {
     SCOPED_TRACE(static_cast<int>(nbh));
     LacamOptions o = refine_opts(1);
