@@ -33,6 +33,7 @@ int main(int argc, char** argv)
   bool lns = true;
   int lns_window = LacamOptions{}.lns_window;
   int lns_agents = LacamOptions{}.lns_agents;
+  std::string lns_nbh = "random";
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -52,6 +53,9 @@ int main(int argc, char** argv)
   app.add_flag("--lns,!--no-lns", lns, "with --refine: LNS steps on the best path (lns_refiner.hpp)")
       ->capture_default_str();
   app.add_option("--lns-agents", lns_agents, "agents replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--lns-neighbourhood", lns_nbh, "agents an LNS step replans (lns_refiner.hpp)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"random", "blocking", "intersection", "adaptive"}));
   app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
@@ -86,6 +90,7 @@ int main(int argc, char** argv)
     lopt.lns = lns;
     lopt.lns_window = lns_window;
     lopt.lns_agents = lns_agents;
+    lopt.lns_neighbourhood = parse_lns_neighbourhood(lns_nbh);
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
@@ -150,6 +155,7 @@ int main(int argc, char** argv)
     j["lns"] = lns;
     j["lns_window"] = lns_window;
     j["lns_agents"] = lns_agents;
+    j["lns_neighbourhood"] = lns_nbh;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

@@ -17,7 +17,7 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
 }

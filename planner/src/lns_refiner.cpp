@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <queue>
+#include <stdexcept>
 
 namespace planner {
 
@@ -81,6 +82,78 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   return found;
 }
 
+LnsNeighbourhood parse_lns_neighbourhood(const std::string& s)
+{
+  if (s == "random") return LnsNeighbourhood::random;
+  if (s == "blocking") return LnsNeighbourhood::blocking;
+  if (s == "intersection") return LnsNeighbourhood::intersection;
+  if (s == "adaptive") return LnsNeighbourhood::adaptive;
+  throw std::invalid_argument("unknown LNS neighbourhood '" + s + "' (random | blocking | intersection | adaptive)");
+}
+
+void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Config& goals,
+                               const std::vector<int64_t>& cost, int k, int t0, int t1, Rng& rng)
+{
+  const int n = static_cast<int>(goals.size());
+  const size_t V = g_.size();
+  auto in = [&](int j) { return std::find(set_.begin(), set_.end(), j) != set_.end(); };
+  std::vector<int> cand;
+  if (h == 1) {  // blocking chains, breadth-first from the seed
+    const size_t W = static_cast<size_t>(t1 - t0 + 1);
+    if (at_.size() < W * V) at_.assign(W * V, -1);
+    for (int t = t0; t <= t1; ++t)
+      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = i;
+    work_ += W * static_cast<size_t>(n);
+    for (size_t q = 0; q < set_.size() && static_cast<int>(set_.size()) < k; ++q) {
+      const int a = set_[q];
+      cand.clear();
+      for (int t = t0; t < t1; ++t) {
+        const Vertex v = path[t][a];
+        if (v == goals[a] || dist_.get(a, path[t + 1][a]) < dist_.get(a, v)) continue;  // progress
+        for (Vertex u : g_.neighbors(v)) {
+          if (dist_.get(a, u) >= dist_.get(a, v)) continue;
+          const int32_t j = at_[static_cast<size_t>(t + 1 - t0) * V + static_cast<size_t>(u)];
+          if (j >= 0 && j != a && !in(j) &&
+              std::find(cand.begin(), cand.end(), j) == cand.end())
+            cand.push_back(j);
+        }
+      }
+      work_ += static_cast<uint64_t>(t1 - t0);
+      rng.shuffle(cand.data(), static_cast<int>(cand.size()));
+      for (int j : cand)
+        if (static_cast<int>(set_.size()) < k) set_.push_back(j);
+    }
+    // at_ is rewritten before every use, but stale agents must not answer: clear what was set
+    for (int t = t0; t <= t1; ++t)
+      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = -1;
+  } else if (h == 2) {  // the agents crossing one intersection of the seed's path
+    const int a = set_[0];
+    std::vector<Vertex> cross;
+    for (int t = t0; t <= t1; ++t)
+      if (g_.neighbors(path[t][a]).size() >= 3) cross.push_back(path[t][a]);
+    if (cross.empty()) cross.push_back(path[t0 + static_cast<int>(rng.below(static_cast<uint32_t>(t1 - t0 + 1)))][a]);
+    const Vertex x = cross[rng.below(static_cast<uint32_t>(cross.size()))];
+    for (int i = 0; i < n; ++i) {
+      if (i == a) continue;
+      for (int t = t0; t <= t1; ++t)
+        if (path[t][i] == x) {
+          cand.push_back(i);
+          break;
+        }
+    }
+    work_ += static_cast<uint64_t>(t1 - t0 + 1) * static_cast<uint64_t>(n);
+    rng.shuffle(cand.data(), static_cast<int>(cand.size()));
+    for (int j : cand)
+      if (static_cast<int>(set_.size()) < k) set_.push_back(j);
+  }
+  (void)cost;
+  // Too few (or random): random others fill the set (MAPF-LNS does the same).
+  for (int tries = 0; static_cast<int>(set_.size()) < k && tries < 4 * k; ++tries) {
+    const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
+    if (!in(j)) set_.push_back(j);
+  }
+}
+
 bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng& rng, Clock::time_point deadline)
 {
   const int n = static_cast<int>(goals.size());
@@ -92,18 +165,30 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   std::vector<int64_t> cost(n, 0);
   for (int t = 0; t < T; ++t)
     for (int i = 0; i < n; ++i) cost[i] += !(path[t][i] == goals[i] && path[t + 1][i] == goals[i]);
-  std::vector<int> delayed;
-  for (int i = 0; i < n; ++i)
-    if (cost[i] > dist_.get(i, path[0][i])) delayed.push_back(i);
-  if (delayed.empty()) return false;
-  std::vector<int> set{delayed[rng.below(static_cast<uint32_t>(delayed.size()))]};
-  for (int tries = 0; static_cast<int>(set.size()) < std::min(k, n) && tries < 4 * k; ++tries) {
-    const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
-    if (std::find(set.begin(), set.end(), j) == set.end()) set.push_back(j);
-  }
+  // The seed: a delayed agent, roulette by delay.
+  int64_t total_delay = 0;
+  for (int i = 0; i < n; ++i) total_delay += cost[i] - dist_.get(i, path[0][i]);
+  if (total_delay <= 0) return false;
   // The time window [t0, t1]: the agents keep their positions at both ends.
   const int t0 = T > window_ ? static_cast<int>(rng.below(static_cast<uint32_t>(T - window_ + 1))) : 0;
   const int t1 = std::min(T, t0 + window_);
+  int h = static_cast<int>(nbh_);
+  if (nbh_ == LnsNeighbourhood::adaptive) {
+    const double r = rng.uniform() * (weight_[0] + weight_[1] + weight_[2]);
+    h = r < weight_[0] ? 0 : r < weight_[0] + weight_[1] ? 1 : 2;
+  }
+  last_h_ = h;
+  set_.clear();
+  int64_t r = static_cast<int64_t>(rng.uniform() * static_cast<double>(total_delay));
+  for (int i = 0; i < n; ++i) {
+    r -= cost[i] - dist_.get(i, path[0][i]);
+    if (r < 0 || i == n - 1) {
+      set_.push_back(i);
+      break;
+    }
+  }
+  neighbourhood(h, path, goals, cost, std::min(k, n), t0, t1, rng);
+  std::vector<int>& set = set_;
 
   const size_t V = g_.size(), W = static_cast<size_t>(t1 - t0 + 1);
   if (occ_.size() < W * V) occ_.assign(W * V, -1);
@@ -140,7 +225,12 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   }
   for (size_t key : written_) occ_[key] = -1;
   written_.clear();
-  if (!ok || after >= before) return false;
+  constexpr double kGamma = 0.01;  // MAPF-LNS's reaction factor
+  const bool won = ok && after < before;
+  if (nbh_ == LnsNeighbourhood::adaptive)
+    weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(set.size()) : 0.0) +
+                                    (1 - kGamma) * weight_[h]);
+  if (!won) return false;
   for (size_t m = 0; m < set.size(); ++m)
     for (int t = t0; t <= t1; ++t) path[t][set[m]] = fresh[m][t - t0];
   return true;

@@ -190,33 +190,56 @@ TEST(RtLacamStar, GStaysTheTreePathCostThroughReroots)
   }
 }
 
+namespace {
+
+// Runs RT-LaCAM* (20 expansions per move) to the goals: every move passes the validator and
+// executed cost + the followed tree path's remaining cost, recomputed edge by edge, never rises.
+void expect_followed_path_never_costlier(const Graph& g, const Instance& r, const LacamOptions& o)
+{
+  RtLacam rt(g, r.starts, r.goals, o);
+  Validator val(g, r.starts, r.goals);
+  int64_t executed = 0, best = -1, first = -1;
+  for (int k = 0; k < 5000 && !rt.at_goal(); ++k) {
+    rt.search(Budget::expansion_count(20));
+    const Config from = rt.current();
+    rt.next();
+    rt.commit();
+    ASSERT_TRUE(val.step(rt.current())) << val.error();
+    executed += edge_cost(from, rt.current(), r.goals);
+    if (!rt.lacam().goal_node()) continue;
+    const int64_t total = executed + remaining_cost(rt.lacam(), r.goals);
+    if (best >= 0) {
+      ASSERT_LE(total, best) << "step " << k;
+    }
+    if (first < 0) first = total;
+    best = total;
+  }
+  ASSERT_TRUE(rt.at_goal());
+  EXPECT_EQ(executed, best);
+  EXPECT_LE(best, first);
+}
+
+}  // namespace
+
 TEST(RtLacamStar, TheFollowedPathNeverGetsCostlier)
 {
   Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
   for (int n : {20, 60, 120}) {
     Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-2.scen", g, n);
     SCOPED_TRACE(n);
-    RtLacam rt(g, r.starts, r.goals, refine_opts(0));
-    Validator val(g, r.starts, r.goals);
-    int64_t executed = 0, best = -1, first = -1;
-    for (int k = 0; k < 5000 && !rt.at_goal(); ++k) {
-      rt.search(Budget::expansion_count(20));
-      const Config from = rt.current();
-      rt.next();
-      rt.commit();
-      ASSERT_TRUE(val.step(rt.current())) << val.error();
-      executed += edge_cost(from, rt.current(), r.goals);
-      if (!rt.lacam().goal_node()) continue;
-      const int64_t total = executed + remaining_cost(rt.lacam(), r.goals);
-      if (best >= 0) {
-        ASSERT_LE(total, best) << "step " << k;
-      }
-      if (first < 0) first = total;
-      best = total;
-    }
-    ASSERT_TRUE(rt.at_goal());
-    EXPECT_EQ(executed, best);
-    EXPECT_LE(best, first);
+    expect_followed_path_never_costlier(g, r, refine_opts(0));
+  }
+}
+
+TEST(RtLacamStar, EveryLnsNeighbourhoodKeepsTheFollowedPathValidAndNeverCostlier)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-2.scen", g, 80);
+  for (auto nbh : {LnsNeighbourhood::blocking, LnsNeighbourhood::intersection, LnsNeighbourhood::adaptive}) {
+    SCOPED_TRACE(static_cast<int>(nbh));
+    LacamOptions o = refine_opts(1);
+    o.lns_neighbourhood = nbh;
+    expect_followed_path_never_costlier(g, r, o);
   }
 }
 

@@ -79,6 +79,7 @@ struct LacamOptions {
   bool lns = true;
   int lns_agents = 8;
   int lns_window = 256; // time steps replanned per LNS step (the occupancy table is window x |V|)
+  LnsNeighbourhood lns_neighbourhood = LnsNeighbourhood::random;  // which agents a step replans
 };
 
 class Lacam {

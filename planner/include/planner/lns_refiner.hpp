@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <functional>
 #include <queue>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -27,9 +28,28 @@
 
 namespace planner {
 
+// Neighbourhoods (MAPF-LNS, Li et al. IJCAI-21, Sec. 4), all seeded by a delayed agent
+// (roulette by delay: only where someone waits or detours can the cost drop):
+//  - random: random others;
+//  - blocking (MAPF-LNS's agent-based one, made deterministic): the agents standing, one
+//    step later, on a cell that would have brought a delayed agent closer to its goal
+//    while it waited or detoured, then their blockers, breadth-first. Replanning a blocked
+//    agent together with its whole blocking chain is what undoes an ordering in a
+//    corridor, which fixing the others cannot;
+//  - intersection: the agents that pass a vertex of degree >= 3 on the seed's path within
+//    the window (they compete for the crossing);
+//  - adaptive: roulette over the three by weights w <- g * (cost drop / |set|)
+//    + (1 - g) * w on success, (1 - g) * w on failure (MAPF-LNS's ALNS, g = 0.01).
+// Default random: at 1 ms per iteration the four are within 1 % of each other on
+// random-32-32-20 / warehouse N=200/300 and random is best on the SUMO demo instance
+// (docs/rt_lacam_star.md, scripts/bench_lns_neighbourhood.py).
+enum class LnsNeighbourhood { random, blocking, intersection, adaptive };
+
 class LnsRefiner {
  public:
-  LnsRefiner(const Graph& g, DistTable& dist, int window = 32) : g_(g), dist_(dist), window_(window) {}
+  LnsRefiner(const Graph& g, DistTable& dist, int window = 32,
+             LnsNeighbourhood nbh = LnsNeighbourhood::random)
+      : g_(g), dist_(dist), window_(window), nbh_(nbh) {}
 
   // path[0] is fixed, path.back() must be the goals. Returns true when `path` was improved
   // (rewritten in place). Gives up (false) at `deadline`: a real-time caller's budget holds.
@@ -39,6 +59,9 @@ class LnsRefiner {
   // Work of the last step, in visited cells and A* states (the cost pass over the path, the
   // occupancy table, the A* nodes and pops): a caller with a budget in expansions charges it.
   uint64_t work() const { return work_; }
+  // Heuristic of the last step (0 random, 1 blocking, 2 intersection) and the weights.
+  int last_heuristic() const { return last_h_; }
+  const double* weights() const { return weight_; }
 
   // LaCAM* cost of agent i's path between steps t0 and t1.
   static int64_t agent_cost(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1);
@@ -47,9 +70,18 @@ class LnsRefiner {
   bool replan(int i, const std::vector<Config>& path, const Config& goals, int t0, int t1, std::vector<Vertex>& out,
               Clock::time_point deadline);
 
+  // Fills set_ (the seed first) with up to k agents by heuristic h (0 random, 1 blocking,
+  // 2 intersection); `cost` is every agent's cost over the whole path.
+  void neighbourhood(int h, const std::vector<Config>& path, const Config& goals, const std::vector<int64_t>& cost,
+                     int k, int t0, int t1, Rng& rng);
+
   const Graph& g_;
   DistTable& dist_;
   int window_;
+  LnsNeighbourhood nbh_;
+  double weight_[3] = {1.0, 1.0, 1.0};  // adaptive: ALNS weights of the three heuristics
+  std::vector<int> set_;
+  std::vector<int32_t> at_;             // blocking: agent at (t - t0, v) of the window, -1 none
   std::vector<int32_t> occ_;      // ((t - t0) * |V| + v) -> agent there, -1 free
   std::vector<size_t> written_;   // occupied slots, to clear
   // replan()'s space-time A*, kept across calls (no allocation per step)
@@ -66,6 +98,10 @@ class LnsRefiner {
   std::vector<uint32_t> stamp_;
   uint32_t epoch_ = 0;
   uint64_t work_ = 0;
+  int last_h_ = 0;
 };
+
+// "random" | "blocking" | "intersection" | "adaptive"; throws std::invalid_argument.
+LnsNeighbourhood parse_lns_neighbourhood(const std::string& s);
 
 }  // namespace planner
