@@ -10,6 +10,17 @@ DistCache::Table::Table(const Graph& g, Vertex goal_vertex) : dist(g.size(), kIn
   queue.push_back(goal);
 }
 
+void DistCache::Table::compact()
+{
+  // The popped prefix of the queue is dead: keep the open frontier only (a ring of a few
+  // hundred vertices, against up to |V| discovered), so a partly grown table costs about
+  // its distance array.
+  if (head < 4096 || 2 * head < queue.size()) return;
+  queue.erase(queue.begin(), queue.begin() + static_cast<long>(head));
+  head = 0;
+  if (queue.capacity() > 2 * queue.size() + 4096) queue.shrink_to_fit();
+}
+
 int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
 {
   // Vertices get their distance when discovered, so stop as soon as v is discovered.
@@ -20,7 +31,10 @@ int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
       dist[w] = dist[u] + 1;
       queue.push_back(w);
     }
-    if (dist[v] != kInf) return dist[v];
+    if (dist[v] != kInf) {
+      compact();
+      return dist[v];
+    }
   }
   if (!queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done: free the queue
   return kInf;  // v is unreachable
@@ -37,6 +51,7 @@ bool DistCache::Table::grow_until(Vertex v, size_t pops, const Graph& g)
     }
   }
   if (head >= queue.size() && !queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done
+  compact();
   return dist[v] != kInf || done();
 }
 

@@ -168,3 +168,20 @@ TEST(DistCache, PrefetchedTablesArePinnedUntilTheNextPrefetch)
   EXPECT_EQ(cache->num_tables(), 1u);
   EXPECT_EQ(a.get(0, 9), 0);
 }
+
+TEST(DistCache, PartlyGrownTablesKeepOnlyTheirFrontier)
+{
+  const int w = 160;
+  Graph g = Graph::from_grid(w, w, std::vector<bool>(static_cast<size_t>(w) * w, true));
+  DistCache cache(g);
+  const Vertex goal = g.at(0, 0);
+  DistCache::Table* t = cache.table(goal);
+  const auto d = bfs(g, goal);
+  // Half-way across: most of the discovered vertices are behind the frontier.
+  ASSERT_EQ(t->at(g.at(100, 30), g), d[g.at(100, 30)]);
+  EXPECT_FALSE(t->done());
+  EXPECT_LT(t->queue.size(), 1000u);      // the open ring (about 130 vertices), not the 8,000 discovered
+  EXPECT_LT(t->queue.capacity(), 8192u);
+  EXPECT_LT(cache.bytes(), g.size() * sizeof(int32_t) + 8192 * sizeof(Vertex));
+  for (Vertex v = 0; v < g.size(); v += 13) ASSERT_EQ(t->at(v, g), d[v]);
+}

@@ -12,8 +12,8 @@
 // Memory is bounded: tables that nobody pins (DistTable::set_goals pins its agents' goals,
 // prefetch() pins its queue) are dropped least recently used first once more than
 // `max_tables` exist; pinned tables are never dropped, so the cap may be exceeded by them.
-// A table costs 4 bytes per vertex (+4 per discovered vertex for its queue until its BFS
-// finishes, when the queue is freed). max_tables == 0: no cap (one-shot instances).
+// A table costs 4 bytes per vertex (+4 per vertex of its open BFS frontier; the queue is
+// compacted as it grows and freed when the BFS finishes). max_tables == 0: no cap.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -42,6 +42,7 @@ class DistCache {
     // Grows the BFS by up to `pops` vertices or until v is discovered; returns whether it is.
     bool grow_until(Vertex v, size_t pops, const Graph& g);
     int32_t at(Vertex v, const Graph& g) { return dist[v] != kInf ? dist[v] : extend_until(v, g); }
+    void compact();  // drops the popped part of the queue once it is most of it
   };
 
   explicit DistCache(const Graph& g, size_t max_tables = 0) : g_(g), max_tables_(max_tables) {}
