@@ -29,7 +29,9 @@ int main(int argc, char** argv)
   std::string problem_file, mode, assigner = "greedy", solver = "rtlacam", out_file, policy_file, action_model = "grid4";
   int rotation_window = 8;
   bool no_heading_ties = false;
-  bool reset_priorities = false, reassign = false, refine = true;
+  std::string heading_cost = "turns";
+  size_t max_dist_tables = 0;
+  bool reset_priorities = false, reassign = false, refine = true, prefetch = true;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -52,6 +54,10 @@ int main(int argc, char** argv)
                "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
                "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_flag("--prefetch,!--no-prefetch", prefetch,
+               "grow the distance tables of upcoming goals in each step's spare budget (default on)");
+  app.add_option("--max-dist-tables", max_dist_tables,
+                 "distance tables kept (LRU; tables in use are kept beyond it); 0 = 2 x agents + 256");
   app.add_flag("--refine,!--no-refine", refine,
                "rtlacam: LaCAM* refinement after each epoch's first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
       ->capture_default_str();
@@ -71,6 +77,9 @@ int main(int argc, char** argv)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
+  app.add_option("--heading-cost", heading_cost,
+                 "rotation: PIBT's move order: turns (rotation-aware cost in steps) or ties (distance, ties by turns)")
+      ->check(CLI::IsMember({"turns", "ties"}));
   app.add_option("--out", out_file, "write the full LoRR / PlanViz log (paths, events, tasks) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
@@ -118,10 +127,13 @@ int main(int argc, char** argv)
     opt.pref = pref.get();
     opt.keep_priorities = !reset_priorities;
     opt.refine = refine;
+    opt.prefetch = prefetch;
+    opt.max_dist_tables = max_dist_tables;
     opt.steps = steps;
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
+    opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);
     if (budget_expansions > 0) opt.budget.expansions = budget_expansions;

@@ -10,13 +10,14 @@ OUT=${OUT:-out/rotation}
 SEEDS=${SEEDS:-"0 1 2 3 4"}
 BUDGET=${BUDGET:-100}
 MODELS=${MODELS:-"grid4 rotation"}
+EXTRA=${EXTRA:-}  # more rtlacam-lifelong options, e.g. "--heading-cost ties"
 L=../shared/benchmarks/lorr/2023/random.domain
 mkdir -p "$OUT"
 : > "$OUT/runs.jsonl"
 for i in 04 03 05 07 08; do
   for m in $MODELS; do
     for s in $SEEDS; do
-      "$BIN" --problem $L/MR23-I-$i.json --action-model $m --budget-ms $BUDGET --seed $s --quiet \
+      "$BIN" --problem $L/MR23-I-$i.json --action-model $m --budget-ms $BUDGET --seed $s --quiet $EXTRA \
         | python3 -c "import json,sys; j=json.load(sys.stdin); j['instance']='MR23-I-$i'; print(json.dumps(j))" >> "$OUT/runs.jsonl"
     done
   done

@@ -1,22 +1,48 @@
 #include "tasks/heading_preference.hpp"
 
+#include <algorithm>
+
 #include "tasks/action_model.hpp"
 
 namespace tasks {
 
-HeadingPreference::HeadingPreference(const planner::Graph& g, const planner::Config& starts)
-    : g_(g), dist_(g), at_(starts), heading_(starts.size(), 0)
+namespace {
+int quarter_turns(int from, int to)
 {
+  const int t = (to - from + 4) % 4;
+  return t == 3 ? 1 : t;
+}
+}  // namespace
+
+HeadingPreference::HeadingPreference(const planner::Graph& g, const planner::Config& starts, HeadingCost cost)
+    : g_(g), dist_(g), cost_(cost), at_(starts), heading_(starts.size(), 0)
+{
+}
+
+int32_t HeadingPreference::cost_to_go(int agent, planner::Vertex v, int heading)
+{
+  const int32_t d = dist_.get(agent, v);
+  if (d == 0 || d >= planner::DistTable::kInf) return d;
+  int turns = 2;
+  for (planner::Vertex w : g_.neighbors(v))
+    if (dist_.get(agent, w) < d) turns = std::min(turns, quarter_turns(heading, heading_of_move(g_, v, w)));
+  return d + turns;
 }
 
 float HeadingPreference::score(int agent, planner::Vertex from, planner::Vertex to, planner::Rng& rng)
 {
-  float s = static_cast<float>(dist_.get(agent, to)) + 0.3f * static_cast<float>(rng.uniform());
-  if (to != from && from == at_[agent]) {
-    const int turns = (heading_of_move(g_, from, to) - heading_[agent] + 4) % 4;
-    s += 0.3f * static_cast<float>(turns == 3 ? 1 : turns);  // quarter turns: 0, 1 or 2
+  const float noise = static_cast<float>(rng.uniform());
+  if (cost_ == HeadingCost::Ties) {
+    float s = static_cast<float>(dist_.get(agent, to)) + 0.3f * noise;
+    if (to != from && from == at_[agent])
+      s += 0.3f * static_cast<float>(quarter_turns(heading_[agent], heading_of_move(g_, from, to)));
+    return s;
   }
-  return s;
+  if (from != at_[agent]) return static_cast<float>(dist_.get(agent, to)) + noise;  // heading unknown
+  // Rotation-aware cost in steps; the noise (< 1) only breaks ties.
+  if (to == from) return static_cast<float>(1 + cost_to_go(agent, from, heading_[agent])) + 0.9f * noise;
+  const int h = heading_of_move(g_, from, to);
+  return static_cast<float>(quarter_turns(heading_[agent], h) + 1 + cost_to_go(agent, to, h)) + 0.9f * noise;
 }
 
 void HeadingPreference::committed(const planner::Config& next)

@@ -25,6 +25,10 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   j["plannerTimeStats"] = {{"mean", pt.mean}, {"p50", pt.p50}, {"p99", pt.p99}, {"max", pt.max}};
   const PlannerTimes es = summarize(r.epoch_start_ms);
   j["epochStartStats"] = {{"mean", es.mean}, {"p50", es.p50}, {"p99", es.p99}, {"max", es.max}};
+  const PlannerTimes pc = summarize(r.precompute_ms);
+  j["precomputeStats"] = {{"mean", pc.mean}, {"p50", pc.p50}, {"p99", pc.p99}, {"max", pc.max}};
+  j["stepsOverBudget"] = r.steps_over_budget;
+  j["distTables"] = {{"end", r.dist_tables}, {"max", r.dist_tables_max}, {"maxMB", r.dist_mb_max}};
   nlohmann::json times = nlohmann::json::array();
   for (double ms : r.planner_ms) times.push_back(ms / 1000.0);  // LoRR: seconds
   j["plannerTimes"] = std::move(times);

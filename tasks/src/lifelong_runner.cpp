@@ -31,6 +31,23 @@ bool has_pending(const TaskManager& tasks, const planner::Config& at)
   return false;
 }
 
+// Queues the tables of the goals to come, most urgent first: agents nearest their current
+// goal (at the plan frontier `at`). Each next goal's table must reach the current goal,
+// where the agent will be when it gets the next one.
+void prefetch_upcoming(const TaskManager& tasks, const planner::Config& at, planner::DistCache& cache)
+{
+  std::vector<std::pair<int32_t, planner::DistCache::Want>> order;
+  for (const auto& u : tasks.upcoming()) {
+    const planner::Vertex now = tasks.goals()[u.agent];
+    order.push_back({cache.table(now)->at(at[u.agent], cache.graph()), {u.goal, now}});
+  }
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<planner::DistCache::Want> wants;
+  wants.reserve(order.size());
+  for (const auto& o : order) wants.push_back(o.second);
+  cache.prefetch(wants);
+}
+
 }  // namespace
 
 PlannerTimes summarize(std::vector<double> ms) { return planner::Latency::of(std::move(ms)); }
@@ -46,22 +63,37 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   if (letters) r.actions.assign(starts.size(), std::string());
   const auto wall0 = Clock::now();
   auto t0 = Clock::now();
+  // One distance cache for the task layer, the heading preference and the planner.
+  auto cache = std::make_shared<planner::DistCache>(g, opt.max_dist_tables ? opt.max_dist_tables : 2 * starts.size() + 256);
+  tasks.share_dist_cache(cache);
   tasks.start(starts);
   // Rotation: PIBT breaks distance ties by the turns a move needs (unless a policy orders moves).
   std::unique_ptr<HeadingPreference> heading;
   planner::ActionPreference* pref = opt.pref;
   if (rotation && !pref && opt.heading_ties) {
-    heading = std::make_unique<HeadingPreference>(g, starts);
-    heading->set_max_dist_tables(2 * starts.size() + 256);
+    heading = std::make_unique<HeadingPreference>(g, starts, opt.heading_cost);
+    heading->share_dist_cache(cache);
     pref = heading.get();
   }
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
+  p->share_dist_cache(cache);
+  if (opt.prefetch) {
+    // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
+    // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.
+    std::vector<planner::DistCache::Want> first;
+    for (size_t i = 0; i < starts.size(); ++i) first.push_back({tasks.goals()[i], starts[i]});
+    cache->prefetch(first);
+    cache->precompute(planner::Clock::time_point::max());
+    prefetch_upcoming(tasks, p->current(), *cache);
+    cache->precompute(planner::Clock::time_point::max());
+  }
   std::unique_ptr<RotationExecutor> exec;
   if (rotation) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
   r.setup_ms = ms_since(t0);
   r.epochs = 1;
 
   double carry_ms = 0;  // set_goals at the end of the last step: planning for this one
+  double ms_per_expansion = 0;  // moving average over steps
   for (long t = 1; t <= opt.steps; ++t) {
     StepRecord rec;
     rec.t = t;
@@ -69,15 +101,36 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     planner::Budget b = opt.budget;
     b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
     t0 = Clock::now();
+    const auto step_end = b.deadline_from(t0);
     const bool plan_now = !rotation || exec->can_accept();
     if (!plan_now) ++r.window_full;
+    if (opt.prefetch && plan_now && cache->pending() > 0) {
+      // Tables first, up to the share: an expansion that meets an incomplete table would pay
+      // its BFS anyway, all at once.
+      cache->precompute(planner::Budget::time_ms(opt.precompute_share * b.ms).deadline_from(t0));
+      rec.precompute_ms = ms_since(t0);
+      b.ms = std::max(0.0, b.ms - rec.precompute_ms);
+    }
     planner::Config next;
     if (plan_now) {
+      // The search checks its deadline after each expansion, so it overruns by up to one:
+      // stop it one (recent average) expansion early. It still makes at least one.
+      b.ms = std::max(0.0, b.ms - ms_per_expansion);
+      const uint64_t e0 = p->expansions();
+      const auto t1 = Clock::now();
       p->search(b);
       next = p->next();
+      if (const uint64_t de = p->expansions() - e0; de > 0)
+        ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * ms_since(t1) / static_cast<double>(de);
+    }
+    if (opt.prefetch && cache->pending() > 0 && Clock::now() < step_end) {
+      const auto t1 = Clock::now();  // time left: the search ended early or the window is full
+      cache->precompute(step_end);
+      rec.precompute_ms += ms_since(t1);
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
     rec.epoch_start_ms = carry_ms;
+    if (rec.planner_ms > opt.budget.ms + 0.05) ++r.steps_over_budget;
     rec.explored = p->explored();
 
     if (plan_now) {
@@ -120,6 +173,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     // The robot still completes the errand when it physically gets there.
     const bool replan = !ev.empty() || (rotation && plan_now && p->at_goal() && has_pending(tasks, p->current()));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
+    if (!ev.empty() && opt.prefetch) prefetch_upcoming(tasks, p->current(), *cache);
     carry_ms = replan ? ms_since(t0) : 0.0;
     if (replan) ++r.epochs;
     rec.completed = static_cast<int>(ev.size());
@@ -127,10 +181,14 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     r.events.insert(r.events.end(), ev.begin(), ev.end());
     r.planner_ms.push_back(rec.planner_ms);
     r.epoch_start_ms.push_back(rec.epoch_start_ms);
+    r.precompute_ms.push_back(rec.precompute_ms);
+    r.dist_tables_max = std::max(r.dist_tables_max, cache->num_tables());
+    if (t % 16 == 0 || t == opt.steps) r.dist_mb_max = std::max(r.dist_mb_max, static_cast<double>(cache->bytes()) / (1 << 20));
     r.steps = t;
     if (opt.on_step) opt.on_step(rec);
   }
   if (rotation) r.final_headings = exec->headings();
+  r.dist_tables = cache->num_tables();
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();

@@ -46,6 +46,15 @@ const Task* TaskManager::task_of(int agent) const
   return holding_[agent] >= 0 ? &slots_[holding_[agent]] : nullptr;
 }
 
+std::vector<TaskManager::Upcoming> TaskManager::upcoming() const
+{
+  std::vector<Upcoming> out;
+  for (int a = 0; a < num_agents(); ++a)
+    if (const Task* k = task_of(a); k && k->next + 1 < static_cast<int>(k->errands.size()))
+      out.push_back({a, k->errands[k->next + 1]});
+  return out;
+}
+
 Task TaskManager::make_task(long id) const
 {
   Task t;

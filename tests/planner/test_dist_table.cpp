@@ -85,3 +85,103 @@ TEST(DistTable, CapDropsIdleTablesAndStaysCorrect)
   EXPECT_EQ(d.num_tables(), 20u);
   EXPECT_EQ(d.get(19, 19), 0);
 }
+
+TEST(DistCache, HoldersThatShareACacheSearchEachGoalOnce)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  auto cache = std::make_shared<DistCache>(g);
+  DistTable planner_view(g, cache), assigner_view(g);
+  planner_view.set_goals({5, 9});
+  assigner_view.set_goals({9, 11});
+  EXPECT_EQ(assigner_view.num_tables(), 2u);  // its own cache until it shares
+  assigner_view.share(cache);                  // keeps its goals, now in the shared cache
+  EXPECT_EQ(cache->num_tables(), 3u);          // 5, 9, 11: vertex 9 once
+  EXPECT_EQ(assigner_view.get(0, 9), 0);
+  const auto d11 = bfs(g, 11);
+  for (Vertex v = 0; v < g.size(); v += 7) ASSERT_EQ(assigner_view.get(1, v), d11[v]);
+  // The planner's view reads the table the assigner grew: same goal, same table.
+  EXPECT_EQ(planner_view.from_goal(11, 200), d11[200]);
+  EXPECT_EQ(cache->num_tables(), 3u);
+}
+
+TEST(DistCache, LeastRecentlyUsedUnpinnedTablesGoFirst)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  auto cache = std::make_shared<DistCache>(g, 3);
+  DistTable a(g, cache), b(g, cache);
+  a.set_goals({1});
+  b.set_goals({2});
+  a.set_goals({3});  // 1 is unpinned now, the least recently used
+  b.set_goals({4});  // 2 unpinned; 4 tables > cap 3: drop 1
+  EXPECT_EQ(cache->num_tables(), 3u);
+  EXPECT_FALSE(cache->contains(1));
+  EXPECT_TRUE(cache->contains(2));
+  a.set_goals({2});  // 2 is still cached; 3 is now the least recently used
+  EXPECT_EQ(cache->num_tables(), 3u);
+  b.set_goals({5});  // over the cap: 3 goes, 4 (more recent) stays
+  EXPECT_FALSE(cache->contains(3));
+  EXPECT_TRUE(cache->contains(4));
+  // Pinned tables stay past the cap.
+  a.set_goals({10, 11, 12, 13});
+  EXPECT_GE(cache->num_tables(), 5u);  // four of a's + b's 5
+  for (Vertex v : {10, 11, 12, 13}) EXPECT_EQ(a.from_goal(v, v), 0);
+  EXPECT_EQ(b.get(0, 5), 0);
+}
+
+TEST(DistCache, PrefetchGrowsATableToWhereItWillBeQueriedFirst)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  auto cache = std::make_shared<DistCache>(g);
+  Rng rng(3);
+  std::vector<DistCache::Want> wants;
+  for (int k = 0; k < 12; ++k)
+    wants.push_back({static_cast<Vertex>(rng.below(g.size())), static_cast<Vertex>(rng.below(g.size()))});
+  cache->prefetch(wants);
+  EXPECT_EQ(cache->pending(), wants.size());
+  // A deadline in the past: one chunk of work at most, then it reports work left.
+  EXPECT_TRUE(cache->precompute(DistCache::Deadline::min()));
+  EXPECT_FALSE(cache->precompute(DistCache::Deadline::max()));
+  EXPECT_EQ(cache->pending(), 0u);
+  for (const auto& w : wants) {
+    DistCache::Table* t = cache->table(w.goal);
+    const auto d = bfs(g, w.goal);
+    // Discovered without growing further, and exact.
+    ASSERT_EQ(t->dist[w.from], d[w.from]);
+    for (Vertex u : g.neighbors(w.from)) ASSERT_EQ(t->dist[u], d[u]);
+    // The rest grows lazily and stays exact.
+    for (Vertex v = 0; v < g.size(); v += 5) ASSERT_EQ(t->at(v, g), d[v]);
+  }
+  // Met wants are not queued again.
+  cache->prefetch(wants);
+  EXPECT_EQ(cache->pending(), 0u);
+}
+
+TEST(DistCache, PrefetchedTablesArePinnedUntilTheNextPrefetch)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  auto cache = std::make_shared<DistCache>(g, 1);
+  cache->prefetch({{7, 300}, {8, 301}});
+  DistTable a(g, cache);
+  a.set_goals({9});  // over the cap, but the queued tables are pinned
+  EXPECT_EQ(cache->num_tables(), 3u);
+  cache->prefetch({});  // queue dropped: 7 and 8 may go
+  EXPECT_EQ(cache->num_tables(), 1u);
+  EXPECT_EQ(a.get(0, 9), 0);
+}
+
+TEST(DistCache, PartlyGrownTablesKeepOnlyTheirFrontier)
+{
+  const int w = 160;
+  Graph g = Graph::from_grid(w, w, std::vector<bool>(static_cast<size_t>(w) * w, true));
+  DistCache cache(g);
+  const Vertex goal = g.at(0, 0);
+  DistCache::Table* t = cache.table(goal);
+  const auto d = bfs(g, goal);
+  // Half-way across: most of the discovered vertices are behind the frontier.
+  ASSERT_EQ(t->at(g.at(100, 30), g), d[g.at(100, 30)]);
+  EXPECT_FALSE(t->done());
+  EXPECT_LT(t->queue.size(), 1000u);      // the open ring (about 130 vertices), not the 8,000 discovered
+  EXPECT_LT(t->queue.capacity(), 8192u);
+  EXPECT_LT(cache.bytes(), g.size() * sizeof(int32_t) + 8192 * sizeof(Vertex));
+  for (Vertex v = 0; v < g.size(); v += 13) ASSERT_EQ(t->at(v, g), d[v]);
+}

@@ -304,3 +304,46 @@ TEST(LifelongTiming, EpochStartIsChargedToTheStepAfterACompletion)
   }
   EXPECT_GT(charged, 10);
 }
+
+TEST(HeadingPreference, TurnAwareCostCountsTurnsAndTheStepSpentWaiting)
+{
+  // Open 5 x 5 grid, robot on (2, 2) facing east (LoRR start), goal two cells north.
+  const auto g = ttest::grid({".....", ".....", ".....", ".....", "....."});
+  const planner::Vertex v = g.at(2, 2);
+  HeadingPreference pref(g, {v}, HeadingCost::Turns);
+  pref.set_goals({g.at(2, 0)});
+  EXPECT_EQ(pref.cost_to_go(0, v, 0), 2 + 1);        // facing east: one turn, two steps
+  EXPECT_EQ(pref.cost_to_go(0, v, 3), 2);            // facing north: straight
+  EXPECT_EQ(pref.cost_to_go(0, g.at(2, 0), 1), 0);   // on the goal: no turn needed
+  planner::Rng rng(1);
+  std::map<std::string, float> s;
+  for (int k = 0; k < 20; ++k) {  // the tie-break noise never reorders whole steps
+    const float north = pref.score(0, v, g.at(2, 1), rng), stay = pref.score(0, v, v, rng);
+    const float east = pref.score(0, v, g.at(3, 2), rng), south = pref.score(0, v, g.at(2, 3), rng);
+    EXPECT_LT(north, stay);   // turn + forward (3 steps to go) beats waiting (1 + 3)
+    EXPECT_LT(stay, east);    // east: no turn now, but a detour and a turn later (5)
+    EXPECT_LT(east, south);   // south: a turn, then a half turn back (7)
+  }
+  // After a committed move north the robot faces north: straight on costs no turn.
+  pref.committed({g.at(2, 1)});
+  EXPECT_LT(pref.score(0, g.at(2, 1), g.at(2, 0), rng), 2.0f);
+  // Deeper in the tree (not the frontier cell) the heading is unknown: plain distance.
+  EXPECT_GE(pref.score(0, g.at(4, 4), g.at(4, 3), rng), 5.0f);
+  EXPECT_LT(pref.score(0, g.at(4, 4), g.at(4, 3), rng), 6.0f);
+}
+
+TEST(HeadingPreference, BothOrdersRunValidatorCleanLifelong)
+{
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
+  for (HeadingCost c : {HeadingCost::Ties, HeadingCost::Turns}) {
+    RoundRobin rr(L.file);
+    LifelongOptions opt;
+    opt.steps = 150;
+    opt.budget = planner::Budget::expansion_count(5);
+    opt.action_model = ActionModel::Rotation;
+    opt.heading_cost = c;
+    const LifelongResult r = run_lifelong(L.g, L.starts, rr, "rtlacam", 0, opt);
+    EXPECT_EQ(r.planner_errors, 0) << r.first_error;
+    EXPECT_GT(r.errands_finished, 40);
+  }
+}

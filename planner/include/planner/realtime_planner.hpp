@@ -10,6 +10,7 @@
 // Implementations: RtLacam (persistent, rerooted search: complete), NaiveRtLacam (fresh
 // search each iteration), PibtPlanner (one PIBT step per iteration, no search).
 #include <cstdint>
+#include <memory>
 #include <string>
 
 #include "planner/budget.hpp"
@@ -17,6 +18,8 @@
 #include "planner/search_types.hpp"
 
 namespace planner {
+
+class DistCache;
 
 // The goal test as every planner applies it to its current configuration.
 inline bool passes_goal_test(const GoalTest& test, const Config& current, const Config& goals)
@@ -35,6 +38,9 @@ class RealtimePlanner {
   virtual void set_goals(const Config& goals, GoalTest test = {}) = 0;
   // Lifelong runs: cap the distance tables kept for goals no agent has now (0 = no cap).
   virtual void set_max_dist_tables(size_t n) { (void)n; }
+  // Lifelong runs: keep the distance tables in `cache`, shared with the task layer and
+  // prefetched ahead of goal changes (dist_cache.hpp). Planners without tables ignore it.
+  virtual void share_dist_cache(std::shared_ptr<DistCache> cache) { (void)cache; }
 
   virtual const Config& current() const = 0;
   virtual const Config& goals() const = 0;

@@ -36,6 +36,7 @@ class RtLacam : public RealtimePlanner {
   void commit() override;
   void set_goals(const Config& goals, GoalTest test = {}) override;
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
+  void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return lacam_.goals(); }

@@ -19,6 +19,14 @@
 // Budget: the set_goals that starts an epoch is planning work for the next step; it is
 // counted in that step's time and taken out of its search budget (at least one expansion
 // still runs), so a step's planner time is the budget unless set_goals alone exceeds it.
+// Distance tables: planner, heading preference and pool assigner share one DistCache. The
+// goals the task layer knows are coming (TaskManager::upcoming) are prefetched: the first
+// goals' tables and the next goals' are grown before step 1 (preprocessing); later, while
+// any prefetched table is not yet grown as far as it will be queried, up to
+// precompute_share of each step's budget grows it first, and the search gets the rest
+// (also whole steps in which the rotation window is full). The search is stopped one
+// average expansion before its deadline, since it checks the deadline only between
+// expansions. Numbers: docs/rotation_lorr.md "Planning time at epoch starts".
 #include <functional>
 #include <string>
 #include <vector>
@@ -29,6 +37,7 @@
 #include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
 #include "tasks/action_model.hpp"
+#include "tasks/heading_preference.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace tasks {
@@ -42,6 +51,7 @@ struct StepRecord {      // what one step did (for tests and progress output)
   long t = 0;
   double planner_ms = 0;
   double epoch_start_ms = 0;  // the set_goals that started this step's epoch (in planner_ms)
+  double precompute_ms = 0;   // growing prefetched distance tables (in planner_ms)
   int completed = 0;     // errands completed at the end of this step
   bool new_epoch = false;
   size_t explored = 0;   // planner's explored table after search, before any reset
@@ -56,9 +66,13 @@ struct LifelongOptions {
   bool keep_priorities = true;                     // see planner::LacamOptions
   ActionModel action_model = ActionModel::Grid4;
   int rotation_window = 8;     // rotation: plan steps the planner may run ahead of the slowest robot
-  bool heading_ties = true;    // rotation: HeadingPreference orders PIBT's equally near moves
+  bool heading_ties = true;    // rotation: HeadingPreference orders PIBT's moves (else plain PIBT)
+  HeadingCost heading_cost = HeadingCost::Turns;  // rotation: how (heading_preference.hpp)
   bool record_actions = false; // keep every robot's action letters (LoRR actualPaths)
   bool refine = true;                              // RT-LaCAM*: see planner::LacamOptions
+  bool prefetch = true;          // grow the tables of upcoming goals in spare step time
+  double precompute_share = 0.5;   // of a step's budget at most, first, while prefetched tables are incomplete
+  size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers
@@ -71,6 +85,10 @@ struct LifelongResult {
   std::vector<Event> events;
   std::vector<double> planner_ms;   // per step: search + next (+ set_goals of its epoch start)
   std::vector<double> epoch_start_ms;  // per step: the set_goals part of planner_ms (0 without a new epoch)
+  std::vector<double> precompute_ms;   // per step: the prefetch part of planner_ms
+  long steps_over_budget = 0;       // planner_ms above the time budget (+ 0.05 ms of timer slack)
+  size_t dist_tables = 0, dist_tables_max = 0;  // shared distance cache: at the end, most at once
+  double dist_mb_max = 0;           // its memory at its largest (sampled every step)
   double setup_ms = 0;              // first assignment + planner construction
   double task_ms = 0;               // task layer (completions, reveals, assignment) over all steps
   double wall_ms = 0;

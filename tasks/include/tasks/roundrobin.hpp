@@ -9,6 +9,8 @@ class RoundRobin : public TaskManager {
  public:
   using TaskManager::TaskManager;
   std::string mode() const override { return "roundrobin"; }
+  // Also each agent's next task (i + N) when it is on its current task's last errand.
+  std::vector<Upcoming> upcoming() const override;
 
  protected:
   void on_start(const planner::Config& positions) override;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "planner/config.hpp"
+#include "planner/dist_cache.hpp"
 #include "tasks/task.hpp"
 #include "tasks/lorr_files.hpp"
 
@@ -33,6 +34,17 @@ class TaskManager {
   std::vector<Event> update(long t, const planner::Config& positions);
 
   const planner::Config& goals() const { return goals_; }
+  // Goals that will be needed soon, for prefetching their distance tables: `agent` will
+  // head for `goal` after its current errand. Known in advance: the next errand of a task,
+  // the next task of a round-robin agent. (A pool task's first errand is not: the assigner
+  // grows its table towards the free agents when it prices them.)
+  struct Upcoming {
+    int agent = 0;
+    planner::Vertex goal = -1;
+  };
+  virtual std::vector<Upcoming> upcoming() const;
+  // Distances the mode needs (the pool's assigner) come from `cache`, shared with the planner.
+  virtual void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { (void)cache; }
   // Agents that hold a task (and so have a real errand to reach).
   bool busy(int agent) const { return holding_[agent] >= 0; }
   const Task* task_of(int agent) const;  // null when free

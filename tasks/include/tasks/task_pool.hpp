@@ -29,6 +29,7 @@ class TaskPool : public TaskManager {
   // Cost of `agent` at `pos` taking a task: distance to its first errand + its chain.
   int64_t cost(planner::Vertex pos, const Task& t);
   int revealed() const { return static_cast<int>(next_id_); }
+  void share_dist_cache(std::shared_ptr<planner::DistCache> cache) override { dist_.share(std::move(cache)); }
 
  protected:
   void on_start(const planner::Config& positions) override;

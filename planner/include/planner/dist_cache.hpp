@@ -1,0 +1,90 @@
+#pragma once
+// DistCache: BFS distance tables keyed by goal vertex, shared by everyone who needs
+// distances to goals on one graph (the planner's DistTable, a heading preference, a task
+// assigner): one table per goal cell, however many agents or layers look at it.
+//
+// A table is a resumable BFS from its goal (lacam3's DistTable grows on demand): a query
+// extends it only until the queried vertex is discovered. Lifelong runs know goals before
+// they are needed (an agent's next errand): prefetch() queues them and precompute(deadline)
+// grows the queued tables in whatever time a step has left, so that an epoch start finds
+// them ready instead of paying the BFS in the step it needs them.
+//
+// Memory is bounded: tables that nobody pins (DistTable::set_goals pins its agents' goals,
+// prefetch() pins its queue) are dropped least recently used first once more than
+// `max_tables` exist; pinned tables are never dropped, so the cap may be exceeded by them.
+// A table costs 4 bytes per vertex (+4 per vertex of its open BFS frontier; the queue is
+// compacted as it grows and freed when the BFS finishes). max_tables == 0: no cap.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "planner/graph.hpp"
+
+namespace planner {
+
+class DistCache {
+ public:
+  static constexpr int32_t kInf = 1 << 29;  // distance of an unreachable vertex
+  using Deadline = std::chrono::steady_clock::time_point;
+
+  struct Table {
+    std::vector<int32_t> dist;
+    std::vector<Vertex> queue;  // BFS order; [head, end) is the open frontier
+    size_t head = 0;
+    Vertex goal;
+    int pins = 0;        // holders that need it kept
+    uint64_t used = 0;   // cache tick of the last pin or prefetch (LRU order)
+    Table(const Graph& g, Vertex goal);
+    bool done() const { return head >= queue.size(); }
+    int32_t extend_until(Vertex v, const Graph& g);  // distance of v, growing the BFS as needed
+    // Grows the BFS by up to `pops` vertices or until v is discovered; returns whether it is.
+    bool grow_until(Vertex v, size_t pops, const Graph& g);
+    int32_t at(Vertex v, const Graph& g) { return dist[v] != kInf ? dist[v] : extend_until(v, g); }
+    void compact();  // drops the popped part of the queue once it is most of it
+  };
+
+  explicit DistCache(const Graph& g, size_t max_tables = 0) : g_(g), max_tables_(max_tables) {}
+  const Graph& graph() const { return g_; }
+  void set_max_tables(size_t n) { max_tables_ = n; }
+  size_t max_tables() const { return max_tables_; }
+
+  // The table of `goal`, created on first use. pin/unpin bracket its use by a holder.
+  Table* table(Vertex goal);
+  void pin(Table* t) { ++t->pins, t->used = ++tick_; }
+  void unpin(Table* t) { --t->pins; }
+  // Drops least recently used unpinned tables down to the cap.
+  void trim();
+
+  // A table wanted soon, and the vertex from which it will be queried first (an agent's
+  // next goal, from its current goal): it must reach `from` and its neighbours (PIBT's
+  // candidates there). Farther vertices are left to the lazy BFS.
+  struct Want {
+    Vertex goal = -1;
+    Vertex from = -1;
+  };
+  // Replaces the prefetch queue with `wants`, most urgent first (their tables are pinned
+  // until the next call).
+  void prefetch(const std::vector<Want>& wants);
+  // Grows queued tables, in order, until every want is met or the deadline passes (checked
+  // every few hundred vertices, so it overruns by microseconds). Returns whether work remains.
+  bool precompute(Deadline deadline);
+  size_t pending() const { return wanted_.size() - wanted_head_; }
+
+  size_t num_tables() const { return tables_.size(); }
+  bool contains(Vertex goal) const { return by_goal_.count(goal) > 0; }
+  size_t bytes() const;  // tables' distance arrays and open queues
+
+ private:
+  const Graph& g_;
+  size_t max_tables_;
+  uint64_t tick_ = 0;
+  std::vector<std::unique_ptr<Table>> tables_;
+  std::unordered_map<Vertex, Table*> by_goal_;
+  bool met(const Table& t, Vertex from) const;
+  std::vector<std::pair<Table*, Vertex>> wanted_;  // prefetch queue (pinned); [wanted_head_, end) not yet met
+  size_t wanted_head_ = 0;
+};
+
+}  // namespace planner

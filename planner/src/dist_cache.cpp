@@ -1,0 +1,137 @@
+#include "planner/dist_cache.hpp"
+
+#include <algorithm>
+
+namespace planner {
+
+DistCache::Table::Table(const Graph& g, Vertex goal_vertex) : dist(g.size(), kInf), goal(goal_vertex)
+{
+  dist[goal] = 0;
+  queue.push_back(goal);
+}
+
+void DistCache::Table::compact()
+{
+  // The popped prefix of the queue is dead: keep the open frontier only (a ring of a few
+  // hundred vertices, against up to |V| discovered), so a partly grown table costs about
+  // its distance array.
+  if (head < 4096 || 2 * head < queue.size()) return;
+  queue.erase(queue.begin(), queue.begin() + static_cast<long>(head));
+  head = 0;
+  if (queue.capacity() > 2 * queue.size() + 4096) queue.shrink_to_fit();
+}
+
+int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
+{
+  // Vertices get their distance when discovered, so stop as soon as v is discovered.
+  while (head < queue.size()) {
+    const Vertex u = queue[head++];
+    for (Vertex w : g.neighbors(u)) {
+      if (dist[w] != kInf) continue;
+      dist[w] = dist[u] + 1;
+      queue.push_back(w);
+    }
+    if (dist[v] != kInf) {
+      compact();
+      return dist[v];
+    }
+  }
+  if (!queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done: free the queue
+  return kInf;  // v is unreachable
+}
+
+bool DistCache::Table::grow_until(Vertex v, size_t pops, const Graph& g)
+{
+  for (; pops > 0 && dist[v] == kInf && head < queue.size(); --pops) {
+    const Vertex u = queue[head++];
+    for (Vertex w : g.neighbors(u)) {
+      if (dist[w] != kInf) continue;
+      dist[w] = dist[u] + 1;
+      queue.push_back(w);
+    }
+  }
+  if (head >= queue.size() && !queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done
+  compact();
+  return dist[v] != kInf || done();
+}
+
+DistCache::Table* DistCache::table(Vertex goal)
+{
+  auto it = by_goal_.find(goal);
+  if (it != by_goal_.end()) return it->second;
+  tables_.push_back(std::make_unique<Table>(g_, goal));
+  return by_goal_[goal] = tables_.back().get();
+}
+
+void DistCache::trim()
+{
+  if (max_tables_ == 0 || tables_.size() <= max_tables_) return;
+  // Pinned tables first, then by recency; drop the tail beyond the cap (pinned never).
+  auto keep_first = [](const std::unique_ptr<Table>& a, const std::unique_ptr<Table>& b) {
+    if ((a->pins > 0) != (b->pins > 0)) return a->pins > 0;
+    return a->used > b->used;
+  };
+  std::nth_element(tables_.begin(), tables_.begin() + static_cast<long>(max_tables_), tables_.end(), keep_first);
+  size_t keep = max_tables_;
+  for (size_t k = keep; k < tables_.size(); ++k)
+    if (tables_[k]->pins > 0) std::swap(tables_[k], tables_[keep++]);
+  for (size_t k = keep; k < tables_.size(); ++k) by_goal_.erase(tables_[k]->goal);
+  tables_.resize(keep);
+}
+
+bool DistCache::met(const Table& t, Vertex from) const
+{
+  if (t.done()) return true;
+  if (t.dist[from] == kInf) return false;
+  for (Vertex w : g_.neighbors(from))
+    if (t.dist[w] == kInf) return false;
+  return true;
+}
+
+void DistCache::prefetch(const std::vector<Want>& wants)
+{
+  std::vector<std::pair<Table*, Vertex>> next;
+  next.reserve(wants.size());
+  for (const Want& w : wants) {
+    Table* t = table(w.goal);
+    if (met(*t, w.from)) {
+      t->used = ++tick_;  // ready: just keep it recent
+      continue;
+    }
+    pin(t);
+    next.push_back({t, w.from});
+  }
+  for (const auto& [t, from] : wanted_) unpin(t);
+  wanted_ = std::move(next);
+  wanted_head_ = 0;
+  trim();
+}
+
+bool DistCache::precompute(Deadline deadline)
+{
+  constexpr size_t kChunk = 256;  // vertices between clock reads (a few microseconds)
+  while (wanted_head_ < wanted_.size()) {
+    auto [t, from] = wanted_[wanted_head_];
+    // The first vertex (from, then its neighbours) still undiscovered; none: this want is met.
+    Vertex need = t->done() || t->dist[from] != kInf ? -1 : from;
+    if (need < 0 && !t->done())
+      for (Vertex w : g_.neighbors(from))
+        if (t->dist[w] == kInf) need = w;
+    if (need < 0) {
+      ++wanted_head_;
+      continue;
+    }
+    t->grow_until(need, kChunk, g_);
+    if (std::chrono::steady_clock::now() >= deadline) return pending() > 0;
+  }
+  return false;
+}
+
+size_t DistCache::bytes() const
+{
+  size_t b = 0;
+  for (const auto& t : tables_) b += t->dist.capacity() * sizeof(int32_t) + t->queue.capacity() * sizeof(Vertex);
+  return b;
+}
+
+}  // namespace planner
