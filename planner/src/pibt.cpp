@@ -61,6 +61,14 @@ bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* 
 bool Pibt::plan(int32_t i, Rng& rng)
 {
   const Vertex v = now_[i];
+  if (immobile(i)) {
+    // Its one candidate is staying: it fails if v is reserved already (a pusher asking it
+    // to move, or a constraint fixing someone there); either way v stays its own.
+    const bool ok = occ_next_[v] < 0 || occ_next_[v] == i;
+    occ_next_[v] = i;
+    next_[i] = v;
+    return ok;
+  }
   const auto nb = g_.neighbors(v);
   const int K = static_cast<int>(nb.size());
   Vertex* C = cand_.data() + static_cast<size_t>(i) * stride_;
@@ -106,6 +114,7 @@ bool Pibt::pull_impossible(Vertex u, Vertex v_pusher) const
 {
   if (u == v_pusher) return true;
   const int32_t a = occ_now_[u];
+  if (a >= 0 && immobile(a)) return true;  // a wall while it is immobile
   return g_.degree(u) == 1 && a >= 0 && goals_[a] == u;  // parked on its goal in a dead end
 }
 
@@ -117,12 +126,12 @@ int32_t Pibt::swap_partner(int32_t i) const
 
   // i is blocked by j coming the other way (cases a and b of LaCAM*).
   const int32_t j = occ_now_[best];
-  if (j >= 0 && next_[j] < 0 && swap_required(i, j, v, best) && swap_possible(best, v)) return j;
+  if (j >= 0 && next_[j] < 0 && !immobile(j) && swap_required(i, j, v, best) && swap_possible(best, v)) return j;
 
   // i clears the way for a neighbour k behind it (case c).
   for (Vertex u : g_.neighbors(v)) {
     const int32_t k = occ_now_[u];
-    if (k < 0 || best == now_[k]) continue;
+    if (k < 0 || best == now_[k] || immobile(k)) continue;
     if (swap_required(k, i, v, best) && swap_possible(best, v)) return k;
   }
   return -1;

@@ -28,6 +28,14 @@ void PibtPlanner::set_goals(const Config& goals, GoalTest test)
   initial_order(prio_.data(), n, order_.data());
 }
 
+void PibtPlanner::set_immobile(int agent, bool immobile)
+{
+  if (immobile_.size() != current_.size()) immobile_.assign(current_.size(), 0);
+  immobile_[agent] = immobile;
+  pibt_.set_immobile(immobile_);
+  planned_ = false;  // a step planned before may move the agent
+}
+
 Status PibtPlanner::search(const Budget&)
 {
   if (!planned_) {

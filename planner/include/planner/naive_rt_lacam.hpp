@@ -21,6 +21,7 @@ class NaiveRtLacam : public RealtimePlanner {
   void commit() override;
   void set_goals(const Config& goals, GoalTest test = {}) override;
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
+  void set_immobile(int agent, bool immobile) override;
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
@@ -38,6 +39,8 @@ class NaiveRtLacam : public RealtimePlanner {
   Config current_, goals_, next_;
   GoalTest test_;
   bool fresh_ = false;  // lacam_ is rooted at current_ and may be continued
+  const Graph& g_;
+  std::vector<uint8_t> immobile_;  // agent -> 1 while immobile (immobile.hpp)
   std::vector<Config> solution_;  // a found path, once some search solved
   size_t at_ = 0;                 // solution_[at_] is the current configuration
 };

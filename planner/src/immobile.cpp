@@ -1,0 +1,42 @@
+#include "planner/immobile.hpp"
+
+#include <algorithm>
+
+namespace planner {
+
+bool any_immobile(const std::vector<uint8_t>& immobile)
+{
+  return std::find(immobile.begin(), immobile.end(), 1) != immobile.end();
+}
+
+GoalTest relaxed_goal_test(const Graph& g, const Config& current, const Config& goals,
+                           const std::vector<uint8_t>& immobile, GoalTest test)
+{
+  if (test || !any_immobile(immobile)) return test;
+  const int n = static_cast<int>(current.size());
+  // Components of the graph without the immobile agents' vertices (BFS, O(V + E)).
+  std::vector<int> comp(g.size(), -1);
+  for (int i = 0; i < n; ++i)
+    if (immobile[i]) comp[current[i]] = -2;
+  std::vector<Vertex> queue;
+  int c = 0;
+  for (Vertex s = 0; s < g.size(); ++s) {
+    if (comp[s] != -1) continue;
+    comp[s] = c;
+    queue.assign(1, s);
+    for (size_t k = 0; k < queue.size(); ++k)
+      for (Vertex u : g.neighbors(queue[k]))
+        if (comp[u] == -1) comp[u] = c, queue.push_back(u);
+    ++c;
+  }
+  std::vector<int32_t> need;  // agents that must be on their goals
+  for (int i = 0; i < n; ++i)
+    if (!immobile[i] && comp[goals[i]] >= 0 && comp[goals[i]] == comp[current[i]]) need.push_back(i);
+  return [need, goals](const Vertex* C) {
+    for (int32_t i : need)
+      if (C[i] != goals[i]) return false;
+    return true;
+  };
+}
+
+}  // namespace planner
