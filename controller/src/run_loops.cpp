@@ -85,6 +85,7 @@ void Run::loop_adg()
     for (int i = 0; i < ins_.num_agents(); ++i) c[i] = adg.at(i);
     return c;
   };
+  bool held = false;
   for (;;) {
     if (!tm_ && p_->at_goal() && adg.done()) {
       m_.solved = true;
@@ -99,7 +100,7 @@ void Run::loop_adg()
       auto t0 = Clock::now();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
       // plan is honoured, so the window only bounds how far the plan runs ahead.
-      while (adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal()) {
+      while (adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal() && !held) {
         const planner::Config next = p_->next();
         if (next == p_->current()) break;  // the search has nothing beyond the root yet
         p_->commit();
@@ -123,6 +124,7 @@ void Run::loop_adg()
       }
       t0 = Clock::now();
       drv.after_step(last_poses_);
+      drv.hold(held = stuck_step(adg));  // stuck AGVs: hold commits and starts, replan when drained
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }
@@ -152,7 +154,7 @@ void Run::finish()
   m_.loop_s = ms_since(loop0_) / 1000;
   sumo_->close();  // flushes SUMO's output files
 
-  m_.expansions = p_->expansions();
+  m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
   m_.planner_ms_per_tick = Latency::of(plan_tick_);
   m_.sumo_ms_per_step = Latency::of(sumo_step_);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "planner/dist_table.hpp"
+
 namespace planner {
 
 bool any_immobile(const std::vector<uint8_t>& immobile)
@@ -37,6 +39,33 @@ GoalTest relaxed_goal_test(const Graph& g, const Config& current, const Config& 
       if (C[i] != goals[i]) return false;
     return true;
   };
+}
+
+void DetourTable::set_blocked(std::vector<Vertex> blocked)
+{
+  std::sort(blocked.begin(), blocked.end());
+  if (blocked == blocked_) return;
+  blocked_ = std::move(blocked);
+  tables_.clear();
+}
+
+int32_t DetourTable::get(Vertex goal, Vertex v)
+{
+  auto it = tables_.find(goal);
+  if (it == tables_.end()) {
+    std::vector<int32_t> d(g_.size(), DistTable::kInf);
+    std::vector<Vertex> queue;
+    auto blocked = [&](Vertex u) { return std::binary_search(blocked_.begin(), blocked_.end(), u); };
+    if (!blocked(goal)) {
+      d[goal] = 0;
+      queue.push_back(goal);
+    }
+    for (size_t k = 0; k < queue.size(); ++k)
+      for (Vertex u : g_.neighbors(queue[k]))
+        if (d[u] == DistTable::kInf && !blocked(u)) d[u] = d[queue[k]] + 1, queue.push_back(u);
+    it = tables_.emplace(goal, std::move(d)).first;
+  }
+  return it->second[v];
 }
 
 }  // namespace planner

@@ -6,7 +6,7 @@ namespace planner {
 
 Pibt::Pibt(const Graph& g, DistTable& d, bool swap)
     : g_(g), d_(d), swap_(swap), stride_(g.max_degree() + 1), occ_now_(g.size(), -1), occ_next_(g.size(), -1),
-      key_(stride_)
+      key_(stride_), detour_(g)
 {
 }
 
@@ -38,6 +38,12 @@ bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* 
     occ_now_[from[i]] = i;
   }
   if (pref_) pref_->prepare(from, n_);
+  if (!immobile_.empty()) {  // immobile agents never move: their cells are fixed obstacles
+    std::vector<Vertex> blocked;
+    for (int i = 0; i < n_; ++i)
+      if (immobile_[i]) blocked.push_back(from[i]);
+    detour_.set_blocked(std::move(blocked));
+  }
 
   // Agents fixed by the constraint chain; reject fixes that collide with each other.
   for (; c && c->depth > 0; c = c->parent) {
@@ -77,7 +83,7 @@ bool Pibt::plan(int32_t i, Rng& rng)
   for (int k = 0; k < K; ++k) C[k] = nb[k];
   C[K] = v;
   for (int k = 0; k <= K; ++k)
-    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : static_cast<float>(d_.get(i, C[k])) + rng.uniform();
+    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + rng.uniform();
   for (int k = 1; k <= K; ++k) {
     const Vertex u = C[k];
     const float key = key_[k];
@@ -108,6 +114,12 @@ bool Pibt::plan(int32_t i, Rng& rng)
   occ_next_[v] = i;
   next_[i] = v;
   return false;
+}
+
+float Pibt::distance(int32_t i, Vertex u)
+{
+  if (!detour_.active() || detour_.get(goals_[i], now_[i]) >= DistTable::kInf) return static_cast<float>(d_.get(i, u));
+  return static_cast<float>(detour_.get(goals_[i], u));
 }
 
 bool Pibt::pull_impossible(Vertex u, Vertex v_pusher) const

@@ -55,6 +55,9 @@ class Driver {
   // of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
+  // Hold (a replan is coming, controller/src/stuck_replan.hpp): start no new move and chain
+  // none; running moves go on and brake on their targets.
+  void hold(bool on) { hold_ = on; }
   // Agent i's executor state in one line (where it is for the ADG, its running moves with
   // group and hand-over): appended to a Safety error.
   std::string describe(int i) const;
@@ -77,6 +80,7 @@ class Driver {
   DriveParams p_;
   std::vector<Agv> agv_;
   DriveStats st_;
+  bool hold_ = false;
 };
 
 }  // namespace controller

@@ -3,7 +3,10 @@
 // an AGV stuck in an aisle -- is a temporary obstacle. The planner keeps it where it is:
 //   - PIBT never moves it and never pushes it: its only candidate is staying, so a
 //     higher-priority agent asking it to make room fails and takes its next candidate, and
-//     no swap pulls it (pibt.hpp);
+//     no swap pulls it (pibt.hpp); PIBT ranks the others' moves by distances AROUND the
+//     immobile agents (DetourTable below) -- with plain distances an agent whose shortest
+//     path runs through one would press against it and LaCAM would need many expansions
+//     to find the detour;
 //   - LaCAM's constraints for it have the one child "stay" (lacam.cpp grow_lowlevel), so
 //     every constraint is one PIBT can honour, and LNS refinement (which replans agents by
 //     A*, blind to the mask) is off while one is immobile;
@@ -18,6 +21,7 @@
 // built with other constraints is dropped). Clearing it restores the real goal test and so
 // RT-LaCAM's completeness from there on.
 #include <cstdint>
+#include <unordered_map>
 #include <vector>
 
 #include "planner/config.hpp"
@@ -35,5 +39,22 @@ bool any_immobile(const std::vector<uint8_t>& immobile);
 // `test` non-empty (a caller's own test, e.g. lifelong) is returned unchanged.
 GoalTest relaxed_goal_test(const Graph& g, const Config& current, const Config& goals,
                            const std::vector<uint8_t>& immobile, GoalTest test = {});
+
+// Distances to a goal on the graph without some blocked vertices (the immobile agents'):
+// one full BFS per goal vertex, on first use, cached until the blocked set changes.
+// DistTable::kInf where the goal cannot be reached (and on the blocked vertices).
+class DetourTable {
+ public:
+  explicit DetourTable(const Graph& g) : g_(g) {}
+  // Sets the blocked vertices (sorted or not); drops the cache when they change.
+  void set_blocked(std::vector<Vertex> blocked);
+  bool active() const { return !blocked_.empty(); }
+  int32_t get(Vertex goal, Vertex v);
+
+ private:
+  const Graph& g_;
+  std::vector<Vertex> blocked_;
+  std::unordered_map<Vertex, std::vector<int32_t>> tables_;
+};
 
 }  // namespace planner

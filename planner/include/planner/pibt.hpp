@@ -15,6 +15,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
 #include "planner/hnode.hpp"
+#include "planner/immobile.hpp"
 #include "planner/rng.hpp"
 
 namespace planner {
@@ -45,6 +46,9 @@ class Pibt {
   bool swap_possible(Vertex v_pusher, Vertex v_puller) const;
   bool pull_impossible(Vertex u, Vertex v_pusher) const;
   bool immobile(int32_t i) const { return !immobile_.empty() && immobile_[i]; }
+  // Agent i's distance from u to its goal: around the immobile agents when its goal can be
+  // reached that way (DetourTable), else the plain one.
+  float distance(int32_t i, Vertex u);
 
   const Graph& g_;
   DistTable& d_;
@@ -60,6 +64,7 @@ class Pibt {
   std::vector<Vertex> cand_;        // agent * stride_ + k
   std::vector<float> key_;          // scratch for sorting candidates
   std::vector<uint8_t> immobile_;   // agent -> 1 if immobile (empty: none)
+  DetourTable detour_;              // distances around the immobile agents
 };
 
 }  // namespace planner

@@ -1,0 +1,134 @@
+// StuckWatch (stuck_replan.hpp) and Run's replan around stuck AGVs.
+#include "stuck_replan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "controller/sumo_error.hpp"
+#include "run.hpp"
+#include "tasks/lifelong_goal.hpp"
+
+namespace controller {
+
+StuckWatch::StuckWatch(int n, double stuck_after_s, double dt)
+    : n_(n), after_s_(stuck_after_s), dt_(dt), stall_s_(n, 0.0), last_(n), immobile_(n, 0), target_(n, 0),
+      counted_mid_(n, 0)
+{
+}
+
+bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses,
+                         const executor::DelayModel& delays)
+{
+  std::vector<uint8_t> want = immobile_;
+  for (int i = 0; i < n_; ++i) {
+    const bool moved = poses[i].lane != last_[i].lane || std::abs(poses[i].pos - last_[i].pos) > 1e-9;
+    last_[i] = poses[i];
+    const int id = adg.next_action(i);
+    const bool running = id >= 0 && adg.action(id).state == executor::State::Running;
+    const bool may_go = id >= 0 && (running || adg.released(id));
+    stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
+    if (immobile_[i]) {
+      if (!delays.stopped(i)) want[i] = 0;  // it reports itself ready again
+    } else if (stall_s_[i] >= after_s_ - 1e-9) {
+      if (!running) {
+        want[i] = 1;
+      } else if (!counted_mid_[i]) {
+        counted_mid_[i] = 1;
+        ++mid_move_;
+      }
+    }
+    if (!running) counted_mid_[i] = 0;
+  }
+  // (Re)decide the target every step: a recovery or a new stuck AGV during the drain
+  // changes it; back to the current set means there is nothing to replan.
+  target_ = want;
+  draining_ = target_ != immobile_;
+  return draining_ && drained(adg);
+}
+
+bool StuckWatch::drained(const executor::Adg& adg) const
+{
+  for (int i = 0; i < n_; ++i) {
+    const int id = adg.next_action(i);
+    if (id >= 0 && adg.action(id).state == executor::State::Running) return false;
+  }
+  return true;
+}
+
+void StuckWatch::replanned()
+{
+  for (int i = 0; i < n_; ++i) stuck_events_ += target_[i] && !immobile_[i];
+  immobile_ = target_;
+  draining_ = false;
+  std::fill(stall_s_.begin(), stall_s_.end(), 0.0);
+}
+
+std::string StuckWatch::describe() const
+{
+  std::string s;
+  for (int i = 0; i < n_; ++i) {
+    if (target_[i] == immobile_[i]) continue;
+    s += (s.empty() ? "" : ", ") + std::string("agv") + std::to_string(i) + (target_[i] ? " immobile" : " mobile again");
+  }
+  return s;
+}
+
+// The replan itself, on a drained fleet (no move running: every AGV on a cell).
+void Run::replan(executor::Adg& adg, const std::vector<uint8_t>& immobile)
+{
+  const int n = ins_.num_agents();
+  const planner::Graph& g = c_.map_.graph;
+  planner::Config at(n);
+  for (int i = 0; i < n; ++i) at[i] = adg.at(i);
+
+  // The committed plan from the ADG's start on, each agent's path cut at its progress p_i
+  // (C'_t[i] = C_min(t, p_i)[i]): still valid, because the ADG let no agent past a cell
+  // hand-over whose other side is not done -- an agent that entered v at a step <= p_i
+  // did so after v's previous occupant had left it, and a later occupant of v would wait
+  // for it to leave, which it has not: no two agents share a vertex in any C'_t.
+  const size_t base = c_.plan_.size() - 1 - static_cast<size_t>(adg.steps());
+  long long last = 0;
+  std::vector<long long> prog(n);
+  for (int i = 0; i < n; ++i) last = std::max(last, prog[i] = adg.progress(i));
+  for (long long t = 0; t <= last; ++t)
+    for (int i = 0; i < n; ++i) c_.plan_[base + t][i] = c_.plan_[base + std::min(t, prog[i])][i];
+  c_.plan_.resize(base + static_cast<size_t>(last) + 1);
+  if (c_.plan_.back() != at) throw ControlError("replan: the executed configuration is not where the ADG says");
+  const planner::Config goals = tm_ ? tm_->goals() : ins_.goals;
+  val_ = std::make_unique<planner::Validator>(g, c_.plan_.front(), goals);
+  for (size_t t = 1; t < c_.plan_.size(); ++t)
+    if (!val_->step(c_.plan_[t])) throw ControlError("replan: the cut plan is invalid: " + val_->error());
+
+  // A fresh planner from where the AGVs are, the stuck ones immobile.
+  replan_expansions_ += p_->expansions();
+  p_ = make_planner(cfg_.planner, g, at, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, at) : planner::GoalTest{});
+  if (tm_) p_->set_max_dist_tables(2 * at.size() + 256);
+  for (int i = 0; i < n; ++i)
+    if (immobile[i]) p_->set_immobile(i, true);
+  p_->search(budget_);
+  adg = executor::Adg(at);
+  ++m_.replans;
+}
+
+bool Run::stuck_step(executor::Adg& adg)
+{
+  if (stuck_ && stuck_->observe(adg, last_poses_, *delays_)) {
+    if (cfg_.run.progress_s > 0)
+      std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: replan (%s)\n", sumo_->time(), stuck_->describe().c_str());
+    replan(adg, stuck_->target());
+    stuck_->replanned();
+  }
+  if (stuck_) m_.stuck_events = stuck_->stuck_events(), m_.stuck_mid_move = stuck_->stuck_mid_move();
+  // When each AGV got to its goal for good (one-shot): the tests' "others finish first".
+  if (!tm_) {
+    m_.goal_s.resize(adg.num_agents(), -1);
+    for (int i = 0; i < adg.num_agents(); ++i) {
+      if (adg.at(i) != ins_.goals[i]) m_.goal_s[i] = -1;
+      else if (m_.goal_s[i] < 0) m_.goal_s[i] = sumo_->time();
+    }
+  }
+  return stuck_ && stuck_->holding();
+}
+
+}  // namespace controller
