@@ -91,6 +91,7 @@ nlohmann::json Metrics::to_json() const
                    {"chained", chained},
                    {"safety_checks", safety_checks},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
+  if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   j["max_position_error_m"] = commands.max_error;
   return j;
 }

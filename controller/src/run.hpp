@@ -45,8 +45,8 @@ class Run {
   // adg, after each SUMO step: the stuck-AGV watch (stuck_replan.hpp) and, once the fleet
   // is drained, the replan; true while commits are held. replan(): new planner and ADG
   // from the executed configuration, `immobile` AGVs kept in place.
-  bool stuck_step(executor::Adg& adg);
-  void replan(executor::Adg& adg, const std::vector<uint8_t>& immobile);
+  bool stuck_step(executor::Adg& adg, Driver& drv);
+  void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
   bool out_of_ticks() const { return m_.ticks >= cfg_.run.max_ticks; }
 
   const Config& cfg_;

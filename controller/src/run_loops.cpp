@@ -100,7 +100,9 @@ void Run::loop_adg()
       auto t0 = Clock::now();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
       // plan is honoured, so the window only bounds how far the plan runs ahead.
-      while (adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal() && !held) {
+      // (Immobile AGVs aside: stuck_replan.hpp.)
+      auto progress = [&] { return stuck_ ? stuck_->min_progress(adg) : adg.min_progress(); };
+      while (adg.steps() - progress() < cfg_.run.window && !p_->at_goal() && !held) {
         const planner::Config next = p_->next();
         if (next == p_->current()) break;  // the search has nothing beyond the root yet
         p_->commit();
@@ -124,7 +126,7 @@ void Run::loop_adg()
       }
       t0 = Clock::now();
       drv.after_step(last_poses_);
-      drv.hold(held = stuck_step(adg));  // stuck AGVs: hold commits and starts, replan when drained
+      drv.hold(held = stuck_step(adg, drv));  // stuck AGVs: hold commits and starts, replan when drained
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }

@@ -31,7 +31,7 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     if (immobile_[i]) {
       if (!delays.stopped(i)) want[i] = 0;  // it reports itself ready again
     } else if (stall_s_[i] >= after_s_ - 1e-9) {
-      if (!running) {
+      if (!running || placeable(adg, i)) {
         want[i] = 1;
       } else if (!counted_mid_[i]) {
         counted_mid_[i] = 1;
@@ -47,13 +47,40 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
   return draining_ && drained(adg);
 }
 
+std::vector<int> StuckWatch::running(const executor::Adg& adg, int i)
+{
+  std::vector<int> out;
+  for (int id : {adg.next_action(i), adg.chain_candidate(i)}) {
+    if (id < 0 || adg.action(id).state != executor::State::Running) break;
+    out.push_back(id);
+  }
+  return out;
+}
+
+bool StuckWatch::placeable(const executor::Adg& adg, int i)
+{
+  for (int id : running(adg, i))
+    if (adg.action(id).group >= 0) return false;
+  return true;
+}
+
 bool StuckWatch::drained(const executor::Adg& adg) const
 {
+  // Every move in progress has ended -- but the stuck AGVs' own (one, between two cells).
   for (int i = 0; i < n_; ++i) {
     const int id = adg.next_action(i);
-    if (id >= 0 && adg.action(id).state == executor::State::Running) return false;
+    if (id >= 0 && adg.action(id).state == executor::State::Running && !(target_[i] && placeable(adg, i)))
+      return false;
   }
   return true;
+}
+
+long long StuckWatch::min_progress(const executor::Adg& adg) const
+{
+  long long p = adg.steps();
+  for (int i = 0; i < n_; ++i)
+    if (!immobile_[i]) p = std::min(p, adg.progress(i));
+  return p;
 }
 
 void StuckWatch::replanned()
@@ -74,8 +101,9 @@ std::string StuckWatch::describe() const
   return s;
 }
 
-// The replan itself, on a drained fleet (no move running: every AGV on a cell).
-void Run::replan(executor::Adg& adg, const std::vector<uint8_t>& immobile)
+// The replan itself, on a drained fleet: every AGV on a cell, but stuck ones that braked
+// between two cells (one move running each).
+void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile)
 {
   const int n = ins_.num_agents();
   const planner::Graph& g = c_.map_.graph;
@@ -95,28 +123,55 @@ void Run::replan(executor::Adg& adg, const std::vector<uint8_t>& immobile)
     for (int i = 0; i < n; ++i) c_.plan_[base + t][i] = c_.plan_[base + std::min(t, prog[i])][i];
   c_.plan_.resize(base + static_cast<size_t>(last) + 1);
   if (c_.plan_.back() != at) throw ControlError("replan: the executed configuration is not where the ADG says");
+
+  // A stuck AGV that braked while driving u -> v (and maybe, chained, v -> w) is on the
+  // last target for the planner; the new ADG starts at `at` with those moves as its first
+  // steps, running: their targets were handed over to it already, and every planned entry
+  // into u (v) waits (type 2) until it has arrived on v (w) -- so the cells it spans stay
+  // its own until it has driven through them.
+  std::vector<std::vector<int>> mid(n);  // per agent: its running actions (old ADG)
+  std::vector<planner::Config> steps;    // at -> ... -> from, one running move per step
+  for (int i = 0; i < n; ++i) mid[i] = StuckWatch::running(adg, i);
+  planner::Config from = at;
+  for (size_t k = 0;; ++k) {
+    bool any = false;
+    for (int i = 0; i < n; ++i)
+      if (k < mid[i].size()) from[i] = adg.action(mid[i][k]).to, any = true;
+    if (!any) break;
+    steps.push_back(from);
+    c_.plan_.push_back(from);
+  }
+
   const planner::Config goals = tm_ ? tm_->goals() : ins_.goals;
   val_ = std::make_unique<planner::Validator>(g, c_.plan_.front(), goals);
   for (size_t t = 1; t < c_.plan_.size(); ++t)
     if (!val_->step(c_.plan_[t])) throw ControlError("replan: the cut plan is invalid: " + val_->error());
 
-  // A fresh planner from where the AGVs are, the stuck ones immobile.
+  // A fresh planner from there, the stuck ones immobile.
   replan_expansions_ += p_->expansions();
-  p_ = make_planner(cfg_.planner, g, at, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, at) : planner::GoalTest{});
-  if (tm_) p_->set_max_dist_tables(2 * at.size() + 256);
+  p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{});
+  if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
   for (int i = 0; i < n; ++i)
     if (immobile[i]) p_->set_immobile(i, true);
   p_->search(budget_);
   adg = executor::Adg(at);
+  for (const planner::Config& c : steps) adg.append(c);
+  for (int i = 0; i < n; ++i) {
+    if (mid[i].empty()) continue;
+    std::vector<int> ids = {adg.next_action(i)};
+    adg.start(ids[0]);
+    if (mid[i].size() > 1) adg.start_chained(ids.emplace_back(adg.chain_candidate(i)));
+    drv.renumber(i, ids);
+  }
   ++m_.replans;
 }
 
-bool Run::stuck_step(executor::Adg& adg)
+bool Run::stuck_step(executor::Adg& adg, Driver& drv)
 {
   if (stuck_ && stuck_->observe(adg, last_poses_, *delays_)) {
     if (cfg_.run.progress_s > 0)
       std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: replan (%s)\n", sumo_->time(), stuck_->describe().c_str());
-    replan(adg, stuck_->target());
+    replan(adg, drv, stuck_->target());
     stuck_->replanned();
   }
   if (stuck_) m_.stuck_events = stuck_->stuck_events(), m_.stuck_mid_move = stuck_->stuck_mid_move();

@@ -25,9 +25,11 @@
 // only on stuck events and recoveries: finitely often for finitely many finite delays.
 // Safety is checked after every SUMO step as always; no moveTo anywhere.
 //
-// Not handled: an AGV stuck while driving between two cells (it braked mid-move) claims
-// both; the planner cannot place it on one, so it is not rerouted around -- the ADG keeps
-// the others waiting, as without the replan (counted in stuck_mid_move).
+// An AGV stuck while driving (it braked between cells u and v, maybe with a chained move
+// v -> w running too) keeps those cells: the planner places it on the last target, the new
+// ADG begins with its running moves still running (replan()). Not handled: one stuck in a
+// rotation group (its members brake together) -- it is not rerouted around, the ADG keeps
+// the others waiting as without the replan (counted in stuck_mid_move).
 #include <string>
 #include <vector>
 
@@ -48,9 +50,16 @@ class StuckWatch {
   const std::vector<uint8_t>& target() const { return target_; }  // the immobile set to replan with
   const std::vector<uint8_t>& immobile() const { return immobile_; }
   void replanned();  // replan() done: target() is the immobile set now
+  // Agent i's running actions (the Driver runs at most two: a move and a chained one).
+  static std::vector<int> running(const executor::Adg& adg, int i);
+  // A stuck AGV replan() can place: none of its running moves in a rotation group.
+  static bool placeable(const executor::Adg& adg, int i);
+  // The slowest progress of the AGVs not immobile (Adg::progress): the commit window is
+  // counted from it (an immobile AGV's one running move must not hold the window).
+  long long min_progress(const executor::Adg& adg) const;
 
   long long stuck_events() const { return stuck_events_; }  // AGVs found stuck (at rest)
-  long long stuck_mid_move() const { return mid_move_; }    // found stuck between two cells
+  long long stuck_mid_move() const { return mid_move_; }    // found stuck, not placeable (above)
   std::string describe() const;  // "agv3 immobile, agv5 mobile again" for the log
 
  private:

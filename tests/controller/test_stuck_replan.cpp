@@ -17,39 +17,20 @@ using namespace controller;
 
 namespace {
 
-constexpr double kStuckFrom = 0, kStuckFor = 60;
+constexpr double kStuckFor = 60;
 
-// The small warehouse (tests' view: r0 is the bottom row of junctions c0r0..c3r0, r1 the
-// top row, 8 m apart; aisles single file). Agent 0 stands in the bottom cross aisle
-// c1r0 -> c2r0 and is stuck at once; agents 1 and 2 head right through that aisle (plain
-// route 8 and 12 cells; around it, over the top row, 24); agent 3 works on the right and
-// is in nobody's way.
-CellRef cell(const char* lane, double pos, const char* key)
+// config/small_warehouse_stuck.yaml: the small warehouse (r0 the bottom row of junctions
+// c0r0..c3r0, r1 the top row, 8 m apart; single-file aisles). agv0 stands in the bottom
+// cross aisle c1r0 -> c2r0 and is stuck; agv1 and agv2 head right through that aisle
+// (plain routes 8 and 12 cells; around it, over the top row, 24); agv3 works on the right,
+// in nobody's way.
+Config stuck_config(const std::string& name, bool replan, long long stuck_at_s = 0)
 {
-  CellRef r;
-  r.lane = lane;
-  r.pos = pos;
-  r.key = key;
-  return r;
-}
-
-Config stuck_config(const std::string& name, bool replan)
-{
-  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_agv.yaml");
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_stuck.yaml");
   c.output.dir = test::temp_dir("stuck_" + name);
   c.run.progress_s = 0;
-  c.planner.budget_ms = 0;  // deterministic
-  c.planner.expansions = 20;
   c.sumo.outputs = {false, false, false, true};
-  c.delays = {};
-  c.fleet.count = 4;
-  c.fleet.random_starts = false;
-  c.fleet.starts = {cell("c1r0_c2r0_0", 2, "fleet.starts"), cell("c0r0_c1r0_0", 2, "fleet.starts"),
-                    cell("c0r0_c0r1_0", 2, "fleet.starts"), cell("c3r0_c3r1_0", 2, "fleet.starts")};
-  c.tasks.random_goals = false;
-  c.tasks.goals = {cell("c1r1_c2r1_0", 2, "tasks.goals"), cell("c2r0_c3r0_0", 2, "tasks.goals"),
-                   cell("c2r0_pick2_0", 2, "tasks.goals"), cell("c3r0_c3r1_0", 6, "tasks.goals")};
-  c.delays.spec.stuck = {{0, static_cast<long long>(kStuckFrom), static_cast<long long>(kStuckFor)}};
+  c.delays.spec.stuck = {{0, stuck_at_s, static_cast<long long>(kStuckFor)}};
   c.run.replan_on_stuck = replan;
   return c;
 }
@@ -74,7 +55,7 @@ void expect_clean(const Config& cfg, const Controller& c, const Metrics& m)
 
 TEST(StuckReplan, OthersRouteAroundAnAgvStuckSixtySecondsThenAllFinish)
 {
-  const double frees = kStuckFrom + kStuckFor;
+  const double frees = kStuckFor;
   Config cfg = stuck_config("replan", true);
   Controller c(cfg);
   const Metrics m = c.run();
@@ -86,6 +67,7 @@ TEST(StuckReplan, OthersRouteAroundAnAgvStuckSixtySecondsThenAllFinish)
   }
   EXPECT_GE(m.goal_s[0], frees);  // the stuck one finishes after it frees
   EXPECT_EQ(m.stuck_events, 1);
+  EXPECT_EQ(m.stuck_mid_move, 0);
   EXPECT_EQ(m.replans, 2);        // stuck, then free again
   EXPECT_GE(m.delay_agent_ticks, 60);
 
@@ -99,6 +81,39 @@ TEST(StuckReplan, OthersRouteAroundAnAgvStuckSixtySecondsThenAllFinish)
   for (size_t i = 1; i < mb.goal_s.size(); ++i) last_other = std::max(last_other, mb.goal_s[i]);
   EXPECT_GT(last_other, frees);  // someone's plan went through the stuck AGV's cell
   EXPECT_GT(mb.dependency_waits, m.dependency_waits);
+}
+
+TEST(StuckReplan, AnAgvStuckBetweenTwoCellsKeepsBothAndTheOthersRouteOn)
+{
+  // agv0 starts one cell further left (1 m into the cross aisle), heads right and up the
+  // aisle c2, and is stuck at t = 1 s, one second into its first move (the next one
+  // chained): it brakes between two cells. The replan puts it on the target of its chained
+  // move (the cell before the junction c2r0), and the new ADG keeps the cells it spans for
+  // it until it has driven through them.
+  const double at = 1, frees = at + kStuckFor;
+  Config cfg = stuck_config("mid_move", true, at);
+  cfg.fleet.starts[0].pos = 1;
+  cfg.tasks.goals[0].lane = "c2r0_c2r1_0";
+  cfg.tasks.goals[0].pos = 4;
+  Controller c(cfg);
+  std::vector<double> pos;  // agv0's front on its start lane at the start of each tick
+  c.on_tick = [&](long long, SumoBackend& sumo) {
+    const VehiclePose p = sumo.poses({"agv0"}).front();
+    pos.push_back(p.lane == "c1r0_c2r0_0" ? p.pos : -1);
+  };
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  ASSERT_GT(pos.size(), 30u);
+  // Between two cells (1 m apart, centres at whole metres) when the stop begins and while stuck.
+  for (size_t t : {size_t{1}, size_t{10}, size_t{30}}) {
+    EXPECT_GT(pos[t], 1.05) << "tick " << t;
+    EXPECT_LT(pos[t], 1.95) << "tick " << t;
+  }
+  for (size_t i = 1; i < m.goal_s.size(); ++i) EXPECT_LT(m.goal_s[i], frees) << "agv" << i << " did not route on";
+  EXPECT_GE(m.goal_s[0], frees);
+  EXPECT_EQ(m.stuck_events, 1);
+  EXPECT_EQ(m.stuck_mid_move, 0);
+  EXPECT_EQ(m.replans, 2);
 }
 
 TEST(StuckReplan, ConfigErrors)

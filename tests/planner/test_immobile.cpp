@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "planner/dist_table.hpp"
 #include "planner/immobile.hpp"
 #include "planner/pibt.hpp"
 #include "planner/priority.hpp"
@@ -177,4 +178,39 @@ TEST(Immobile, RelaxedGoalTestSkipsAgentsCutOffOrOnTheObstacle)
   Config d = test::at(g, {{2, 0}, {1, 0}, {4, 0}, {3, 0}});
   EXPECT_FALSE(t(d.data()));
   EXPECT_FALSE(relaxed_goal_test(g, cur, goals, {0, 0, 0, 0}));  // none immobile: default test
+}
+
+TEST(Immobile, AnImmobileAgentOnItsGoalIsNotMovedByRefinement)
+{
+  // X sits on its goal in the corridor's top lane, the others' shortest routes run through
+  // it: LaCAM* refinement (LNS would replan X to step aside) must leave it in place.
+  Corridor c;
+  c.goals[0] = c.starts[0];
+  for (uint64_t seed = 0; seed < 5; ++seed) {
+    LacamOptions o;
+    o.seed = seed;
+    o.refine = true;
+    RtLacam rt(c.g, c.starts, c.goals, o);
+    rt.set_immobile(0, true);
+    for (int k = 0; k < 50; ++k) rt.search(Budget::expansion_count(200));  // refine a lot first
+    Drive d = drive(rt, c.g, 300, 0, c.starts[0], [&] { return rt.at_goal(); });
+    EXPECT_EQ(d.error, "") << "seed " << seed;
+    EXPECT_TRUE(rt.at_goal()) << "seed " << seed;  // X is on its goal: the real goal test passes
+  }
+}
+
+TEST(Immobile, DetourTableGoesAroundBlockedVertices)
+{
+  Graph g = test::grid({".....", "....."});
+  DetourTable dt(g);
+  EXPECT_FALSE(dt.active());
+  dt.set_blocked({g.at(2, 0)});
+  EXPECT_TRUE(dt.active());
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(0, 0)), 6);  // down, along the bottom lane, up
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(2, 0)), DistTable::kInf);  // the blocked vertex
+  dt.set_blocked({g.at(2, 0), g.at(2, 1)});        // the corridor is cut
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(0, 0)), DistTable::kInf);
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(3, 1)), 2);
+  dt.set_blocked({});
+  EXPECT_FALSE(dt.active());
 }

@@ -58,6 +58,8 @@ class Driver {
   // Hold (a replan is coming, controller/src/stuck_replan.hpp): start no new move and chain
   // none; running moves go on and brake on their targets.
   void hold(bool on) { hold_ = on; }
+  // The ADG was rebuilt (a replan) with agent i's running moves as actions `ids`, in order.
+  void renumber(int i, const std::vector<int>& ids) { agv_[i].run = ids; }
   // Agent i's executor state in one line (where it is for the ADG, its running moves with
   // group and hand-over): appended to a Safety error.
   std::string describe(int i) const;
