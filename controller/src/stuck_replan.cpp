@@ -41,9 +41,11 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     if (!running) counted_mid_[i] = 0;
   }
   // (Re)decide the target every step: a recovery or a new stuck AGV during the drain
-  // changes it; back to the current set means there is nothing to replan.
+  // changes it; back to the current set means there is nothing to replan. While a stuck AGV
+  // that cannot be placed is running a move, the fleet could not drain: no hold, no replan.
   target_ = want;
   draining_ = target_ != immobile_;
+  for (int i = 0; i < n_; ++i) draining_ = draining_ && !counted_mid_[i];
   return draining_ && drained(adg);
 }
 
@@ -66,7 +68,7 @@ bool StuckWatch::placeable(const executor::Adg& adg, int i)
 
 bool StuckWatch::drained(const executor::Adg& adg) const
 {
-  // Every move in progress has ended -- but the stuck AGVs' own (one, between two cells).
+  // Every move in progress has ended -- but the stuck AGVs' own (they braked between cells).
   for (int i = 0; i < n_; ++i) {
     const int id = adg.next_action(i);
     if (id >= 0 && adg.action(id).state == executor::State::Running && !(target_[i] && placeable(adg, i)))
@@ -102,7 +104,7 @@ std::string StuckWatch::describe() const
 }
 
 // The replan itself, on a drained fleet: every AGV on a cell, but stuck ones that braked
-// between two cells (one move running each).
+// between two cells (their running moves, at most two each).
 void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile)
 {
   const int n = ins_.num_agents();
