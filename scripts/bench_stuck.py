@@ -4,8 +4,8 @@
   A. config/small_warehouse_stuck.yaml (4 AGVs, agv0 stuck in the cross aisle the others'
      plans use), stuck for 10 / 30 / 60 / 120 s from t = 0: when the others finish, the
      makespan, replans; ratio replan / wait.
-  B. config/small_warehouse_agv.yaml (16 random AGVs, its random stops removed), agent k stuck
-     60 s from t = 5 s, k = 0..K-1: makespan and flowtime (sum of arrival times) with and
+  B. config/small_warehouse_agv.yaml (16 random AGVs, its random stops removed, 50 expansions
+     per SUMO step instead of 1 ms: deterministic), agent k stuck 60 s from t = 5 s, k = 0..K-1: makespan and flowtime (sum of arrival times) with and
      without the replan, replans, stuck AGVs that could not be placed (stuck_mid_move).
 Every run must end with no error (Safety after every SUMO step), 0 collisions, 0 jumps.
 Prints markdown (and writes it with --out).
@@ -24,13 +24,17 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def variant(src, replan, stuck, drop_delays=False):
+def variant(src, replan, stuck, expansions=None):
     """The config `src` with run.replan_on_stuck and delays.stuck replaced."""
     s = open(os.path.join(ROOT, "config", src)).read()
     s = re.sub(r"  replan_on_stuck: \w+\n", "", s)
     s = s.replace("run:\n", f"run:\n  replan_on_stuck: {'true' if replan else 'false'}\n")
     s = re.sub(r"\ndelays:\n(  .*\n)*", "\n", s)
     s = s.replace("output:\n", f"delays:\n  stuck: [{stuck}]\noutput:\n")
+    # Deterministic: a budget in expansions, not wall-clock (the two runs must differ only
+    # by the replan).
+    if expansions:
+        s = re.sub(r"budget_ms: [0-9.]+", f"budget_ms: 0\n  expansions: {expansions}", s)
     f = tempfile.NamedTemporaryFile("w", suffix=".yaml", dir=os.path.join(ROOT, "config"), delete=False)
     f.write(s)
     f.close()
@@ -106,12 +110,14 @@ def part_a(build, tmp, svg=None):
 def part_b(build, agents, tmp):
     head = ("| stuck AGV | makespan wait | makespan replan | ratio | flowtime wait | flowtime replan | ratio | "
             "replans | not placeable |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
-    rows = ""
+    m0 = run(build, variant("small_warehouse_agv.yaml", True, "", expansions=50), os.path.join(tmp, "B_none"))
+    rows = (f"| none stuck | {m0['makespan']} | {m0['makespan']} | 1.00 | {sum(m0['executor']['goal_s']):.0f} | "
+            f"{sum(m0['executor']['goal_s']):.0f} | 1.00 | {m0['executor']['replans']} | 0 |\n")
     sums = [0, 0, 0, 0]
     for k in range(agents):
         ms = {}
         for replan in [False, True]:
-            cfg = variant("small_warehouse_agv.yaml", replan, f"{{agent: {k}, at_s: 5, for_s: 60}}")
+            cfg = variant("small_warehouse_agv.yaml", replan, f"{{agent: {k}, at_s: 5, for_s: 60}}", expansions=50)
             ms[replan] = run(build, cfg, os.path.join(tmp, f"B_{k}_{replan}"))
         mk = {r: m["makespan"] for r, m in ms.items()}
         ft = {r: sum(m["executor"]["goal_s"]) for r, m in ms.items()}
@@ -121,7 +127,7 @@ def part_b(build, agents, tmp):
         rows += (f"| agv{k} | {mk[False]} | {mk[True]} | {mk[True] / mk[False]:.2f} | {ft[False]:.0f} | {ft[True]:.0f} | "
                  f"{ft[True] / ft[False]:.2f} | {e['replans']} | {e['stuck_mid_move']}{flag} |\n")
         print(f"B {k}: {rows.splitlines()[-1]}", file=sys.stderr)
-    rows += (f"| all | {sums[0]} | {sums[1]} | {sums[1] / sums[0]:.2f} | {sums[2]:.0f} | {sums[3]:.0f} | "
+    rows += (f"| all stuck cases | {sums[0]} | {sums[1]} | {sums[1] / sums[0]:.2f} | {sums[2]:.0f} | {sums[3]:.0f} | "
              f"{sums[3] / sums[2]:.2f} | | |\n")
     return head + rows
 
@@ -129,14 +135,14 @@ def part_b(build, agents, tmp):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--agents", type=int, default=8)
+    ap.add_argument("--agents", type=int, default=16)
     ap.add_argument("--out")
     ap.add_argument("--svg", help="AGVs on their goals over time, stuck 60 s (docs/stuck_replan.svg)")
     a = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="bench_stuck_")
     t0 = time.time()
     md = "## A. small_warehouse_stuck.yaml: agv0 stuck in the cross aisle from t = 0\n\n" + part_a(a.build, tmp, a.svg)
-    md += ("\n## B. small_warehouse_agv.yaml (16 AGVs, random stops removed): one AGV stuck 60 s from t = 5 s\n\n" +
+    md += ("\n## B. small_warehouse_agv.yaml (16 AGVs, random stops removed, 50 expansions per step): one AGV stuck 60 s from t = 5 s\n\n" +
            part_b(a.build, a.agents, tmp))
     md += f"\n(wall {time.time() - t0:.0f} s; makespan in ticks of 1 s; flowtime = sum of the AGVs' arrival times, s)\n"
     print(md)
