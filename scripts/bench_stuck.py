@@ -5,12 +5,15 @@
      plans use), stuck for 10 / 30 / 60 / 120 s from t = 0: when the others finish, the
      makespan, replans; ratio replan / wait.
   B. config/small_warehouse_agv.yaml (16 random AGVs, its random stops removed, 50 expansions
-     per SUMO step instead of 1 ms: deterministic), agent k stuck 60 s from t = 5 s, k = 0..K-1: makespan and flowtime (sum of arrival times) with and
-     without the replan, replans, stuck AGVs that could not be placed (stuck_mid_move).
+     per SUMO step instead of 1 ms: deterministic), agent k stuck 60 s from t = 5 s,
+     k = 0..K-1: makespan and flowtime (sum of arrival times) with and without the replan.
+  C. the same 16 AGVs with frequent long stops (p = 0.01 per AGV per tick, 3-25 s) and one
+     AGV stuck 40 s, seeds 0..S-1: makespan without the replan, with it (stuck_after_s 5 and 15).
 Every run must end with no error (Safety after every SUMO step), 0 collisions, 0 jumps.
 Prints markdown (and writes it with --out).
 
-  scripts/bench_stuck.py [--build build] [--agents 8] [--out docs/stuck_replan_bench.md] [--svg docs/stuck_replan.svg]
+  scripts/bench_stuck.py [--build build] [--agents 16] [--seeds 12] [--out docs/stuck_replan_bench.md]
+                         [--svg docs/stuck_replan.svg]
 """
 import argparse
 import json
@@ -109,10 +112,10 @@ def part_a(build, tmp, svg=None):
 
 def part_b(build, agents, tmp):
     head = ("| stuck AGV | makespan wait | makespan replan | ratio | flowtime wait | flowtime replan | ratio | "
-            "replans | not placeable |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n")
+            "replans |\n|---:|---:|---:|---:|---:|---:|---:|---:|\n")
     m0 = run(build, variant("small_warehouse_agv.yaml", True, "", expansions=50), os.path.join(tmp, "B_none"))
     rows = (f"| none stuck | {m0['makespan']} | {m0['makespan']} | 1.00 | {sum(m0['executor']['goal_s']):.0f} | "
-            f"{sum(m0['executor']['goal_s']):.0f} | 1.00 | {m0['executor']['replans']} | 0 |\n")
+            f"{sum(m0['executor']['goal_s']):.0f} | 1.00 | {m0['executor']['replans']} |\n")
     sums = [0, 0, 0, 0]
     for k in range(agents):
         ms = {}
@@ -125,10 +128,35 @@ def part_b(build, agents, tmp):
         flag = " ERR" if ms[False]["_bad"] + ms[True]["_bad"] else ""
         e = ms[True]["executor"]
         rows += (f"| agv{k} | {mk[False]} | {mk[True]} | {mk[True] / mk[False]:.2f} | {ft[False]:.0f} | {ft[True]:.0f} | "
-                 f"{ft[True] / ft[False]:.2f} | {e['replans']} | {e['stuck_mid_move']}{flag} |\n")
+                 f"{ft[True] / ft[False]:.2f} | {e['replans']}{flag} |\n")
         print(f"B {k}: {rows.splitlines()[-1]}", file=sys.stderr)
     rows += (f"| all stuck cases | {sums[0]} | {sums[1]} | {sums[1] / sums[0]:.2f} | {sums[2]:.0f} | {sums[3]:.0f} | "
-             f"{sums[3] / sums[2]:.2f} | | |\n")
+             f"{sums[3] / sums[2]:.2f} | |\n")
+    return head + rows
+
+
+def part_c(build, seeds, tmp):
+    """Frequent long stops: p = 0.01 per AGV per tick, 3-25 s, plus one AGV stuck 40 s."""
+    head = ("| seed | makespan wait | replan, stuck_after_s 5 | ratio | replan, stuck_after_s 15 | ratio | replans (5 s / 15 s) |\n"
+            "|---:|---:|---:|---:|---:|---:|---:|\n")
+    rows, sums = "", [0, 0, 0]
+    for seed in range(seeds):
+        ms = []
+        for replan, after in [(False, 5), (True, 5), (True, 15)]:
+            cfg = variant("small_warehouse_agv.yaml", replan, f"{{agent: {seed % 16}, at_s: {seed % 7 + 1}, for_s: 40}}",
+                          expansions=50)
+            t = open(cfg).read().replace("delays:\n", f"delays:\n  kind: bernoulli\n  p: 0.01\n  duration_s: [3, 25]\n"
+                                                     f"  seed: {seed}\n")
+            t = t.replace("run:\n", f"run:\n  stuck_after_s: {after}\n")
+            open(cfg, "w").write(t)
+            ms.append(run(build, cfg, os.path.join(tmp, f"C_{seed}_{replan}_{after}")))
+        mk = [m["makespan"] for m in ms]
+        sums = [a + b for a, b in zip(sums, mk)]
+        flag = " ERR" if sum(m["_bad"] for m in ms) else ""
+        rows += (f"| {seed} | {mk[0]} | {mk[1]} | {mk[1] / mk[0]:.2f} | {mk[2]} | {mk[2] / mk[0]:.2f} | "
+                 f"{ms[1]['executor']['replans']} / {ms[2]['executor']['replans']}{flag} |\n")
+        print(f"C {seed}: {rows.splitlines()[-1]}", file=sys.stderr)
+    rows += f"| all | {sums[0]} | {sums[1]} | {sums[1] / sums[0]:.2f} | {sums[2]} | {sums[2] / sums[0]:.2f} | |\n"
     return head + rows
 
 
@@ -136,6 +164,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--agents", type=int, default=16)
+    ap.add_argument("--seeds", type=int, default=12)
     ap.add_argument("--out")
     ap.add_argument("--svg", help="AGVs on their goals over time, stuck 60 s (docs/stuck_replan.svg)")
     a = ap.parse_args()
@@ -144,6 +173,8 @@ def main():
     md = "## A. small_warehouse_stuck.yaml: agv0 stuck in the cross aisle from t = 0\n\n" + part_a(a.build, tmp, a.svg)
     md += ("\n## B. small_warehouse_agv.yaml (16 AGVs, random stops removed, 50 expansions per step): one AGV stuck 60 s from t = 5 s\n\n" +
            part_b(a.build, a.agents, tmp))
+    md += ("\n## C. small_warehouse_agv.yaml (16 AGVs, 50 expansions per step), frequent long stops (p = 0.01 per AGV "
+           "per tick, 3-25 s) and one AGV stuck 40 s\n\n" + part_c(a.build, a.seeds, tmp))
     md += f"\n(wall {time.time() - t0:.0f} s; makespan in ticks of 1 s; flowtime = sum of the AGVs' arrival times, s)\n"
     print(md)
     if a.out:

@@ -28,7 +28,7 @@ void Driver::before_step()
     Agv& g = agv_[i];
     const bool stopped = delays_.stopped(i);
     st_.delay_steps += stopped;
-    if (stopped || hold_) continue;
+    if (stopped) continue;
     if (g.run.empty()) {
       const int id = adg_.next_action(i);
       if (id < 0) continue;

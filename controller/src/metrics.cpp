@@ -83,7 +83,6 @@ nlohmann::json Metrics::to_json() const
                    {"commits", commits},
                    {"replans", replans},
                    {"stuck_events", stuck_events},
-                   {"stuck_mid_move", stuck_mid_move},
                    {"dependency_waits", dependency_waits},
                    {"lockstep_waits", lockstep_waits},
                    {"delay_agent_ticks", delay_agent_ticks},

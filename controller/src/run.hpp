@@ -42,10 +42,10 @@ class Run {
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
   void progress_line(const planner::Config& executed);
-  // adg, after each SUMO step: the stuck-AGV watch (stuck_replan.hpp) and, once the fleet
-  // is drained, the replan; true while commits are held. replan(): new planner and ADG
-  // from the executed configuration, `immobile` AGVs kept in place.
-  bool stuck_step(executor::Adg& adg, Driver& drv);
+  // adg, after each SUMO step: the stuck-AGV watch (stuck_replan.hpp) and, when the set
+  // of immobile AGVs changes, replan(): new planner and ADG from where the AGVs are and are
+  // driving to, `immobile` AGVs kept in place.
+  void stuck_step(executor::Adg& adg, Driver& drv);
   void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
   bool out_of_ticks() const { return m_.ticks >= cfg_.run.max_ticks; }
 

@@ -85,7 +85,6 @@ void Run::loop_adg()
     for (int i = 0; i < ins_.num_agents(); ++i) c[i] = adg.at(i);
     return c;
   };
-  bool held = false;
   for (;;) {
     if (!tm_ && p_->at_goal() && adg.done()) {
       m_.solved = true;
@@ -102,7 +101,7 @@ void Run::loop_adg()
       // plan is honoured, so the window only bounds how far the plan runs ahead.
       // (Immobile AGVs aside: stuck_replan.hpp.)
       auto progress = [&] { return stuck_ ? stuck_->min_progress(adg) : adg.min_progress(); };
-      while (adg.steps() - progress() < cfg_.run.window && !p_->at_goal() && !held) {
+      while (adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
         const planner::Config next = p_->next();
         if (next == p_->current()) break;  // the search has nothing beyond the root yet
         p_->commit();
@@ -126,7 +125,7 @@ void Run::loop_adg()
       }
       t0 = Clock::now();
       drv.after_step(last_poses_);
-      drv.hold(held = stuck_step(adg, drv));  // stuck AGVs: hold commits and starts, replan when drained
+      stuck_step(adg, drv);  // stuck AGVs: replan around them (stuck_replan.hpp)
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }

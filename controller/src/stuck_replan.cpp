@@ -12,41 +12,24 @@
 namespace controller {
 
 StuckWatch::StuckWatch(int n, double stuck_after_s, double dt)
-    : n_(n), after_s_(stuck_after_s), dt_(dt), stall_s_(n, 0.0), last_(n), immobile_(n, 0), target_(n, 0),
-      counted_mid_(n, 0)
+    : n_(n), after_s_(stuck_after_s), dt_(dt), stall_s_(n, 0.0), last_(n), immobile_(n, 0), target_(n, 0)
 {
 }
 
 bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses,
                          const executor::DelayModel& delays)
 {
-  std::vector<uint8_t> want = immobile_;
+  target_ = immobile_;
   for (int i = 0; i < n_; ++i) {
     const bool moved = poses[i].lane != last_[i].lane || std::abs(poses[i].pos - last_[i].pos) > 1e-9;
     last_[i] = poses[i];
     const int id = adg.next_action(i);
-    const bool running = id >= 0 && adg.action(id).state == executor::State::Running;
-    const bool may_go = id >= 0 && (running || adg.released(id));
+    const bool may_go = id >= 0 && (adg.action(id).state == executor::State::Running || adg.released(id));
     stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
-    if (immobile_[i]) {
-      if (!delays.stopped(i)) want[i] = 0;  // it reports itself ready again
-    } else if (stall_s_[i] >= after_s_ - 1e-9) {
-      if (!running || placeable(adg, i)) {
-        want[i] = 1;
-      } else if (!counted_mid_[i]) {
-        counted_mid_[i] = 1;
-        ++mid_move_;
-      }
-    }
-    if (!running) counted_mid_[i] = 0;
+    if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
+    if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9) target_[i] = 1;
   }
-  // (Re)decide the target every step: a recovery or a new stuck AGV during the drain
-  // changes it; back to the current set means there is nothing to replan. While a stuck AGV
-  // that cannot be placed is running a move, the fleet could not drain: no hold, no replan.
-  target_ = want;
-  draining_ = target_ != immobile_;
-  for (int i = 0; i < n_; ++i) draining_ = draining_ && !counted_mid_[i];
-  return draining_ && drained(adg);
+  return target_ != immobile_;
 }
 
 std::vector<int> StuckWatch::running(const executor::Adg& adg, int i)
@@ -57,24 +40,6 @@ std::vector<int> StuckWatch::running(const executor::Adg& adg, int i)
     out.push_back(id);
   }
   return out;
-}
-
-bool StuckWatch::placeable(const executor::Adg& adg, int i)
-{
-  for (int id : running(adg, i))
-    if (adg.action(id).group >= 0) return false;
-  return true;
-}
-
-bool StuckWatch::drained(const executor::Adg& adg) const
-{
-  // Every move in progress has ended -- but the stuck AGVs' own (they braked between cells).
-  for (int i = 0; i < n_; ++i) {
-    const int id = adg.next_action(i);
-    if (id >= 0 && adg.action(id).state == executor::State::Running && !(target_[i] && placeable(adg, i)))
-      return false;
-  }
-  return true;
 }
 
 long long StuckWatch::min_progress(const executor::Adg& adg) const
@@ -89,7 +54,6 @@ void StuckWatch::replanned()
 {
   for (int i = 0; i < n_; ++i) stuck_events_ += target_[i] && !immobile_[i];
   immobile_ = target_;
-  draining_ = false;
   std::fill(stall_s_.begin(), stall_s_.end(), 0.0);
 }
 
@@ -103,8 +67,7 @@ std::string StuckWatch::describe() const
   return s;
 }
 
-// The replan itself, on a drained fleet: every AGV on a cell, but stuck ones that braked
-// between two cells (their running moves, at most two each).
+// The replan itself: a new planner and ADG from where the AGVs are and are driving to.
 void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile)
 {
   const int n = ins_.num_agents();
@@ -113,10 +76,11 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   for (int i = 0; i < n; ++i) at[i] = adg.at(i);
 
   // The committed plan from the ADG's start on, each agent's path cut at its progress p_i
-  // (C'_t[i] = C_min(t, p_i)[i]): still valid, because the ADG let no agent past a cell
-  // hand-over whose other side is not done -- an agent that entered v at a step <= p_i
-  // did so after v's previous occupant had left it, and a later occupant of v would wait
-  // for it to leave, which it has not: no two agents share a vertex in any C'_t.
+  // (C'_t[i] = C_min(t, p_i)[i]; a move in progress is not done: cut before it): still
+  // valid, because the ADG let no agent past a cell hand-over whose other side is not done
+  // -- an agent that entered v at a step <= p_i did so after v's previous occupant had left
+  // it, and a later occupant of v would wait for it to leave, which it has not: no two
+  // agents share a vertex in any C'_t.
   const size_t base = c_.plan_.size() - 1 - static_cast<size_t>(adg.steps());
   long long last = 0;
   std::vector<long long> prog(n);
@@ -126,11 +90,8 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   c_.plan_.resize(base + static_cast<size_t>(last) + 1);
   if (c_.plan_.back() != at) throw ControlError("replan: the executed configuration is not where the ADG says");
 
-  // A stuck AGV that braked while driving u -> v (and maybe, chained, v -> w) is on the
-  // last target for the planner; the new ADG starts at `at` with those moves as its first
-  // steps, running: their targets were handed over to it already, and every planned entry
-  // into u (v) waits (type 2) until it has arrived on v (w) -- so the cells it spans stay
-  // its own until it has driven through them.
+  // The moves in progress (stuck_replan.hpp): step k moves every AGV along its k-th
+  // running move; the planner starts where they end.
   std::vector<std::vector<int>> mid(n);  // per agent: its running actions (old ADG)
   std::vector<planner::Config> steps;    // at -> ... -> from, one running move per step
   for (int i = 0; i < n; ++i) mid[i] = StuckWatch::running(adg, i);
@@ -161,22 +122,32 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   for (int i = 0; i < n; ++i) {
     if (mid[i].empty()) continue;
     std::vector<int> ids = {adg.next_action(i)};
-    adg.start(ids[0]);
+    if (adg.action(ids[0]).state == executor::State::Pending) adg.start(ids[0]);  // a group starts as one
     if (mid[i].size() > 1) adg.start_chained(ids.emplace_back(adg.chain_candidate(i)));
     drv.renumber(i, ids);
   }
   ++m_.replans;
 }
 
-bool Run::stuck_step(executor::Adg& adg, Driver& drv)
+void Run::stuck_step(executor::Adg& adg, Driver& drv)
 {
   if (stuck_ && stuck_->observe(adg, last_poses_, *delays_)) {
     if (cfg_.run.progress_s > 0)
       std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: replan (%s)\n", sumo_->time(), stuck_->describe().c_str());
-    replan(adg, drv, stuck_->target());
+    // Only recoveries: the committed plan keeps them in place, which stays valid -- the
+    // planner just searches on from its current configuration with them mobile.
+    bool adds = false;
+    for (int i = 0; i < ins_.num_agents(); ++i) adds = adds || (stuck_->target()[i] && !stuck_->immobile()[i]);
+    if (adds) {
+      replan(adg, drv, stuck_->target());
+    } else {
+      for (int i = 0; i < ins_.num_agents(); ++i)
+        if (stuck_->immobile()[i] && !stuck_->target()[i]) p_->set_immobile(i, false);
+      ++m_.replans;
+    }
     stuck_->replanned();
   }
-  if (stuck_) m_.stuck_events = stuck_->stuck_events(), m_.stuck_mid_move = stuck_->stuck_mid_move();
+  if (stuck_) m_.stuck_events = stuck_->stuck_events();
   // When each AGV got to its goal for good (one-shot): the tests' "others finish first".
   if (!tm_) {
     m_.goal_s.resize(adg.num_agents(), -1);
@@ -185,7 +156,6 @@ bool Run::stuck_step(executor::Adg& adg, Driver& drv)
       else if (m_.goal_s[i] < 0) m_.goal_s[i] = sumo_->time();
     }
   }
-  return stuck_ && stuck_->holding();
 }
 
 }  // namespace controller

@@ -55,9 +55,6 @@ class Driver {
   // of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
-  // Hold (a replan is coming, controller/src/stuck_replan.hpp): start no new move and chain
-  // none; running moves go on and brake on their targets.
-  void hold(bool on) { hold_ = on; }
   // The ADG was rebuilt (a replan) with agent i's running moves as actions `ids`, in order.
   void renumber(int i, const std::vector<int>& ids) { agv_[i].run = ids; }
   // Agent i's executor state in one line (where it is for the ADG, its running moves with
@@ -82,7 +79,6 @@ class Driver {
   DriveParams p_;
   std::vector<Agv> agv_;
   DriveStats st_;
-  bool hold_ = false;
 };
 
 }  // namespace controller

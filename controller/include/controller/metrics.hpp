@@ -42,8 +42,7 @@ struct Metrics {
   long long safety_checks = 0;      // SUMO steps checked by Safety (overlap / on path)
   long long commits = 0;            // configurations the planner committed
   long long replans = 0;            // adg: replans around stuck AGVs and after their recovery
-  long long stuck_events = 0;       // adg: AGVs found stuck at rest on a cell (then made immobile)
-  long long stuck_mid_move = 0;     // adg: found stuck between two cells (not rerouted around)
+  long long stuck_events = 0;       // adg: AGVs found stuck (then made immobile)
   std::vector<double> goal_s;       // adg, one-shot: sim time each AGV reached its goal for good (-1: not)
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
 
