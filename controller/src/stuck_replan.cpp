@@ -19,6 +19,14 @@ StuckWatch::StuckWatch(int n, double stuck_after_s, double dt)
 bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses,
                          const executor::DelayModel& delays)
 {
+  // Who holds somebody up: the owner of an undone hand-over another AGV's next move waits on.
+  std::vector<uint8_t> blocks(n_, 0);
+  for (int j = 0; j < n_; ++j) {
+    const int id = adg.next_action(j);
+    if (id < 0 || adg.action(id).state != executor::State::Pending || adg.action(id).handover < 0) continue;
+    const executor::Action& h = adg.action(adg.action(id).handover);
+    if (h.state != executor::State::Done) blocks[h.agent] = 1;
+  }
   target_ = immobile_;
   for (int i = 0; i < n_; ++i) {
     const bool moved = poses[i].lane != last_[i].lane || std::abs(poses[i].pos - last_[i].pos) > 1e-9;
@@ -27,7 +35,7 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     const bool may_go = id >= 0 && (adg.action(id).state == executor::State::Running || adg.released(id));
     stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
     if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
-    if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9) target_[i] = 1;
+    if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9 && blocks[i]) target_[i] = 1;
   }
   return target_ != immobile_;
 }

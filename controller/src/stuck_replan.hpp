@@ -7,7 +7,9 @@
 //
 //   detect : after every SUMO step, an AGV whose next committed move is running or
 //            released (it may go) but whose front has not moved for run.stuck_after_s
-//            seconds is stuck (an AGV waiting on its dependencies is not);
+//            seconds is stuck (an AGV waiting on its dependencies is not) -- once another
+//            AGV's next move waits for it (a hand-over it owes): else there is nothing to
+//            route around, and a replan only costs (it restarts the search);
 //   replan : at once, Run::replan(): the committed plan is cut at each AGV's progress
 //            (still a valid plan, see replan()), the moves in progress stay in progress,
 //            a fresh planner starts where they end with the stuck AGVs immobile
