@@ -1,6 +1,8 @@
 #include "planner/immobile.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "planner/dist_table.hpp"
 
@@ -9,6 +11,13 @@ namespace planner {
 bool any_immobile(const std::vector<uint8_t>& immobile)
 {
   return std::find(immobile.begin(), immobile.end(), 1) != immobile.end();
+}
+
+void check_immobile_agent(int agent, size_t n)
+{
+  if (agent < 0 || static_cast<size_t>(agent) >= n)
+    throw std::invalid_argument("set_immobile: agent " + std::to_string(agent) + " out of range (0.." +
+                                std::to_string(static_cast<long long>(n) - 1) + ")");
 }
 
 GoalTest relaxed_goal_test(const Graph& g, const Config& current, const Config& goals,

@@ -33,6 +33,7 @@ void NaiveRtLacam::set_goals(const Config& goals, GoalTest test)
 
 void NaiveRtLacam::set_immobile(int agent, bool immobile)
 {
+  check_immobile_agent(agent, immobile_.size());
   immobile_[agent] = immobile;
   lacam_.set_immobile(immobile_);
   fresh_ = false;      // the next search starts from current_ with the mask

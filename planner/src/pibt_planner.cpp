@@ -1,5 +1,7 @@
 #include "planner/pibt_planner.hpp"
 
+#include "planner/immobile.hpp"
+
 namespace planner {
 
 PibtPlanner::PibtPlanner(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
@@ -30,6 +32,7 @@ void PibtPlanner::set_goals(const Config& goals, GoalTest test)
 
 void PibtPlanner::set_immobile(int agent, bool immobile)
 {
+  check_immobile_agent(agent, current_.size());
   if (immobile_.size() != current_.size()) immobile_.assign(current_.size(), 0);
   immobile_[agent] = immobile;
   pibt_.set_immobile(immobile_);

@@ -18,6 +18,7 @@ void RtLacam::set_goals(const Config& goals, GoalTest test)
 
 void RtLacam::set_immobile(int agent, bool immobile)
 {
+  check_immobile_agent(agent, immobile_.size());
   if (immobile_[agent] == static_cast<uint8_t>(immobile)) return;
   immobile_[agent] = immobile;
   lacam_.set_immobile(immobile_);

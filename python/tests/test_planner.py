@@ -81,6 +81,8 @@ def test_set_goals_starts_a_new_search_from_where_the_agents_are(grid, scen):
 def test_an_immobile_agent_is_never_moved_and_all_finish_once_it_is_free(grid, scen, solver):
     ins = rtlacam.load_scen(scen, grid, 20)
     p = rtlacam.make_planner(solver, grid, ins.starts, ins.goals, seed=1)
+    with pytest.raises(ValueError, match="agent 20 out of range"):
+        p.set_immobile(20)
     p.set_immobile(0)
     v = rtlacam.Validator(grid, ins.starts, ins.goals)
     for _ in range(100):

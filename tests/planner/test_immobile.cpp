@@ -214,3 +214,18 @@ TEST(Immobile, DetourTableGoesAroundBlockedVertices)
   dt.set_blocked({});
   EXPECT_FALSE(dt.active());
 }
+
+TEST(Immobile, AnAgentOutOfRangeIsAClearError)
+{
+  Corridor c;
+  for (Solver s : {Solver::RtLacam, Solver::Naive, Solver::Pibt}) {
+    auto p = make_planner(s, c.g, c.starts, c.goals);
+    try {
+      p->set_immobile(5, true);
+      ADD_FAILURE() << to_string(s) << ": no error";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "set_immobile: agent 5 out of range (0..4)");
+    }
+    EXPECT_THROW(p->set_immobile(-1, true), std::invalid_argument);
+  }
+}

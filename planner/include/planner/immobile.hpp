@@ -32,6 +32,8 @@ namespace planner {
 
 // true if some agent is marked.
 bool any_immobile(const std::vector<uint8_t>& immobile);
+// Throws std::invalid_argument "set_immobile: agent 7 out of range (0..3)" unless 0 <= agent < n.
+void check_immobile_agent(int agent, size_t n);
 
 // The goal test while agents are immobile: every mobile agent whose goal lies in its own
 // connected component of the graph minus the immobile agents' vertices is on its goal;
