@@ -81,6 +81,8 @@ nlohmann::json Metrics::to_json() const
   j["executor"] = {{"mode", executor},
                    {"window", window},
                    {"commits", commits},
+                   {"replans", replans},
+                   {"stuck_events", stuck_events},
                    {"dependency_waits", dependency_waits},
                    {"lockstep_waits", lockstep_waits},
                    {"delay_agent_ticks", delay_agent_ticks},
@@ -88,6 +90,7 @@ nlohmann::json Metrics::to_json() const
                    {"chained", chained},
                    {"safety_checks", safety_checks},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
+  if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   j["max_position_error_m"] = commands.max_error;
   return j;
 }

@@ -12,6 +12,7 @@
 #include "controller/controller.hpp"
 #include "controller/driver.hpp"
 #include "controller/safety.hpp"
+#include "stuck_replan.hpp"
 #include "executor/adg.hpp"
 #include "executor/delay_model.hpp"
 #include "planner/instance.hpp"
@@ -41,6 +42,11 @@ class Run {
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
   void progress_line(const planner::Config& executed);
+  // adg, after each SUMO step: the stuck-AGV watch (stuck_replan.hpp) and, when the set
+  // of immobile AGVs changes, replan(): new planner and ADG from where the AGVs are and are
+  // driving to, `immobile` AGVs kept in place.
+  void stuck_step(executor::Adg& adg, Driver& drv);
+  void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
   bool out_of_ticks() const { return m_.ticks >= cfg_.run.max_ticks; }
 
   const Config& cfg_;
@@ -58,6 +64,8 @@ class Run {
   std::unique_ptr<planner::RealtimePlanner> p_;
   std::unique_ptr<planner::Validator> val_;
   std::unique_ptr<executor::DelayModel> delays_;
+  std::unique_ptr<StuckWatch> stuck_;  // run.replan_on_stuck (adg)
+  uint64_t replan_expansions_ = 0;     // expansions of the planners replaced by replans
   tasks::LifelongResult life_;
   planner::Budget budget_;
   int k_ = 1;

@@ -99,7 +99,9 @@ void Run::loop_adg()
       auto t0 = Clock::now();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
       // plan is honoured, so the window only bounds how far the plan runs ahead.
-      while (adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal()) {
+      // (Immobile AGVs aside: stuck_replan.hpp.)
+      auto progress = [&] { return stuck_ ? stuck_->min_progress(adg) : adg.min_progress(); };
+      while (adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
         const planner::Config next = p_->next();
         if (next == p_->current()) break;  // the search has nothing beyond the root yet
         p_->commit();
@@ -123,6 +125,7 @@ void Run::loop_adg()
       }
       t0 = Clock::now();
       drv.after_step(last_poses_);
+      stuck_step(adg, drv);  // stuck AGVs: replan around them (stuck_replan.hpp)
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }
@@ -152,7 +155,7 @@ void Run::finish()
   m_.loop_s = ms_since(loop0_) / 1000;
   sumo_->close();  // flushes SUMO's output files
 
-  m_.expansions = p_->expansions();
+  m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
   m_.planner_ms_per_tick = Latency::of(plan_tick_);
   m_.sumo_ms_per_step = Latency::of(sumo_step_);

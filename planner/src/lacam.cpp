@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "planner/immobile.hpp"
 #include "planner/priority.hpp"
 
 namespace planner {
@@ -20,6 +21,14 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
     : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
+  lns_wanted_ = opt.lns;
+}
+
+void Lacam::set_immobile(const std::vector<uint8_t>& immobile)
+{
+  immobile_ = immobile;
+  pibt_.set_immobile(immobile);
+  opt_.lns = lns_wanted_ && !any_immobile(immobile);  // LNS's A* would move them
 }
 
 void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities)
@@ -131,7 +140,9 @@ void Lacam::grow_lowlevel(HNode* H, const Constraint* L)
   const auto nb = g_.neighbors(v);
   Vertex* moves = moves_.data();
   int k = 0;
-  for (Vertex u : nb) moves[k++] = u;
+  const bool stays = !immobile_.empty() && immobile_[i];  // an immobile agent's one move
+  if (!stays)
+    for (Vertex u : nb) moves[k++] = u;
   moves[k++] = v;
   rng_.shuffle(moves, k);
   Constraint* kids = constraints_.alloc(k);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "planner/immobile.hpp"
+
 namespace planner {
 namespace {
 
@@ -16,7 +18,7 @@ LacamOptions without_refine(LacamOptions o)
 
 NaiveRtLacam::NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
                            ActionPreference* pref, GoalTest test)
-    : dist_(g), lacam_(g, dist_, without_refine(opt), pref), current_(starts)
+    : dist_(g), lacam_(g, dist_, without_refine(opt), pref), current_(starts), g_(g), immobile_(starts.size(), 0)
 {
   set_goals(goals, std::move(test));
 }
@@ -29,11 +31,20 @@ void NaiveRtLacam::set_goals(const Config& goals, GoalTest test)
   solution_.clear();
 }
 
+void NaiveRtLacam::set_immobile(int agent, bool immobile)
+{
+  check_immobile_agent(agent, immobile_.size());
+  immobile_[agent] = immobile;
+  lacam_.set_immobile(immobile_);
+  fresh_ = false;      // the next search starts from current_ with the mask
+  solution_.clear();   // a path found before may move the agent
+}
+
 Status NaiveRtLacam::search(const Budget& b)
 {
   if (!solution_.empty()) return Status::Solved;
   if (!fresh_) {
-    lacam_.reset(current_, goals_, test_);
+    lacam_.reset(current_, goals_, relaxed_goal_test(g_, current_, goals_, immobile_, test_));
     fresh_ = true;
   }
   const Status s = lacam_.search(b);

@@ -6,7 +6,7 @@ namespace planner {
 
 Pibt::Pibt(const Graph& g, DistTable& d, bool swap)
     : g_(g), d_(d), swap_(swap), stride_(g.max_degree() + 1), occ_now_(g.size(), -1), occ_next_(g.size(), -1),
-      key_(stride_)
+      key_(stride_), detour_(g)
 {
 }
 
@@ -38,6 +38,12 @@ bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* 
     occ_now_[from[i]] = i;
   }
   if (pref_) pref_->prepare(from, n_);
+  if (!immobile_.empty()) {  // immobile agents never move: their cells are fixed obstacles
+    std::vector<Vertex> blocked;
+    for (int i = 0; i < n_; ++i)
+      if (immobile_[i]) blocked.push_back(from[i]);
+    detour_.set_blocked(std::move(blocked));
+  }
 
   // Agents fixed by the constraint chain; reject fixes that collide with each other.
   for (; c && c->depth > 0; c = c->parent) {
@@ -61,6 +67,14 @@ bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* 
 bool Pibt::plan(int32_t i, Rng& rng)
 {
   const Vertex v = now_[i];
+  if (immobile(i)) {
+    // Its one candidate is staying: it fails if v is reserved already (a pusher asking it
+    // to move, or a constraint fixing someone there); either way v stays its own.
+    const bool ok = occ_next_[v] < 0 || occ_next_[v] == i;
+    occ_next_[v] = i;
+    next_[i] = v;
+    return ok;
+  }
   const auto nb = g_.neighbors(v);
   const int K = static_cast<int>(nb.size());
   Vertex* C = cand_.data() + static_cast<size_t>(i) * stride_;
@@ -69,7 +83,7 @@ bool Pibt::plan(int32_t i, Rng& rng)
   for (int k = 0; k < K; ++k) C[k] = nb[k];
   C[K] = v;
   for (int k = 0; k <= K; ++k)
-    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : static_cast<float>(d_.get(i, C[k])) + rng.uniform();
+    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + rng.uniform();
   for (int k = 1; k <= K; ++k) {
     const Vertex u = C[k];
     const float key = key_[k];
@@ -102,10 +116,17 @@ bool Pibt::plan(int32_t i, Rng& rng)
   return false;
 }
 
+float Pibt::distance(int32_t i, Vertex u)
+{
+  if (!detour_.active() || detour_.get(goals_[i], now_[i]) >= DistTable::kInf) return static_cast<float>(d_.get(i, u));
+  return static_cast<float>(detour_.get(goals_[i], u));
+}
+
 bool Pibt::pull_impossible(Vertex u, Vertex v_pusher) const
 {
   if (u == v_pusher) return true;
   const int32_t a = occ_now_[u];
+  if (a >= 0 && immobile(a)) return true;  // a wall while it is immobile
   return g_.degree(u) == 1 && a >= 0 && goals_[a] == u;  // parked on its goal in a dead end
 }
 
@@ -117,12 +138,12 @@ int32_t Pibt::swap_partner(int32_t i) const
 
   // i is blocked by j coming the other way (cases a and b of LaCAM*).
   const int32_t j = occ_now_[best];
-  if (j >= 0 && next_[j] < 0 && swap_required(i, j, v, best) && swap_possible(best, v)) return j;
+  if (j >= 0 && next_[j] < 0 && !immobile(j) && swap_required(i, j, v, best) && swap_possible(best, v)) return j;
 
   // i clears the way for a neighbour k behind it (case c).
   for (Vertex u : g_.neighbors(v)) {
     const int32_t k = occ_now_[u];
-    if (k < 0 || best == now_[k]) continue;
+    if (k < 0 || best == now_[k] || immobile(k)) continue;
     if (swap_required(k, i, v, best) && swap_possible(best, v)) return k;
   }
   return -1;

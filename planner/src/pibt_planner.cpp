@@ -1,5 +1,7 @@
 #include "planner/pibt_planner.hpp"
 
+#include "planner/immobile.hpp"
+
 namespace planner {
 
 PibtPlanner::PibtPlanner(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
@@ -26,6 +28,15 @@ void PibtPlanner::set_goals(const Config& goals, GoalTest test)
   order_.assign(n, 0);
   init_priorities(current_.data(), n, dist_, prio_.data());
   initial_order(prio_.data(), n, order_.data());
+}
+
+void PibtPlanner::set_immobile(int agent, bool immobile)
+{
+  check_immobile_agent(agent, current_.size());
+  if (immobile_.size() != current_.size()) immobile_.assign(current_.size(), 0);
+  immobile_[agent] = immobile;
+  pibt_.set_immobile(immobile_);
+  planned_ = false;  // a step planned before may move the agent
 }
 
 Status PibtPlanner::search(const Budget&)

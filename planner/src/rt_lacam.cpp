@@ -4,14 +4,31 @@ namespace planner {
 
 RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
                  GoalTest test)
-    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts), keep_priorities_(opt.keep_priorities)
+    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts), keep_priorities_(opt.keep_priorities), g_(g)
 {
   set_goals(goals, std::move(test));
 }
 
 void RtLacam::set_goals(const Config& goals, GoalTest test)
 {
-  test_ = test;
+  test_ = std::move(test);
+  if (immobile_.size() != goals.size()) immobile_.assign(goals.size(), 0);
+  restart(goals);
+}
+
+void RtLacam::set_immobile(int agent, bool immobile)
+{
+  check_immobile_agent(agent, immobile_.size());
+  if (immobile_[agent] == static_cast<uint8_t>(immobile)) return;
+  immobile_[agent] = immobile;
+  lacam_.set_immobile(immobile_);
+  const Config goals = lacam_.goals();
+  restart(goals);
+}
+
+void RtLacam::restart(const Config& goals)
+{
+  GoalTest test = relaxed_goal_test(g_, current_, goals, immobile_, test_);
   // A new epoch may keep the agents' PIBT priorities (LacamOptions::keep_priorities).
   const HNode* root = lacam_.root();
   if (keep_priorities_ && root && goals.size() == current_.size()) {
@@ -25,9 +42,12 @@ void RtLacam::set_goals(const Config& goals, GoalTest test)
 
 Status RtLacam::search(const Budget& b)
 {
-  if (lacam_.status() != Status::Searching && !lacam_.refining()) return lacam_.status();
+  const bool held = any_immobile(immobile_);  // a dry relaxed search is no failure
+  if (lacam_.status() != Status::Searching && !lacam_.refining())
+    return held && lacam_.status() == Status::NoSolution ? Status::Searching : lacam_.status();
   planned_ = nullptr;
-  return lacam_.search(b);
+  const Status s = lacam_.search(b);
+  return held && s == Status::NoSolution ? Status::Searching : s;
 }
 
 const HNode* RtLacam::planned()

@@ -77,6 +77,31 @@ def test_set_goals_starts_a_new_search_from_where_the_agents_are(grid, scen):
     assert p.current == ins.starts
 
 
+@pytest.mark.parametrize("solver", ["rtlacam", "naive", "pibt"])
+def test_an_immobile_agent_is_never_moved_and_all_finish_once_it_is_free(grid, scen, solver):
+    ins = rtlacam.load_scen(scen, grid, 20)
+    p = rtlacam.make_planner(solver, grid, ins.starts, ins.goals, seed=1)
+    with pytest.raises(ValueError, match="agent 20 out of range"):
+        p.set_immobile(20)
+    p.set_immobile(0)
+    v = rtlacam.Validator(grid, ins.starts, ins.goals)
+    for _ in range(100):
+        p.search(expansions=5)
+        assert p.next()[0] == ins.starts[0]
+        assert v.step(p.next()), v.error
+        p.commit()
+    assert not p.at_goal
+    if solver == "rtlacam":  # complete again once it is free
+        p.set_immobile(0, False)
+        for _ in range(3000):
+            if p.at_goal:
+                break
+            p.search(expansions=5)
+            assert v.step(p.next()), v.error
+            p.commit()
+        assert p.current == ins.goals
+
+
 def test_validator_catches_conflicts_and_bad_moves(grid, scen):
     a = rtlacam.load_scen(scen, grid, 1).starts[0]
     n = grid.neighbors(a)[0]

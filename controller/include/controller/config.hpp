@@ -107,6 +107,8 @@ struct RunSection {
   double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
   std::string executor = "lockstep"; // lockstep (all AGVs one cell per tick) | adg (executor/)
   int window = 4;                    // adg: committed configurations ahead of the slowest AGV
+  bool replan_on_stuck = true;       // adg: reroute the others around a stuck AGV (stuck_replan.hpp)
+  double stuck_after_s = 5.0;        // adg: no progress for this long while it may go = stuck
 };
 
 // Delays (executor/delay_model.hpp), durations in seconds in the YAML, ticks here.

@@ -55,6 +55,8 @@ class Driver {
   // of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
+  // The ADG was rebuilt (a replan) with agent i's running moves as actions `ids`, in order.
+  void renumber(int i, const std::vector<int>& ids) { agv_[i].run = ids; }
   // Agent i's executor state in one line (where it is for the ADG, its running moves with
   // group and hand-over): appended to a Safety error.
   std::string describe(int i) const;

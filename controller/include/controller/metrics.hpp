@@ -41,6 +41,9 @@ struct Metrics {
   long long chained = 0;            // adg: moves started without stopping in between
   long long safety_checks = 0;      // SUMO steps checked by Safety (overlap / on path)
   long long commits = 0;            // configurations the planner committed
+  long long replans = 0;            // adg: replans around stuck AGVs and after their recovery
+  long long stuck_events = 0;       // adg: AGVs found stuck (then made immobile)
+  std::vector<double> goal_s;       // adg, one-shot: sim time each AGV reached its goal for good (-1: not)
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
 
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.

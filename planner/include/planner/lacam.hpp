@@ -93,6 +93,11 @@ class Lacam {
   // agents that waited long keep winning conflicts), else distance / N.
   void reset(const Config& start, const Config& goals, GoalTest test = {}, const float* priorities = nullptr);
 
+  // Immobile agents (immobile.hpp; per agent, 1 = immobile, empty = none): PIBT keeps them
+  // in place, their constraints only let them stay, and LNS refinement is off while any
+  // is. Takes effect at the next reset(): a tree built without the mask has moves for them.
+  void set_immobile(const std::vector<uint8_t>& immobile);
+
   Status expand();                   // one LaCAM (or, once solved, LaCAM*) iteration
   // Expands until solved (with refine: until refinement ends), exhausted or out of budget
   // (>= 1 expansion while there is anything to do). Against b.expansions an LNS step counts
@@ -188,6 +193,8 @@ class Lacam {
   std::vector<HNode*> queue_;                    // scratch: rewrite / rebase
   std::vector<std::pair<HNode*, int64_t>> walk_;  // scratch: rebase (node, its old g)
   Config scratch_;
+  std::vector<uint8_t> immobile_;  // set_immobile()
+  bool lns_wanted_ = true;         // opt_.lns as constructed (off while agents are immobile)
   std::vector<Vertex> moves_;  // scratch: children of a constraint
 };
 

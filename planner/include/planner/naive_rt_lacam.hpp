@@ -22,6 +22,7 @@ class NaiveRtLacam : public RealtimePlanner {
   void set_goals(const Config& goals, GoalTest test = {}) override;
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
+  void set_immobile(int agent, bool immobile) override;
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
@@ -39,6 +40,8 @@ class NaiveRtLacam : public RealtimePlanner {
   Config current_, goals_, next_;
   GoalTest test_;
   bool fresh_ = false;  // lacam_ is rooted at current_ and may be continued
+  const Graph& g_;
+  std::vector<uint8_t> immobile_;  // agent -> 1 while immobile (immobile.hpp)
   std::vector<Config> solution_;  // a found path, once some search solved
   size_t at_ = 0;                 // solution_[at_] is the current configuration
 };

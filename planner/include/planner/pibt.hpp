@@ -15,6 +15,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
 #include "planner/hnode.hpp"
+#include "planner/immobile.hpp"
 #include "planner/rng.hpp"
 
 namespace planner {
@@ -27,6 +28,10 @@ class Pibt {
   // does not need to move) and are passed on to the preference. Sizes the agent arrays.
   void set_goals(const Config& goals);
   void set_preference(ActionPreference* pref) { pref_ = pref; }
+  // Immobile agents (immobile.hpp; per agent, 1 = immobile, empty = none): never moved,
+  // never pushed (their only candidate is staying), never pulled by a swap. Kept across
+  // set_goals().
+  void set_immobile(const std::vector<uint8_t>& immobile) { immobile_ = immobile; }
   bool swap() const { return swap_; }
 
   // Writes a successor of `from` into `to`. Agents are planned in `order` (highest
@@ -40,6 +45,10 @@ class Pibt {
   bool swap_required(int32_t pusher, int32_t puller, Vertex v_pusher, Vertex v_puller) const;
   bool swap_possible(Vertex v_pusher, Vertex v_puller) const;
   bool pull_impossible(Vertex u, Vertex v_pusher) const;
+  bool immobile(int32_t i) const { return !immobile_.empty() && immobile_[i]; }
+  // Agent i's distance from u to its goal: around the immobile agents when its goal can be
+  // reached that way (DetourTable), else the plain one.
+  float distance(int32_t i, Vertex u);
 
   const Graph& g_;
   DistTable& d_;
@@ -54,6 +63,8 @@ class Pibt {
   std::vector<Vertex> next_;        // agent -> next vertex, or -1 while unplanned
   std::vector<Vertex> cand_;        // agent * stride_ + k
   std::vector<float> key_;          // scratch for sorting candidates
+  std::vector<uint8_t> immobile_;   // agent -> 1 if immobile (empty: none)
+  DetourTable detour_;              // distances around the immobile agents
 };
 
 }  // namespace planner

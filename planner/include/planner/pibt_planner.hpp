@@ -18,6 +18,7 @@ class PibtPlanner : public RealtimePlanner {
   void set_goals(const Config& goals, GoalTest test = {}) override;
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
+  void set_immobile(int agent, bool immobile) override;
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
@@ -34,6 +35,7 @@ class PibtPlanner : public RealtimePlanner {
   GoalTest test_;
   std::vector<float> prio_, prio_next_;
   std::vector<int32_t> order_;
+  std::vector<uint8_t> immobile_;  // agent -> 1 while immobile (immobile.hpp)
   bool planned_ = false;
   bool keep_priorities_;
   uint64_t steps_planned_ = 0;

@@ -11,6 +11,7 @@
 // search each iteration), PibtPlanner (one PIBT step per iteration, no search).
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "planner/budget.hpp"
@@ -36,6 +37,16 @@ class RealtimePlanner {
   virtual void commit() = 0;
   // New goals: a new search rooted at the current configuration (lifelong tasks).
   virtual void set_goals(const Config& goals, GoalTest test = {}) = 0;
+  // Immobile agents (a stuck AGV; immobile.hpp): while marked, an agent is never moved in
+  // any configuration next() returns, and nobody is planned through it. Setting or clearing
+  // the mark restarts the search at current(); while any agent is immobile the search aims
+  // at relaxed_goal_test() (the others reach their goals around it), at_goal() keeps the
+  // real test. Clearing every mark restores the planner's completeness from current().
+  virtual void set_immobile(int agent, bool immobile)
+  {
+    (void)agent, (void)immobile;
+    throw std::logic_error("planner " + name() + " has no immobile agents");
+  }
   // Lifelong runs: cap the distance tables kept for goals no agent has now (0 = no cap).
   virtual void set_max_dist_tables(size_t n) { (void)n; }
   // Lifelong runs: keep the distance tables in `cache`, shared with the task layer and

@@ -20,6 +20,7 @@
 // it the root (the link to the old root stays).
 #include <vector>
 
+#include "planner/immobile.hpp"
 #include "planner/lacam.hpp"
 #include "planner/realtime_planner.hpp"
 
@@ -37,11 +38,13 @@ class RtLacam : public RealtimePlanner {
   void set_goals(const Config& goals, GoalTest test = {}) override;
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
+  void set_immobile(int agent, bool immobile) override;
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return lacam_.goals(); }
   bool at_goal() const override;
-  bool exhausted() const override { return lacam_.status() == Status::NoSolution; }
+  // Never while an agent is immobile: the relaxed search may run dry, the immobility ends.
+  bool exhausted() const override { return lacam_.status() == Status::NoSolution && !any_immobile(immobile_); }
   uint64_t expansions() const override { return lacam_.expansions(); }
   size_t explored() const override { return lacam_.explored(); }
   std::string name() const override { return "rtlacam"; }
@@ -50,6 +53,7 @@ class RtLacam : public RealtimePlanner {
 
  private:
   const HNode* planned();
+  void restart(const Config& goals);  // a new search at current_ (priorities carried if kept)
 
   DistTable dist_;
   Lacam lacam_;
@@ -60,6 +64,8 @@ class RtLacam : public RealtimePlanner {
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
   std::vector<float> carried_;           // priorities carried into a new epoch
   bool keep_priorities_;
+  const Graph& g_;
+  std::vector<uint8_t> immobile_;        // agent -> 1 while immobile
 };
 
 }  // namespace planner

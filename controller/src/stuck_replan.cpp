@@ -1,0 +1,169 @@
+// StuckWatch (stuck_replan.hpp) and Run's replan around stuck AGVs.
+#include "stuck_replan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "controller/sumo_error.hpp"
+#include "run.hpp"
+#include "tasks/lifelong_goal.hpp"
+
+namespace controller {
+
+StuckWatch::StuckWatch(int n, double stuck_after_s, double dt)
+    : n_(n), after_s_(stuck_after_s), dt_(dt), stall_s_(n, 0.0), last_(n), immobile_(n, 0), target_(n, 0)
+{
+}
+
+bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses,
+                         const executor::DelayModel& delays)
+{
+  // Who holds somebody up: the owner of an undone hand-over another AGV's next move waits on.
+  std::vector<uint8_t> blocks(n_, 0);
+  for (int j = 0; j < n_; ++j) {
+    const int id = adg.next_action(j);
+    if (id < 0 || adg.action(id).state != executor::State::Pending || adg.action(id).handover < 0) continue;
+    const executor::Action& h = adg.action(adg.action(id).handover);
+    if (h.state != executor::State::Done) blocks[h.agent] = 1;
+  }
+  target_ = immobile_;
+  for (int i = 0; i < n_; ++i) {
+    const bool moved = poses[i].lane != last_[i].lane || std::abs(poses[i].pos - last_[i].pos) > 1e-9;
+    last_[i] = poses[i];
+    const int id = adg.next_action(i);
+    const bool may_go = id >= 0 && (adg.action(id).state == executor::State::Running || adg.released(id));
+    stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
+    if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
+    if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9 && blocks[i]) target_[i] = 1;
+  }
+  return target_ != immobile_;
+}
+
+std::vector<int> StuckWatch::running(const executor::Adg& adg, int i)
+{
+  std::vector<int> out;
+  for (int id : {adg.next_action(i), adg.chain_candidate(i)}) {
+    if (id < 0 || adg.action(id).state != executor::State::Running) break;
+    out.push_back(id);
+  }
+  return out;
+}
+
+long long StuckWatch::min_progress(const executor::Adg& adg) const
+{
+  long long p = adg.steps();
+  for (int i = 0; i < n_; ++i)
+    if (!immobile_[i]) p = std::min(p, adg.progress(i));
+  return p;
+}
+
+void StuckWatch::replanned()
+{
+  for (int i = 0; i < n_; ++i) stuck_events_ += target_[i] && !immobile_[i];
+  immobile_ = target_;
+  std::fill(stall_s_.begin(), stall_s_.end(), 0.0);
+}
+
+std::string StuckWatch::describe() const
+{
+  std::string s;
+  for (int i = 0; i < n_; ++i) {
+    if (target_[i] == immobile_[i]) continue;
+    s += (s.empty() ? "" : ", ") + std::string("agv") + std::to_string(i) + (target_[i] ? " immobile" : " mobile again");
+  }
+  return s;
+}
+
+// The replan itself: a new planner and ADG from where the AGVs are and are driving to.
+void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile)
+{
+  const int n = ins_.num_agents();
+  const planner::Graph& g = c_.map_.graph;
+  planner::Config at(n);
+  for (int i = 0; i < n; ++i) at[i] = adg.at(i);
+
+  // The committed plan from the ADG's start on, each agent's path cut at its progress p_i
+  // (C'_t[i] = C_min(t, p_i)[i]; a move in progress is not done: cut before it): still
+  // valid, because the ADG let no agent past a cell hand-over whose other side is not done
+  // -- an agent that entered v at a step <= p_i did so after v's previous occupant had left
+  // it, and a later occupant of v would wait for it to leave, which it has not: no two
+  // agents share a vertex in any C'_t.
+  const size_t base = c_.plan_.size() - 1 - static_cast<size_t>(adg.steps());
+  long long last = 0;
+  std::vector<long long> prog(n);
+  for (int i = 0; i < n; ++i) last = std::max(last, prog[i] = adg.progress(i));
+  for (long long t = 0; t <= last; ++t)
+    for (int i = 0; i < n; ++i) c_.plan_[base + t][i] = c_.plan_[base + std::min(t, prog[i])][i];
+  c_.plan_.resize(base + static_cast<size_t>(last) + 1);
+  if (c_.plan_.back() != at) throw ControlError("replan: the executed configuration is not where the ADG says");
+
+  // The moves in progress (stuck_replan.hpp): step k moves every AGV along its k-th
+  // running move; the planner starts where they end.
+  std::vector<std::vector<int>> mid(n);  // per agent: its running actions (old ADG)
+  std::vector<planner::Config> steps;    // at -> ... -> from, one running move per step
+  for (int i = 0; i < n; ++i) mid[i] = StuckWatch::running(adg, i);
+  planner::Config from = at;
+  for (size_t k = 0;; ++k) {
+    bool any = false;
+    for (int i = 0; i < n; ++i)
+      if (k < mid[i].size()) from[i] = adg.action(mid[i][k]).to, any = true;
+    if (!any) break;
+    steps.push_back(from);
+    c_.plan_.push_back(from);
+  }
+
+  const planner::Config goals = tm_ ? tm_->goals() : ins_.goals;
+  val_ = std::make_unique<planner::Validator>(g, c_.plan_.front(), goals);
+  for (size_t t = 1; t < c_.plan_.size(); ++t)
+    if (!val_->step(c_.plan_[t])) throw ControlError("replan: the cut plan is invalid: " + val_->error());
+
+  // A fresh planner from there, the stuck ones immobile.
+  replan_expansions_ += p_->expansions();
+  p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{});
+  if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
+  for (int i = 0; i < n; ++i)
+    if (immobile[i]) p_->set_immobile(i, true);
+  p_->search(budget_);
+  adg = executor::Adg(at);
+  for (const planner::Config& c : steps) adg.append(c);
+  for (int i = 0; i < n; ++i) {
+    if (mid[i].empty()) continue;
+    std::vector<int> ids = {adg.next_action(i)};
+    if (adg.action(ids[0]).state == executor::State::Pending) adg.start(ids[0]);  // a group starts as one
+    if (mid[i].size() > 1) adg.start_chained(ids.emplace_back(adg.chain_candidate(i)));
+    drv.renumber(i, ids);
+  }
+  ++m_.replans;
+}
+
+void Run::stuck_step(executor::Adg& adg, Driver& drv)
+{
+  if (stuck_ && stuck_->observe(adg, last_poses_, *delays_)) {
+    if (cfg_.run.progress_s > 0)
+      std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: replan (%s)\n", sumo_->time(), stuck_->describe().c_str());
+    // Only recoveries: the committed plan keeps them in place, which stays valid -- the
+    // planner just searches on from its current configuration with them mobile.
+    bool adds = false;
+    for (int i = 0; i < ins_.num_agents(); ++i) adds = adds || (stuck_->target()[i] && !stuck_->immobile()[i]);
+    if (adds) {
+      replan(adg, drv, stuck_->target());
+    } else {
+      for (int i = 0; i < ins_.num_agents(); ++i)
+        if (stuck_->immobile()[i] && !stuck_->target()[i]) p_->set_immobile(i, false);
+      ++m_.replans;
+    }
+    stuck_->replanned();
+  }
+  if (stuck_) m_.stuck_events = stuck_->stuck_events();
+  // When each AGV got to its goal for good (one-shot): the tests' "others finish first".
+  if (!tm_) {
+    m_.goal_s.resize(adg.num_agents(), -1);
+    for (int i = 0; i < adg.num_agents(); ++i) {
+      if (adg.at(i) != ins_.goals[i]) m_.goal_s[i] = -1;
+      else if (m_.goal_s[i] < 0) m_.goal_s[i] = sumo_->time();
+    }
+  }
+}
+
+}  // namespace controller

@@ -1,0 +1,126 @@
+// A stuck AGV in the real SUMO (run.replan_on_stuck, controller/src/stuck_replan.hpp): an
+// AGV stuck for 60 s in a cross aisle whose cells the others' plans pass through. With the
+// replan the others route around it and reach their goals while it is still stuck; when it
+// frees, it finishes too. Without it (the baseline) the others wait for it. Every run is
+// checked after every SUMO step by Safety (no overlap, every AGV on its committed path): a
+// violation ends the run with an error, so "error empty" + "safety_checks == SUMO steps" is
+// the 0-overlap-at-every-step assertion; and no moveTo but the in-place turns.
+#include <gtest/gtest.h>
+
+#include "controller/config.hpp"
+#include "controller/controller.hpp"
+#include "controller_test_util.hpp"
+#include "planner/validator.hpp"
+#include "temp_path.hpp"
+
+using namespace controller;
+
+namespace {
+
+constexpr double kStuckFor = 60;
+
+// config/small_warehouse_stuck.yaml: the small warehouse (r0 the bottom row of junctions
+// c0r0..c3r0, r1 the top row, 8 m apart; single-file aisles). agv0 stands in the bottom
+// cross aisle c1r0 -> c2r0 and is stuck; agv1 and agv2 head right through that aisle
+// (plain routes 8 and 12 cells; around it, over the top row, 24); agv3 works on the right,
+// in nobody's way.
+Config stuck_config(const std::string& name, bool replan, long long stuck_at_s = 0)
+{
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_stuck.yaml");
+  c.output.dir = test::temp_dir("stuck_" + name);
+  c.run.progress_s = 0;
+  c.sumo.outputs = {false, false, false, true};
+  c.delays.spec.stuck = {{0, stuck_at_s, static_cast<long long>(kStuckFor)}};
+  c.run.replan_on_stuck = replan;
+  return c;
+}
+
+void expect_clean(const Config& cfg, const Controller& c, const Metrics& m)
+{
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.jumps, 0);
+  EXPECT_EQ(m.commands.resyncs, 0);
+  EXPECT_EQ(m.commands.move_to, m.commands.turns);  // the only moveTo: turns in place
+  EXPECT_EQ(m.safety_checks, m.ticks * cfg.steps_per_tick());
+  // The committed plan (cut at every replan where the AGVs were) is a valid MAPF plan
+  // ending on the goals.
+  const auto& plan = c.plan();
+  EXPECT_EQ(planner::validate_plan(c.map().graph, plan.front(), plan.back(), plan, true), "");
+  ctest_util::expect_no_sumo_collision(cfg.output.dir);
+}
+
+}  // namespace
+
+TEST(StuckReplan, OthersRouteAroundAnAgvStuckSixtySecondsThenAllFinish)
+{
+  const double frees = kStuckFor;
+  Config cfg = stuck_config("replan", true);
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  ASSERT_EQ(m.goal_s.size(), 4u);
+  for (size_t i = 1; i < m.goal_s.size(); ++i) {
+    EXPECT_GE(m.goal_s[i], 0) << "agv" << i;
+    EXPECT_LT(m.goal_s[i], frees) << "agv" << i << " did not route on";
+  }
+  EXPECT_GE(m.goal_s[0], frees);  // the stuck one finishes after it frees
+  EXPECT_EQ(m.stuck_events, 1);
+  EXPECT_EQ(m.replans, 2);        // stuck, then free again
+  EXPECT_GE(m.delay_agent_ticks, 60);
+
+  // The baseline: without the replan the others wait for it.
+  Config base = stuck_config("wait", false);
+  Controller cb(base);
+  const Metrics mb = cb.run();
+  expect_clean(base, cb, mb);
+  EXPECT_EQ(mb.replans, 0);
+  double last_other = 0;
+  for (size_t i = 1; i < mb.goal_s.size(); ++i) last_other = std::max(last_other, mb.goal_s[i]);
+  EXPECT_GT(last_other, frees);  // someone's plan went through the stuck AGV's cell
+  EXPECT_GT(mb.dependency_waits, m.dependency_waits);
+}
+
+TEST(StuckReplan, AnAgvStuckBetweenTwoCellsKeepsBothAndTheOthersRouteOn)
+{
+  // agv0 starts one cell further left (1 m into the cross aisle), heads right and up the
+  // aisle c2, and is stuck at t = 1 s, one second into its first move (the next one
+  // chained): it brakes between two cells. The replan puts it on the target of its chained
+  // move (the cell before the junction c2r0), and the new ADG keeps the cells it spans for
+  // it until it has driven through them.
+  const double at = 1, frees = at + kStuckFor;
+  Config cfg = stuck_config("mid_move", true, at);
+  cfg.fleet.starts[0].pos = 1;
+  cfg.tasks.goals[0].lane = "c2r0_c2r1_0";
+  cfg.tasks.goals[0].pos = 4;
+  Controller c(cfg);
+  std::vector<double> pos;  // agv0's front on its start lane at the start of each tick
+  c.on_tick = [&](long long, SumoBackend& sumo) {
+    const VehiclePose p = sumo.poses({"agv0"}).front();
+    pos.push_back(p.lane == "c1r0_c2r0_0" ? p.pos : -1);
+  };
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  ASSERT_GT(pos.size(), 30u);
+  // Between two cells (1 m apart, centres at whole metres) when the stop begins and while stuck.
+  for (size_t t : {size_t{1}, size_t{10}, size_t{30}}) {
+    EXPECT_GT(pos[t], 1.05) << "tick " << t;
+    EXPECT_LT(pos[t], 1.95) << "tick " << t;
+  }
+  for (size_t i = 1; i < m.goal_s.size(); ++i) EXPECT_LT(m.goal_s[i], frees) << "agv" << i << " did not route on";
+  EXPECT_GE(m.goal_s[0], frees);
+  EXPECT_EQ(m.stuck_events, 1);
+  EXPECT_EQ(m.replans, 2);
+}
+
+TEST(StuckReplan, ConfigErrors)
+{
+  const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, stuck_after_s: 0}\n").rfind("t.yaml: run.stuck_after_s: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, stuck_after_s: -2}\n").rfind("t.yaml: run.stuck_after_s: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: maybe}\n").rfind("t.yaml: run.replan_on_stuck: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: lockstep, replan_on_stuck: true}\n"),
+            "t.yaml: run.replan_on_stuck: only with run.executor: adg");
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: false, stuck_after_s: 2}\n"), "(no error)");
+}
