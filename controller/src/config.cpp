@@ -323,7 +323,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
   r.number(u, "run", "progress_s", c.run.progress_s, 0);
-  r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg"});
+  r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg", "adg-follow"});
   r.integer(u, "run", "window", c.run.window, 1, 1000000);
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)

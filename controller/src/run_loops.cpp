@@ -79,6 +79,9 @@ void Run::loop_adg()
   dp.accel = cfg_.fleet.vtype.accel;
   dp.decel = cfg_.fleet.vtype.decel;
   dp.max_speed = cfg_.fleet.vtype.max_speed;
+  dp.follow = cfg_.run.executor == "adg-follow";
+  dp.length = cfg_.fleet.vtype.length;
+  dp.margin = cfg_.fleet.vtype.min_gap;
   Driver drv(*cmd_, adg, *delays_, dp);
   auto executed = [&] {
     planner::Config c(ins_.num_agents());

@@ -161,7 +161,7 @@ TEST(AgvConfig, BadPhysicsAndDelayParametersAreOneLineErrors)
       {net + "fleet: {count: 3, vtype: {accel: -1}}\n", "t.yaml: fleet.vtype.accel: must be > 0"},
       {net + "fleet: {count: 3, vtype: {max_speed: 0}}\n", "t.yaml: fleet.vtype.max_speed: must be > 0"},
       {net + "fleet: {count: 3}\nrun: {window: 0}\n", "t.yaml: run.window: must be in 1.."},
-      {net + "fleet: {count: 3}\nrun: {executor: async}\n", "t.yaml: run.executor: 'async' is not one of adg|lockstep"},
+      {net + "fleet: {count: 3}\nrun: {executor: async}\n", "t.yaml: run.executor: 'async' is not one of adg|adg-follow|lockstep"},
       {net + "fleet: {count: 3}\ndelays: {kind: bernoulli, p: 1.5}\n", "t.yaml: delays.p: 1.5"},
       {net + "fleet: {count: 3}\ndelays: {kind: poisson, rate: -0.1}\n", "t.yaml: delays.rate: "},
       {net + "fleet: {count: 3}\ndelays: {kind: gauss}\n", "t.yaml: delays.kind: 'gauss' is not one of"},

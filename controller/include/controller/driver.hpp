@@ -31,6 +31,10 @@ namespace controller {
 struct DriveParams {
   double dt = 0.125;  // SUMO step, s
   double accel = 0.5, decel = 1.0, max_speed = 1.0;
+  // Moving-block following (run.executor adg-follow): body length and the gap kept to a
+  // leader's back, m.
+  bool follow = false;
+  double length = 0.8, margin = 0.1;
 };
 
 struct DriveStats {
@@ -68,14 +72,20 @@ class Driver {
     double done = 0;            // distance covered in run[0]
     double v = 0;               // speed for the current step
     int rest_steps = 0;         // steps at rest since the last arrival
+    std::string lane;           // SUMO lane of the front after the last step
   };
   void begin(int action);
+  // How far agent's front is past the start of its running `action` (negative: not there yet).
+  double ahead(int agent, int action) const;
+  // Follow mode: how far agent i's front may still go (its leaders' backs minus margin).
+  double room(int i) const;
 
   Commander& cmd_;
   executor::Adg& adg_;
   const executor::DelayModel& delays_;
   DriveParams p_;
   std::vector<Agv> agv_;
+  std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
   DriveStats st_;
 };
 

@@ -13,6 +13,15 @@
 //     one is leaving, so two members of one unfinished group may share a cell claim
 //     (`group[i]`: the rotation group agent i takes part in, -1 if none; the body check
 //     below still keeps them apart on a lane);
+//   - following mode (run.executor adg-follow, set_following): cells may be shared by a
+//     leader and its follower, so instead of whole-cell claims the bodies are checked around
+//     every cell v: of the AGVs at v or driving away from it (toward another cell) at most
+//     one body still covers v (front less than `length` past it); at most one AGV drives
+//     toward v; and the one driving toward v (from u) and the one leaving v (toward w) are
+//     not a head-on pass (w != u) and their bodies do not intersect: distance of the
+//     follower's front to v + distance of the leader's front past v >= length, measured as
+//     if the two paths were one line (exact for a train; at a junction stricter than the
+//     geometry). Rotation-group members are exempt as above;
 //   - no two bodies [front - length, front] intersect on one lane. (Not across the two
 //     lanes of an aisle: they lie side by side, and with the front on the cell centre two
 //     AGVs facing each other on adjacent cells have overlapping projections; the cell
@@ -43,12 +52,25 @@ class Safety {
              const std::vector<std::string>& ids, double t, bool exclusive,
              const std::vector<int>& group = {});
 
+  // adg-follow: body-based checks around cells instead of exclusive cell claims.
+  void set_following(bool on) { following_ = on; }
+
   long long checks() const { return checks_; }
   // The two agents of the last cell overlap reported (-1, -1 if none): for diagnostics.
   std::pair<int, int> last_overlap() const { return last_overlap_; }
 
  private:
   Claim locate(const std::pair<const std::string, std::pair<int, bool>>& lane, double pos) const;
+  // Following mode: an AGV's relation to one cell (see above).
+  struct Near {
+    planner::Vertex cell;
+    bool entering;         // driving toward `cell`; else at it or leaving it
+    double dist;           // entering: front's distance to cell; else front's distance past it
+    planner::Vertex other; // entering: the cell it comes from; leaving: where it goes (-1: at)
+    int agent;
+  };
+  void check_following(const std::vector<VehiclePose>& poses, const std::vector<std::string>& ids,
+                       const std::string& when, const std::vector<int>& group);
   struct Body {
     int lane;
     double back, front;
@@ -57,6 +79,8 @@ class Safety {
 
   const gridify::CellMap& map_;
   std::vector<Body> bodies_;
+  std::vector<Near> near_;
+  bool following_ = false;
   std::vector<std::unordered_map<std::string, std::pair<int, bool>>::const_iterator> lane_cache_;
   double length_;
   std::vector<int> owner_;         // cell -> agent claiming it, valid where stamp_ == epoch_
