@@ -20,6 +20,8 @@ void Driver::begin(int id)
   g.run.push_back(id);
   g.dist.push_back(cmd_.begin_move(a.agent, a.from, a.to));
   g.target.push_back(cmd_.pose(a.agent));
+  st_.followed += a.handover >= 0 && adg_.action(a.handover).state != executor::State::Done &&
+                  !(a.group >= 0 && adg_.action(a.handover).group == a.group);
 }
 
 void Driver::before_step()

@@ -86,6 +86,7 @@ nlohmann::json Metrics::to_json() const
                    {"delay_agent_ticks", delay_agent_ticks},
                    {"delay_stops", delay_stops},
                    {"chained", chained},
+                   {"followed", followed},
                    {"safety_checks", safety_checks},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   j["max_position_error_m"] = commands.max_error;

@@ -136,12 +136,14 @@ void Run::loop_adg()
     m_.soc = val_->sum_of_costs();
     m_.dependency_waits = drv.stats().dependency_waits;
     m_.chained = drv.stats().chained;
+    m_.followed = drv.stats().followed;
     const planner::Config now = executed();
     if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
     progress_line(now);
   }
   m_.dependency_waits = drv.stats().dependency_waits;
   m_.chained = drv.stats().chained;
+  m_.followed = drv.stats().followed;
 }
 
 void Run::finish()

@@ -125,15 +125,15 @@ void Safety::check_following(const std::vector<VehiclePose>& poses, const std::v
         const Near& q = near_[y];
         if (p.agent == q.agent) continue;
         if (group_of(p.agent) >= 0 && group_of(p.agent) == group_of(q.agent)) continue;
-        if (p.entering && q.entering) fail(p, q, "both drive into one cell");
-        if (!p.entering && !q.entering) {
-          if (p.dist < length_ - 1e-9 && q.dist < length_ - 1e-9) fail(p, q, "overlap (both bodies cover)");
-          continue;
+        // Both on one line through v (entering: behind v, else past it): bodies
+        // [x - length, x] must not intersect.
+        const double xp = p.entering ? -p.dist : p.dist, xq = q.entering ? -q.dist : q.dist;
+        if (p.entering != q.entering) {
+          const Near& in = p.entering ? p : q;
+          const Near& out = p.entering ? q : p;
+          if (out.other >= 0 && out.other == in.other) fail(p, q, "pass head-on");
         }
-        const Near& in = p.entering ? p : q;
-        const Near& out = p.entering ? q : p;
-        if (out.other >= 0 && out.other == in.other) fail(p, q, "pass head-on");
-        if (in.dist + out.dist < length_ - 1e-9) fail(p, q, "overlap (follower's front in the leader's body)");
+        if (std::fabs(xp - xq) < length_ - 1e-9) fail(p, q, "overlap (bodies intersect)");
       }
     lo = hi;
   }

@@ -41,6 +41,7 @@ struct DriveStats {
   long long dependency_waits = 0;  // agent-steps with a committed move not yet released
   long long delay_steps = 0;       // agent-steps stopped by a delay
   long long chained = 0;           // moves started while driving (no stop in between)
+  long long followed = 0;          // moves started while the cell's previous occupant was still leaving it
   double max_error = 0;            // |SUMO front - target| at arrivals, m
 };
 

@@ -15,13 +15,12 @@
 //     below still keeps them apart on a lane);
 //   - following mode (run.executor adg-follow, set_following): cells may be shared by a
 //     leader and its follower, so instead of whole-cell claims the bodies are checked around
-//     every cell v: of the AGVs at v or driving away from it (toward another cell) at most
-//     one body still covers v (front less than `length` past it); at most one AGV drives
-//     toward v; and the one driving toward v (from u) and the one leaving v (toward w) are
-//     not a head-on pass (w != u) and their bodies do not intersect: distance of the
-//     follower's front to v + distance of the leader's front past v >= length, measured as
-//     if the two paths were one line (exact for a train; at a junction stricter than the
-//     geometry). Rotation-group members are exempt as above;
+//     every cell v: each AGV at v, driving toward it or away from it is put on one line
+//     through v (front at minus its distance to v, or plus its distance past v) and no two
+//     bodies [front - length, front] on that line may intersect -- exact for a train, at a
+//     junction stricter than the geometry; and one driving toward v from u and one leaving
+//     v are not a head-on pass (the leaver not heading to u). Rotation-group members are
+//     exempt as above;
 //   - no two bodies [front - length, front] intersect on one lane. (Not across the two
 //     lanes of an aisle: they lie side by side, and with the front on the cell centre two
 //     AGVs facing each other on adjacent cells have overlapping projections; the cell
