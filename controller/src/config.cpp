@@ -313,7 +313,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
 
   const YAML::Node u = root["run"];
-  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s", "executor", "window"});
+  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s", "executor", "window", "drain"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -325,6 +325,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "progress_s", c.run.progress_s, 0);
   r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg", "adg-follow"});
   r.integer(u, "run", "window", c.run.window, 1, 1000000);
+  if (u && u["drain"]) r.integer(u, "run", "drain", c.run.drain, 1, c.run.window);
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");

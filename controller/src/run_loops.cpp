@@ -101,8 +101,11 @@ void Run::loop_adg()
     for (int s = 0; s < k_; ++s) {
       auto t0 = Clock::now();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
-      // plan is honoured, so the window only bounds how far the plan runs ahead.
-      while (adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal()) {
+      // plan is honoured, so the window only bounds how far the plan runs ahead. With
+      // run.drain D < W the planner searches on until fewer than D are left, then refills.
+      const int drain = cfg_.run.drain > 0 ? cfg_.run.drain : cfg_.run.window;
+      const bool refill = adg.steps() - adg.min_progress() < drain;
+      while (refill && adg.steps() - adg.min_progress() < cfg_.run.window && !p_->at_goal()) {
         const planner::Config next = p_->next();
         if (next == p_->current()) break;  // the search has nothing beyond the root yet
         p_->commit();

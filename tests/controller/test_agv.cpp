@@ -161,6 +161,8 @@ TEST(AgvConfig, BadPhysicsAndDelayParametersAreOneLineErrors)
       {net + "fleet: {count: 3, vtype: {accel: -1}}\n", "t.yaml: fleet.vtype.accel: must be > 0"},
       {net + "fleet: {count: 3, vtype: {max_speed: 0}}\n", "t.yaml: fleet.vtype.max_speed: must be > 0"},
       {net + "fleet: {count: 3}\nrun: {window: 0}\n", "t.yaml: run.window: must be in 1.."},
+      {net + "fleet: {count: 3}\nrun: {window: 4, drain: 5}\n", "t.yaml: run.drain: must be in 1..4, got 5"},
+      {net + "fleet: {count: 3}\nrun: {drain: 0}\n", "t.yaml: run.drain: must be in 1..4, got 0"},
       {net + "fleet: {count: 3}\nrun: {executor: async}\n", "t.yaml: run.executor: 'async' is not one of adg|adg-follow|lockstep"},
       {net + "fleet: {count: 3}\ndelays: {kind: bernoulli, p: 1.5}\n", "t.yaml: delays.p: 1.5"},
       {net + "fleet: {count: 3}\ndelays: {kind: poisson, rate: -0.1}\n", "t.yaml: delays.rate: "},
@@ -219,6 +221,8 @@ TEST(AgvFollow, ConvoysKeepZeroOverlapWithPhysicsAndRandomStops)
 {
   Config cfg = agv_config("follow_stops");
   cfg.run.executor = "adg-follow";
+  cfg.run.window = 8;  // and a separate drain threshold: commit again below 3 left
+  cfg.run.drain = 3;
   cfg.delays.spec.kind = "bernoulli";
   cfg.delays.spec.p = 0.05;
   cfg.delays.spec.fraction = 0.5;
