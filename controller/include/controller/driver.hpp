@@ -1,23 +1,50 @@
 #pragma once
-// Driver: the adg executor on SUMO (run.executor: adg). Each AGV runs the actions the
-// action dependency graph (executor/adg.hpp) releases to it, asynchronously, with physical
-// motion: its speed follows a trapezoid -- up at `accel`, down at `decel`, capped at
-// max_speed x its speed factor -- that always keeps it able to stop on the target cell of
-// the last move it may make. SUMO integrates the motion (speedMode 0: the speed set is the
-// speed driven, so the front lands on the cell exactly); the controller plays the AGV's
-// on-board motion controller.
+// Driver: the adg executor on SUMO (run.executor: adg | adg-follow). Each AGV runs the
+// actions the action dependency graph (executor/adg.hpp) releases to it, asynchronously,
+// with physical motion: its speed follows a trapezoid -- up at `accel`, down at `decel`,
+// capped at max_speed x its speed factor -- that always keeps it able to stop at its
+// stopping point. SUMO integrates the motion (speedMode 0: the speed set is the speed
+// driven, so the front lands on the cell exactly); the controller plays the AGV's on-board
+// motion controller.
 //
 //   start : an AGV with no running move starts its next action once released and not
 //           stopped by a delay (a reversal in an aisle: only after one step at rest);
-//   chain : while driving, it may also start the action after the running one if that
-//           one's hand-over dependency is done, so it need not brake on the cell between
-//           (at most two moves ahead: the braking distance at 1 m/s and 1 m/s^2 is 0.5 m);
-//   rotate: the members of a rotation group start together, drive at the slowest one's
-//           pace, cover equal fractions of their moves (arrive together) and brake together;
+//   chain : continuous motion -- every later action of the AGV whose hand-over is met is
+//           started too (a prefix of its remaining actions), so it drives through all
+//           their cells and brakes only for the end of the last one. Not across a turn
+//           that needs rest, and a move onto a new lane (new SUMO route) only once the AGV
+//           is on the commanded lane (SUMO replaces a route from the current edge only);
+//   follow: adg-follow (moving-block following): a move into cell v may start (or chain)
+//           once v's previous occupant has STARTED leaving it (toward another cell: the
+//           plan has no swaps); the stopping point is then
+//               min(end of the running moves, v + leader's distance past v - length - margin,
+//                   v - 1e-6 until the leader has arrived),
+//           with the leader's body measured as if its path went straight on through v
+//           (exact for a train; at a junction it only adds distance). So the front stays
+//           `margin` (vType min_gap) behind the leader's back, and v is reached only after
+//           the leader's arrival elsewhere, as in Hönig's ADG order;
+//   rotate: the members of a rotation group start together (strictly released, also in
+//           follow mode), drive at the slowest one's pace, cover equal fractions of their
+//           moves (arrive together) and brake together;
 //   stop  : a stopped AGV (DelayModel) brakes at `decel` where it is -- between cells is
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is
 //           checked against SUMO to 1e-6 m).
+//
+// Why adg-follow is collision-free: (1) ADG order -- an action into v completes only after
+// v's previous occupant has arrived elsewhere, and (executor/adg.hpp) the previous occupants
+// before it left before it entered, so at most two AGVs are ever near v: the one leaving
+// and the one entering (plus rotation members, which move as one); (2) gap invariant -- the
+// follower's stopping point is behind the leader's back minus margin, and it never
+// decreases (a leader only moves forward, stopped or not), so braking at `decel` from a
+// speed <= sqrt(2 decel room) always stops in time; a stopped leader only freezes the
+// follower's stopping point. Safety (safety.hpp) checks the bodies independently.
+// Why it progresses under finite delays: following only relaxes when a move may START; its
+// completion still waits for the same ADG dependencies, so the dependency graph is the same
+// DAG (rotation cycles grouped) and the strict ADG's deadlock freedom carries over: the
+// earliest undone action's leader is done, so its stopping point is its cell and it
+// arrives once its delays end; with RT-LaCAM's completeness every committed step is
+// eventually executed and the goals are reached (tests/controller/test_agv.cpp).
 // allowed() gives the cells each AGV may occupy now, for Safety.
 #include <string>
 #include <vector>
