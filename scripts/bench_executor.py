@@ -117,8 +117,10 @@ def main():
     ap.add_argument("--max-ticks", type=int, default=3000)
     ap.add_argument("--steps", type=int, default=1000, help="part B: steps per lifelong run")
     ap.add_argument("--parts", default="ABC")
+    ap.add_argument("--ps", default=",".join(map(str, PS)), help="delay probabilities, comma-separated")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "executor_bench.md"))
     a = ap.parse_args()
+    PS[:] = [float(x) if "." in x else int(x) for x in a.ps.split(",")]
     tmp = tempfile.mkdtemp(prefix="bench_executor_")
     md = ["# Lockstep vs ADG executor under delays\n",
           f"`scripts/bench_executor.py --parts {a.parts} --max-ticks {a.max_ticks} --steps {a.steps}`, "
