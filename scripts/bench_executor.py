@@ -3,11 +3,12 @@
 
 For each delay probability p (Bernoulli, per AGV per tick, stops of 1-5 ticks):
   A. SUMO, large warehouse (200 AGVs, one-shot): makespan in ticks (1 tick = 1 s) for
-     lockstep (scheme S, all wait for a stopped mover), adg with near-instant speed changes
-     (accel = decel = 1000 m/s^2: the executor alone) and adg with physics (0.5 / 1.0 m/s^2).
+     lockstep (scheme S, all wait for a stopped mover), adg (Hoenig's rule) and adg-follow
+     (moving-block following), both with physics (0.5 / 1.0 m/s^2) and continuous motion.
   B. MAPF graph, rtlacam-lifelong on LoRR RANDOM-01 (100 agents): errands per step, lockstep,
      adg (Hoenig's rule) and adg-follow (moving-block following).
-  C. SUMO, small warehouse lifelong (16 AGVs, 1000 ticks): errands per tick.
+  C. SUMO, small warehouse lifelong (16 AGVs, 1000 ticks): errands per tick, lockstep, adg
+     and adg-follow.
 Each run also reports its collisions / moveTo jumps (must be 0). Writes docs/executor_bench.md
 (markdown) and prints it.
 
@@ -58,8 +59,7 @@ def sumo_run(build, cfg, out):
 
 def part_a(build, max_ticks, tmp):
     rows = []
-    variants = [("lockstep", "lockstep", None, None), ("adg, instant speed", "adg", 1000, 1000),
-                ("adg, physics 0.5/1.0", "adg", 0.5, 1.0)]
+    variants = [("lockstep", "lockstep", None, None), ("adg", "adg", 0.5, 1.0), ("adg-follow", "adg-follow", 0.5, 1.0)]
     for p in PS:
         row = [p]
         for name, ex, a, d in variants:
@@ -71,7 +71,7 @@ def part_a(build, max_ticks, tmp):
             print(f"A p={p} {name}: ticks {m['ticks']} solved {m['solved']} error '{m['error']}' "
                   f"dep_waits {m['executor']['dependency_waits']} wall {m['_wall']:.1f}s", file=sys.stderr)
         rows.append(row)
-    head = "| p | lockstep | adg, instant speed | adg, physics 0.5/1.0 m/s^2 |\n|---:|---:|---:|---:|\n"
+    head = "| p | lockstep | adg, physics 0.5/1.0 m/s^2 | adg-follow, physics 0.5/1.0 m/s^2 |\n|---:|---:|---:|---:|\n"
     return head + "".join(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]} |\n" for r in rows)
 
 
@@ -97,16 +97,18 @@ def part_c(build, tmp):
     rows = []
     for p in PS:
         row = [p]
-        for name, ex, a, d in [("lockstep", "lockstep", None, None), ("adg, physics", "adg", 0.5, 1.0)]:
+        for name, ex, a, d in [("lockstep", "lockstep", None, None), ("adg, physics", "adg", 0.5, 1.0),
+                               ("adg-follow, physics", "adg-follow", 0.5, 1.0)]:
             cfg = yaml_variant("small_warehouse_lifelong_agv.yaml", ex, p, a, d, window=4)
             m = sumo_run(build, cfg, os.path.join(tmp, f"C_{ex}_{p}"))
             bad = int(m["collisions"]) + int(m["teleports_or_jumps"]) + (1 if m["error"] else 0)
             life = m["lifelong"]
             row.append(f"{life['errandThroughput']:.3f}{' ERR' if bad else ''}")
-            print(f"C p={p} {name}: errands {life['numErrandFinished']} error '{m['error']}'", file=sys.stderr)
+            print(f"C p={p} {name}: errands {life['numErrandFinished']} error '{m['error']}' "
+                  f"wall {m['_wall']:.1f}s", file=sys.stderr)
         rows.append(row)
-    head = "| p | lockstep | adg, physics 0.5/1.0 m/s^2 |\n|---:|---:|---:|\n"
-    return head + "".join(f"| {r[0]} | {r[1]} | {r[2]} |\n" for r in rows)
+    head = "| p | lockstep | adg, physics 0.5/1.0 m/s^2 | adg-follow, physics 0.5/1.0 m/s^2 |\n|---:|---:|---:|---:|\n"
+    return head + "".join(f"| {r[0]} | {r[1]} | {r[2]} | {r[3]} |\n" for r in rows)
 
 
 def main():
@@ -115,8 +117,10 @@ def main():
     ap.add_argument("--max-ticks", type=int, default=3000)
     ap.add_argument("--steps", type=int, default=1000, help="part B: steps per lifelong run")
     ap.add_argument("--parts", default="ABC")
+    ap.add_argument("--ps", default=",".join(map(str, PS)), help="delay probabilities, comma-separated")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "executor_bench.md"))
     a = ap.parse_args()
+    PS[:] = [float(x) if "." in x else int(x) for x in a.ps.split(",")]
     tmp = tempfile.mkdtemp(prefix="bench_executor_")
     md = ["# Lockstep vs ADG executor under delays\n",
           f"`scripts/bench_executor.py --parts {a.parts} --max-ticks {a.max_ticks} --steps {a.steps}`, "

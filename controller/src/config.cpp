@@ -314,7 +314,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node u = root["run"];
   r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s", "executor", "window",
-                    "replan_on_stuck", "stuck_after_s"});
+                    "drain", "replan_on_stuck", "stuck_after_s"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -324,12 +324,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
   r.number(u, "run", "progress_s", c.run.progress_s, 0);
-  r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg"});
+  r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg", "adg-follow"});
   r.integer(u, "run", "window", c.run.window, 1, 1000000);
+  if (u && u["drain"]) r.integer(u, "run", "drain", c.run.drain, 1, c.run.window);
   r.flag(u, "run", "replan_on_stuck", c.run.replan_on_stuck);
   r.number(u, "run", "stuck_after_s", c.run.stuck_after_s, 0, true);
-  if (c.run.executor != "adg" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
-    r.fail("run.replan_on_stuck", "only with run.executor: adg");
+  if (c.run.executor == "lockstep" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
+    r.fail("run.replan_on_stuck", "only with run.executor: adg or adg-follow");
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");

@@ -10,6 +10,7 @@ namespace controller {
 Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
     : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents())
 {
+  for (int i = 0; i < adg.num_agents(); ++i) agv_[i].lane = cmd_.pose(i).lane;
 }
 
 void Driver::begin(int id)
@@ -19,6 +20,8 @@ void Driver::begin(int id)
   g.run.push_back(id);
   g.dist.push_back(cmd_.begin_move(a.agent, a.from, a.to));
   g.target.push_back(cmd_.pose(a.agent));
+  st_.followed += a.handover >= 0 && adg_.action(a.handover).state != executor::State::Done &&
+                  !(a.group >= 0 && adg_.action(a.handover).group == a.group);
 }
 
 void Driver::before_step()
@@ -32,7 +35,8 @@ void Driver::before_step()
     if (g.run.empty()) {
       const int id = adg_.next_action(i);
       if (id < 0) continue;
-      if (!adg_.released(id)) {
+      const bool follow = p_.follow && adg_.action(id).group < 0;  // rotations: strict
+      if (!(follow ? adg_.released_following(id) : adg_.released(id))) {
         ++st_.dependency_waits;
         continue;
       }
@@ -44,20 +48,40 @@ void Driver::before_step()
              (!cmd_.needs_rest(j, adg_.action(m).from, adg_.action(m).to) || agv_[j].rest_steps > 0);
       }
       if (!go) continue;
-      adg_.start(id);
+      if (follow)
+        adg_.start_following(id);
+      else
+        adg_.start(id);
       for (int m : group) begin(m);
-    } else if (g.run.size() == 1) {
-      // Chain the next move if its cell is already handed over: no braking in between.
-      const int id = adg_.chain_candidate(i);
-      if (id < 0 || !adg_.chainable(id)) continue;
+    }
+    // Continuous motion: chain the following actions already released (a prefix of the
+    // agent's remaining ones), so the AGV drives through their cells and brakes only for
+    // the end of the last one (or a leader's back, below). Only as far as it could need to
+    // brake from full speed (plus one step's travel): that keeps cruising speed, and cells
+    // further ahead stay free for the others -- a stuck AGV's replan (stuck_replan.hpp)
+    // keeps every cell of its running moves.
+    const double reach = p_.max_speed * p_.max_speed / (2 * p_.decel) + p_.max_speed * p_.dt;
+    auto ahead = [&] {
+      double r = -g.done;
+      for (double d : g.dist) r += d;
+      return r;
+    };
+    while (!g.run.empty() && ahead() < reach) {
+      const int id = adg_.undone(i, g.run.size());
+      if (id < 0 || !(p_.follow ? adg_.chainable_following(id) : adg_.chainable(id))) break;
       const executor::Action& a = adg_.action(id);
-      if (cmd_.needs_rest(i, a.from, a.to)) continue;
-      adg_.start_chained(id);
+      if (cmd_.needs_rest(i, a.from, a.to)) break;
+      if (cmd_.changes_lane(i, a.from, a.to) && g.lane != cmd_.pose(i).lane) break;
+      if (p_.follow)
+        adg_.start_chained_following(id);
+      else
+        adg_.start_chained(id);
       begin(id);
       ++st_.chained;
     }
   }
   std::vector<double> speed(n, 0.0);
+  rem_.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
     double rem = -g.done;
@@ -74,14 +98,16 @@ void Driver::before_step()
           held = held || delays_.stopped(j);
           factor = std::min(factor, delays_.factor(j));
         }
+      if (p_.follow) rem = std::min(rem, room(i));
       if (held) {
         v = std::max(0.0, g.v - p_.decel * p_.dt);
-      } else {
+      } else if (rem > 1e-12) {
         const double vmax = p_.max_speed * factor;
         v = std::min({vmax, g.v + p_.accel * p_.dt, std::sqrt(2 * p_.decel * rem)});
       }
     }
     speed[i] = v;
+    rem_[i] = rem;
   }
   // ... and its members arrive together: each covers the same fraction of its move as the
   // member with the longest move (moves into a junction cell are shorter than a spacing),
@@ -98,8 +124,7 @@ void Driver::before_step()
   }
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
-    double rem = -g.done;
-    for (double d : g.dist) rem += d;
+    const double rem = rem_[i];
     double v = speed[i];
     // Land on the cell, a nanometre short: SUMO moves a front exactly at a lane's end
     // onto the next edge of its route, which would leave the junction cell's pose.
@@ -110,10 +135,41 @@ void Driver::before_step()
   }
 }
 
+double Driver::ahead(int agent, int action) const
+{
+  const Agv& g = agv_[agent];
+  double before = 0;  // path distance from the start of run[0] to the start of `action`
+  for (size_t k = 0; k < g.run.size(); ++k) {
+    if (g.run[k] == action) return g.done - before;
+    before += g.dist[k];
+  }
+  return -INFINITY;  // not running: cannot happen for a started hand-over
+}
+
+double Driver::room(int i) const
+{
+  const Agv& g = agv_[i];
+  double room = INFINITY, end = -g.done;  // end: distance from the front to the end of run[k]
+  for (size_t k = 0; k < g.run.size(); ++k) {
+    end += g.dist[k];
+    const executor::Action& a = adg_.action(g.run[k]);
+    if (a.handover < 0) continue;
+    const executor::Action& h = adg_.action(a.handover);
+    if (h.state == executor::State::Done || (a.group >= 0 && h.group == a.group)) continue;
+    // The previous occupant of a.to is leaving it: keep the front `margin` behind its back
+    // (measured as if its path went straight on through a.to: exact for a train, and at a
+    // junction conservative), and short of a.to until it has arrived (ADG order).
+    const double back = ahead(h.agent, a.handover) - p_.length;
+    room = std::min(room, end + std::min(back - p_.margin, -1e-6));
+  }
+  return room;
+}
+
 void Driver::after_step(const std::vector<VehiclePose>& poses)
 {
   for (int i = 0; i < adg_.num_agents(); ++i) {
     Agv& g = agv_[i];
+    g.lane = poses[i].lane;
     if (g.run.empty()) {
       ++g.rest_steps;
       continue;

@@ -88,6 +88,7 @@ nlohmann::json Metrics::to_json() const
                    {"delay_agent_ticks", delay_agent_ticks},
                    {"delay_stops", delay_stops},
                    {"chained", chained},
+                   {"followed", followed},
                    {"safety_checks", safety_checks},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there

@@ -60,7 +60,7 @@ void Run::prepare()
   m_.budget_ms = cfg_.planner.budget_ms;
   m_.mode = cfg_.tasks.mode;
   m_.executor = cfg_.run.executor;
-  m_.window = cfg_.run.executor == "adg" ? cfg_.run.window : 1;
+  m_.window = cfg_.run.executor != "lockstep" ? cfg_.run.window : 1;
   if (cfg_.tasks.lifelong()) m_.assignment = cfg_.tasks.assignment;
 
   gridify::GridifyOptions go;
@@ -104,6 +104,7 @@ void Run::prepare()
   m_.backend = sumo_->name();
   cmd_ = std::make_unique<Commander>(c_.map_, *sumo_, cfg_.run.tick_s);
   safety_ = std::make_unique<Safety>(c_.map_, cfg_.fleet.vtype.length);
+  safety_->set_following(cfg_.run.executor == "adg-follow");
   planner::Config goals = ins_.goals;
   planner::GoalTest goal_test;
   auto setup0 = Clock::now();
@@ -123,7 +124,7 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor == "adg" && cfg_.run.replan_on_stuck)
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck)
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
@@ -231,7 +232,7 @@ Metrics Run::execute()
   try {
     start_sumo();
     loop0_ = Clock::now();
-    if (cfg_.run.executor == "adg")
+    if (cfg_.run.executor != "lockstep")
       loop_adg();
     else
       loop_lockstep();

@@ -79,6 +79,9 @@ void Run::loop_adg()
   dp.accel = cfg_.fleet.vtype.accel;
   dp.decel = cfg_.fleet.vtype.decel;
   dp.max_speed = cfg_.fleet.vtype.max_speed;
+  dp.follow = cfg_.run.executor == "adg-follow";
+  dp.length = cfg_.fleet.vtype.length;
+  dp.margin = cfg_.fleet.vtype.min_gap;
   Driver drv(*cmd_, adg, *delays_, dp);
   auto executed = [&] {
     planner::Config c(ins_.num_agents());
@@ -98,10 +101,13 @@ void Run::loop_adg()
     for (int s = 0; s < k_; ++s) {
       auto t0 = Clock::now();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
-      // plan is honoured, so the window only bounds how far the plan runs ahead.
+      // plan is honoured, so the window only bounds how far the plan runs ahead. With
+      // run.drain D < W the planner searches on until fewer than D are left, then refills.
       // (Immobile AGVs aside: stuck_replan.hpp.)
       auto progress = [&] { return stuck_ ? stuck_->min_progress(adg) : adg.min_progress(); };
-      while (adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
+      const int drain = cfg_.run.drain > 0 ? cfg_.run.drain : cfg_.run.window;
+      const bool refill = adg.steps() - progress() < drain;
+      while (refill && adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
         const planner::Config next = p_->next();
         if (next == p_->current()) break;  // the search has nothing beyond the root yet
         p_->commit();
@@ -136,12 +142,14 @@ void Run::loop_adg()
     m_.soc = val_->sum_of_costs();
     m_.dependency_waits = drv.stats().dependency_waits;
     m_.chained = drv.stats().chained;
+    m_.followed = drv.stats().followed;
     const planner::Config now = executed();
     if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
     progress_line(now);
   }
   m_.dependency_waits = drv.stats().dependency_waits;
   m_.chained = drv.stats().chained;
+  m_.followed = drv.stats().followed;
 }
 
 void Run::finish()

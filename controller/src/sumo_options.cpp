@@ -20,7 +20,7 @@ std::string write_vtype_file(const Config& cfg, const std::string& dir, double m
   const VType& t = cfg.fleet.vtype;
   // Commanded speeds are (distance / tick); the margin keeps rounding from capping them.
   // adg: the Driver's top speed (it never exceeds max_speed x speed factor).
-  const double vmax = cfg.run.executor == "adg" ? 1.01 * t.max_speed : 1.01 * max_spacing / cfg.run.tick_s;
+  const double vmax = cfg.run.executor != "lockstep" ? 1.01 * t.max_speed : 1.01 * max_spacing / cfg.run.tick_s;
   const double emergency = std::max(2 * vmax / cfg.sumo.step_length, t.decel);
   const std::string path = dir + "/agv.add.xml";
   std::ofstream out(path);

@@ -149,6 +149,12 @@ void Adg::start(int id)
   for (int m : group_of(id)) actions_[m].state = State::Running;
 }
 
+void Adg::resume(int id)
+{
+  if (actions_[id].state != State::Pending) throw std::logic_error("Adg::resume: action " + std::to_string(id) + " is not pending");
+  for (int m : group_of(id)) actions_[m].state = State::Running;
+}
+
 void Adg::finish(int id)
 {
   Action& a = actions_[id];
@@ -175,6 +181,26 @@ bool Adg::chainable(int id) const
 void Adg::start_chained(int id)
 {
   if (!chainable(id)) throw std::logic_error("Adg::start_chained: action " + std::to_string(id) + " is not chainable");
+  actions_[id].state = State::Running;
+}
+
+int Adg::undone(int agent, size_t k) const
+{
+  const auto& q = queue_[agent];
+  return head_[agent] + k < q.size() ? q[head_[agent] + k] : -1;
+}
+
+bool Adg::chainable_following(int id) const
+{
+  const Action& a = actions_[id];
+  return a.state == State::Pending && a.group < 0 && a.prev >= 0 && actions_[a.prev].state == State::Running &&
+         actions_[a.prev].group < 0 && (a.handover < 0 || actions_[a.handover].state != State::Pending);
+}
+
+void Adg::start_chained_following(int id)
+{
+  if (!chainable_following(id))
+    throw std::logic_error("Adg::start_chained_following: action " + std::to_string(id) + " is not chainable");
   actions_[id].state = State::Running;
 }
 

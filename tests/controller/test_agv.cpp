@@ -161,7 +161,9 @@ TEST(AgvConfig, BadPhysicsAndDelayParametersAreOneLineErrors)
       {net + "fleet: {count: 3, vtype: {accel: -1}}\n", "t.yaml: fleet.vtype.accel: must be > 0"},
       {net + "fleet: {count: 3, vtype: {max_speed: 0}}\n", "t.yaml: fleet.vtype.max_speed: must be > 0"},
       {net + "fleet: {count: 3}\nrun: {window: 0}\n", "t.yaml: run.window: must be in 1.."},
-      {net + "fleet: {count: 3}\nrun: {executor: async}\n", "t.yaml: run.executor: 'async' is not one of adg|lockstep"},
+      {net + "fleet: {count: 3}\nrun: {window: 4, drain: 5}\n", "t.yaml: run.drain: must be in 1..4, got 5"},
+      {net + "fleet: {count: 3}\nrun: {drain: 0}\n", "t.yaml: run.drain: must be in 1..4, got 0"},
+      {net + "fleet: {count: 3}\nrun: {executor: async}\n", "t.yaml: run.executor: 'async' is not one of adg|adg-follow|lockstep"},
       {net + "fleet: {count: 3}\ndelays: {kind: bernoulli, p: 1.5}\n", "t.yaml: delays.p: 1.5"},
       {net + "fleet: {count: 3}\ndelays: {kind: poisson, rate: -0.1}\n", "t.yaml: delays.rate: "},
       {net + "fleet: {count: 3}\ndelays: {kind: gauss}\n", "t.yaml: delays.kind: 'gauss' is not one of"},
@@ -209,4 +211,44 @@ TEST(AgvPhysics, LifelongErrandsKeepCompletingUnderDelays)
   EXPECT_GT(m.errands_finished, 10);
   EXPECT_LE(gap, 150);
   ctest_util::expect_no_sumo_collision(cfg.output.dir);
+}
+
+// run.executor adg-follow (moving-block following): followers drive into cells their
+// leaders are still leaving, keeping the front `min_gap` behind the leader's back; Safety
+// checks the bodies around every cell at every SUMO step (expect_clean: no error, a check
+// per step). With physics and random stops of 1-5 s on half the AGVs.
+TEST(AgvFollow, ConvoysKeepZeroOverlapWithPhysicsAndRandomStops)
+{
+  Config cfg = agv_config("follow_stops");
+  cfg.run.executor = "adg-follow";
+  cfg.run.window = 8;  // and a separate drain threshold: commit again below 3 left
+  cfg.run.drain = 3;
+  cfg.delays.spec.kind = "bernoulli";
+  cfg.delays.spec.p = 0.05;
+  cfg.delays.spec.fraction = 0.5;
+  cfg.delays.spec.min_ticks = 1;
+  cfg.delays.spec.max_ticks = 5;
+  cfg.delays.spec.seed = 5;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_GT(m.followed, 0);  // the convoy case really happened
+  EXPECT_GT(m.chained, 0);
+  EXPECT_GT(m.delay_stops, 0);
+}
+
+// The point of following: the same instance, no delays, strict ADG (a follower starts when
+// its leader has arrived) vs adg-follow -- both measured here, follow must be faster.
+TEST(AgvFollow, FollowingFinishesBeforeTheStrictAdg)
+{
+  long long ticks[2] = {0, 0};
+  for (int follow = 0; follow < 2; ++follow) {
+    Config cfg = agv_config(follow ? "follow_fast" : "strict_fast");
+    cfg.run.executor = follow ? "adg-follow" : "adg";
+    Controller c(cfg);
+    const Metrics m = c.run();
+    expect_clean(cfg, c, m);
+    ticks[follow] = m.ticks;
+  }
+  EXPECT_LT(ticks[1], ticks[0]) << "adg " << ticks[0] << " ticks, adg-follow " << ticks[1];
 }

@@ -65,3 +65,37 @@ TEST(Safety, RotationGroupMembersInMotionMayShareACellClaim)
   EXPECT_NE(e.find("overlap at cell " + std::to_string(l.cells[1])), std::string::npos) << e;
   EXPECT_EQ(s.checks(), 7);
 }
+
+// run.executor adg-follow: a follower may drive into the cell its leader is leaving, so
+// Safety checks bodies around the cell instead of whole-cell claims -- and still fails on
+// a body overlap, a head-on pass and two AGVs standing on one cell.
+TEST(Safety, FollowingModeChecksBodiesAroundACellNotClaims)
+{
+  const gridify::CellMap map = gridify::gridify(std::string(RTLACAM_SCENARIOS) + "/small.net.xml");
+  const Lane l = some_lane(map);
+  ASSERT_FALSE(l.id.empty());
+  const double s = l.spacing, len = 0.3 * s;
+  Safety safety(map, len);
+  safety.set_following(true);
+  const auto at = [&](int k) { return l.cells[k]; };
+  // agv0 in (c0, c1) heading to c1, agv1 in (c1, c2) leaving c1: a gap of b - a - len.
+  EXPECT_EQ(check(safety, l, 0.5 * s, 1.5 * s, {}), "");  // exclusive claims would fail here
+  EXPECT_EQ(check(safety, l, 0.7 * s, 0.7 * s + len + 1e-6, {}), "");
+  std::string e = check(safety, l, 0.8 * s, 0.8 * s + 0.9 * len, {});
+  EXPECT_NE(e.find("overlap (bodies intersect) at cell " + std::to_string(at(1))), std::string::npos) << e;
+  // Both standing on c1.
+  e = check(safety, l, s, s, {});
+  EXPECT_NE(e.find("overlap"), std::string::npos) << e;
+  // Head-on: agv1 on the opposite lane between c1 and c0, heading to c0, while agv0 heads
+  // from c0 to c1 (far enough apart that no body is near the other's).
+  const gridify::Aisle& ai = map.aisles[map.lane_aisle.at(l.id).first];
+  const std::vector<VehiclePose> poses = {{l.id, 0.1 * s}, {ai.lane_ba, ai.length_ba - 0.9 * s}};
+  const std::vector<std::vector<planner::Vertex>> allowed = {{at(0), at(1)}, {at(1), at(0)}};
+  e.clear();
+  try {
+    safety.check(poses, allowed, {"agv0", "agv1"}, 1.0, true, {});
+  } catch (const ControlError& x) {
+    e = x.what();
+  }
+  EXPECT_NE(e.find("pass head-on"), std::string::npos) << e;
+}

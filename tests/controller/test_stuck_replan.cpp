@@ -121,6 +121,6 @@ TEST(StuckReplan, ConfigErrors)
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, stuck_after_s: -2}\n").rfind("t.yaml: run.stuck_after_s: ", 0), 0u);
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: maybe}\n").rfind("t.yaml: run.replan_on_stuck: ", 0), 0u);
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: lockstep, replan_on_stuck: true}\n"),
-            "t.yaml: run.replan_on_stuck: only with run.executor: adg");
+            "t.yaml: run.replan_on_stuck: only with run.executor: adg or adg-follow");
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: false, stuck_after_s: 2}\n"), "(no error)");
 }

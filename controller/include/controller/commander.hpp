@@ -51,6 +51,13 @@ class Commander {
   // rest on u (needs_rest()): the front does not move, only the heading flips.
   double begin_move(int agent, planner::Vertex u, planner::Vertex v);
   bool needs_rest(int agent, planner::Vertex u, planner::Vertex v) const;
+  // The move u -> v leaves the lane of the commanded pose (a new route): SUMO replaces a
+  // route only from the edge the vehicle is on, so a chained move may only do that once the
+  // AGV has reached the commanded lane.
+  bool changes_lane(int agent, planner::Vertex u, planner::Vertex v) const
+  {
+    return map_.pose_entering(u, v).lane != agv_[agent].pose.lane;
+  }
   void drive(int agent, double speed);
   // SUMO ids in agent order.
   const std::vector<std::string>& ids() const { return ids_; }

@@ -105,8 +105,9 @@ struct RunSection {
   double gui_delay_ms = 100;         // sumo-gui's --delay (a watchable pace; 0 = flat out)
   int port = 0;                      // traci: connect to a running SUMO instead of starting one
   double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
-  std::string executor = "lockstep"; // lockstep (all AGVs one cell per tick) | adg (executor/)
-  int window = 4;                    // adg: committed configurations ahead of the slowest AGV
+  std::string executor = "lockstep"; // lockstep (all AGVs one cell per tick) | adg | adg-follow (executor/)
+  int window = 4;                    // adg: committed configurations ahead of the slowest AGV (at most)
+  int drain = 0;                     // adg: commit again once fewer than this are left (1..window; 0: window)
   bool replan_on_stuck = true;       // adg: reroute the others around a stuck AGV (stuck_replan.hpp)
   double stuck_after_s = 5.0;        // adg: no progress for this long while it may go = stuck
 };

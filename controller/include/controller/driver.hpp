@@ -1,23 +1,50 @@
 #pragma once
-// Driver: the adg executor on SUMO (run.executor: adg). Each AGV runs the actions the
-// action dependency graph (executor/adg.hpp) releases to it, asynchronously, with physical
-// motion: its speed follows a trapezoid -- up at `accel`, down at `decel`, capped at
-// max_speed x its speed factor -- that always keeps it able to stop on the target cell of
-// the last move it may make. SUMO integrates the motion (speedMode 0: the speed set is the
-// speed driven, so the front lands on the cell exactly); the controller plays the AGV's
-// on-board motion controller.
+// Driver: the adg executor on SUMO (run.executor: adg | adg-follow). Each AGV runs the
+// actions the action dependency graph (executor/adg.hpp) releases to it, asynchronously,
+// with physical motion: its speed follows a trapezoid -- up at `accel`, down at `decel`,
+// capped at max_speed x its speed factor -- that always keeps it able to stop at its
+// stopping point. SUMO integrates the motion (speedMode 0: the speed set is the speed
+// driven, so the front lands on the cell exactly); the controller plays the AGV's on-board
+// motion controller.
 //
 //   start : an AGV with no running move starts its next action once released and not
 //           stopped by a delay (a reversal in an aisle: only after one step at rest);
-//   chain : while driving, it may also start the action after the running one if that
-//           one's hand-over dependency is done, so it need not brake on the cell between
-//           (at most two moves ahead: the braking distance at 1 m/s and 1 m/s^2 is 0.5 m);
-//   rotate: the members of a rotation group start together, drive at the slowest one's
-//           pace, cover equal fractions of their moves (arrive together) and brake together;
+//   chain : continuous motion -- every later action of the AGV whose hand-over is met is
+//           started too (a prefix of its remaining actions), so it drives through all
+//           their cells and brakes only for the end of the last one. Not across a turn
+//           that needs rest, and a move onto a new lane (new SUMO route) only once the AGV
+//           is on the commanded lane (SUMO replaces a route from the current edge only);
+//   follow: adg-follow (moving-block following): a move into cell v may start (or chain)
+//           once v's previous occupant has STARTED leaving it (toward another cell: the
+//           plan has no swaps); the stopping point is then
+//               min(end of the running moves, v + leader's distance past v - length - margin,
+//                   v - 1e-6 until the leader has arrived),
+//           with the leader's body measured as if its path went straight on through v
+//           (exact for a train; at a junction it only adds distance). So the front stays
+//           `margin` (vType min_gap) behind the leader's back, and v is reached only after
+//           the leader's arrival elsewhere, as in Hönig's ADG order;
+//   rotate: the members of a rotation group start together (strictly released, also in
+//           follow mode), drive at the slowest one's pace, cover equal fractions of their
+//           moves (arrive together) and brake together;
 //   stop  : a stopped AGV (DelayModel) brakes at `decel` where it is -- between cells is
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is
 //           checked against SUMO to 1e-6 m).
+//
+// Why adg-follow is collision-free: (1) ADG order -- an action into v completes only after
+// v's previous occupant has arrived elsewhere, and (executor/adg.hpp) the previous occupants
+// before it left before it entered, so at most two AGVs are ever near v: the one leaving
+// and the one entering (plus rotation members, which move as one); (2) gap invariant -- the
+// follower's stopping point is behind the leader's back minus margin, and it never
+// decreases (a leader only moves forward, stopped or not), so braking at `decel` from a
+// speed <= sqrt(2 decel room) always stops in time; a stopped leader only freezes the
+// follower's stopping point. Safety (safety.hpp) checks the bodies independently.
+// Why it progresses under finite delays: following only relaxes when a move may START; its
+// completion still waits for the same ADG dependencies, so the dependency graph is the same
+// DAG (rotation cycles grouped) and the strict ADG's deadlock freedom carries over: the
+// earliest undone action's leader is done, so its stopping point is its cell and it
+// arrives once its delays end; with RT-LaCAM's completeness every committed step is
+// eventually executed and the goals are reached (tests/controller/test_agv.cpp).
 // allowed() gives the cells each AGV may occupy now, for Safety.
 #include <string>
 #include <vector>
@@ -31,12 +58,17 @@ namespace controller {
 struct DriveParams {
   double dt = 0.125;  // SUMO step, s
   double accel = 0.5, decel = 1.0, max_speed = 1.0;
+  // Moving-block following (run.executor adg-follow): body length and the gap kept to a
+  // leader's back, m.
+  bool follow = false;
+  double length = 0.8, margin = 0.1;
 };
 
 struct DriveStats {
   long long dependency_waits = 0;  // agent-steps with a committed move not yet released
   long long delay_steps = 0;       // agent-steps stopped by a delay
   long long chained = 0;           // moves started while driving (no stop in between)
+  long long followed = 0;          // moves started while the cell's previous occupant was still leaving it
   double max_error = 0;            // |SUMO front - target| at arrivals, m
 };
 
@@ -55,8 +87,15 @@ class Driver {
   // of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
-  // The ADG was rebuilt (a replan) with agent i's running moves as actions `ids`, in order.
-  void renumber(int i, const std::vector<int>& ids) { agv_[i].run = ids; }
+  // The ADG was rebuilt (a replan) with agent i's running moves as actions `ids`, in order:
+  // a prefix of them (a stuck AGV drops the chained moves it has not begun).
+  void renumber(int i, const std::vector<int>& ids)
+  {
+    Agv& g = agv_[i];
+    g.run = ids;
+    g.dist.resize(ids.size());
+    g.target.resize(ids.size());
+  }
   // Agent i's executor state in one line (where it is for the ADG, its running moves with
   // group and hand-over): appended to a Safety error.
   std::string describe(int i) const;
@@ -64,20 +103,26 @@ class Driver {
 
  private:
   struct Agv {
-    std::vector<int> run;       // running actions, oldest first (at most 2)
+    std::vector<int> run;       // running actions, oldest first (chained: as many as are released)
     std::vector<double> dist;   // their distances
     std::vector<gridify::SumoPose> target;  // their target poses
     double done = 0;            // distance covered in run[0]
     double v = 0;               // speed for the current step
     int rest_steps = 0;         // steps at rest since the last arrival
+    std::string lane;           // SUMO lane of the front after the last step
   };
   void begin(int action);
+  // How far agent's front is past the start of its running `action` (negative: not there yet).
+  double ahead(int agent, int action) const;
+  // Follow mode: how far agent i's front may still go (its leaders' backs minus margin).
+  double room(int i) const;
 
   Commander& cmd_;
   executor::Adg& adg_;
   const executor::DelayModel& delays_;
   DriveParams p_;
   std::vector<Agv> agv_;
+  std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
   DriveStats st_;
 };
 

@@ -39,6 +39,7 @@ struct Metrics {
   long long delay_agent_ticks = 0;  // agent-ticks stopped by the delay model
   long long delay_stops = 0;        // stops injected
   long long chained = 0;            // adg: moves started without stopping in between
+  long long followed = 0;           // adg-follow: moves started while the cell's previous occupant was still leaving it
   long long safety_checks = 0;      // SUMO steps checked by Safety (overlap / on path)
   long long commits = 0;            // configurations the planner committed
   long long replans = 0;            // adg: replans around stuck AGVs and after their recovery

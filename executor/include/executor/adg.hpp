@@ -88,6 +88,17 @@ class Adg {
   int chain_candidate(int agent) const;
   bool chainable(int id) const;
   void start_chained(int id);  // throws unless chainable
+  // A replan (controller/stuck_replan.hpp) carries moves already running in the ADG it
+  // replaces: they run on here without the release check (the old ADG released them under
+  // its rule, and they keep their order); a rotation group resumes as one.
+  void resume(int id);
+  // Continuous motion (the SUMO Driver): the agent's k-th undone action (k = 0: next_action),
+  // -1 if none; chaining any number of actions ahead of the running ones.
+  int undone(int agent, size_t k) const;
+  // Chaining with moving-block following: as chainable(), but the hand-over need only have
+  // started (the previous occupant is leaving the cell); the caller keeps the body gap.
+  bool chainable_following(int id) const;
+  void start_chained_following(int id);  // throws unless chainable_following
   // The agent's last done action (-1 if none), and whether every member of group g is done.
   int last_done(int agent) const { return head_[agent] > 0 ? queue_[agent][head_[agent] - 1] : -1; }
   bool group_done(int g) const;
