@@ -43,7 +43,8 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
 std::vector<int> StuckWatch::running(const executor::Adg& adg, int i)
 {
   std::vector<int> out;
-  for (int id : {adg.next_action(i), adg.chain_candidate(i)}) {
+  for (size_t k = 0;; ++k) {  // the Driver chains as many as it may need to brake (driver.cpp)
+    const int id = adg.undone(i, k);
     if (id < 0 || adg.action(id).state != executor::State::Running) break;
     out.push_back(id);
   }
@@ -129,9 +130,12 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   for (const planner::Config& c : steps) adg.append(c);
   for (int i = 0; i < n; ++i) {
     if (mid[i].empty()) continue;
-    std::vector<int> ids = {adg.next_action(i)};
-    if (adg.action(ids[0]).state == executor::State::Pending) adg.start(ids[0]);  // a group starts as one
-    if (mid[i].size() > 1) adg.start_chained(ids.emplace_back(adg.chain_candidate(i)));
+    std::vector<int> ids;
+    for (size_t k = 0; k < mid[i].size(); ++k) {
+      ids.push_back(adg.undone(i, k));
+      // Released by the replaced ADG (strict or following rule): carried over as running.
+      if (adg.action(ids.back()).state == executor::State::Pending) adg.resume(ids.back());  // a group as one
+    }
     drv.renumber(i, ids);
   }
   ++m_.replans;

@@ -124,3 +124,33 @@ TEST(StuckReplan, ConfigErrors)
             "t.yaml: run.replan_on_stuck: only with run.executor: adg or adg-follow");
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: false, stuck_after_s: 2}\n"), "(no error)");
 }
+
+TEST(StuckReplan, LifelongFollowingRunsReplanCarryingChainedMoves)
+{
+  // adg-follow in the lifelong small warehouse with long random stops (3-25 s at p = 0.05):
+  // AGVs get stuck while the others wait on them, so replans happen in the middle of chained,
+  // followed moves; each carries every running move into the new ADG (Adg::resume). Before
+  // that, a replan re-released them under the strict rule and the run died
+  // ("Adg::start: action 0 is not released").
+  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong_agv.yaml");
+  cfg.output.dir = test::temp_dir("stuck_lifelong_follow");
+  cfg.run.progress_s = 0;
+  cfg.run.max_ticks = 250;
+  cfg.run.executor = "adg-follow";
+  cfg.run.replan_on_stuck = true;
+  cfg.sumo.outputs = {false, false, false, true};
+  cfg.delays.spec.kind = "bernoulli";
+  cfg.delays.spec.p = 0.05;
+  cfg.delays.spec.min_ticks = 3;
+  cfg.delays.spec.max_ticks = 25;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
+  EXPECT_EQ(m.safety_checks, m.ticks * cfg.steps_per_tick());
+  EXPECT_GT(m.replans, 0);
+  EXPECT_GT(m.followed, 0);
+  EXPECT_GT(m.errands_finished, 0);
+  ctest_util::expect_no_sumo_collision(cfg.output.dir);
+}
