@@ -7,6 +7,16 @@
 
 namespace controller {
 
+namespace {
+// Distance left to the end of the agent's last running (released) move.
+double left_to_drive(const std::vector<double>& dist, double done)
+{
+  double r = -done;
+  for (double d : dist) r += d;
+  return r;
+}
+}  // namespace
+
 Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
     : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents())
 {
@@ -61,12 +71,7 @@ void Driver::before_step()
     // further ahead stay free for the others -- a stuck AGV's replan (stuck_replan.hpp)
     // keeps every cell of its running moves.
     const double reach = p_.max_speed * p_.max_speed / (2 * p_.decel) + p_.max_speed * p_.dt;
-    auto ahead = [&] {
-      double r = -g.done;
-      for (double d : g.dist) r += d;
-      return r;
-    };
-    while (!g.run.empty() && ahead() < reach) {
+    while (!g.run.empty() && left_to_drive(g.dist, g.done) < reach) {
       const int id = adg_.undone(i, g.run.size());
       if (id < 0 || !(p_.follow ? adg_.chainable_following(id) : adg_.chainable(id))) break;
       const executor::Action& a = adg_.action(id);
@@ -84,8 +89,7 @@ void Driver::before_step()
   rem_.assign(n, 0.0);
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
-    double rem = -g.done;
-    for (double d : g.dist) rem += d;
+    double rem = left_to_drive(g.dist, g.done);
     double v = 0;
     if (rem > 1e-12) {
       // A rotation (group) drives as one: at its slowest member's speed, and every

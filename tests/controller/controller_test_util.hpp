@@ -1,6 +1,7 @@
 #pragma once
 // Helpers shared by the controller tests: the first config error of a YAML text, a whole
-// file as a string, and "SUMO itself recorded no collision" for a run's output dir.
+// file as a string, "SUMO itself recorded no collision" for a run's output dir, and the
+// shipped lifelong AGV config with the checks every physics run must pass.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -8,6 +9,8 @@
 #include <string>
 
 #include "controller/config.hpp"
+#include "controller/metrics.hpp"
+#include "temp_path.hpp"
 
 namespace ctest_util {
 
@@ -31,6 +34,29 @@ inline std::string config_error(const std::string& yaml)
 inline void expect_no_sumo_collision(const std::string& out_dir)
 {
   EXPECT_EQ(slurp(out_dir + "/collision.xml").find("<collision "), std::string::npos) << out_dir;
+}
+
+// config/small_warehouse_lifelong_agv.yaml, `ticks` long, quiet, SUMO writing only its
+// collision output (into a fresh scratch dir `name`).
+inline controller::Config lifelong_agv_config(const std::string& name, long long ticks)
+{
+  controller::Config cfg = controller::load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong_agv.yaml");
+  cfg.output.dir = test::temp_dir(name);
+  cfg.run.progress_s = 0;
+  cfg.run.max_ticks = ticks;
+  cfg.sumo.outputs = {false, false, false, true};
+  return cfg;
+}
+
+// A run Safety checked after every SUMO step that nothing stopped: no error, no violation,
+// no moveTo jump or re-sync, and no collision in SUMO's own output.
+inline void expect_checked_every_step(const controller::Config& cfg, const controller::Metrics& m)
+{
+  EXPECT_EQ(m.error, "");
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
+  EXPECT_EQ(m.safety_checks, m.ticks * cfg.steps_per_tick());
+  expect_no_sumo_collision(cfg.output.dir);
 }
 
 }  // namespace ctest_util

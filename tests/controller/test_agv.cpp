@@ -189,17 +189,10 @@ TEST(AgvPhysics, LifelongErrandsKeepCompletingUnderDelays)
 {
   // The shipped lifelong config (physics, stops at p = 0.01, one slow AGV), 400 ticks:
   // never more than K = 150 ticks without a completed errand (measured: <= 84 over 1000).
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong_agv.yaml");
-  cfg.output.dir = test::temp_dir("agv_lifelong");
-  cfg.run.progress_s = 0;
-  cfg.run.max_ticks = 400;
-  cfg.sumo.outputs = {false, false, false, true};
+  Config cfg = ctest_util::lifelong_agv_config("agv_lifelong", 400);
   Controller c(cfg);
   const Metrics m = c.run();
-  EXPECT_EQ(m.error, "");
-  EXPECT_EQ(m.violations, 0);
-  EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
-  EXPECT_EQ(m.safety_checks, m.ticks * cfg.steps_per_tick());
+  ctest_util::expect_checked_every_step(cfg, m);
   EXPECT_GT(m.delay_stops, 0);
   const nlohmann::json j = nlohmann::json::parse(ctest_util::slurp(cfg.output.dir + "/" + cfg.tasks.log));
   long last = 0, gap = 0;
@@ -210,7 +203,6 @@ TEST(AgvPhysics, LifelongErrandsKeepCompletingUnderDelays)
   gap = std::max(gap, static_cast<long>(m.ticks) - last);
   EXPECT_GT(m.errands_finished, 10);
   EXPECT_LE(gap, 150);
-  ctest_util::expect_no_sumo_collision(cfg.output.dir);
 }
 
 // run.executor adg-follow (moving-block following): followers drive into cells their

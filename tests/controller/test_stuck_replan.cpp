@@ -134,25 +134,17 @@ TEST(StuckReplan, LifelongReplansCarryChainedMoves)
   // moves; each carries every running move into the new ADG (Adg::resume). Before that, a
   // replan re-released them with the release check of a fresh ADG and the run died
   // ("Adg::start_chained: action 12 is not chainable", seen with adg-follow).
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong_agv.yaml");
-  cfg.output.dir = test::temp_dir("stuck_lifelong");
-  cfg.run.progress_s = 0;
-  cfg.run.max_ticks = 250;
+  Config cfg = ctest_util::lifelong_agv_config("stuck_lifelong", 250);
   cfg.run.executor = "adg";
   cfg.run.replan_on_stuck = true;
-  cfg.sumo.outputs = {false, false, false, true};
   cfg.delays.spec.kind = "bernoulli";
   cfg.delays.spec.p = 0.05;
   cfg.delays.spec.min_ticks = 3;
   cfg.delays.spec.max_ticks = 25;
   Controller c(cfg);
   const Metrics m = c.run();
-  EXPECT_EQ(m.error, "");
-  EXPECT_EQ(m.violations, 0);
-  EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
-  EXPECT_EQ(m.safety_checks, m.ticks * cfg.steps_per_tick());
+  ctest_util::expect_checked_every_step(cfg, m);
   EXPECT_GT(m.replans, 0);
   EXPECT_GT(m.chained, 0);
   EXPECT_GT(m.errands_finished, 0);
-  ctest_util::expect_no_sumo_collision(cfg.output.dir);
 }
