@@ -123,11 +123,16 @@ bool Adg::may_finish(int id) const
          (a.handover < 0 || (a.group >= 0 && actions_[a.handover].group == a.group) || dep_done(a.handover));
 }
 
+void Adg::run_group(int id)
+{
+  for (int m : group_of(id)) actions_[m].state = State::Running;
+}
+
 void Adg::start_following(int id)
 {
   if (!released_following(id))
     throw std::logic_error("Adg::start_following: action " + std::to_string(id) + " is not released");
-  for (int m : group_of(id)) actions_[m].state = State::Running;
+  run_group(id);
 }
 
 bool Adg::group_done(int g) const
@@ -146,13 +151,13 @@ std::vector<int> Adg::group_of(int id) const
 void Adg::start(int id)
 {
   if (!released(id)) throw std::logic_error("Adg::start: action " + std::to_string(id) + " is not released");
-  for (int m : group_of(id)) actions_[m].state = State::Running;
+  run_group(id);
 }
 
 void Adg::resume(int id)
 {
   if (actions_[id].state != State::Pending) throw std::logic_error("Adg::resume: action " + std::to_string(id) + " is not pending");
-  for (int m : group_of(id)) actions_[m].state = State::Running;
+  run_group(id);
 }
 
 void Adg::finish(int id)

@@ -115,6 +115,7 @@ class Adg {
   long long actions_done() const { return done_count_; }
 
  private:
+  void run_group(int id);  // the action and its rotation group (if any) start running
   bool outside_deps_done(int id) const;
   // The type-1 dependency: the previous action done -- if it belongs to a rotation group,
   // the whole group (a member that arrives first does not leave its cell, still claimed by
