@@ -62,13 +62,15 @@ Status RotationPibt::search(const Budget&)
   action_.assign(static_cast<size_t>(n), 'W');
   decided_.assign(static_cast<size_t>(n), -1);
   memo_.assign(static_cast<size_t>(n), 0);
-  if (target_.size() != static_cast<size_t>(n)) target_.assign(static_cast<size_t>(n), -1);
+  if (target_.size() != static_cast<size_t>(n)) target_.assign(static_cast<size_t>(n), -1), blocked_.assign(static_cast<size_t>(n), 0);
   // A robot still turning toward the cell it chose keeps it: PIBT does not replan it, and
   // the cell stays reserved (the start kit's causal PIBT). Facing it, it is planned anew.
   for (int i = 0; i < n; ++i) {
     const Vertex c = target_[i];
-    if (c < 0 || c == current_[i] || dist_.ahead(current_[i], heading_[i]) == c || occ_next_[c] >= 0) {
+    const bool facing = dist_.ahead(current_[i], heading_[i]) == c;
+    if (c < 0 || c == current_[i] || (facing && blocked_[i] > kPatience) || occ_next_[c] >= 0) {
       target_[i] = -1;
+      blocked_[i] = 0;
       continue;
     }
     decided_[i] = c;
@@ -87,7 +89,7 @@ Status RotationPibt::search(const Budget&)
   next_ = current_;
   for (int i = 0; i < n; ++i) {
     if (moves(i)) next_[i] = decided_[i];
-    else if (action_[i] == 'F') action_[i] = 'W';  // blocked: waits, facing its cell
+    else if (action_[i] == 'F') action_[i] = 'W', ++blocked_[i];  // blocked: waits, facing its cell
   }
   for (int i = 0; i < n; ++i) {
     target_[i] = decided_[i] != current_[i] ? decided_[i] : -1;
@@ -169,6 +171,8 @@ void RotationPibt::commit()
     else if (action_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;
     // PIBT's dynamic priority: +1 per step away from the goal, its tie part on it.
     prio_[i] = current_[i] != goals_[i] ? prio_[i] + 1.0 : prio_[i] - static_cast<double>(static_cast<long>(prio_[i]));
+    // A robot in a dead end blocks its only way out: it goes first (the start kit's boost).
+    if (current_[i] != goals_[i] && g_.degree(current_[i]) == 1) prio_[i] += kDeadEndBoost;
   }
   planned_ = false;
 }

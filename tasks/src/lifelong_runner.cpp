@@ -158,7 +158,6 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
         if (letters)
           for (size_t i = 0; i < next.size(); ++i) r.actions[i] += rot->actions()[i];
       }
-      if (rot && getenv("ROTDBG") && t < 40) fprintf(stderr, "t%ld a1 v%d o%d g%d h%d act%c\n", t, p->current()[1], rot->headings()[1], p->goals()[1], rot->h(1), rot->actions()[1]);
       p->commit();
       if (heading) heading->committed(p->current());
     }

@@ -4,24 +4,32 @@
 // action directly: F (forward into the cell ahead), R (turn clockwise), C (turn
 // counter-clockwise) or W (wait). No cell plan and no adapter: a robot that must turn is
 // planned as turning, so robots behind it are not held up by a plan that assumed it moves.
+// Why not PIBT whose candidates are the four actions (tried first): a robot asked to vacate
+// its cell can only do so by F, so one facing a wall can never be pushed and high-priority
+// robots waited behind it for good (MR23-I-04: 0.36 errands/step).
 //
-// The step (PIBT, Okumura et al. AIJ 2022, with candidates = actions):
-//  - agents in descending priority; an undecided agent ranks its four actions by the exact
-//    rotation-aware distance h of the state each leads to (RotationDist), ties: forward
-//    first, then at random (a seeded Rng);
-//  - occupancy is on cells: F reserves the cell ahead for the next step, R, C and W keep
-//    the robot's cell; no two robots reserve one cell (no vertex conflict);
-//  - priority inheritance: F into a cell whose robot has not decided yet asks that robot to
-//    vacate it, which it can do only by F (turns and waits keep the cell); if it cannot,
-//    it stays (its best turn or wait) and the asker tries its next action. A robot asked
-//    by j never moves into j's cell (no swap). Following a robot that moves forward out of
-//    the cell (and cycles of followers) is allowed, as in LoRR's ActionModelWithRotate,
-//    which checks only vertex and swap conflicts.
-//  - priorities: steps since the agent's goal was set, + h / 65536 at that time to break
-//    ties (far first); on its goal an agent drops to that fraction (lowest).
-// The design follows the rotation PIBT of WPPL (Jiang et al., "Scaling lifelong multi-agent
-// path finding to more realistic settings", 2024; LoRR 2023 winner) and the LoRR start
-// kit's PIBT (MIT), written anew here; neither's code is copied.
+// The step ("causal" PIBT, as in the LoRR 2024 start kit's default planner, MIT; written
+// anew here, no code copied; ranking by exact (cell, heading) distances as WPPL's rotation
+// PIBT does, Jiang et al. 2024, the LoRR 2023 winner):
+//  1. PIBT (Okumura et al., AIJ 2022) decides a cell per robot: its own or a 4-neighbour,
+//     ranked by the steps to the goal through it: quarter turns to face the neighbour + 1 +
+//     h(neighbour, that heading) (RotationDist, exact), staying = 1 + h(cell, heading);
+//     ties: straight ahead first, then at random (seeded). No two robots decide one cell;
+//     priority inheritance as in PIBT: a robot that decides the cell of an undecided robot
+//     asks it to vacate (it may not stay, nor take the asker's cell), else tries its next.
+//  2. The decision becomes an action: the cell ahead -> F, a side or back cell -> turn
+//     toward it (R, C; a half turn goes R), its own cell -> W.
+//  3. F only if the cell ahead is free now or its robot leaves it forward in this step (and
+//     not into this robot's cell: no swap); cycles of such robots go together. Else W.
+//     So there are no vertex or swap conflicts on cells, turns keep the cell, and following
+//     is allowed exactly as LoRR's ActionModelWithRotate allows it (it checks vertex and
+//     swap conflicts only).
+//  4. A robot turning toward its decided cell keeps it (reserved, not replanned) until it
+//     gets there, or after waiting more than kPatience steps facing it: the turns already
+//     spent are not thrown away by the next step's PIBT (plain per-step replanning made
+//     robots spin in place: MR23-I-04 1.28 vs 2.41 errands/step, docs/rotation_lorr.md).
+//  Priorities: steps since the goal was set, + h / 65536 at that time (far first); on its
+//  goal a robot drops to that fraction (lowest); +kDeadEndBoost per step in a dead end.
 //
 // Not RT-LaCAM: its reroot needs reversible moves (the old root one step from the new);
 // a forward move has no one-step inverse. This is a one-step planner without a search
@@ -41,6 +49,9 @@ namespace planner {
 
 class RotationPibt : public RealtimePlanner {
  public:
+  static constexpr int kPatience = 3;           // steps a robot facing its cell waits for it before choosing anew
+  static constexpr double kDeadEndBoost = 10.0;  // priority per step in a dead end (away from the goal)
+
   // All robots face `heading` (LoRR: east, 0) at the start. Needs a grid graph.
   RotationPibt(const Graph& g, const Config& starts, const Config& goals, uint64_t seed = 0, GoalTest test = {},
                int heading = 0);
@@ -81,6 +92,7 @@ class RotationPibt : public RealtimePlanner {
   std::vector<Vertex> decided_;               // per agent: its cell for this step's PIBT (-1: undecided)
   std::vector<Vertex> target_;                // per agent: the cell it turns toward (-1: none)
   std::vector<char> memo_;
+  std::vector<int> blocked_;                  // per agent: steps waited facing its target
   std::string action_;
   bool planned_ = false;
   uint64_t steps_planned_ = 0;
