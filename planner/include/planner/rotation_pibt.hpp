@@ -26,8 +26,8 @@
 //     swap conflicts only).
 //  4. A robot turning toward its decided cell keeps it (reserved, not replanned) until it
 //     gets there, or after waiting more than kPatience steps facing it: the turns already
-//     spent are not thrown away by the next step's PIBT (plain per-step replanning made
-//     robots spin in place: MR23-I-04 1.28 vs 2.41 errands/step, docs/rotation_lorr.md).
+//     spent are not thrown away by the next step's PIBT (re-deciding every step: 1.25 vs
+//     1.49 errands/step on MR23-I-08, 2.49 vs 2.40 on I-04; docs/rotation_lorr.md).
 //  Priorities: steps since the goal was set, + h / 65536 at that time (far first); on its
 //  goal a robot drops to that fraction (lowest); +kDeadEndBoost per step in a dead end.
 //
