@@ -1,6 +1,7 @@
 #include "planner/rotation_dist.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 namespace planner {
@@ -37,9 +38,15 @@ RotationDist::Table* RotationDist::table(Vertex goal)
 
 uint16_t RotationDist::grow_until(Table* t, int32_t state) const
 {
+  grow(t, state, SIZE_MAX);
+  return t->dist[static_cast<size_t>(state)];
+}
+
+void RotationDist::grow(Table* t, int32_t state, size_t pops) const
+{
   std::vector<int32_t>& q = t->queue;
   std::vector<uint16_t>& dist = t->dist;
-  while (t->head < q.size() && dist[static_cast<size_t>(state)] == kInf) {
+  while (t->head < q.size() && pops-- > 0 && (state < 0 || dist[static_cast<size_t>(state)] == kInf)) {
     const int32_t s = q[t->head++];
     const Vertex v = s / 4;
     const int o = s % 4;
@@ -65,7 +72,33 @@ uint16_t RotationDist::grow_until(Table* t, int32_t state) const
     std::vector<int32_t>().swap(q);
     t->head = 0;
   }
-  return dist[static_cast<size_t>(state)];
+}
+
+void RotationDist::prefetch(const std::vector<Vertex>& goals)
+{
+  std::vector<Table*> old;
+  old.swap(wanted_);
+  for (Vertex goal : goals) {  // pin the new queue before unpinning the old: tables in both stay
+    Table* t = table(goal);
+    pin(t);
+    wanted_.push_back(t);
+  }
+  for (Table* t : old) unpin(t);
+  wanted_head_ = 0;
+}
+
+bool RotationDist::precompute(std::chrono::steady_clock::time_point deadline)
+{
+  while (wanted_head_ < wanted_.size()) {
+    Table* t = wanted_[wanted_head_];
+    if (t->done()) {
+      ++wanted_head_;
+      continue;
+    }
+    if (std::chrono::steady_clock::now() >= deadline) return true;
+    grow(t, -1, 256);
+  }
+  return false;
 }
 
 void RotationDist::trim()

@@ -50,6 +50,18 @@ void prefetch_upcoming(const TaskManager& tasks, const planner::Config& at, plan
   cache.prefetch(wants);
 }
 
+// pibt-rot: the same goals to come, for its own (cell, heading) tables; nearest agent first.
+void prefetch_rotation(const TaskManager& tasks, planner::RotationPibt& rot)
+{
+  std::vector<std::pair<uint16_t, planner::Vertex>> order;
+  for (const auto& u : tasks.upcoming()) order.push_back({rot.h(u.agent), u.goal});
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<planner::Vertex> goals;
+  goals.reserve(order.size());
+  for (const auto& o : order) goals.push_back(o.second);
+  rot.prefetch(goals);
+}
+
 }  // namespace
 
 PlannerTimes summarize(std::vector<double> ms) { return planner::Latency::of(std::move(ms)); }
@@ -95,6 +107,17 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     prefetch_upcoming(tasks, p->current(), *cache);
     cache->precompute(planner::Clock::time_point::max());
   }
+  const bool rot_prefetch = rot && opt.prefetch;
+  if (rot_prefetch) {  // preprocessing: the next goals' tables (the first ones grew in set_goals)
+    prefetch_rotation(tasks, *rot);
+    rot->precompute(planner::Clock::time_point::max());
+  }
+  // The prefetch queue this run uses (cell tables, or pibt-rot's own).
+  auto pending = [&] { return prefetch ? cache->pending() : rot_prefetch ? rot->pending() : 0; };
+  auto precompute = [&](planner::Clock::time_point deadline) {
+    if (prefetch) cache->precompute(deadline);
+    else if (rot_prefetch) rot->precompute(deadline);
+  };
   std::unique_ptr<RotationExecutor> exec;
   if (rotation && !native) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
   r.setup_ms = ms_since(t0);
@@ -112,10 +135,10 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     const auto step_end = b.deadline_from(t0);
     const bool plan_now = !exec || exec->can_accept();
     if (!plan_now) ++r.window_full;
-    if (prefetch && plan_now && cache->pending() > 0) {
+    if (plan_now && pending() > 0) {
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
-      cache->precompute(planner::Budget::time_ms(opt.precompute_share * b.ms).deadline_from(t0));
+      precompute(planner::Budget::time_ms(opt.precompute_share * b.ms).deadline_from(t0));
       rec.precompute_ms = ms_since(t0);
       b.ms = std::max(0.0, b.ms - rec.precompute_ms);
     }
@@ -131,9 +154,9 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       if (const uint64_t de = p->expansions() - e0; de > 0)
         ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * ms_since(t1) / static_cast<double>(de);
     }
-    if (prefetch && cache->pending() > 0 && Clock::now() < step_end) {
+    if (pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
-      cache->precompute(step_end);
+      precompute(step_end);
       rec.precompute_ms += ms_since(t1);
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
@@ -191,6 +214,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     const bool replan = !ev.empty() || (exec && plan_now && p->at_goal() && has_pending(tasks, p->current()));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
     if (!ev.empty() && prefetch) prefetch_upcoming(tasks, p->current(), *cache);
+    if (!ev.empty() && rot_prefetch) prefetch_rotation(tasks, *rot);
     carry_ms = replan ? ms_since(t0) : 0.0;
     if (replan) ++r.epochs;
     rec.completed = static_cast<int>(ev.size());

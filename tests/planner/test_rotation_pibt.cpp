@@ -3,6 +3,7 @@
 // lifelong runs with several seeds.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <deque>
 #include <string>
 #include <vector>
@@ -119,6 +120,26 @@ TEST(RotationDist, UnpinnedTablesAreDroppedBeyondTheCap)
   EXPECT_EQ(dist.num_tables(), 2u);
   EXPECT_EQ(dist.get(dist.table(0), 0, 0), 0);  // the pinned one survived
   EXPECT_EQ(keep, dist.table(0));
+}
+
+TEST(RotationDist, PrefetchGrowsQueuedTablesToCompletionAndPinsThem)
+{
+  const Graph g = random_grid(8, 8, 20, 3);
+  RotationDist dist(g, 1);
+  dist.prefetch({0, g.size() - 1});
+  EXPECT_EQ(dist.pending(), 2u);
+  EXPECT_TRUE(dist.precompute(std::chrono::steady_clock::now()));  // deadline passed: work remains
+  EXPECT_FALSE(dist.precompute(std::chrono::steady_clock::time_point::max()));
+  EXPECT_EQ(dist.pending(), 0u);
+  dist.trim();
+  EXPECT_EQ(dist.num_tables(), 2u);  // over the cap of 1, but pinned by the queue
+  RotationDist::Table* t = dist.table(g.size() - 1);
+  EXPECT_TRUE(t->done());
+  for (Vertex v = 0; v < g.size(); ++v)
+    for (int o = 0; o < 4; ++o) ASSERT_EQ(t->dist[static_cast<size_t>(v) * 4 + o], brute(g, v, o, g.size() - 1));
+  dist.prefetch({});  // unpinned: the cap applies again
+  dist.trim();
+  EXPECT_EQ(dist.num_tables(), 1u);
 }
 
 TEST(RotationPibt, LoneRobotReachesItsGoalInTheRotationShortestNumberOfSteps)

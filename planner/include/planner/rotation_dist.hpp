@@ -19,6 +19,12 @@
 // longer exact (no LoRR map comes near: WAREHOUSE's farthest pair is ~700 steps). Tables
 // are keyed by goal cell and shared by every agent with that goal; holders pin them;
 // unpinned tables are dropped least recently used first beyond `max_tables` (0 = no cap).
+//
+// Prefetch (as DistCache's): goals known before they are needed (an agent's next errand)
+// are queued (pinned) and their tables grown to completion in a step's spare time, so that
+// the step that sets them as goals does not pay their BFS (154 k states on LoRR's
+// WAREHOUSE).
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <unordered_map>
@@ -61,6 +67,13 @@ class RotationDist {
     return d != kInf || t->done() ? d : grow_until(t, v * 4 + o);
   }
 
+  // Replaces the prefetch queue with `goals` (most urgent first; pinned until the next call).
+  void prefetch(const std::vector<Vertex>& goals);
+  // Grows the queued tables to completion, in order, until the deadline (checked every 256
+  // states). Returns whether work remains.
+  bool precompute(std::chrono::steady_clock::time_point deadline);
+  size_t pending() const { return wanted_.size() - wanted_head_; }
+
   const Graph& graph() const { return g_; }
   size_t num_tables() const { return tables_.size(); }
   size_t max_tables() const { return max_tables_; }
@@ -69,12 +82,15 @@ class RotationDist {
 
  private:
   uint16_t grow_until(Table* t, int32_t state) const;
+  void grow(Table* t, int32_t state, size_t pops) const;  // until `state` (-1: none) is reached or `pops` states
 
   const Graph& g_;
   size_t max_tables_;
   uint64_t tick_ = 0;
   std::vector<Vertex> ahead_;  // v * 4 + o -> neighbour or -1
   std::unordered_map<Vertex, std::unique_ptr<Table>> tables_;
+  std::vector<Table*> wanted_;  // prefetch queue (pinned); [wanted_head_, end) not yet complete
+  size_t wanted_head_ = 0;
 };
 
 }  // namespace planner

@@ -74,6 +74,10 @@ class RotationPibt : public RealtimePlanner {
   const std::string& actions() const { return action_; }
   uint16_t h(int agent) const { return dist_.get(goal_table_[agent], current_[agent], heading_[agent]); }
   const RotationDist& dist() const { return dist_; }
+  // Lifelong runs: goals known to come (RotationDist::prefetch), grown in spare time.
+  void prefetch(const std::vector<Vertex>& goals) { dist_.prefetch(goals); }
+  bool precompute(std::chrono::steady_clock::time_point deadline) { return dist_.precompute(deadline); }
+  size_t pending() const { return dist_.pending(); }
 
  private:
   bool pibt(int i, int asker);  // decides i's cell (decided_); asker: who asked i to vacate its cell
