@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "planner/validator.hpp"
+#include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/solver.hpp"
@@ -92,6 +93,7 @@ TEST(RotationNative, RefusedWithGrid4)
   LifelongOptions opt = rotation_options(10);
   opt.action_model = ActionModel::Grid4;
   EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kRotationSolver, 0, opt), std::invalid_argument);
+  EXPECT_THROW(run_lifelong_exec(L.g, L.starts, rr, kRotationSolver, 0, opt, {}, {}), std::invalid_argument);
   // The app: one line naming the option, exit code 2.
   const std::string e = test::temp_path("pibt-rot.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
