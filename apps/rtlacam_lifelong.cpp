@@ -79,6 +79,10 @@ int main(int argc, char** argv)
   app.add_option("--rotation-window", rotation_window, "rotation: plan steps the planner may run ahead of the slowest robot")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  bool rot_back_last = true;
+  app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
+               "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
+      ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
                  "rotation: PIBT's move order: turns (rotation-aware cost in steps) or ties (distance, ties by turns)")
@@ -138,6 +142,7 @@ int main(int argc, char** argv)
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
+    opt.rot_back_last = rot_back_last;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);

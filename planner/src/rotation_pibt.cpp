@@ -115,7 +115,9 @@ bool RotationPibt::pibt(int i, int asker)
     const Vertex c = dist_.ahead(v, d);
     if (c < 0) continue;
     const uint32_t turns = (d - o + 4) % 4 == 2 ? 2 : d == o ? 0 : 1;
-    cand[m++] = {c, turns + 1 + dist_.get(t, c, d), d == o ? 0u : 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
+    uint32_t cost = turns + 1 + dist_.get(t, c, d);
+    if (asker >= 0 && back_last_ && turns == 2) cost += 1u << 16;  // asked to vacate: the cell behind last
+    cand[m++] = {c, cost, d == o ? 0u : 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
   }
   if (asker < 0) cand[m++] = {v, 1u + dist_.get(t, v, o), 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
   std::sort(cand, cand + m, [](const Cand& x, const Cand& y) { return x.cost != y.cost ? x.cost < y.cost : x.tie < y.tie; });

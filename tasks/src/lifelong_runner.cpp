@@ -97,6 +97,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
   p->share_dist_cache(cache);
   auto* rot = dynamic_cast<planner::RotationPibt*>(p.get());
+  if (rot) rot->set_back_last(opt.rot_back_last);
   if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.

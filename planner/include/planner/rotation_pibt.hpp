@@ -69,6 +69,13 @@ class RotationPibt : public RealtimePlanner {
   size_t explored() const override { return 0; }
   std::string name() const override { return "pibt-rot"; }
 
+  // A robot asked to vacate its cell tries the cell behind it (a half turn: 3 steps to get
+  // out) only after the others. Off in the class (plain PIBT ranking); the lifelong runner
+  // turns it on by default (--no-rot-back-last): +4 to +7 % errands/step on MR23-I-04 / 03 /
+  // 05 / 07 and +6 % tasks/step on WAREHOUSE, but -7 % on I-08 and -3 / -9 % on LoRR 2024
+  // RANDOM-04 / 05 (docs/rotation_lorr.md).
+  void set_back_last(bool on) { back_last_ = on; }
+
   const std::vector<int>& headings() const { return heading_; }
   // The planned step's action per robot, one of "FRCW" (valid after search()).
   const std::string& actions() const { return action_; }
@@ -99,6 +106,7 @@ class RotationPibt : public RealtimePlanner {
   std::vector<int> blocked_;                  // per agent: steps waited facing its target
   std::string action_;
   bool planned_ = false;
+  bool back_last_ = false;
   uint64_t steps_planned_ = 0;
 };
 
