@@ -1,6 +1,6 @@
 #pragma once
-// RotationPibt (solver `pibt-rot`): PIBT over (cell, heading) states for the rotation
-// action model (LoRR's MAPF_T; rotation_dist.hpp). Each step it gives every robot one
+// RotationPibt (solver `pibt-rot`): a one-step PIBT planner for robots with a heading, the
+// rotation action model (LoRR's MAPF_T), on exact (cell, heading) distances (rotation_dist.hpp). Each step it gives every robot one
 // action directly: F (forward into the cell ahead), R (turn clockwise), C (turn
 // counter-clockwise) or W (wait). No cell plan and no adapter: a robot that must turn is
 // planned as turning, so robots behind it are not held up by a plan that assumed it moves.
