@@ -19,6 +19,7 @@
 #include "tasks/lorr_files.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks/roundrobin.hpp"
+#include "tasks/solver.hpp"
 #include "tasks/task_pool.hpp"
 
 using namespace tasks;
@@ -64,8 +65,10 @@ int main(int argc, char** argv)
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
-  app.add_option("--solver", solver, planner::solver_names(true) + " (cspibt: pibt ordered by --policy)")
-      ->check(CLI::IsMember(planner::solver_list(true)))
+  std::vector<std::string> solvers = planner::solver_list(true);
+  solvers.push_back(tasks::kRotationSolver);
+  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading), rotation only)")
+      ->check(CLI::IsMember(solvers))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions per step (deterministic); 0 = none");
@@ -75,6 +78,10 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_option("--rotation-window", rotation_window, "rotation: plan steps the planner may run ahead of the slowest robot")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  bool rot_back_last = true;
+  app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
+               "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
@@ -117,7 +124,9 @@ int main(int argc, char** argv)
     // The policy is told the goals by the planner (ActionPreference::set_goals).
     policy::Model model;
     std::unique_ptr<policy::PolicyPreference> pref;
-    if (planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
+    if (tasks::is_rotation_native(solver) && action_model != "rotation")
+      throw planner::InputError("--solver pibt-rot plans LoRR rotation actions: it needs --action-model rotation");
+    if (!tasks::is_rotation_native(solver) && planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     if (!policy_file.empty()) {
       model = policy::load_weights(policy_file);
       pref = std::make_unique<policy::PolicyPreference>(g, model, planner::Config{});
@@ -133,6 +142,7 @@ int main(int argc, char** argv)
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
+    opt.rot_back_last = rot_back_last;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);

@@ -32,6 +32,29 @@ char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v)
   return kLetter[heading_of_move(g, u, v)];
 }
 
+std::string check_rotation_step(const planner::Graph& g, const planner::Config& pos, const std::vector<int>& heading,
+                                const std::string& actions, const planner::Config& next)
+{
+  constexpr int kDx[4] = {1, 0, -1, 0}, kDy[4] = {0, 1, 0, -1};
+  if (actions.size() != pos.size() || next.size() != pos.size() || heading.size() != pos.size())
+    return "rotation step: sizes of positions, headings, actions differ";
+  for (size_t i = 0; i < pos.size(); ++i) {
+    const char a = actions[i];
+    planner::Vertex want = pos[i];
+    if (a == 'F') {
+      const int o = heading[i];
+      want = g.at(g.cell_x(pos[i]) + kDx[o], g.cell_y(pos[i]) + kDy[o]);
+      if (want < 0) return "agent " + std::to_string(i) + " moves forward into a wall at vertex " + std::to_string(pos[i]);
+    } else if (a != 'R' && a != 'C' && a != 'W') {
+      return "agent " + std::to_string(i) + ": unknown action '" + std::string(1, a) + "'";
+    }
+    if (next[i] != want)
+      return "agent " + std::to_string(i) + ": action " + std::string(1, a) + " from vertex " + std::to_string(pos[i]) +
+             " does not lead to vertex " + std::to_string(next[i]);
+  }
+  return "";
+}
+
 char turn_toward(int h, int d) { return ((d - h + 4) % 4) == 3 ? 'C' : 'R'; }
 
 }  // namespace tasks

@@ -1,6 +1,7 @@
 #include "tasks/lifelong_exec.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "planner/validator.hpp"
 #include "tasks/lifelong_goal.hpp"
@@ -15,6 +16,8 @@ LifelongExecResult run_lifelong_exec(const planner::Graph& g, const planner::Con
                                      const std::string& solver, uint64_t seed, const LifelongOptions& opt,
                                      const executor::DelaySpec& delays, const executor::ExecOptions& exec)
 {
+  if (is_rotation_native(solver))  // its steps are LoRR actions, not cell moves an executor can delay
+    throw std::invalid_argument("solver " + solver + " has its own rotation actions: no --executor");
   LifelongExecResult out;
   LifelongResult& r = out.life;
   const auto wall0 = Clock::now();

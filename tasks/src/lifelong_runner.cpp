@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
+#include "planner/rotation_pibt.hpp"
 #include "planner/validator.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
@@ -48,6 +50,18 @@ void prefetch_upcoming(const TaskManager& tasks, const planner::Config& at, plan
   cache.prefetch(wants);
 }
 
+// pibt-rot: the same goals to come, for its own (cell, heading) tables; nearest agent first.
+void prefetch_rotation(const TaskManager& tasks, planner::RotationPibt& rot)
+{
+  std::vector<std::pair<uint16_t, planner::Vertex>> order;
+  for (const auto& u : tasks.upcoming()) order.push_back({rot.h(u.agent), u.goal});
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<planner::Vertex> goals;
+  goals.reserve(order.size());
+  for (const auto& o : order) goals.push_back(o.second);
+  rot.prefetch(goals);
+}
+
 }  // namespace
 
 PlannerTimes summarize(std::vector<double> ms) { return planner::Latency::of(std::move(ms)); }
@@ -59,6 +73,11 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   r.action_model = opt.action_model;
   r.starts = starts;
   const bool rotation = opt.action_model == ActionModel::Rotation;
+  // pibt-rot plans the robots' actions itself: no cell plan, no RotationExecutor.
+  const bool native = is_rotation_native(solver);
+  if (native && !rotation)
+    throw std::invalid_argument("solver " + solver + " plans rotation actions: it needs --action-model rotation");
+  const bool prefetch = opt.prefetch && !native;  // the prefetch grows cell tables, which pibt-rot does not read
   const bool letters = opt.record_actions && g.is_grid();
   if (letters) r.actions.assign(starts.size(), std::string());
   const auto wall0 = Clock::now();
@@ -70,14 +89,16 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   // Rotation: PIBT breaks distance ties by the turns a move needs (unless a policy orders moves).
   std::unique_ptr<HeadingPreference> heading;
   planner::ActionPreference* pref = opt.pref;
-  if (rotation && !pref && opt.heading_ties) {
+  if (rotation && !native && !pref && opt.heading_ties) {
     heading = std::make_unique<HeadingPreference>(g, starts, opt.heading_cost);
     heading->share_dist_cache(cache);
     pref = heading.get();
   }
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
   p->share_dist_cache(cache);
-  if (opt.prefetch) {
+  auto* rot = dynamic_cast<planner::RotationPibt*>(p.get());
+  if (rot) rot->set_back_last(opt.rot_back_last);
+  if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.
     std::vector<planner::DistCache::Want> first;
@@ -87,8 +108,19 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     prefetch_upcoming(tasks, p->current(), *cache);
     cache->precompute(planner::Clock::time_point::max());
   }
+  const bool rot_prefetch = rot && opt.prefetch;
+  if (rot_prefetch) {  // preprocessing: the next goals' tables (the first ones grew in set_goals)
+    prefetch_rotation(tasks, *rot);
+    rot->precompute(planner::Clock::time_point::max());
+  }
+  // The prefetch queue this run uses (cell tables, or pibt-rot's own).
+  auto pending = [&] { return prefetch ? cache->pending() : rot_prefetch ? rot->pending() : 0; };
+  auto precompute = [&](planner::Clock::time_point deadline) {
+    if (prefetch) cache->precompute(deadline);
+    else if (rot_prefetch) rot->precompute(deadline);
+  };
   std::unique_ptr<RotationExecutor> exec;
-  if (rotation) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
+  if (rotation && !native) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
   r.setup_ms = ms_since(t0);
   r.epochs = 1;
 
@@ -102,12 +134,12 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
     t0 = Clock::now();
     const auto step_end = b.deadline_from(t0);
-    const bool plan_now = !rotation || exec->can_accept();
+    const bool plan_now = !exec || exec->can_accept();
     if (!plan_now) ++r.window_full;
-    if (opt.prefetch && plan_now && cache->pending() > 0) {
+    if (plan_now && pending() > 0) {
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
-      cache->precompute(planner::Budget::time_ms(opt.precompute_share * b.ms).deadline_from(t0));
+      precompute(planner::Budget::time_ms(opt.precompute_share * b.ms).deadline_from(t0));
       rec.precompute_ms = ms_since(t0);
       b.ms = std::max(0.0, b.ms - rec.precompute_ms);
     }
@@ -123,9 +155,9 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       if (const uint64_t de = p->expansions() - e0; de > 0)
         ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * ms_since(t1) / static_cast<double>(de);
     }
-    if (opt.prefetch && cache->pending() > 0 && Clock::now() < step_end) {
+    if (pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
-      cache->precompute(step_end);
+      precompute(step_end);
       rec.precompute_ms += ms_since(t1);
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
@@ -141,11 +173,20 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       }
       if (letters && !rotation)
         for (size_t i = 0; i < next.size(); ++i) r.actions[i] += grid4_letter(g, p->current()[i], next[i]);
+      if (rot) {  // the actions themselves: forward into the cell ahead, turns and waits in place
+        const std::string bad = check_rotation_step(g, p->current(), rot->headings(), rot->actions(), next);
+        if (!bad.empty() && r.planner_errors++ == 0) {
+          r.first_error = "step " + std::to_string(t) + ": " + bad;
+          r.first_error_t = t;
+        }
+        if (letters)
+          for (size_t i = 0; i < next.size(); ++i) r.actions[i] += rot->actions()[i];
+      }
       p->commit();
       if (heading) heading->committed(p->current());
     }
     const planner::Config* real = &p->current();
-    if (rotation) {
+    if (exec) {
       if (plan_now) exec->push(p->current());
       const planner::Config before = exec->positions();
       const std::string& act = exec->step();
@@ -171,9 +212,10 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     // the robot does. Its epoch's goal test then holds and RT-LaCAM would only wait; a new
     // epoch at the frontier (that agent no longer pending) keeps the others' plans going.
     // The robot still completes the errand when it physically gets there.
-    const bool replan = !ev.empty() || (rotation && plan_now && p->at_goal() && has_pending(tasks, p->current()));
+    const bool replan = !ev.empty() || (exec && plan_now && p->at_goal() && has_pending(tasks, p->current()));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
-    if (!ev.empty() && opt.prefetch) prefetch_upcoming(tasks, p->current(), *cache);
+    if (!ev.empty() && prefetch) prefetch_upcoming(tasks, p->current(), *cache);
+    if (!ev.empty() && rot_prefetch) prefetch_rotation(tasks, *rot);
     carry_ms = replan ? ms_since(t0) : 0.0;
     if (replan) ++r.epochs;
     rec.completed = static_cast<int>(ev.size());
@@ -182,13 +224,17 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     r.planner_ms.push_back(rec.planner_ms);
     r.epoch_start_ms.push_back(rec.epoch_start_ms);
     r.precompute_ms.push_back(rec.precompute_ms);
-    r.dist_tables_max = std::max(r.dist_tables_max, cache->num_tables());
-    if (t % 16 == 0 || t == opt.steps) r.dist_mb_max = std::max(r.dist_mb_max, static_cast<double>(cache->bytes()) / (1 << 20));
+    // pibt-rot: its (cell, heading) tables count beside the task layer's cell tables.
+    const size_t rot_tables = rot ? rot->dist().num_tables() : 0;
+    r.dist_tables_max = std::max(r.dist_tables_max, cache->num_tables() + rot_tables);
+    if (t % 16 == 0 || t == opt.steps)
+      r.dist_mb_max = std::max(r.dist_mb_max, static_cast<double>(cache->bytes() + (rot ? rot->dist().bytes() : 0)) / (1 << 20));
     r.steps = t;
     if (opt.on_step) opt.on_step(rec);
   }
-  if (rotation) r.final_headings = exec->headings();
-  r.dist_tables = cache->num_tables();
+  if (exec) r.final_headings = exec->headings();
+  if (rot) r.final_headings = rot->headings();
+  r.dist_tables = cache->num_tables() + (rot ? rot->dist().num_tables() : 0);
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();

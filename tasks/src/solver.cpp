@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "planner/rotation_pibt.hpp"
 #include "planner/solver.hpp"
 
 namespace tasks {
@@ -11,6 +12,12 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver
                                                        planner::GoalTest test, uint64_t seed,
                                                        planner::ActionPreference* pref, bool keep_priorities, bool refine)
 {
+  if (is_rotation_native(solver)) {
+    auto p = std::make_unique<planner::RotationPibt>(g, starts, goals, seed, std::move(test));
+    // (cell, heading) tables are 2x a cell table: keep the goals in use + a few hundred.
+    p->set_max_dist_tables(starts.size() + 256);
+    return p;
+  }
   planner::LacamOptions opt;
   opt.seed = seed;
   opt.keep_priorities = keep_priorities;

@@ -10,7 +10,9 @@
 // "MAPF" letters are its own (U = row + 1, D = row - 1, L = column - 1, R = column + 1):
 // we write what PlanViz replays.
 #include <string>
+#include <vector>
 
+#include "planner/config.hpp"
 #include "planner/graph.hpp"
 
 namespace tasks {
@@ -29,6 +31,13 @@ constexpr char kHeadingLetter[4] = {'E', 'S', 'W', 'N'};
 int heading_of_move(const planner::Graph& g, planner::Vertex u, planner::Vertex v);
 // PlanViz "MAPF" letter of a grid4 move (W when u == v).
 char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v);
+// One executed MAPF_T step, checked as LoRR's ActionModelWithRotate applies it: robot i
+// at pos[i] facing heading[i] does actions[i] (F: into the cell ahead, which must be free
+// on the grid; R, C, W: stays); `next` must be the result. "" when it is, else the first
+// problem. Vertex and swap conflicts are the Validator's (check_transition).
+std::string check_rotation_step(const planner::Graph& g, const planner::Config& pos, const std::vector<int>& heading,
+                                const std::string& actions, const planner::Config& next);
+
 // The turn that brings heading h nearer to d (h != d): 'R' (clockwise) or 'C'. A half turn
 // goes clockwise.
 char turn_toward(int h, int d);

@@ -73,6 +73,7 @@ struct LifelongOptions {
   bool prefetch = true;          // grow the tables of upcoming goals in spare step time
   double precompute_share = 0.5;   // of a step's budget at most, first, while prefetched tables are incomplete
   size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
+  bool rot_back_last = true;       // pibt-rot: RotationPibt::set_back_last
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers

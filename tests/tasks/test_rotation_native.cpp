@@ -1,0 +1,110 @@
+// Lifelong runs with the rotation-native planner (--solver pibt-rot): validator-clean
+// executed steps whose letters replay (LoRR MAPF_T) to the robots' cells, events on the
+// errands' cells, throughput > 0 on several seeds; pibt-rot is refused with grid4.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "planner/validator.hpp"
+#include "tasks/lifelong_exec.hpp"
+#include "tasks/lifelong_runner.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/solver.hpp"
+#include "tasks/task_pool.hpp"
+#include "tasks/assigner.hpp"
+#include "tasks_test_util.hpp"
+#include "temp_path.hpp"
+
+using namespace tasks;
+using planner::Config;
+
+namespace {
+
+planner::Vertex apply(const planner::Graph& g, planner::Vertex v, int& h, char a)
+{
+  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
+  if (a == 'R') h = (h + 1) % 4;
+  else if (a == 'C') h = (h + 3) % 4;
+  else if (a == 'F') v = g.at(g.cell_x(v) + dx[h], g.cell_y(v) + dy[h]);
+  return v;
+}
+
+LifelongOptions rotation_options(long steps)
+{
+  LifelongOptions opt;
+  opt.steps = steps;
+  opt.budget = planner::Budget::time_ms(100);  // pibt-rot plans once per step: the budget is not needed
+  opt.action_model = ActionModel::Rotation;
+  opt.record_actions = true;
+  return opt;
+}
+
+}  // namespace
+
+TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
+{
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");  // 100 robots, random-32-32-20
+  const planner::Graph& g = L.g;
+  for (uint64_t seed : {0, 1, 2}) {
+    RoundRobin rr(L.file);
+    const LifelongOptions opt = rotation_options(300);
+    const LifelongResult r = run_lifelong(g, L.starts, rr, kRotationSolver, seed, opt);
+    EXPECT_EQ(r.planner_errors, 0) << r.first_error;
+    EXPECT_GT(r.errands_finished, 300) << "seed " << seed;  // measured ~2.4 errands/step at 500 steps
+    std::vector<Config> at(static_cast<size_t>(opt.steps) + 1, L.starts);
+    std::vector<int> h(L.starts.size(), 0);  // all start facing east
+    long turns = 0;
+    for (long t = 1; t <= opt.steps; ++t) {
+      at[t] = at[t - 1];
+      for (size_t i = 0; i < L.starts.size(); ++i) {
+        const char a = r.actions[i][static_cast<size_t>(t - 1)];
+        ASSERT_TRUE(a == 'F' || a == 'R' || a == 'C' || a == 'W') << a;
+        turns += a == 'R' || a == 'C';
+        at[t][i] = apply(g, at[t - 1][i], h[i], a);
+        ASSERT_GE(at[t][i], 0) << "agent " << i << " forward into a wall at step " << t;
+      }
+      ASSERT_EQ(planner::Validator::check_transition(g, at[t - 1], at[t]), "") << "step " << t;
+    }
+    EXPECT_GT(turns, 0);
+    EXPECT_EQ(h, r.final_headings);
+    for (const Event& e : r.events) {
+      const auto& errands = L.file->tasks[static_cast<size_t>(e.task % L.file->size())];
+      EXPECT_EQ(at[static_cast<size_t>(e.t)][e.agent], errands[static_cast<size_t>(e.errand)]);
+    }
+  }
+}
+
+TEST(RotationNative, PoolModeRunsClean)
+{
+  const ttest::Lorr L("/2024/random.domain/RANDOM-01.json");
+  TaskPool pool(L.file, L.g, L.p.pool_size(), make_assigner("greedy", 32));
+  const LifelongResult r = run_lifelong(L.g, L.starts, pool, kRotationSolver, 0, rotation_options(200));
+  EXPECT_EQ(r.planner_errors, 0) << r.first_error;
+  EXPECT_GT(r.tasks_finished, 0);
+}
+
+TEST(RotationNative, RefusedWithGrid4)
+{
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
+  RoundRobin rr(L.file);
+  LifelongOptions opt = rotation_options(10);
+  opt.action_model = ActionModel::Grid4;
+  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kRotationSolver, 0, opt), std::invalid_argument);
+  EXPECT_THROW(run_lifelong_exec(L.g, L.starts, rr, kRotationSolver, 0, opt, {}, {}), std::invalid_argument);
+  // The app: one line naming the option, exit code 2.
+  const std::string e = test::temp_path("pibt-rot.err");
+  const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
+                              "/2023/random.domain/MR23-I-04.json --solver pibt-rot --steps 5 >/dev/null 2>" + e)
+                                 .c_str());
+  ASSERT_TRUE(WIFEXITED(rc));
+  EXPECT_EQ(WEXITSTATUS(rc), 2);
+  std::ifstream in(e);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string err = ss.str();
+  EXPECT_NE(err.find("--action-model rotation"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
