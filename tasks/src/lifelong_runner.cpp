@@ -124,7 +124,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     bound_queries(step_end);
     const bool plan_now = !rotation || exec->can_accept();
     if (!plan_now) ++r.window_full;
-    if (opt.prefetch && plan_now && cache->pending() > 0) {
+    if (plan_now && cache->pending() > 0) {
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
       // It leaves room for the one expansion the search always makes.
@@ -148,7 +148,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
         // On CPU time: a preempted step must not make the next ones stop early.
         ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * (thread_cpu_ms() - c1) / static_cast<double>(de);
     }
-    if (opt.prefetch && cache->pending() > 0 && Clock::now() < step_end) {
+    if (cache->pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
       cache->precompute(step_end);
       rec.precompute_ms += ms_since(t1);
