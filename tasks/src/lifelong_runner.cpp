@@ -205,8 +205,10 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     // The robot still completes the errand when it physically gets there.
     const bool replan = !ev.empty() || (rotation && plan_now && p->at_goal() && has_pending(tasks, p->current()));
     // The epoch start is the next step's planning: its table growth stops at the share of
-    // that step's budget the precompute may take.
-    bound_queries(planner::Budget::time_ms(opt.precompute_share * opt.budget.ms).deadline_from(t0));
+    // that step's budget the precompute may take, less the one expansion the search will
+    // make (at 1 ms on WAREHOUSE, none: the next step's precompute grows what it missed).
+    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - ms_per_expansion))
+                      .deadline_from(t0));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
     if (!ev.empty() && opt.prefetch) prefetch_upcoming(tasks, p->current(), *cache);
     carry_ms = replan ? ms_since(t0) : 0.0;
