@@ -229,6 +229,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     r.steps = t;
     if (opt.on_step) opt.on_step(rec);
   }
+  cache->set_deadline(planner::DistCache::Deadline::max());  // the task layer keeps the cache: exact again
   if (rotation) r.final_headings = exec->headings();
   r.dist_tables = cache->num_tables();
   r.dist_counters = cache->counters();
