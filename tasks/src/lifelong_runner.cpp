@@ -107,9 +107,11 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   uint64_t carry_pops = 0;
   double ms_per_expansion = 0;  // moving average over steps
   // One deadline for all of a step's planning: queries past it answer lower bounds instead
-  // of growing tables (dist_cache.hpp). Off (bound_queries false): every query exact.
+  // of growing tables (dist_cache.hpp). Off (bound_queries false, or no positive time
+  // budget: a 0 ms budget means one expansion per step in tests): every query exact.
+  const bool bounded = opt.bound_queries && opt.budget.ms > 0 && opt.budget.ms < 1e12;
   auto bound_queries = [&](planner::DistCache::Deadline d) {
-    if (opt.bound_queries) cache->set_deadline(d);
+    if (bounded) cache->set_deadline(d);
   };
   for (long t = 1; t <= opt.steps; ++t) {
     StepRecord rec;

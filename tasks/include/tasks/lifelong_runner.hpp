@@ -82,6 +82,7 @@ struct LifelongOptions {
   size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
   // Distance queries past the step's deadline answer lower bounds instead of growing tables
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
+  // Only with a positive, finite time budget (expansion-only budgets stay deterministic).
   bool bound_queries = true;
 };
 
