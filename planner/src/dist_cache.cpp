@@ -1,10 +1,18 @@
 #include "planner/dist_cache.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+
+#include "planner/budget.hpp"
 
 namespace planner {
 
-DistCache::Table::Table(const Graph& g, Vertex goal_vertex) : dist(g.size(), kInf), goal(goal_vertex)
+namespace {
+constexpr size_t kChunk = 256;  // BFS vertices between clock reads (a few microseconds)
+}
+
+DistCache::Table::Table(const Graph& g, Vertex goal_vertex, DistCache* cache)
+    : dist(g.size(), kInf), goal(goal_vertex), owner(cache)
 {
   dist[goal] = 0;
   queue.push_back(goal);
@@ -26,6 +34,7 @@ int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
   // Vertices get their distance when discovered, so stop as soon as v is discovered.
   while (head < queue.size()) {
     const Vertex u = queue[head++];
+    ++popped;
     for (Vertex w : g.neighbors(u)) {
       if (dist[w] != kInf) continue;
       dist[w] = dist[u] + 1;
@@ -44,6 +53,7 @@ bool DistCache::Table::grow_until(Vertex v, size_t pops, const Graph& g)
 {
   for (; pops > 0 && dist[v] == kInf && head < queue.size(); --pops) {
     const Vertex u = queue[head++];
+    ++popped;
     for (Vertex w : g.neighbors(u)) {
       if (dist[w] != kInf) continue;
       dist[w] = dist[u] + 1;
@@ -55,11 +65,56 @@ bool DistCache::Table::grow_until(Vertex v, size_t pops, const Graph& g)
   return dist[v] != kInf || done();
 }
 
+int32_t DistCache::Table::query(Vertex v, const Graph& g)
+{
+  if (done()) return kInf;  // finished BFS: v is unreachable
+  const uint64_t p0 = popped;
+  if (!owner || !owner->bounded()) {
+    const int32_t d = extend_until(v, g);
+    if (owner) owner->counters_.query_pops += popped - p0;
+    return d;
+  }
+  // Grow towards v in chunks while the deadline allows; one clock read per chunk.
+  while (!owner->expired_) {
+    if (Clock::now() >= owner->deadline_) {
+      owner->expired_ = true;
+      break;
+    }
+    if (grow_until(v, kChunk, g)) {
+      owner->counters_.query_pops += popped - p0;
+      return dist[v];  // kInf if the BFS finished without reaching v
+    }
+  }
+  owner->counters_.query_pops += popped - p0;
+  owner->note_miss(*this, v);
+  return lower_bound(v, g);
+}
+
+int32_t DistCache::Table::lower_bound(Vertex v, const Graph& g) const
+{
+  if (dist[v] != kInf) return dist[v];
+  if (done()) return kInf;
+  // The queue is in BFS order, so every vertex nearer than its head's distance + 1 has
+  // been discovered; an undiscovered one is at least that far.
+  int32_t d = dist[queue[head]] + 1;
+  if (g.is_grid())  // every edge joins 4-neighbours: Manhattan is a lower bound too
+    d = std::max(d, std::abs(g.cell_x(v) - g.cell_x(goal)) + std::abs(g.cell_y(v) - g.cell_y(goal)));
+  return d;
+}
+
+void DistCache::note_miss(Table& t, Vertex v)
+{
+  ++counters_.estimates;
+  if (t.missed) return;
+  t.missed = true;
+  missed_.push_back({t.goal, v});
+}
+
 DistCache::Table* DistCache::table(Vertex goal)
 {
   auto it = by_goal_.find(goal);
   if (it != by_goal_.end()) return it->second;
-  tables_.push_back(std::make_unique<Table>(g_, goal));
+  tables_.push_back(std::make_unique<Table>(g_, goal, this));
   return by_goal_[goal] = tables_.back().get();
 }
 
@@ -79,12 +134,24 @@ void DistCache::trim()
   tables_.resize(keep);
 }
 
-bool DistCache::met(const Table& t, Vertex from) const
+bool DistCache::met(const Table& t, Vertex from) const { return unmet(t, from) < 0; }
+
+Vertex DistCache::unmet(const Table& t, Vertex from) const
 {
-  if (t.done()) return true;
-  if (t.dist[from] == kInf) return false;
+  if (t.done()) return -1;
+  if (t.dist[from] == kInf) return from;
   for (Vertex w : g_.neighbors(from))
-    if (t.dist[w] == kInf) return false;
+    if (t.dist[w] == kInf) return w;
+  return -1;
+}
+
+bool DistCache::grow_chunk(Table& t, Vertex from)
+{
+  const Vertex need = unmet(t, from);
+  if (need < 0) return false;
+  const uint64_t p0 = t.popped;
+  t.grow_until(need, kChunk, g_);
+  counters_.precompute_pops += t.popped - p0;
   return true;
 }
 
@@ -109,20 +176,23 @@ void DistCache::prefetch(const std::vector<Want>& wants)
 
 bool DistCache::precompute(Deadline deadline)
 {
-  constexpr size_t kChunk = 256;  // vertices between clock reads (a few microseconds)
+  // Tables in use that a query found short (most recent first; dropped ones are skipped).
+  while (!missed_.empty()) {
+    const auto [goal, v] = missed_.back();
+    auto it = by_goal_.find(goal);
+    if (it == by_goal_.end() || !grow_chunk(*it->second, v)) {
+      if (it != by_goal_.end()) it->second->missed = false;
+      missed_.pop_back();
+      continue;
+    }
+    if (Clock::now() >= deadline) return pending() > 0;
+  }
   while (wanted_head_ < wanted_.size()) {
-    auto [t, from] = wanted_[wanted_head_];
-    // The first vertex (from, then its neighbours) still undiscovered; none: this want is met.
-    Vertex need = t->done() || t->dist[from] != kInf ? -1 : from;
-    if (need < 0 && !t->done())
-      for (Vertex w : g_.neighbors(from))
-        if (t->dist[w] == kInf) need = w;
-    if (need < 0) {
+    if (!grow_chunk(*wanted_[wanted_head_].first, wanted_[wanted_head_].second)) {
       ++wanted_head_;
       continue;
     }
-    t->grow_until(need, kChunk, g_);
-    if (std::chrono::steady_clock::now() >= deadline) return pending() > 0;
+    if (Clock::now() >= deadline) return pending() > 0;
   }
   return false;
 }

@@ -28,7 +28,19 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   const PlannerTimes pc = summarize(r.precompute_ms);
   j["precomputeStats"] = {{"mean", pc.mean}, {"p50", pc.p50}, {"p99", pc.p99}, {"max", pc.max}};
   j["stepsOverBudget"] = r.steps_over_budget;
-  j["distTables"] = {{"end", r.dist_tables}, {"max", r.dist_tables_max}, {"maxMB", r.dist_mb_max}};
+  const PlannerTimes cpu = summarize(r.planner_cpu_ms);
+  j["plannerCpuTimeStats"] = {{"mean", cpu.mean}, {"p50", cpu.p50}, {"p99", cpu.p99}, {"max", cpu.max}};
+  j["stepsOverBudgetCpu"] = r.steps_over_budget_cpu;
+  const PlannerTimes ecpu = summarize(r.epoch_start_cpu_ms);
+  j["epochStartCpuStats"] = {{"mean", ecpu.mean}, {"p50", ecpu.p50}, {"p99", ecpu.p99}, {"max", ecpu.max}};
+  j["msPerExpansion"] = r.ms_per_expansion;
+  j["distTables"] = {{"end", r.dist_tables},
+                     {"max", r.dist_tables_max},
+                     {"maxMB", r.dist_mb_max},
+                     {"queryPops", r.dist_counters.query_pops},
+                     {"queryPopsMaxStep", r.query_pops_max},
+                     {"precomputePops", r.dist_counters.precompute_pops},
+                     {"estimates", r.dist_counters.estimates}};
   nlohmann::json times = nlohmann::json::array();
   for (double ms : r.planner_ms) times.push_back(ms / 1000.0);  // LoRR: seconds
   j["plannerTimes"] = std::move(times);

@@ -1,5 +1,7 @@
 #include "tasks/lifelong_runner.hpp"
 
+#include <time.h>
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -25,6 +27,14 @@ std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p
 }
 
 namespace {
+
+// CPU time of this thread: planning work, told apart from time the thread was preempted.
+double thread_cpu_ms()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
 
 bool has_pending(const TaskManager& tasks, const planner::Config& at)
 {
@@ -114,10 +124,12 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     rot->precompute(planner::Clock::time_point::max());
   }
   // The prefetch queue this run uses (cell tables, or pibt-rot's own).
-  auto pending = [&] { return prefetch ? cache->pending() : rot_prefetch ? rot->pending() : 0; };
+  // Work for the steps' spare time: the cell tables' queue (prefetched goals and tables that
+  // bounded queries estimated, with or without prefetch) and pibt-rot's own tables.
+  auto pending = [&] { return cache->pending() + (rot_prefetch ? rot->pending() : 0); };
   auto precompute = [&](planner::Clock::time_point deadline) {
-    if (prefetch) cache->precompute(deadline);
-    else if (rot_prefetch) rot->precompute(deadline);
+    cache->precompute(deadline);
+    if (rot_prefetch) rot->precompute(deadline);
   };
   std::unique_ptr<RotationExecutor> exec;
   if (rotation && !native) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
@@ -125,7 +137,16 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   r.epochs = 1;
 
   double carry_ms = 0;  // set_goals at the end of the last step: planning for this one
+  double carry_cpu_ms = 0;
+  uint64_t carry_pops = 0;
   double ms_per_expansion = 0;  // moving average over steps
+  // One deadline for all of a step's planning: queries past it answer lower bounds instead
+  // of growing tables (dist_cache.hpp). Off (bound_queries false, or no positive time
+  // budget: a 0 ms budget means one expansion per step in tests): every query exact.
+  const bool bounded = opt.bound_queries && opt.budget.ms > 0 && opt.budget.ms < 1e12;
+  auto bound_queries = [&](planner::DistCache::Deadline d) {
+    if (bounded) cache->set_deadline(d);
+  };
   for (long t = 1; t <= opt.steps; ++t) {
     StepRecord rec;
     rec.t = t;
@@ -133,13 +154,18 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     planner::Budget b = opt.budget;
     b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
     t0 = Clock::now();
+    const double cpu0 = thread_cpu_ms();
+    const uint64_t pops0 = cache->counters().query_pops;
     const auto step_end = b.deadline_from(t0);
+    bound_queries(step_end);
     const bool plan_now = !exec || exec->can_accept();
     if (!plan_now) ++r.window_full;
     if (plan_now && pending() > 0) {
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
-      precompute(planner::Budget::time_ms(opt.precompute_share * b.ms).deadline_from(t0));
+      // It leaves room for the one expansion the search always makes.
+      const double share = std::min(opt.precompute_share * b.ms, b.ms - ms_per_expansion);
+      precompute(planner::Budget::time_ms(std::max(0.0, share)).deadline_from(t0));
       rec.precompute_ms = ms_since(t0);
       b.ms = std::max(0.0, b.ms - rec.precompute_ms);
     }
@@ -150,10 +176,13 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       b.ms = std::max(0.0, b.ms - ms_per_expansion);
       const uint64_t e0 = p->expansions();
       const auto t1 = Clock::now();
+      const double c1 = thread_cpu_ms();
+      bound_queries(b.deadline_from(t1));  // the search's own deadline: no BFS past it
       p->search(b);
       next = p->next();
       if (const uint64_t de = p->expansions() - e0; de > 0)
-        ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * ms_since(t1) / static_cast<double>(de);
+        // On CPU time: a preempted step must not make the next ones stop early.
+        ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * (thread_cpu_ms() - c1) / static_cast<double>(de);
     }
     if (pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
@@ -161,9 +190,14 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       rec.precompute_ms += ms_since(t1);
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
+    rec.planner_cpu_ms = thread_cpu_ms() - cpu0 + carry_cpu_ms;
+    rec.query_pops = cache->counters().query_pops - pops0 + carry_pops;
     rec.epoch_start_ms = carry_ms;
+    rec.epoch_start_cpu_ms = carry_cpu_ms;
     if (rec.planner_ms > opt.budget.ms + 0.05) ++r.steps_over_budget;
+    if (rec.planner_cpu_ms > opt.budget.ms + 0.05) ++r.steps_over_budget_cpu;
     rec.explored = p->explored();
+    bound_queries(planner::DistCache::Deadline::max());  // the task layer's queries: exact, as before
 
     if (plan_now) {
       const std::string err = planner::Validator::check_transition(g, p->current(), next);
@@ -208,21 +242,33 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     const std::vector<Event> ev = tasks.update(t, *real);
     r.task_ms += ms_since(t0);
     t0 = Clock::now();
+    const double carry_cpu0 = thread_cpu_ms();
+    const uint64_t carry_pops0 = cache->counters().query_pops;
     // Rotation: the plan frontier runs ahead of the robots, so it can reach a goal before
     // the robot does. Its epoch's goal test then holds and RT-LaCAM would only wait; a new
     // epoch at the frontier (that agent no longer pending) keeps the others' plans going.
     // The robot still completes the errand when it physically gets there.
     const bool replan = !ev.empty() || (exec && plan_now && p->at_goal() && has_pending(tasks, p->current()));
+    // The epoch start is the next step's planning: its table growth stops at the share of
+    // that step's budget the precompute may take, less the one expansion the search will
+    // make (at 1 ms on WAREHOUSE, none: the next step's precompute grows what it missed).
+    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - ms_per_expansion))
+                      .deadline_from(t0));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
     if (!ev.empty() && prefetch) prefetch_upcoming(tasks, p->current(), *cache);
     if (!ev.empty() && rot_prefetch) prefetch_rotation(tasks, *rot);
     carry_ms = replan ? ms_since(t0) : 0.0;
+    carry_cpu_ms = replan ? thread_cpu_ms() - carry_cpu0 : 0.0;
+    carry_pops = replan ? cache->counters().query_pops - carry_pops0 : 0;
     if (replan) ++r.epochs;
     rec.completed = static_cast<int>(ev.size());
     rec.new_epoch = !ev.empty();
     r.events.insert(r.events.end(), ev.begin(), ev.end());
     r.planner_ms.push_back(rec.planner_ms);
+    r.planner_cpu_ms.push_back(rec.planner_cpu_ms);
+    r.query_pops_max = std::max(r.query_pops_max, rec.query_pops);
     r.epoch_start_ms.push_back(rec.epoch_start_ms);
+    r.epoch_start_cpu_ms.push_back(rec.epoch_start_cpu_ms);
     r.precompute_ms.push_back(rec.precompute_ms);
     // pibt-rot: its (cell, heading) tables count beside the task layer's cell tables.
     const size_t rot_tables = rot ? rot->dist().num_tables() : 0;
@@ -232,9 +278,12 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     r.steps = t;
     if (opt.on_step) opt.on_step(rec);
   }
+  cache->set_deadline(planner::DistCache::Deadline::max());  // the task layer keeps the cache: exact again
   if (exec) r.final_headings = exec->headings();
   if (rot) r.final_headings = rot->headings();
   r.dist_tables = cache->num_tables() + (rot ? rot->dist().num_tables() : 0);
+  r.dist_counters = cache->counters();
+  r.ms_per_expansion = ms_per_expansion;
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();

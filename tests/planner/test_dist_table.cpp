@@ -185,3 +185,77 @@ TEST(DistCache, PartlyGrownTablesKeepOnlyTheirFrontier)
   EXPECT_LT(cache.bytes(), g.size() * sizeof(int32_t) + 8192 * sizeof(Vertex));
   for (Vertex v = 0; v < g.size(); v += 13) ASSERT_EQ(t->at(v, g), d[v]);
 }
+
+namespace {
+// Every query on `t` past the cache's deadline: a lower bound, exact where discovered.
+void expect_admissible(DistCache::Table& t, const Graph& g, const std::vector<int>& exact)
+{
+  for (Vertex v = 0; v < g.size(); ++v) {
+    const bool known = t.exact(v);
+    const int32_t d = t.at(v, g);
+    if (known) {
+      ASSERT_EQ(d, exact[v]) << "v " << v;
+    } else {
+      ASSERT_LE(d, exact[v]) << "v " << v;
+      ASSERT_GE(d, 1) << "v " << v;  // 0 only on the goal
+    }
+  }
+}
+}  // namespace
+
+TEST(DistCache, QueriesPastTheDeadlineAreLowerBoundsUntilTheTableIsComplete)
+{
+  // Brute force on a small grid and on a graph without coordinates (frontier bound only).
+  Graph grid = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  std::vector<std::pair<Vertex, Vertex>> ring;
+  for (Vertex v = 0; v < 300; ++v) ring.push_back({v, (v + 1) % 300});
+  for (Vertex v = 0; v < 300; v += 7) ring.push_back({v, (v * 13 + 5) % 300});
+  Graph chords = Graph::from_edges(300, ring);
+  for (const Graph* gp : {&grid, &chords}) {
+    const Graph& g = *gp;
+    Rng rng(5);
+    DistCache cache(g);
+    for (int k = 0; k < 6; ++k) {
+      const Vertex goal = static_cast<Vertex>(rng.below(g.size()));
+      const auto exact = bfs(g, goal);
+      DistCache::Table* t = cache.table(goal);
+      // Grown part way (an exact query with no deadline), then the deadline passes.
+      cache.set_deadline(DistCache::Deadline::max());
+      const Vertex mid = static_cast<Vertex>(rng.below(g.size()));
+      ASSERT_EQ(t->at(mid, g), exact[mid]);
+      cache.set_deadline(DistCache::Deadline::min());
+      const uint64_t pops = t->popped;
+      expect_admissible(*t, g, exact);
+      EXPECT_EQ(t->popped, pops) << "no query grows a table past the deadline";
+      if (!t->done()) {
+        EXPECT_GT(cache.counters().estimates, 0u);
+        EXPECT_GT(cache.pending(), 0u);  // the table is queued for the next precompute
+      }
+      // Spare time grows it (to the queried vertex), later queries are exact there; the
+      // complete table answers everything exactly.
+      EXPECT_FALSE(cache.precompute(DistCache::Deadline::max()));
+      cache.set_deadline(DistCache::Deadline::max());
+      for (Vertex v = 0; v < g.size(); ++v) ASSERT_EQ(t->at(v, g), exact[v]);
+      for (Vertex v = 0; v < g.size(); ++v) ASSERT_TRUE(t->exact(v));
+      cache.set_deadline(DistCache::Deadline::min());
+      expect_admissible(*t, g, exact);
+    }
+  }
+}
+
+TEST(DistCache, FreshTableBoundsAreManhattanOnGridsAndReachabilityIsExact)
+{
+  // Two rooms joined by nothing: the far one is unreachable (kInf once the BFS is done).
+  Graph g = Graph::from_grid(7, 1, {true, true, true, false, true, true, true});
+  DistCache cache(g);
+  cache.set_deadline(DistCache::Deadline::min());
+  DistCache::Table* t = cache.table(g.at(0, 0));
+  EXPECT_EQ(t->at(g.at(0, 0), g), 0);
+  EXPECT_EQ(t->at(g.at(2, 0), g), 2);  // nothing grown: Manhattan, exact on a corridor
+  EXPECT_EQ(t->at(g.at(6, 0), g), 6);  // a lower bound of "unreachable"
+  EXPECT_EQ(t->popped, 0u);
+  cache.set_deadline(DistCache::Deadline::max());
+  EXPECT_EQ(t->at(g.at(6, 0), g), DistCache::kInf);
+  cache.set_deadline(DistCache::Deadline::min());
+  EXPECT_EQ(t->at(g.at(5, 0), g), DistCache::kInf);  // finished: exact even past the deadline
+}

@@ -9,6 +9,19 @@
 // grows the queued tables in whatever time a step has left, so that an epoch start finds
 // them ready instead of paying the BFS in the step it needs them.
 //
+// Queries run under the cache's deadline (set_deadline; none by default). Before it, a
+// query for a vertex the BFS has not reached yet grows the table until it has (checking
+// the clock every few hundred vertices): the answer is exact. Past it, no query grows a
+// table: it answers with a lower bound (lower_bound()) and notes the table, which the next
+// precompute() grows first. So a search expansion never runs a BFS past the step's
+// deadline, and the tables catch up in later steps' spare time. What a query returns:
+//  - exact: the vertex is discovered (dist[v] < kInf), or the BFS is finished (then kInf
+//    means unreachable), or no deadline is set (every query is exact, as before);
+//  - a lower bound otherwise: max(frontier depth + 1, Manhattan distance on grid graphs),
+//    never above the exact distance (every vertex nearer than the frontier is discovered;
+//    grid edges join 4-neighbours) and never 0 off the goal. PIBT only ranks an agent's few
+//    candidate cells, so exact near the goal and a lower bound farther out is enough.
+//
 // Memory is bounded: tables that nobody pins (DistTable::set_goals pins its agents' goals,
 // prefetch() pins its queue) are dropped least recently used first once more than
 // `max_tables` exist; pinned tables are never dropped, so the cap may be exceeded by them.
@@ -36,16 +49,27 @@ class DistCache {
     Vertex goal;
     int pins = 0;        // holders that need it kept
     uint64_t used = 0;   // cache tick of the last pin or prefetch (LRU order)
-    Table(const Graph& g, Vertex goal);
+    DistCache* owner = nullptr;  // whose deadline bounds queries (none: every query exact)
+    bool missed = false;         // a query got an estimate; queued for the next precompute
+    uint64_t popped = 0;         // BFS vertices popped so far (work counter)
+    Table(const Graph& g, Vertex goal, DistCache* owner = nullptr);
     bool done() const { return head >= queue.size(); }
     int32_t extend_until(Vertex v, const Graph& g);  // distance of v, growing the BFS as needed
-    // Grows the BFS by up to `pops` vertices or until v is discovered; returns whether it is.
+    // Grows the BFS by up to `pops` vertices or until v is discovered; returns whether it is
+    // (or the BFS is finished).
     bool grow_until(Vertex v, size_t pops, const Graph& g);
-    int32_t at(Vertex v, const Graph& g) { return dist[v] != kInf ? dist[v] : extend_until(v, g); }
+    // Distance of v: exact, or a lower bound past the owner's deadline (see above).
+    int32_t at(Vertex v, const Graph& g) { return dist[v] != kInf ? dist[v] : query(v, g); }
+    int32_t query(Vertex v, const Graph& g);
+    bool exact(Vertex v) const { return dist[v] != kInf || done(); }
+    // A lower bound on the distance of an undiscovered v (kInf once the BFS is finished).
+    int32_t lower_bound(Vertex v, const Graph& g) const;
     void compact();  // drops the popped part of the queue once it is most of it
   };
 
   explicit DistCache(const Graph& g, size_t max_tables = 0) : g_(g), max_tables_(max_tables) {}
+  DistCache(const DistCache&) = delete;  // tables point to their cache
+  DistCache& operator=(const DistCache&) = delete;
   const Graph& graph() const { return g_; }
   void set_max_tables(size_t n) { max_tables_ = n; }
   size_t max_tables() const { return max_tables_; }
@@ -67,10 +91,28 @@ class DistCache {
   // Replaces the prefetch queue with `wants`, most urgent first (their tables are pinned
   // until the next call).
   void prefetch(const std::vector<Want>& wants);
-  // Grows queued tables, in order, until every want is met or the deadline passes (checked
-  // every few hundred vertices, so it overruns by microseconds). Returns whether work remains.
+  // Grows queued tables until every want is met or the deadline passes (checked every few
+  // hundred vertices, so it overruns by microseconds): first the tables that queries
+  // answered with an estimate (in use now, up to the queried vertex and its neighbours),
+  // then the prefetch queue in order. Returns whether work remains.
   bool precompute(Deadline deadline);
-  size_t pending() const { return wanted_.size() - wanted_head_; }
+  size_t pending() const { return wanted_.size() - wanted_head_ + missed_.size(); }
+
+  // Queries past `d` answer lower bounds instead of growing tables (Deadline::max(): none,
+  // every query exact). Setting it clears the expiry seen by the last one.
+  void set_deadline(Deadline d) { deadline_ = d, expired_ = false; }
+  Deadline deadline() const { return deadline_; }
+  bool bounded() const { return deadline_ != Deadline::max(); }
+
+  // Work counters (cumulative): BFS vertices popped inside queries (on the spot) and by
+  // precompute(); queries answered with a lower bound.
+  struct Counters {
+    uint64_t query_pops = 0;
+    uint64_t precompute_pops = 0;
+    uint64_t estimates = 0;
+  };
+  const Counters& counters() const { return counters_; }
+  size_t missed() const { return missed_.size(); }  // tables queued by estimated queries
 
   size_t num_tables() const { return tables_.size(); }
   bool contains(Vertex goal) const { return by_goal_.count(goal) > 0; }
@@ -83,6 +125,13 @@ class DistCache {
   std::vector<std::unique_ptr<Table>> tables_;
   std::unordered_map<Vertex, Table*> by_goal_;
   bool met(const Table& t, Vertex from) const;
+  Vertex unmet(const Table& t, Vertex from) const;  // first of from + neighbours undiscovered, or -1
+  bool grow_chunk(Table& t, Vertex from);  // one chunk towards from; false: met
+  void note_miss(Table& t, Vertex v);
+  Deadline deadline_ = Deadline::max();
+  bool expired_ = false;  // a query saw the clock past deadline_
+  Counters counters_;
+  std::vector<std::pair<Vertex, Vertex>> missed_;  // (goal, queried vertex) of estimated queries
   std::vector<std::pair<Table*, Vertex>> wanted_;  // prefetch queue (pinned); [wanted_head_, end) not yet met
   size_t wanted_head_ = 0;
 };

@@ -26,12 +26,16 @@
 // precompute_share of each step's budget grows it first, and the search gets the rest
 // (also whole steps in which the rotation window is full). The search is stopped one
 // average expansion before its deadline, since it checks the deadline only between
-// expansions. Numbers: docs/rotation_lorr.md "Planning time at epoch starts".
+// expansions. All of a step's planning (the epoch start, precompute, search, the heading
+// preference) runs under one deadline on the shared cache (bound_queries): a distance query
+// past it gets a lower bound and never grows a table there; the epoch start's growth stops at
+// precompute_share of the budget. Numbers: docs/rotation_lorr.md "Planning time at epoch starts".
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "planner/budget.hpp"
+#include "planner/dist_cache.hpp"
 #include "planner/graph.hpp"
 #include "planner/latency.hpp"
 #include "planner/action_preference.hpp"
@@ -51,7 +55,10 @@ struct StepRecord {      // what one step did (for tests and progress output)
   long t = 0;
   double planner_ms = 0;
   double epoch_start_ms = 0;  // the set_goals that started this step's epoch (in planner_ms)
+  double epoch_start_cpu_ms = 0;  // its thread CPU time
   double precompute_ms = 0;   // growing prefetched distance tables (in planner_ms)
+  double planner_cpu_ms = 0;  // this thread's CPU time over the same work (planner_ms minus preemption)
+  uint64_t query_pops = 0;    // BFS vertices grown inside distance queries (search, set_goals)
   int completed = 0;     // errands completed at the end of this step
   bool new_epoch = false;
   size_t explored = 0;   // planner's explored table after search, before any reset
@@ -74,6 +81,10 @@ struct LifelongOptions {
   double precompute_share = 0.5;   // of a step's budget at most, first, while prefetched tables are incomplete
   size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
   bool rot_back_last = true;       // pibt-rot: RotationPibt::set_back_last
+  // Distance queries past the step's deadline answer lower bounds instead of growing tables
+  // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
+  // Only with a positive, finite time budget (expansion-only budgets stay deterministic).
+  bool bound_queries = true;
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers
@@ -88,6 +99,12 @@ struct LifelongResult {
   std::vector<double> epoch_start_ms;  // per step: the set_goals part of planner_ms (0 without a new epoch)
   std::vector<double> precompute_ms;   // per step: the prefetch part of planner_ms
   long steps_over_budget = 0;       // planner_ms above the time budget (+ 0.05 ms of timer slack)
+  std::vector<double> planner_cpu_ms;  // per step: thread CPU time of the planner_ms work
+  std::vector<double> epoch_start_cpu_ms;  // per step: thread CPU time of the epoch_start_ms work
+  double ms_per_expansion = 0;      // the runner's moving average of a search expansion, at the end
+  long steps_over_budget_cpu = 0;   // the same count on CPU time (preemption does not count)
+  uint64_t query_pops_max = 0;      // most BFS vertices grown inside queries in one step
+  planner::DistCache::Counters dist_counters;  // the shared cache's work counters at the end
   size_t dist_tables = 0, dist_tables_max = 0;  // shared distance cache: at the end, most at once
   double dist_mb_max = 0;           // its memory at its largest (sampled every step)
   double setup_ms = 0;              // first assignment + planner construction
