@@ -113,7 +113,7 @@ Status Lacam::expand()
   if (refining_) return refine_expand();
   if (status_ != Status::Searching) return status_;
   if (open_.empty()) return status_ = Status::NoSolution;
-  if (opt_.scatter_first && scatter_step()) return status_;  // SUO first (lacam3's order)
+  if (opt_.scatter_first && scatter_started_ && scatter_step()) return status_;  // SUO first (lacam3's order)
   HNode* H = open_.back();
   if (is_goal(H)) {
     goal_ = H;

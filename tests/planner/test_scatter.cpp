@@ -4,6 +4,8 @@
 // followed path never gets costlier and every move validates.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "planner/lacam.hpp"
 #include "planner/movingai.hpp"
 #include "planner/rt_lacam.hpp"
@@ -90,18 +92,19 @@ TEST(Scatter, AStepNeverHoldsFarPastItsDeadline)
   for (int i = 0; i < 300; ++i) d.get(i, r.starts[i]);  // BFS tables outside the timing
   Scatter s(g, d);
   s.reset(r.starts, 10, 1);
-  double worst = 0;
-  int steps = 0;
-  while (steps < 100000) {
+  std::vector<double> ms;
+  while (ms.size() < 100000) {
     const auto t0 = Clock::now();
     const bool done = s.step(t0 + std::chrono::microseconds(200));
-    worst = std::max(worst, ms_since(t0));
-    ++steps;
+    ms.push_back(ms_since(t0));
     if (done) break;
   }
   EXPECT_TRUE(s.done());
-  EXPECT_GT(steps, 3) << "SUO for 300 agents should not fit in 0.2 ms";
-  EXPECT_LT(worst, 0.2 + 5.0) << "a step held " << worst << " ms";
+  ASSERT_GT(ms.size(), 3u) << "SUO for 300 agents should not fit in 0.2 ms";
+  // Robust to a preempted step on a loaded machine: 90 % of the steps end within 1 ms of
+  // their deadline (one agent's whole A* or a whole pass would not).
+  std::sort(ms.begin(), ms.end());
+  EXPECT_LT(ms[ms.size() * 9 / 10], 0.2 + 1.0) << "steps: " << ms.size() << ", max " << ms.back() << " ms";
 }
 
 TEST(Scatter, PibtTakesTheScatterSuccessorWhenItIsFree)
