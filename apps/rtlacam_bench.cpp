@@ -36,7 +36,7 @@ int main(int argc, char** argv)
   std::string lns_nbh = "random";
   bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
-      scatter_max_passes = 0;
+      scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -67,6 +67,8 @@ int main(int argc, char** argv)
   app.add_option("--scatter-lead", scatter_lead, "SUO starts this many steps ahead on the best path")
       ->capture_default_str();
   app.add_option("--scatter-max-passes", scatter_max_passes, "SUO passes at most (0: until collisions stop dropping)")
+      ->capture_default_str();
+  app.add_option("--scatter-dive-passes", scatter_dive_passes, "SUO passes before the first guided dive")
       ->capture_default_str();
   app.add_flag("--dive,!--no-dive", dive, "with --refine: PIBT rollouts from the root, inserted and rewired")
       ->capture_default_str();
@@ -109,6 +111,7 @@ int main(int argc, char** argv)
     lopt.scatter_margin = scatter_margin;
     lopt.scatter_lead = scatter_lead;
     lopt.scatter_max_passes = scatter_max_passes;
+    lopt.scatter_dive_passes = scatter_dive_passes;
     lopt.dive = dive;
     lopt.scatter_first = scatter_first;
     RunOptions ropt;
@@ -180,6 +183,7 @@ int main(int argc, char** argv)
     j["scatter_margin"] = scatter_margin;
     j["scatter_lead"] = scatter_lead;
     j["scatter_max_passes"] = scatter_max_passes;
+    j["scatter_dive_passes"] = scatter_dive_passes;
     j["dive"] = dive;
     j["scatter_first"] = scatter_first;
     j["seed"] = seed;

@@ -63,7 +63,8 @@ bool Lacam::scatter_step()
   if (!scatter_probed_ && goal_ && scatter_.passes() == 0 && scatter_.planned() >= std::max(1, n_ / 8)) {
     scatter_probed_ = true;
     const uint64_t m = reroots_ - scatter_reroots0_;
-    const int need = static_cast<int>(m * n / static_cast<uint64_t>(scatter_.planned()) * 5 / 4) + 2;
+    const uint64_t passes = static_cast<uint64_t>(std::max(1, opt_.scatter_dive_passes));
+    const int need = static_cast<int>(m * n * passes / static_cast<uint64_t>(scatter_.planned()) * 5 / 4) + 2;
     if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
   }
   return true;
@@ -90,7 +91,8 @@ void Lacam::guide_step()
     return;
   }
   if (opt_.scatter && !scatter_stopped_) {
-    if (scatter_started_ && scatter_.passes() > passes_dived_) {
+    if (scatter_started_ && scatter_.passes() > passes_dived_ &&
+        (scatter_.passes() >= opt_.scatter_dive_passes || scatter_.done())) {
       passes_dived_ = scatter_.passes();
       if (scatter_.ready()) {  // from the root when the agents are past SUO's start already
         start_dive(steps_ahead(scatter_root_) >= 0 ? scatter_root_ : root_);

@@ -96,6 +96,7 @@ struct LacamOptions {
   // move on while it is computed, and the guided dive starts there. Adapted once, after an
   // eighth of the first pass (lacam_guide.cpp), when SUO proves slower than that.
   int scatter_lead = 30;
+  int scatter_dive_passes = 2;  // the first guided dive waits for this many passes (lacam3: >= 2)
   int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
   bool dive = false;
   // SUO before the first solution (lacam3's order; counts against the iterations' budget).
