@@ -84,12 +84,18 @@ struct LacamOptions {
   // Engineering LaCAM* (Okumura, AAMAS-24) guidance, with refine, all in the refinement's own
   // budget (a third slot of the rotation LNS / LaCAM* / guide; the first solution's search is
   // untouched):
-  //  - scatter: space-utilisation optimisation (scatter.hpp) from the root of the moment the
-  //    first solution is found, resumable across iterations; once a pass is published PIBT
-  //    prefers each agent's scatter successor in every refinement expansion and dive.
+  //  - scatter: space-utilisation optimisation (scatter.hpp), resumable across iterations,
+  //    from the configuration scatter_lead steps ahead on the best path; after
+  //    scatter_dive_passes passes (and each later one) a guided dive from there (or from the
+  //    root once the agents are past it). SUO takes every refinement iteration until the
+  //    first dive, then a third; the first guided dive that does not beat the best path
+  //    stops it. PIBT keeps preferring each agent's scatter successor in every later
+  //    refinement expansion and dive.
   //  - dive: PIBT rollouts from the current root to the goals (LaCAM's first descent, now
   //    guided), inserted as nodes and links and rewired like an LNS path, so the goal's g
   //    drops when a rollout is cheaper. Up to 2 x the best path's length + 16 steps each.
+  //  Measured in docs/rt_lacam_star.md ("Third pass: SUO"): scatter on in rtlacam-bench,
+  //  dive and scatter_first off.
   bool scatter = false;
   int scatter_margin = 10;  // lacam3's SCATTER_MARGIN: extra length allowed per agent
   // SUO starts from the configuration this many steps ahead on the best path: the agents
