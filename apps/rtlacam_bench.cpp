@@ -34,6 +34,9 @@ int main(int argc, char** argv)
   int lns_window = LacamOptions{}.lns_window;
   int lns_agents = LacamOptions{}.lns_agents;
   std::string lns_nbh = "random";
+  bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
+  int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
+      scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -57,6 +60,19 @@ int main(int argc, char** argv)
       ->capture_default_str()
       ->check(CLI::IsMember({"random", "blocking", "intersection", "adaptive"}));
   app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_flag("--scatter,!--no-scatter", scatter,
+               "with --refine: space-utilisation optimisation guiding PIBT after the first solution (scatter.hpp)")
+      ->capture_default_str();
+  app.add_option("--scatter-margin", scatter_margin, "SUO: extra path length allowed per agent")->capture_default_str();
+  app.add_option("--scatter-lead", scatter_lead, "SUO starts this many steps ahead on the best path")
+      ->capture_default_str();
+  app.add_option("--scatter-max-passes", scatter_max_passes, "SUO passes at most (0: until collisions stop dropping)")
+      ->capture_default_str();
+  app.add_option("--scatter-dive-passes", scatter_dive_passes, "SUO passes before the first guided dive")
+      ->capture_default_str();
+  app.add_flag("--dive,!--no-dive", dive, "with --refine: PIBT rollouts from the root, inserted and rewired")
+      ->capture_default_str();
+  app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
   app.add_option("--anytime-ms", anytime_ms,
@@ -91,6 +107,13 @@ int main(int argc, char** argv)
     lopt.lns_window = lns_window;
     lopt.lns_agents = lns_agents;
     lopt.lns_neighbourhood = parse_lns_neighbourhood(lns_nbh);
+    lopt.scatter = scatter;
+    lopt.scatter_margin = scatter_margin;
+    lopt.scatter_lead = scatter_lead;
+    lopt.scatter_max_passes = scatter_max_passes;
+    lopt.scatter_dive_passes = scatter_dive_passes;
+    lopt.dive = dive;
+    lopt.scatter_first = scatter_first;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
@@ -156,6 +179,13 @@ int main(int argc, char** argv)
     j["lns_window"] = lns_window;
     j["lns_agents"] = lns_agents;
     j["lns_neighbourhood"] = lns_nbh;
+    j["scatter"] = scatter;
+    j["scatter_margin"] = scatter_margin;
+    j["scatter_lead"] = scatter_lead;
+    j["scatter_max_passes"] = scatter_max_passes;
+    j["scatter_dive_passes"] = scatter_dive_passes;
+    j["dive"] = dive;
+    j["scatter_first"] = scatter_first;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

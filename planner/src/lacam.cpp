@@ -18,7 +18,7 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood), scatter_(g, dist), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
   lns_wanted_ = opt.lns;
@@ -45,7 +45,7 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   priorities_.reset();
   links_.reset();
   refining_ = refine_capped_ = false;
-  refine_iterations_ = 0;
+  refine_iterations_ = guide_iterations_ = 0;
   lns_failures_ = 0;
   debt_ = 0;
   explored_.clear();
@@ -54,7 +54,20 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   all_.clear();
   goal_ = nullptr;
   scratch_.assign(n_, -1);
+  pibt_.set_scatter(nullptr);
+  scatter_.clear();
+  scatter_started_ = first_dive_done_ = false;
+  scatter_root_ = nullptr;
+  scatter_probed_ = guided_dive_ = scatter_stopped_ = false;
+  passes_dived_ = 0;
+  dive_ = nullptr;
+  dive_failures_ = 0;
+  if (opt_.scatter_first && !test) {
+    scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
+    scatter_started_ = true;
+  }
   root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities);
+  scatter_root_ = root_;
   explored_.insert(root_);
   open_.push_back(root_);
   status_ = Status::Searching;
@@ -100,6 +113,7 @@ Status Lacam::expand()
   if (refining_) return refine_expand();
   if (status_ != Status::Searching) return status_;
   if (open_.empty()) return status_ = Status::NoSolution;
+  if (opt_.scatter_first && scatter_started_ && scatter_step()) return status_;  // SUO first (lacam3's order)
   HNode* H = open_.back();
   if (is_goal(H)) {
     goal_ = H;
@@ -167,6 +181,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
   }
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
     units_ = 1;
+    left_ = b.expansions - done;
     expand();
     done += units_;
     if (done >= b.expansions) {
@@ -197,6 +212,7 @@ const HNode* Lacam::next_toward(const HNode* target) const
 void Lacam::reroot(const HNode* child)
 {
   if (child == root_) return;
+  ++reroots_;
   HNode* c = all_[child->id];  // non-const handle of the same node
   HNode* old = root_;
   old->parent = c;

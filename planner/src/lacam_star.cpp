@@ -66,7 +66,20 @@ Status Lacam::refine_expand()
     refine_capped_ = true;
     return status_;
   }
-  const bool lns = opt_.lns && lns_failures_ < 1000 && config_equal(goal_->C, goals_.data(), n_);
+  const bool all_goals = config_equal(goal_->C, goals_.data(), n_);
+  const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals;
+  // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
+  const bool guide = all_goals && !goal_test_ &&
+                     (dive_ ||
+                      (opt_.scatter && !scatter_stopped_ && (!scatter_started_ || !scatter_.done() || scatter_.passes() > passes_dived_)) ||
+                      (opt_.dive && dive_failures_ < 1000));
+  // SUO's first pass and its dive take every refinement iteration (they matter most), then
+  // the guide gets a third of them (half without LNS); the rest as before.
+  const bool urgent = opt_.scatter && !first_dive_done_;
+  if (guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns))) {
+    guide_step();
+    return status_;
+  }
   if (lns && (open_.empty() || (refine_iterations_++ & 1) == 0)) {
     ++expansions_;
     if (lns_step()) lns_failures_ = 0;
@@ -128,21 +141,7 @@ bool Lacam::lns_step()
 HNode* Lacam::insert_path(const std::vector<Config>& p)
 {
   HNode* prev = root_;
-  for (size_t t = 1; t < p.size(); ++t) {
-    const uint64_t hash = config_hash(p[t].data(), n_);
-    HNode* h = explored_.find(p[t].data(), hash);
-    if (h) {
-      link(prev, h);
-      rewrite(prev, h);
-    } else {
-      h = new_node(p[t].data(), prev, hash);
-      h->g = prev->g + edge_cost(prev->C, h->C);
-      h->h = heuristic(h->C);
-      link(prev, h);
-      explored_.insert(h);
-    }
-    prev = h;
-  }
+  for (size_t t = 1; t < p.size(); ++t) prev = step_to(prev, p[t].data());
   return prev;
 }
 

@@ -84,6 +84,11 @@ bool Pibt::plan(int32_t i, Rng& rng)
   C[K] = v;
   for (int k = 0; k <= K; ++k)
     key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + rng.uniform();
+  if (scatter_ && scatter_->ready()) {
+    const Vertex s = scatter_->next(i, v);
+    for (int k = 0; k <= K; ++k)
+      if (C[k] == s) key_[k] = -1e30f;
+  }
   for (int k = 1; k <= K; ++k) {
     const Vertex u = C[k];
     const float key = key_[k];

@@ -57,6 +57,7 @@
 #include "planner/lns_refiner.hpp"
 #include "planner/pibt.hpp"
 #include "planner/rng.hpp"
+#include "planner/scatter.hpp"
 #include "planner/search_types.hpp"
 
 namespace planner {
@@ -80,6 +81,33 @@ struct LacamOptions {
   int lns_agents = 8;
   int lns_window = 256; // time steps replanned per LNS step (the occupancy table is window x |V|)
   LnsNeighbourhood lns_neighbourhood = LnsNeighbourhood::random;  // which agents a step replans
+  // Engineering LaCAM* (Okumura, AAMAS-24) guidance, with refine, all in the refinement's own
+  // budget (a third slot of the rotation LNS / LaCAM* / guide; the first solution's search is
+  // untouched):
+  //  - scatter: space-utilisation optimisation (scatter.hpp), resumable across iterations,
+  //    from the configuration scatter_lead steps ahead on the best path; after
+  //    scatter_dive_passes passes (and each later one) a guided dive from there (or from the
+  //    root once the agents are past it). SUO takes every refinement iteration until the
+  //    first dive, then a third; the first guided dive that does not beat the best path
+  //    stops it. PIBT keeps preferring each agent's scatter successor in every later
+  //    refinement expansion and dive.
+  //  - dive: PIBT rollouts from the current root to the goals (LaCAM's first descent, now
+  //    guided), inserted as nodes and links and rewired like an LNS path, so the goal's g
+  //    drops when a rollout is cheaper. Up to 2 x the best path's length + 16 steps each.
+  //  Measured in docs/rt_lacam_star.md ("Third pass: SUO"): scatter on in rtlacam-bench,
+  //  dive and scatter_first off.
+  bool scatter = false;
+  int scatter_margin = 10;  // lacam3's SCATTER_MARGIN: extra length allowed per agent
+  // SUO starts from the configuration this many steps ahead on the best path: the agents
+  // move on while it is computed, and the guided dive starts there. Adapted once, after an
+  // eighth of the first pass (lacam_guide.cpp), when SUO proves slower than that.
+  int scatter_lead = 30;
+  int scatter_dive_passes = 2;  // the first guided dive waits for this many passes (lacam3: >= 2)
+  int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
+  bool dive = false;
+  // SUO before the first solution (lacam3's order; counts against the iterations' budget).
+  // It changes PIBT and so the tree: the first solution is then not LaCAM's.
+  bool scatter_first = false;
 };
 
 class Lacam {
@@ -108,6 +136,9 @@ class Lacam {
   Status status() const { return status_; }
   bool refining() const { return refining_; }        // solved, refine on, Open not empty, under the cap
   bool refine_capped() const { return refine_capped_; }  // refinement stopped by refine_max_mb
+  const Scatter& scatter() const { return scatter_; }
+  uint64_t dives() const { return dives_; }           // completed dives, and those that lowered g(goal)
+  uint64_t dive_wins() const { return dive_wins_; }
   size_t bytes_reserved() const;
 
   // LaCAM*'s edge cost: agents that move or leave/are off their goal (symmetric).
@@ -157,6 +188,13 @@ class Lacam {
   void push_if_promising(HNode* h);
   void grow_lowlevel(HNode* H, const Constraint* L);
   bool lns_step();                          // one LnsRefiner step; inserts an improved path
+  void guide_step();                        // scatter work, else a dive step (lacam_guide.cpp)
+  bool scatter_step();                      // false once SUO is done (or off)
+  void dive_step();
+  void start_dive(HNode* from);
+  int steps_ahead(const HNode* x) const;  // x's depth on the best path, -1 if not on it
+  void start_scatter(int lead);
+  HNode* step_to(HNode* from, const Vertex* C);  // known or new node after `from`, linked and rewired
   HNode* insert_path(const std::vector<Config>& path);
 
   const Graph& g_;
@@ -183,7 +221,18 @@ class Lacam {
   uint64_t expansions_ = 0;
   bool refining_ = false, refine_capped_ = false;
   LnsRefiner lns_;
-  uint64_t refine_iterations_ = 0;
+  Scatter scatter_;
+  bool scatter_started_ = false, first_dive_done_ = false;
+  HNode* scatter_root_ = nullptr;  // the node whose configuration SUO started from
+  int passes_dived_ = 0;           // SUO passes already followed by a dive
+  bool scatter_probed_ = false;    // the lead was checked against SUO's speed
+  bool guided_dive_ = false, scatter_stopped_ = false;  // a dive after a pass; one of them lost
+  uint64_t reroots_ = 0, scatter_reroots0_ = 0;  // reroots, and their count when SUO started
+  HNode* dive_ = nullptr;       // the running dive's last node (null: none)
+  int dive_len_ = 0, dive_limit_ = 0, dive_failures_ = 0;
+  uint64_t dives_ = 0, dive_wins_ = 0;
+  uint64_t left_ = UINT64_MAX;  // expansions-budget units left to the running search() call
+  uint64_t refine_iterations_ = 0, guide_iterations_ = 0;
   int lns_failures_ = 0;  // in a row; LNS alone gives up after many
   uint64_t units_ = 1;    // budget charged for the last expand(): an LNS step counts its work / N
   uint64_t debt_ = 0;     // expansions-budget units an LNS step overran, paid by the next search() calls

@@ -17,6 +17,7 @@
 #include "planner/hnode.hpp"
 #include "planner/immobile.hpp"
 #include "planner/rng.hpp"
+#include "planner/scatter.hpp"
 
 namespace planner {
 
@@ -33,6 +34,9 @@ class Pibt {
   // set_goals().
   void set_immobile(const std::vector<uint8_t>& immobile) { immobile_ = immobile; }
   bool swap() const { return swap_; }
+  // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
+  // vertex comes first among its candidates (lacam3's pibt.cpp).
+  void set_scatter(const Scatter* s) { scatter_ = s; }
 
   // Writes a successor of `from` into `to`. Agents are planned in `order` (highest
   // priority first); `c` (may be null) fixes some agents. Returns false when the fixed
@@ -54,6 +58,7 @@ class Pibt {
   DistTable& d_;
   bool swap_;
   ActionPreference* pref_ = nullptr;
+  const Scatter* scatter_ = nullptr;
   Config goals_;
   int n_ = 0;
   int stride_;                      // candidates per agent: max degree + 1

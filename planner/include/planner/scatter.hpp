@@ -1,0 +1,88 @@
+#pragma once
+// Scatter: space-utilisation optimisation (SUO; Han & Yu, ICRA-22), as used by Engineering
+// LaCAM* (Okumura, AAMAS-24; lacam3's scatter.cpp). Every agent gets a single-agent path
+// from its start to its goal that avoids the others' paths where it can at a small extra
+// cost: A* over vertices (no waits, each vertex at most once) whose cost is first the
+// number of collisions with the paths of all other agents (vertex, swap, and standing on
+// somebody's goal after they arrived, at the step they would happen), then length, bounded
+// by distance + `margin`. Passes over all agents in random order repeat while the total
+// collision count drops (at least two). PIBT then prefers an agent's scatter successor of
+// its current vertex among its candidates (pibt.hpp), which spreads agents over the map
+// instead of sending all of them along the same shortest corridors.
+//
+// Real time: SUO for hundreds of agents takes longer than one 1 ms iteration, so it is
+// resumable. step() continues where the last call stopped -- inside an agent's A* -- and
+// returns at its deadline (checked every 64 A* pops) or after `max_work` units (A* pops x 4
+// and path cells: what a budget in expansions charges). Guidance (next()) is published
+// after each complete pass; before the first one it is empty.
+#include <cstdint>
+#include <vector>
+
+#include "planner/budget.hpp"
+#include "planner/config.hpp"
+#include "planner/dist_table.hpp"
+#include "planner/graph.hpp"
+#include "planner/rng.hpp"
+
+namespace planner {
+
+class Scatter {
+ public:
+  Scatter(const Graph& g, DistTable& dist) : g_(g), dist_(dist) {}
+
+  // Starts SUO from `starts` towards the goals `dist` was set to (forgets everything).
+  // max_passes > 0 stops after that many passes (0: lacam3's rule alone).
+  void reset(const Config& starts, int margin, uint64_t seed, int max_passes = 0);
+  void clear();  // no guidance, nothing to do
+
+  // Works until done, `deadline`, or about `max_work` units; true once done.
+  bool step(Clock::time_point deadline, uint64_t max_work = UINT64_MAX);
+  bool done() const { return done_; }
+  bool ready() const { return !next_.empty(); }  // a complete pass has been published
+  uint64_t work() const { return work_; }         // of the last step()
+  int passes() const { return passes_; }
+  int planned() const { return pos_; }  // agents done in the running pass
+  int64_t collisions() const { return published_collisions_; }  // of the published pass
+
+  // The vertex after v on agent i's published path, or -1 (v not on it, or its end).
+  Vertex next(int i, Vertex v) const;
+  const std::vector<Vertex>& path(int i) const { return published_[i]; }
+  int num_agents() const { return n_; }
+
+ private:
+  struct Node {
+    int32_t coll, f, g;
+    Vertex v, parent;
+  };
+  // Collisions of moving from u (at time t) to w (at t + 1) with the enrolled paths.
+  int32_t collision_cost(Vertex u, Vertex w, int32_t t) const;
+  void enroll(int i);
+  void withdraw(int i);
+  void begin_agent();
+  bool run_astar(Clock::time_point deadline, uint64_t max_work);  // true when the agent is done
+  void end_pass();
+
+  const Graph& g_;
+  DistTable& dist_;
+  int n_ = 0, margin_ = 0, max_passes_ = 0;
+  Rng rng_{0};
+  Config starts_;
+  std::vector<std::vector<Vertex>> paths_;      // being improved
+  std::vector<std::vector<Vertex>> published_;  // of the last complete pass
+  std::vector<std::vector<std::pair<Vertex, Vertex>>> next_;  // per agent, sorted (v, successor)
+  // body_[v][t]: agents at v at time t; last_[v]: arrival times of paths ending at v.
+  std::vector<std::vector<std::vector<int32_t>>> body_;
+  std::vector<std::vector<int32_t>> last_;
+  int64_t collisions_ = 0, pass_start_collisions_ = 0, published_collisions_ = 0;
+  std::vector<int32_t> order_;
+  int pos_ = 0, passes_ = 0;
+  bool done_ = true, in_astar_ = false;
+  // A* of the current agent (resumable).
+  std::vector<Node> open_;
+  std::vector<Vertex> parent_;  // -2: not closed
+  std::vector<Vertex> closed_;
+  int32_t cost_ub_ = 0;
+  uint64_t work_ = 0;
+};
+
+}  // namespace planner
