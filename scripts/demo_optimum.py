@@ -99,19 +99,22 @@ class Cnf:
             if k > 0: self.add(-x, -s[k - 1])
             if 0 < k < len(s): self.add(-s[k - 1], s[k])
 
-    def at_most(self, lits, k):  # totalizer, outputs capped at k + 1
-        def tot(ls):
-            if len(ls) == 1: return ls
-            a, b = tot(ls[:len(ls) // 2]), tot(ls[len(ls) // 2:])
-            r = [self.var() for _ in range(min(len(a) + len(b), k + 1))]
-            for i in range(len(a) + 1):
-                for j in range(len(b) + 1):
-                    if 1 <= i + j <= len(r):
-                        self.add(*([-a[i - 1]] if i else []), *([-b[j - 1]] if j else []), r[i + j - 1])
-            return r
-        if len(lits) > k:
-            out = tot(lits)
-            self.add(-out[k])
+    def merge(self, a, b, k):  # totalizer node: unary a + b, outputs capped at k + 1 (r[j]: sum > j)
+        r = [self.var() for _ in range(min(len(a) + len(b), k + 1))]
+        for i in range(len(a) + 1):
+            for j in range(len(b) + 1):
+                if 1 <= i + j <= len(r):
+                    self.add(*([-a[i - 1]] if i else []), *([-b[j - 1]] if j else []), r[i + j - 1])
+        return r
+
+    def count(self, units, k):  # merges unary numbers (lists of literals) into one, capped at k + 1
+        if not units: return []
+        if len(units) == 1: return units[0]
+        h = len(units) // 2
+        return self.merge(self.count(units[:h], k), self.count(units[h:], k), k)
+
+    def at_most(self, out, k):
+        if len(out) > k: self.add(-out[k])
 
     def dimacs(self, path):
         with open(path, 'w') as f:
@@ -119,8 +122,59 @@ class Cnf:
             f.write(''.join(' '.join(map(str, c)) + ' 0\n' for c in self.cl))
 
 
-def encode(g, starts, goals, D, cost):
+def pair_surplus(g, starts, goals):
+    """Exact 2-agent loss optimum minus the two distances, for every pair (as
+    demo_pair_bound.py): a lower bound on delay_i + delay_j in any plan, for both costs
+    (soc >= loss)."""
     n = len(starts)
+    dg = [g.bfs(t) for t in goals]
+    out = {}
+    for i, j in itertools.combinations(range(n), 2):
+        (s1, g1), (s2, g2) = (starts[i], goals[i]), (starts[j], goals[j])
+        best = {(s1, s2): 0}
+        pq = [(0, s1, s2)]
+        c = None
+        while pq:
+            c, a, b = heapq.heappop(pq)
+            if best[(a, b)] < c: continue
+            if (a, b) == (g1, g2): break
+            for u in g.nb[a] + [a]:
+                for w in g.nb[b] + [b]:
+                    if u == w or (u == b and w == a): continue
+                    nc = c + (not (a == g1 and u == g1)) + (not (b == g2 and w == g2))
+                    if nc < best.get((u, w), 1 << 60):
+                        best[(u, w)] = nc
+                        heapq.heappush(pq, (nc, u, w))
+        sur = c - dg[i][s1] - dg[j][s2]
+        if sur > 0: out[(i, j)] = sur
+    return out
+
+
+def matching_bounds(n, sur):
+    """Best matching of disjoint pairs: M[i] = bound on the delay of all agents but i
+    (M[n] = of all)."""
+    memo = {}
+
+    def best(mask):
+        if mask in memo: return memo[mask]
+        i = next((k for k in range(n) if not mask >> k & 1), None)
+        r = 0
+        if i is not None:
+            r = best(mask | 1 << i)
+            for j in range(i + 1, n):
+                if not mask >> j & 1 and (i, j) in sur: r = max(r, sur[(i, j)] + best(mask | 1 << i | 1 << j))
+        memo[mask] = r
+        return r
+    return [best(1 << i) for i in range(n)] + [best(0)]
+
+
+def encode(g, starts, goals, D, cost, sur=None):
+    """sur: pair surpluses (pair_surplus): agent i's own slack is D minus the others' matching
+    bound, and every pair's delays are bounded below by clauses on per-agent counters."""
+    n = len(starts)
+    sur = sur or {}
+    M = matching_bounds(n, sur)
+    if M[n] > D: return 'UNSAT'  # the pair matching bound alone
     dg = [g.bfs(t) for t in goals]
     ds = [g.bfs(s) for s in starts]
     d = [dg[i][starts[i]] for i in range(n)]
@@ -137,7 +191,7 @@ def encode(g, starts, goals, D, cost):
                     lbi = d[i] if v == goals[i] else t + dg[i][v]
                 else:  # loss: free goal waits before t, if it fits (min cost to be at v at t) + rest
                     lbi = min(t, d[i] + dg[i][v]) + dg[i][v]
-                if lbi <= d[i] + D: xi[(v, t)] = cnf.var()
+                if lbi <= d[i] + D - M[i]: xi[(v, t)] = cnf.var()
         x.append(xi)
     for i in range(n):
         xi = x[i]
@@ -161,9 +215,10 @@ def encode(g, starts, goals, D, cost):
                             cnf.add(-x[i][(a, t)], -x[i][(b, t + 1)], e)
                             es.append(e)
                 cnf.amo(es)
-    delay = []
+    per = []  # per agent: unary delay counter
     for i in range(n):
-        xi, gi = x[i], goals[i]
+        xi, gi, Di = x[i], goals[i], D - M[i]
+        delay = []
         if cost == 'loss':
             for t in range(d[i], T):
                 c = cnf.var()
@@ -172,14 +227,20 @@ def encode(g, starts, goals, D, cost):
                 delay.append(c)
         else:
             fin = {}
-            for t in range(d[i], d[i] + D): fin[t] = cnf.var()
+            for t in range(d[i], d[i] + Di): fin[t] = cnf.var()
             for t, f in fin.items():
                 cnf.add(-f, xi[(gi, t)])
                 if t + 1 in fin: cnf.add(-f, fin[t + 1])
                 for (v, tt), a in xi.items():
                     if tt == t and v != gi: cnf.add(-f, -a)
                 delay.append(-f)
-    cnf.at_most(delay, D)
+        per.append(cnf.count([[l] for l in delay], Di))
+        cnf.at_most(per[-1], Di)
+    for (i, j), sv in sur.items():  # delay_i + delay_j >= sv
+        for a in range(sv):  # delay_i > a or delay_j > sv - 1 - a
+            cl = [o[k] for o, k in ((per[i], a), (per[j], sv - 1 - a)) if k < len(o)]
+            cnf.add(*cl)
+    cnf.at_most(cnf.count(per, D), D)
     return cnf, x, T, sum(d)
 
 
@@ -298,10 +359,12 @@ def brute(g, starts, goals, cost):
     return None
 
 
-def sat_optimum(g, starts, goals, cost, dmax=40):
+def sat_optimum(g, starts, goals, cost, dmax=40, pairs=True):
+    sur = pair_surplus(g, starts, goals) if pairs else {}
     for D in range(dmax + 1):
-        enc = encode(g, starts, goals, D, cost)
+        enc = encode(g, starts, goals, D, cost, sur)
         if enc is None: return None, None
+        if enc == 'UNSAT': continue
         cnf, x, T, lb = enc
         res, model, _, _ = solve(cnf, None)
         if res == 'SAT':
@@ -324,14 +387,16 @@ def self_check(trials, seed):
         for cost in ('loss', 'soc'):
             opt = brute(g, starts, goals, cost)
             if opt is None: break
-            sat, plan = sat_optimum(g, starts, goals, cost, dmax=opt - sum(g.bfs(t)[s] for s, t in zip(starts, goals)) + 1)
-            ok = sat == opt and not own_check(g, starts, goals, plan) and cost_of(plan, goals, cost) == opt
-            print(f'{"ok  " if ok else "FAIL"} {rows} starts {starts} goals {goals} cost {cost}: '
-                  f'exhaustive {opt}, sat {sat}', flush=True)
-            if not ok: return False
+            for pairs in (False, True):
+                sat, plan = sat_optimum(g, starts, goals, cost, opt - sum(g.bfs(t)[s] for s, t in zip(starts, goals)) + 1,
+                                        pairs)
+                ok = sat == opt and not own_check(g, starts, goals, plan) and cost_of(plan, goals, cost) == opt
+                print(f'{"ok  " if ok else "FAIL"} {rows} starts {starts} goals {goals} cost {cost} pair bounds '
+                      f'{"on " if pairs else "off"}: exhaustive {opt}, sat {sat}', flush=True)
+                if not ok: return False
         else:
             done += 1
-    print(f'self-check passed: {trials} random instances x 2 costs, SAT optimum == exhaustive optimum,'
+    print(f'self-check passed: {trials} random instances x 2 costs x pair bounds off/on, SAT optimum == exhaustive optimum,'
           ' decoded plans valid and of that cost')
     return True
 
@@ -349,6 +414,7 @@ def main():
     ap.add_argument('--timeout-s', type=float, default=1800, help='per SAT call')
     ap.add_argument('--plan-out', help='write the best plan found (plan_io format)')
     ap.add_argument('--keep-cnf', help='keep the last CNF at this path')
+    ap.add_argument('--no-pairs', action='store_true', help='no pair-surplus bounds (slower proofs)')
     ap.add_argument('--self-check', action='store_true')
     ap.add_argument('--trials', type=int, default=30)
     ap.add_argument('--seed', type=int, default=0)
@@ -359,10 +425,19 @@ def main():
     g, starts, goals = load(a.map, a.scen, a.agents)
     lb = sum(g.bfs(t)[s] for s, t in zip(starts, goals))
     print(f'{a.map} {a.scen}: {len(g.cells)} cells, {len(starts)} agents, LB {lb}, cost {a.cost}', flush=True)
+    t0 = time.time()
+    sur = {} if a.no_pairs else pair_surplus(g, starts, goals)
+    M = matching_bounds(len(starts), sur)
+    print(f'pair surpluses ({time.time() - t0:.1f} s): {sum(sur.values())} over {len(sur)} pairs, matching bound '
+          f'LB + {M[-1]} = {lb + M[-1]}; own slack of agent i = D - {M[:-1]}', flush=True)
 
     def run(target):
         t0 = time.time()
-        cnf, x, T, _ = encode(g, starts, goals, target - lb, a.cost)
+        enc = encode(g, starts, goals, target - lb, a.cost, sur)
+        if enc == 'UNSAT':
+            print(f'cost <= {target}: UNSAT by the pair matching bound alone', flush=True)
+            return 'UNSAT', None
+        cnf, x, T, _ = enc
         enc_s = time.time() - t0
         res, model, dt, tail = solve(cnf, a.timeout_s, a.keep_cnf)
         print(f'cost <= {target} (D {target - lb}, horizon {T}): {res} -- {cnf.n} vars, {len(cnf.cl)} clauses, '
