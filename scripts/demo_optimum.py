@@ -298,6 +298,14 @@ def own_check(g, starts, goals, plan):
     return ''
 
 
+def importable(mod):
+    try:
+        __import__(mod)
+        return True
+    except ImportError:
+        return False
+
+
 def project_check(map_path, g, starts, goals, plan):
     """The project's validator (Python bindings) on the plan: (error, sum_of_costs) or None."""
     try:
@@ -374,6 +382,8 @@ def sat_optimum(g, starts, goals, cost, dmax=40, pairs=True):
 
 def self_check(trials, seed):
     rng = random.Random(seed)
+    pv = project_check is not None and importable('rtlacam')
+    print('project validator (rtlacam bindings):', 'on' if pv else 'not importable (PYTHONPATH=build/python)')
     done = 0
     while done < trials:
         w, h = rng.choice([(3, 3), (4, 3), (4, 4), (5, 3), (2, 5)])
@@ -391,13 +401,19 @@ def self_check(trials, seed):
                 sat, plan = sat_optimum(g, starts, goals, cost, opt - sum(g.bfs(t)[s] for s, t in zip(starts, goals)) + 1,
                                         pairs)
                 ok = sat == opt and not own_check(g, starts, goals, plan) and cost_of(plan, goals, cost) == opt
+                if ok and pv:  # and the project's validator agrees: valid, the same loss
+                    with tempfile.NamedTemporaryFile('w', suffix='.map') as f:
+                        f.write(f'type octile\nheight {h}\nwidth {w}\nmap\n' + '\n'.join(rows) + '\n')
+                        f.flush()
+                        err, loss = project_check(f.name, g, starts, goals, plan)
+                    ok = not err and loss == cost_of(plan, goals, 'loss')
                 print(f'{"ok  " if ok else "FAIL"} {rows} starts {starts} goals {goals} cost {cost} pair bounds '
                       f'{"on " if pairs else "off"}: exhaustive {opt}, sat {sat}', flush=True)
                 if not ok: return False
         else:
             done += 1
     print(f'self-check passed: {trials} random instances x 2 costs x pair bounds off/on, SAT optimum == exhaustive optimum,'
-          ' decoded plans valid and of that cost')
+          ' decoded plans valid and of that cost' + (' (project validator: valid, same loss)' if pv else ''))
     return True
 
 
