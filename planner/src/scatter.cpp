@@ -6,15 +6,20 @@
 namespace planner {
 
 namespace {
-// Heap order: fewer collisions first, then smaller f, then deeper (closer to the goal).
+// Heap order: fewer collisions first, then smaller f, then deeper (closer to the goal), all
+// in one integer (Node::key): one comparison instead of three, the same order.
 template <class N>
 bool worse(const N& a, const N& b)
 {
-  if (a.coll != b.coll) return a.coll > b.coll;
-  if (a.f != b.f) return a.f > b.f;
-  return a.g < b.g;
+  return a.key > b.key;
 }
 }  // namespace
+
+uint64_t Scatter::key(int64_t coll, int32_t f, int32_t g) const
+{
+  const uint64_t c = std::min<uint64_t>(static_cast<uint64_t>(coll), coll_max_);
+  return (c << (2 * len_bits_)) | (static_cast<uint64_t>(f) << len_bits_) | (len_max_ - static_cast<uint64_t>(g));
+}
 
 void Scatter::clear()
 {
@@ -42,6 +47,11 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
   body_.assign(g_.size(), {});
   last_.assign(g_.size(), {});
   parent_.assign(g_.size(), -2);
+  // f, g <= distance + margin < |V| + margin + 1: len_bits_ bits each, the rest for collisions.
+  len_bits_ = 1;
+  while ((uint64_t{1} << len_bits_) <= g_.size() + static_cast<uint64_t>(margin) + 1) ++len_bits_;
+  len_max_ = (uint64_t{1} << len_bits_) - 1;
+  coll_max_ = (uint64_t{1} << (64 - 2 * len_bits_)) - 1;
   order_.resize(n_);
   std::iota(order_.begin(), order_.end(), 0);
   rng_.shuffle(order_.data(), n_);
@@ -111,7 +121,7 @@ void Scatter::begin_agent()
   const Vertex s = starts_[i];
   cost_ub_ = dist_.get(i, s) + margin_;
   open_.clear();
-  open_.push_back(Node{0, dist_.get(i, s), 0, s, -1});
+  open_.push_back(Node{key(0, dist_.get(i, s), 0), s, -1});
   in_astar_ = true;
 }
 
@@ -136,11 +146,13 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
       goal = x.v;
       break;
     }
+    const int64_t coll = static_cast<int64_t>(x.key >> (2 * len_bits_));
+    const int32_t g = static_cast<int32_t>(len_max_ - (x.key & len_max_));
     for (Vertex u : g_.neighbors(x.v)) {
       if (u == s || parent_[u] != -2) continue;
       const int32_t d = dist_.get(i, u);
-      if (x.g + 1 + d > cost_ub_) continue;
-      open_.push_back(Node{x.coll + collision_cost(x.v, u, x.g), x.g + 1 + d, x.g + 1, u, x.v});
+      if (g + 1 + d > cost_ub_) continue;
+      open_.push_back(Node{key(coll + collision_cost(x.v, u, g), g + 1 + d, g + 1), u, x.v});
       std::push_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
     }
   }

@@ -51,9 +51,10 @@ class Scatter {
 
  private:
   struct Node {
-    int32_t coll, f, g;
+    uint64_t key;  // (collisions, f, len_max_ - g), packed by key()
     Vertex v, parent;
   };
+  uint64_t key(int64_t coll, int32_t f, int32_t g) const;
   // Collisions of moving from u (at time t) to w (at t + 1) with the enrolled paths.
   int32_t collision_cost(Vertex u, Vertex w, int32_t t) const;
   void enroll(int i);
@@ -82,6 +83,8 @@ class Scatter {
   std::vector<Vertex> parent_;  // -2: not closed
   std::vector<Vertex> closed_;
   int32_t cost_ub_ = 0;
+  int len_bits_ = 1;
+  uint64_t len_max_ = 1, coll_max_ = 1;  // collisions saturate there (>= 2^22: never in practice)
   uint64_t work_ = 0;
 };
 
