@@ -50,19 +50,22 @@ int main(int argc, char** argv)
     int64_t collisions = 0;
     uint64_t hash = 1469598103934665603ull;
     int passes = 0;
+    uint64_t work = 0;  // Scatter's work units (4 per A* pop + path cells), all passes
     for (int r = 0; r < reps; ++r) {
       Scatter s(g, d);
       s.reset(ins.starts, margin, seed, max_passes);
       std::vector<double> pass_ms;
       double t0 = cpu_ms(), last = t0;
       int seen = 0;
-      while (!s.step(Clock::time_point::max(), slice))
+      work = 0;
+      while (!s.step(Clock::time_point::max(), slice) && (work += s.work(), true))
         if (s.passes() != seen) {
           seen = s.passes();
           const double now = cpu_ms();
           pass_ms.push_back(now - last);
           last = now;
         }
+      work += s.work();
       if (s.passes() != seen) pass_ms.push_back(cpu_ms() - last);
       if (best.empty()) best = pass_ms;
       for (size_t k = 0; k < best.size() && k < pass_ms.size(); ++k) best[k] = std::min(best[k], pass_ms[k]);
@@ -84,6 +87,7 @@ int main(int argc, char** argv)
     for (double x : best) total += x;
     j["total_cpu_ms"] = total;
     j["collisions"] = collisions;
+    j["work"] = work;
     j["paths_hash"] = std::to_string(hash);
     std::cout << j.dump() << std::endl;
   } catch (const std::exception& e) {
