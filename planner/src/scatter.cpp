@@ -47,9 +47,6 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
   body_.assign(g_.size(), {});
   last_.assign(g_.size(), {});
   parent_.assign(g_.size(), -2);
-  flat_ = true;
-  rows_ = 0;
-  occ_.clear();
   // f, g <= distance + margin < |V| + margin + 1: len_bits_ bits each, the rest for collisions.
   len_bits_ = 1;
   while ((uint64_t{1} << len_bits_) <= g_.size() + static_cast<uint64_t>(margin) + 1) ++len_bits_;
@@ -68,21 +65,11 @@ int32_t Scatter::collision_cost(Vertex u, Vertex w, int32_t t) const
   int32_t c = 0;
   const auto& bw = body_[w];
   const auto& bu = body_[u];
-  if (flat_) {
-    // Most (vertex, time) cells are empty: one load each decides, the lists only for a swap.
-    const int32_t at_w1 = occupancy(w, t + 1);
-    c += at_w1;
-    if (occupancy(u, t + 1) != 0 && occupancy(w, t) != 0)
-      for (int32_t j : bu[t + 1])
-        for (int32_t k : bw[t])
-          c += j == k;
-  } else {
-    if (static_cast<size_t>(t + 1) < bw.size()) c += static_cast<int32_t>(bw[t + 1].size());  // vertex
-    if (static_cast<size_t>(t + 1) < bu.size() && static_cast<size_t>(t) < bw.size())         // swap
-      for (int32_t j : bu[t + 1])
-        for (int32_t k : bw[t])
-          c += j == k;
-  }
+  if (static_cast<size_t>(t + 1) < bw.size()) c += static_cast<int32_t>(bw[t + 1].size());  // vertex
+  if (static_cast<size_t>(t + 1) < bu.size() && static_cast<size_t>(t) < bw.size())         // swap
+    for (int32_t j : bu[t + 1])
+      for (int32_t k : bw[t])
+        c += j == k;
   for (int32_t arrived : last_[w]) c += t + 1 > arrived;  // on somebody's goal after they arrived
   return c;
 }
@@ -99,21 +86,10 @@ void Scatter::enroll(int i)
   const auto& bg = body_[p.back()];
   for (size_t t = T + 1; t < bg.size(); ++t) c += static_cast<int64_t>(bg[t].size());
   collisions_ += c;
-  if (flat_ && static_cast<size_t>(T + 1) > rows_) {
-    if (static_cast<size_t>(T + 1) * g_.size() > max_flat_cells_) {
-      flat_ = false;  // too large a table: the lists alone (same counts, slower)
-      occ_.clear();
-      occ_.shrink_to_fit();
-    } else {
-      rows_ = T + 1;
-      occ_.resize(rows_ * g_.size(), 0);
-    }
-  }
   for (int32_t t = 0; t <= T; ++t) {
     auto& b = body_[p[t]];
     if (b.size() <= static_cast<size_t>(t)) b.resize(t + 1);
     b[t].push_back(i);
-    if (flat_) ++occ_[t * g_.size() + p[t]];
   }
   last_[p.back()].push_back(T);
   work_ += 2 * (T + 1);
@@ -127,7 +103,6 @@ void Scatter::withdraw(int i)
   for (int32_t t = 0; t <= T; ++t) {
     auto& b = body_[p[t]][t];
     b.erase(std::find(b.begin(), b.end(), i));
-    if (flat_) --occ_[t * g_.size() + p[t]];
   }
   auto& l = last_[p.back()];
   l.erase(std::find(l.begin(), l.end(), T));

@@ -81,30 +81,6 @@ TEST(Scatter, ResumedInSmallSlicesGivesTheSamePathsAsOneCall)
   for (int i = 0; i < 100; ++i) EXPECT_EQ(sliced.path(i), whole.path(i)) << "agent " << i;
 }
 
-TEST(Scatter, TheOccupancyTableChangesNoPath)
-{
-  // The flat (time x vertex) table is only a faster collision test: without it (cap 0, the
-  // lists alone) every pass gives the same paths and collision counts.
-  Graph g = random_map();
-  Instance r = random_scen(g, 200, 2);
-  DistTable d(g);
-  d.set_goals(r.goals);
-  Scatter flat(g, d), lists(g, d);
-  lists.set_max_table_cells(0);
-  flat.reset(r.starts, 10, 5);
-  lists.reset(r.starts, 10, 5);
-  while (!flat.step(Clock::time_point::max(), 3000)) {
-    lists.step(Clock::time_point::max(), 3000);
-    ASSERT_EQ(flat.passes(), lists.passes());
-    ASSERT_EQ(flat.planned(), lists.planned());
-  }
-  EXPECT_TRUE(lists.step(Clock::time_point::max(), 3000));
-  EXPECT_GE(flat.passes(), 2);
-  EXPECT_EQ(flat.passes(), lists.passes());
-  EXPECT_EQ(flat.collisions(), lists.collisions());
-  for (int i = 0; i < 200; ++i) EXPECT_EQ(flat.path(i), lists.path(i)) << "agent " << i;
-}
-
 TEST(Scatter, AStepNeverHoldsFarPastItsDeadline)
 {
   // 300 agents on random-32-32-20: SUO takes several ms, a step of 0.2 ms must return near

@@ -34,10 +34,6 @@ class Scatter {
   // max_passes > 0 stops after that many passes (0: lacam3's rule alone).
   void reset(const Config& starts, int margin, uint64_t seed, int max_passes = 0);
   void clear();  // no guidance, nothing to do
-  // Memory cap of the (time x vertex) occupancy table that speeds up the collision test
-  // (cells; default 2^25 = 128 MB); past it only the per-vertex lists are used: the same
-  // paths, slower. Takes effect at the next reset().
-  void set_max_table_cells(size_t cells) { max_flat_cells_ = cells; }
 
   // Works until done, `deadline`, or about `max_work` units; true once done.
   bool step(Clock::time_point deadline, uint64_t max_work = UINT64_MAX);
@@ -78,16 +74,6 @@ class Scatter {
   // body_[v][t]: agents at v at time t; last_[v]: arrival times of paths ending at v.
   std::vector<std::vector<std::vector<int32_t>>> body_;
   std::vector<std::vector<int32_t>> last_;
-  // occ_[t * |V| + v] = body_[v][t].size() for t < rows_ (the longest enrolled path): the
-  // collision test's common case (nobody there) in one load. Off past max_flat_cells_.
-  size_t max_flat_cells_ = size_t{1} << 25;  // 128 MB of int32
-  bool flat_ = true;
-  size_t rows_ = 0;
-  std::vector<int32_t> occ_;
-  int32_t occupancy(Vertex v, int32_t t) const
-  {
-    return static_cast<size_t>(t) < rows_ ? occ_[static_cast<size_t>(t) * g_.size() + v] : 0;
-  }
   int64_t collisions_ = 0, pass_start_collisions_ = 0, published_collisions_ = 0;
   std::vector<int32_t> order_;
   int pos_ = 0, passes_ = 0;
