@@ -36,6 +36,8 @@ int main(int argc, char** argv)
   app.add_option("--max-passes", max_passes, "passes at most (0: until collisions stop dropping)")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_option("--slice", slice, "work units per step() call")->capture_default_str();
+  bool heap = false;
+  app.add_flag("--heap", heap, "binary-heap open list (the earlier code) instead of the bucket queue");
   app.add_option("--reps", reps, "repetitions (the pass times are the minimum over them)")->capture_default_str();
   cli::add_version(app, "rtlacam-suo-bench");
   RTLACAM_PARSE(app, argc, argv);
@@ -53,6 +55,7 @@ int main(int argc, char** argv)
     uint64_t work = 0;  // Scatter's work units (4 per A* pop + path cells), all passes
     for (int r = 0; r < reps; ++r) {
       Scatter s(g, d);
+      s.set_bucket_queue(!heap);
       s.reset(ins.starts, margin, seed, max_passes);
       std::vector<double> pass_ms;
       double t0 = cpu_ms(), last = t0;
@@ -81,6 +84,7 @@ int main(int argc, char** argv)
     j["agents"] = agents;
     j["margin"] = margin;
     j["seed"] = seed;
+    j["queue"] = heap ? "heap" : "bucket";
     j["passes"] = passes;
     j["pass_cpu_ms"] = best;
     double total = 0;

@@ -39,6 +39,7 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
 {
   clear();
   max_passes_ = max_passes;
+  bucket_ = bucket_next_;
   n_ = static_cast<int>(starts.size());
   margin_ = margin;
   rng_ = Rng(seed);
@@ -114,6 +115,68 @@ void Scatter::withdraw(int i)
   work_ += 2 * (T + 1);
 }
 
+// Open list. Heap: std::push_heap / pop_heap on the key. Bucket queue: one bucket per
+// (collisions, f) level, levels are popped in increasing order (along an edge neither
+// collisions nor f -- consistent heuristic -- decrease, so nothing is ever pushed below the
+// level being popped); inside the level the deepest node first: the bucket is sorted by
+// key once when it is reached, and every child pushed into it is one deeper than the node
+// just popped, the deepest there, so a push to the back keeps it sorted. The same order
+// as the heap up to ties between equal keys.
+size_t Scatter::level(const Node& x) const
+{
+  const uint64_t coll = x.key >> (2 * len_bits_);
+  const int32_t f = static_cast<int32_t>((x.key >> len_bits_) & len_max_);
+  const int64_t l = static_cast<int64_t>(coll) * (margin_ + 1) + (f - f0_);
+  return static_cast<size_t>(std::max<int64_t>(l, 0));
+}
+
+void Scatter::push(const Node& x)
+{
+  if (!bucket_) {
+    open_.push_back(x);
+    std::push_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+    return;
+  }
+  // Below the level being popped only with an inconsistent distance (a lower bound past
+  // the BFS's deadline): then into the current level, in its order.
+  const size_t l = std::max(std::min(level(x), kMaxLevels - 1), cur_);
+  if (l >= buckets_.size()) buckets_.resize(l + 1);
+  auto& b = buckets_[l];
+  if (l == cur_ && level_sorted_ && !b.empty() && !worse(b.back(), x))
+    b.insert(std::upper_bound(b.begin(), b.end(), x, [](const Node& a, const Node& c) { return worse(a, c); }), x);
+  else
+    b.push_back(x);
+  top_ = std::max(top_, l + 1);
+}
+
+bool Scatter::open_empty()
+{
+  if (!bucket_) return open_.empty();
+  while (cur_ < top_ && buckets_[cur_].empty()) {
+    ++cur_;
+    level_sorted_ = false;
+  }
+  return cur_ >= top_;
+}
+
+Scatter::Node Scatter::pop()  // after !open_empty()
+{
+  if (!bucket_) {
+    std::pop_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+    const Node x = open_.back();
+    open_.pop_back();
+    return x;
+  }
+  auto& b = buckets_[cur_];
+  if (!level_sorted_) {
+    std::sort(b.begin(), b.end(), [](const Node& x, const Node& y) { return worse(x, y); });
+    level_sorted_ = true;
+  }
+  const Node x = b.back();
+  b.pop_back();
+  return x;
+}
+
 void Scatter::begin_agent()
 {
   const int i = order_[pos_];
@@ -121,7 +184,11 @@ void Scatter::begin_agent()
   const Vertex s = starts_[i];
   cost_ub_ = dist_.get(i, s) + margin_;
   open_.clear();
-  open_.push_back(Node{key(0, dist_.get(i, s), 0), s, -1});
+  for (size_t b = 0; b < top_; ++b) buckets_[b].clear();
+  cur_ = top_ = 0;
+  level_sorted_ = false;
+  f0_ = dist_.get(i, s);
+  push(Node{key(0, f0_, 0), s, -1});
   in_astar_ = true;
 }
 
@@ -132,11 +199,9 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
   uint64_t pops = 0;
   bool solved = false;
   Vertex goal = -1;
-  while (!open_.empty()) {
+  while (!open_empty()) {
     if ((++pops & 63) == 0 && (work_ >= max_work || Clock::now() >= deadline)) return false;
-    std::pop_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
-    const Node x = open_.back();
-    open_.pop_back();
+    const Node x = pop();
     work_ += 4;
     if (parent_[x.v] != -2) continue;
     parent_[x.v] = x.parent;
@@ -152,8 +217,7 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
       if (u == s || parent_[u] != -2) continue;
       const int32_t d = dist_.get(i, u);
       if (g + 1 + d > cost_ub_) continue;
-      open_.push_back(Node{key(coll + collision_cost(x.v, u, g), g + 1 + d, g + 1), u, x.v});
-      std::push_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+      push(Node{key(coll + collision_cost(x.v, u, g), g + 1 + d, g + 1), u, x.v});
     }
   }
   auto& p = paths_[i];
@@ -177,6 +241,9 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
   for (Vertex v : closed_) parent_[v] = -2;
   closed_.clear();
   open_.clear();
+  for (size_t b = 0; b < top_; ++b) buckets_[b].clear();
+  cur_ = top_ = 0;
+  level_sorted_ = false;
   enroll(i);
   in_astar_ = false;
   return true;
