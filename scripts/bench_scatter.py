@@ -5,6 +5,9 @@ per instance in the same time window. Prints per-variant median executed SOC/LB 
 the ratio to the first variant and to lacam3 10 s.
 
   scripts/bench_scatter.py [--cutoff-ms 1] [--scens 5] [--variant NAME=FLAGS ...] [--budget-expansions K]
+
+FLAGS starting with "bin=PATH" run that binary instead of --bin (old vs new code in one window):
+  --variant old="bin=/tmp/rtlacam-bench-old --scatter" --variant new=--scatter
 """
 import argparse, json, statistics, subprocess, sys
 
@@ -31,9 +34,11 @@ res = {}
 for m, n in cells:
     for k in range(1, a.scens + 1):
         for name, flags in variants:
-            cmd = [a.bin, "--map", f"{a.movingai}/{m}.map", "--scen", f"{a.movingai}/{m}-random-{k}.scen", "-N", str(n),
+            fl = flags.split()
+            binary = fl.pop(0)[4:] if fl and fl[0].startswith("bin=") else a.bin
+            cmd = [binary, "--map", f"{a.movingai}/{m}.map", "--scen", f"{a.movingai}/{m}-random-{k}.scen", "-N", str(n),
                    "--solver", "rtlacam", "--cutoff-ms", a.cutoff_ms, "--budget-expansions", a.budget_expansions,
-                   "--refine", "--seed", "0", "--timeout-s", "20", "--json", "--progress-s", "0"] + flags.split()
+                   "--refine", "--seed", "0", "--timeout-s", "20", "--json", "--progress-s", "0"] + fl
             out = subprocess.run(cmd, capture_output=True, text=True).stdout.strip().splitlines()
             j = json.loads(out[-1])
             r = j["soc"] / j["soc_lb"] if j["solved"] else float("inf")

@@ -6,15 +6,20 @@
 namespace planner {
 
 namespace {
-// Heap order: fewer collisions first, then smaller f, then deeper (closer to the goal).
+// Heap order: fewer collisions first, then smaller f, then deeper (closer to the goal), all
+// in one integer (Node::key): one comparison instead of three, the same order.
 template <class N>
 bool worse(const N& a, const N& b)
 {
-  if (a.coll != b.coll) return a.coll > b.coll;
-  if (a.f != b.f) return a.f > b.f;
-  return a.g < b.g;
+  return a.key > b.key;
 }
 }  // namespace
+
+uint64_t Scatter::key(int64_t coll, int32_t f, int32_t g) const
+{
+  const uint64_t c = std::min<uint64_t>(static_cast<uint64_t>(coll), coll_max_);
+  return (c << (2 * len_bits_)) | (static_cast<uint64_t>(f) << len_bits_) | (len_max_ - static_cast<uint64_t>(g));
+}
 
 void Scatter::clear()
 {
@@ -34,6 +39,7 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
 {
   clear();
   max_passes_ = max_passes;
+  bucket_ = bucket_next_;
   n_ = static_cast<int>(starts.size());
   margin_ = margin;
   rng_ = Rng(seed);
@@ -42,6 +48,11 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
   body_.assign(g_.size(), {});
   last_.assign(g_.size(), {});
   parent_.assign(g_.size(), -2);
+  // f, g <= distance + margin < |V| + margin + 1: len_bits_ bits each, the rest for collisions.
+  len_bits_ = 1;
+  while ((uint64_t{1} << len_bits_) <= g_.size() + static_cast<uint64_t>(margin) + 1) ++len_bits_;
+  len_max_ = (uint64_t{1} << len_bits_) - 1;
+  coll_max_ = (uint64_t{1} << (64 - 2 * len_bits_)) - 1;
   order_.resize(n_);
   std::iota(order_.begin(), order_.end(), 0);
   rng_.shuffle(order_.data(), n_);
@@ -104,6 +115,68 @@ void Scatter::withdraw(int i)
   work_ += 2 * (T + 1);
 }
 
+// Open list. Heap: std::push_heap / pop_heap on the key. Bucket queue: one bucket per
+// (collisions, f) level, levels are popped in increasing order (along an edge neither
+// collisions nor f -- consistent heuristic -- decrease, so nothing is ever pushed below the
+// level being popped); inside the level the deepest node first: the bucket is sorted by
+// key once when it is reached, and every child pushed into it is one deeper than the node
+// just popped, the deepest there, so a push to the back keeps it sorted. The same order
+// as the heap up to ties between equal keys.
+size_t Scatter::level(const Node& x) const
+{
+  const uint64_t coll = x.key >> (2 * len_bits_);
+  const int32_t f = static_cast<int32_t>((x.key >> len_bits_) & len_max_);
+  const int64_t l = static_cast<int64_t>(coll) * (margin_ + 1) + (f - f0_);
+  return static_cast<size_t>(std::max<int64_t>(l, 0));
+}
+
+void Scatter::push(const Node& x)
+{
+  if (!bucket_) {
+    open_.push_back(x);
+    std::push_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+    return;
+  }
+  // Below the level being popped only with an inconsistent distance (a lower bound past
+  // the BFS's deadline): then into the current level, in its order.
+  const size_t l = std::max(std::min(level(x), kMaxLevels - 1), cur_);
+  if (l >= buckets_.size()) buckets_.resize(l + 1);
+  auto& b = buckets_[l];
+  if (l == cur_ && level_sorted_ && !b.empty() && !worse(b.back(), x))
+    b.insert(std::upper_bound(b.begin(), b.end(), x, [](const Node& a, const Node& c) { return worse(a, c); }), x);
+  else
+    b.push_back(x);
+  top_ = std::max(top_, l + 1);
+}
+
+bool Scatter::open_empty()
+{
+  if (!bucket_) return open_.empty();
+  while (cur_ < top_ && buckets_[cur_].empty()) {
+    ++cur_;
+    level_sorted_ = false;
+  }
+  return cur_ >= top_;
+}
+
+Scatter::Node Scatter::pop()  // after !open_empty()
+{
+  if (!bucket_) {
+    std::pop_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+    const Node x = open_.back();
+    open_.pop_back();
+    return x;
+  }
+  auto& b = buckets_[cur_];
+  if (!level_sorted_) {
+    std::sort(b.begin(), b.end(), [](const Node& x, const Node& y) { return worse(x, y); });
+    level_sorted_ = true;
+  }
+  const Node x = b.back();
+  b.pop_back();
+  return x;
+}
+
 void Scatter::begin_agent()
 {
   const int i = order_[pos_];
@@ -111,7 +184,11 @@ void Scatter::begin_agent()
   const Vertex s = starts_[i];
   cost_ub_ = dist_.get(i, s) + margin_;
   open_.clear();
-  open_.push_back(Node{0, dist_.get(i, s), 0, s, -1});
+  for (size_t b = 0; b < top_; ++b) buckets_[b].clear();
+  cur_ = top_ = 0;
+  level_sorted_ = false;
+  f0_ = dist_.get(i, s);
+  push(Node{key(0, f0_, 0), s, -1});
   in_astar_ = true;
 }
 
@@ -122,11 +199,9 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
   uint64_t pops = 0;
   bool solved = false;
   Vertex goal = -1;
-  while (!open_.empty()) {
+  while (!open_empty()) {
     if ((++pops & 63) == 0 && (work_ >= max_work || Clock::now() >= deadline)) return false;
-    std::pop_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
-    const Node x = open_.back();
-    open_.pop_back();
+    const Node x = pop();
     work_ += 4;
     if (parent_[x.v] != -2) continue;
     parent_[x.v] = x.parent;
@@ -136,12 +211,13 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
       goal = x.v;
       break;
     }
+    const int64_t coll = static_cast<int64_t>(x.key >> (2 * len_bits_));
+    const int32_t g = static_cast<int32_t>(len_max_ - (x.key & len_max_));
     for (Vertex u : g_.neighbors(x.v)) {
       if (u == s || parent_[u] != -2) continue;
       const int32_t d = dist_.get(i, u);
-      if (x.g + 1 + d > cost_ub_) continue;
-      open_.push_back(Node{x.coll + collision_cost(x.v, u, x.g), x.g + 1 + d, x.g + 1, u, x.v});
-      std::push_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+      if (g + 1 + d > cost_ub_) continue;
+      push(Node{key(coll + collision_cost(x.v, u, g), g + 1 + d, g + 1), u, x.v});
     }
   }
   auto& p = paths_[i];
@@ -165,6 +241,9 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
   for (Vertex v : closed_) parent_[v] = -2;
   closed_.clear();
   open_.clear();
+  for (size_t b = 0; b < top_; ++b) buckets_[b].clear();
+  cur_ = top_ = 0;
+  level_sorted_ = false;
   enroll(i);
   in_astar_ = false;
   return true;

@@ -34,6 +34,11 @@ class Scatter {
   // max_passes > 0 stops after that many passes (0: lacam3's rule alone).
   void reset(const Config& starts, int margin, uint64_t seed, int max_passes = 0);
   void clear();  // no guidance, nothing to do
+  // Open list of the A*: a bucket queue (default; O(1) push, measured in
+  // docs/rt_lacam_star.md "Faster SUO") or a binary heap (the earlier code). Same order up
+  // to ties between nodes with equal (collisions, f, g), so the paths may differ. Takes
+  // effect at the next reset().
+  void set_bucket_queue(bool on) { bucket_next_ = on; }
 
   // Works until done, `deadline`, or about `max_work` units; true once done.
   bool step(Clock::time_point deadline, uint64_t max_work = UINT64_MAX);
@@ -51,9 +56,14 @@ class Scatter {
 
  private:
   struct Node {
-    int32_t coll, f, g;
+    uint64_t key;  // (collisions, f, len_max_ - g), packed by key()
     Vertex v, parent;
   };
+  uint64_t key(int64_t coll, int32_t f, int32_t g) const;
+  size_t level(const Node& x) const;  // bucket of x: collisions x (margin + 1) + f - f0_
+  void push(const Node& x);
+  bool open_empty();  // (moves the bucket cursor past empty levels)
+  Node pop();
   // Collisions of moving from u (at time t) to w (at t + 1) with the enrolled paths.
   int32_t collision_cost(Vertex u, Vertex w, int32_t t) const;
   void enroll(int i);
@@ -78,10 +88,18 @@ class Scatter {
   int pos_ = 0, passes_ = 0;
   bool done_ = true, in_astar_ = false;
   // A* of the current agent (resumable).
-  std::vector<Node> open_;
+  bool bucket_ = true, bucket_next_ = true;
+  std::vector<Node> open_;                   // heap
+  std::vector<std::vector<Node>> buckets_;  // bucket queue: [cur_, top_) may be non-empty
+  size_t cur_ = 0, top_ = 0;
+  static constexpr size_t kMaxLevels = size_t{1} << 20;  // higher levels share the last one
+  bool level_sorted_ = false;
+  int32_t f0_ = 0;  // f of the start (the lowest f)
   std::vector<Vertex> parent_;  // -2: not closed
   std::vector<Vertex> closed_;
   int32_t cost_ub_ = 0;
+  int len_bits_ = 1;
+  uint64_t len_max_ = 1, coll_max_ = 1;  // collisions saturate there (>= 2^22: never in practice)
   uint64_t work_ = 0;
 };
 
