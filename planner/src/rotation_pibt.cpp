@@ -120,7 +120,11 @@ bool RotationPibt::pibt(int i, int asker)
     cand[m++] = {c, cost, d == o ? 0u : 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
   }
   if (asker < 0) cand[m++] = {v, 1u + dist_.get(t, v, o), 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
-  std::sort(cand, cand + m, [](const Cand& x, const Cand& y) { return x.cost != y.cost ? x.cost < y.cost : x.tie < y.tie; });
+  // Insertion sort of at most 5: the order std::sort gives below 16 elements (its final
+  // insertion sort), without GCC 12's false -Warray-bounds on a fixed array.
+  for (int a = 1; a < m; ++a)
+    for (int b = a; b > 0 && (cand[b].cost != cand[b - 1].cost ? cand[b].cost < cand[b - 1].cost : cand[b].tie < cand[b - 1].tie); --b)
+      std::swap(cand[b], cand[b - 1]);
   for (int k = 0; k < m; ++k) {
     const Vertex c = cand[k].c;
     if (occ_next_[c] >= 0) continue;                   // reserved
