@@ -49,7 +49,7 @@ TEST(Scatter, PathsLeadFromStartToGoalWithinTheMargin)
       if (first_pass < 0 && s.ready()) first_pass = s.collisions();
     ASSERT_TRUE(s.ready());
     EXPECT_GE(s.passes(), 2) << "lacam3: at least two passes unless collision-free";
-    if (first_pass >= 0) EXPECT_LE(s.collisions(), first_pass) << "a later pass is published only if no worse";
+    if (first_pass >= 0) { EXPECT_LE(s.collisions(), first_pass) << "a later pass is published only if no worse"; }
     for (int i = 0; i < 150; ++i) {
       const auto& p = s.path(i);
       ASSERT_FALSE(p.empty()) << "agent " << i;
@@ -200,11 +200,11 @@ TEST(RtLacamScatter, FirstSolutionIsLacamsAndTheFollowedPathNeverGetsCostlier)
         const HNode* goal = rt.lacam().goal_node();
         if (!goal) continue;
         std::string why;
-        if (rt.lacam().refining()) ASSERT_TRUE(rt.lacam().check_costs(&why)) << why;
+        if (rt.lacam().refining()) { ASSERT_TRUE(rt.lacam().check_costs(&why)) << why; }
         int64_t rest = 0;
         for (const HNode* h = goal; h->parent; h = h->parent)
           rest += edge_cost(Config(h->parent->C, h->parent->C + n), Config(h->C, h->C + n), r.goals);
-        if (best >= 0) ASSERT_LE(executed + rest, best) << "step " << k;
+        if (best >= 0) { ASSERT_LE(executed + rest, best) << "step " << k; }
         best = executed + rest;
       }
       ASSERT_TRUE(rt.at_goal());

@@ -134,7 +134,6 @@ TEST(RotationExecutor, RandomValidPlansExecuteWithoutConflictsInPlanOrder)
 TEST(RotationRun, LifelongRunIsValidAndEventsHappenOnTheRobotsRealCells)
 {
   const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
-  const LorrProblem& pr = L.p;
   const planner::Graph& g = L.g;
   const Config& starts = L.starts;
   const auto& file = L.file;
@@ -205,7 +204,7 @@ TEST(LorrLog, PoolEventsCountErrandsDoneAndScheduleTasksThatExist)
     while (p < str.size()) {
       const size_t colon = str.find(':', p), comma = str.find(',', p);
       const long task = std::stol(str.substr(colon + 1, comma - colon - 1));
-      if (task >= 0) EXPECT_TRUE(tasks.count(task)) << task;
+      if (task >= 0) { EXPECT_TRUE(tasks.count(task)) << task; }
       scheduled.insert(task);
       p = comma == std::string::npos ? str.size() : comma + 1;
     }
@@ -284,7 +283,6 @@ TEST(RotationRun, BenchReportsTheRotationRunOfTheExecutedPlan)
 TEST(LifelongTiming, EpochStartIsChargedToTheStepAfterACompletion)
 {
   const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
-  const LorrProblem& pr = L.p;
   const planner::Graph& g = L.g;
   const Config& starts = L.starts;
   RoundRobin rr(L.file);
