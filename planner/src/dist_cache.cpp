@@ -29,17 +29,22 @@ void DistCache::Table::compact()
   if (queue.capacity() > 2 * queue.size() + 4096) queue.shrink_to_fit();
 }
 
+void DistCache::Table::pop(const Graph& g)
+{
+  const Vertex u = queue[head++];
+  ++popped;
+  for (Vertex w : g.neighbors(u)) {
+    if (dist[w] != kInf) continue;
+    dist[w] = dist[u] + 1;
+    queue.push_back(w);
+  }
+}
+
 int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
 {
   // Vertices get their distance when discovered, so stop as soon as v is discovered.
   while (head < queue.size()) {
-    const Vertex u = queue[head++];
-    ++popped;
-    for (Vertex w : g.neighbors(u)) {
-      if (dist[w] != kInf) continue;
-      dist[w] = dist[u] + 1;
-      queue.push_back(w);
-    }
+    pop(g);
     if (dist[v] != kInf) {
       compact();
       return dist[v];
@@ -51,15 +56,7 @@ int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
 
 bool DistCache::Table::grow_until(Vertex v, size_t pops, const Graph& g)
 {
-  for (; pops > 0 && dist[v] == kInf && head < queue.size(); --pops) {
-    const Vertex u = queue[head++];
-    ++popped;
-    for (Vertex w : g.neighbors(u)) {
-      if (dist[w] != kInf) continue;
-      dist[w] = dist[u] + 1;
-      queue.push_back(w);
-    }
-  }
+  for (; pops > 0 && dist[v] == kInf && head < queue.size(); --pops) pop(g);
   if (head >= queue.size() && !queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done
   compact();
   return dist[v] != kInf || done();

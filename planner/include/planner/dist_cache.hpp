@@ -65,6 +65,7 @@ class DistCache {
     // A lower bound on the distance of an undiscovered v (kInf once the BFS is finished).
     int32_t lower_bound(Vertex v, const Graph& g) const;
     void compact();  // drops the popped part of the queue once it is most of it
+    void pop(const Graph& g);  // one BFS step: the next queued vertex labels its unlabelled neighbours
   };
 
   explicit DistCache(const Graph& g, size_t max_tables = 0) : g_(g), max_tables_(max_tables) {}
