@@ -62,4 +62,14 @@ inline std::string temp_file(const std::string& name, const std::string& text)
   return test::temp_file(name, text);
 }
 
+// Replays one MAPF_T letter from (cell v, heading h): the cell after the step (h turns in place).
+inline planner::Vertex apply(const planner::Graph& g, planner::Vertex v, int& h, char a)
+{
+  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
+  if (a == 'R') h = (h + 1) % 4;
+  else if (a == 'C') h = (h + 3) % 4;
+  else if (a == 'F') v = g.at(g.cell_x(v) + dx[h], g.cell_y(v) + dy[h]);
+  return v;
+}
+
 }  // namespace ttest

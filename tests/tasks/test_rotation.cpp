@@ -30,16 +30,6 @@ std::string run_until_idle(RotationExecutor& ex, int max_steps, int agent)
   return acts;
 }
 
-// Replays MAPF_T letters from (cell, heading): the cell after each step.
-planner::Vertex apply(const planner::Graph& g, planner::Vertex v, int& h, char a)
-{
-  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
-  if (a == 'R') h = (h + 1) % 4;
-  else if (a == 'C') h = (h + 3) % 4;
-  else if (a == 'F') v = g.at(g.cell_x(v) + dx[h], g.cell_y(v) + dy[h]);
-  return v;
-}
-
 }  // namespace
 
 TEST(RotationExecutor, TurnsCostAStepAndRobotsStartFacingEast)
@@ -156,7 +146,7 @@ TEST(RotationRun, LifelongRunIsValidAndEventsHappenOnTheRobotsRealCells)
       const char a = r.actions[i][static_cast<size_t>(t - 1)];
       ASSERT_TRUE(a == 'F' || a == 'R' || a == 'C' || a == 'W') << a;
       turns += a == 'R' || a == 'C';
-      at[t][i] = apply(g, at[t - 1][i], h[i], a);
+      at[t][i] = ttest::apply(g, at[t - 1][i], h[i], a);
       ASSERT_GE(at[t][i], 0);
     }
     ASSERT_EQ(planner::Validator::check_transition(g, at[t - 1], at[t]), "") << "step " << t;

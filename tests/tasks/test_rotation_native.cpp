@@ -23,15 +23,6 @@ using planner::Config;
 
 namespace {
 
-planner::Vertex apply(const planner::Graph& g, planner::Vertex v, int& h, char a)
-{
-  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
-  if (a == 'R') h = (h + 1) % 4;
-  else if (a == 'C') h = (h + 3) % 4;
-  else if (a == 'F') v = g.at(g.cell_x(v) + dx[h], g.cell_y(v) + dy[h]);
-  return v;
-}
-
 LifelongOptions rotation_options(long steps)
 {
   LifelongOptions opt;
@@ -63,7 +54,7 @@ TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
         const char a = r.actions[i][static_cast<size_t>(t - 1)];
         ASSERT_TRUE(a == 'F' || a == 'R' || a == 'C' || a == 'W') << a;
         turns += a == 'R' || a == 'C';
-        at[t][i] = apply(g, at[t - 1][i], h[i], a);
+        at[t][i] = ttest::apply(g, at[t - 1][i], h[i], a);
         ASSERT_GE(at[t][i], 0) << "agent " << i << " forward into a wall at step " << t;
       }
       ASSERT_EQ(planner::Validator::check_transition(g, at[t - 1], at[t]), "") << "step " << t;
