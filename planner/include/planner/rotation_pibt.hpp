@@ -76,6 +76,14 @@ class RotationPibt : public RealtimePlanner {
   // RANDOM-04 / 05 (docs/rotation_lorr.md).
   void set_back_last(bool on) { back_last_ = on; }
 
+  // Guidance (guidance.hpp): PIBT ranks a candidate by its action's cost + the guided
+  // distance from there (a quarter turn turn_cost, forward forward_cost(v, o); waiting costs
+  // the cheapest action). Drops the distance tables and takes the goals' anew; priorities
+  // restart from the guided distances.
+  void set_guidance(Guidance gd);
+  // Distance queries past `d` answer lower bounds (RotationDist::set_deadline).
+  void set_deadline(RotationDist::Deadline d) { dist_.set_deadline(d); }
+
   const std::vector<int>& headings() const { return heading_; }
   // The planned step's action per robot, one of "FRCW" (valid after search()).
   const std::string& actions() const { return action_; }
@@ -107,6 +115,7 @@ class RotationPibt : public RealtimePlanner {
   std::string action_;
   bool planned_ = false;
   bool back_last_ = false;
+  uint32_t wait_cost_ = 1;
   uint64_t steps_planned_ = 0;
 };
 
