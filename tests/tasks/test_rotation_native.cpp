@@ -137,3 +137,35 @@ TEST(RotationNative, RefusedWithGrid4)
   EXPECT_NE(err.find("--action-model rotation"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }
+
+TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)
+{
+  // rtlacam-lifelong: arrows by default for pibt-rot (reported in the log), none named; a
+  // bad guidance file, or --guidance with a cell-plan solver: one line, exit code 2.
+  auto run = [](const std::string& args, std::string& out, std::string& err) {
+    const std::string o = test::temp_path("guid.out"), e = test::temp_path("guid.err");
+    const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
+                                "/2023/random.domain/MR23-I-04.json --steps 20 --quiet " + args + " >" + o + " 2>" + e)
+                                   .c_str());
+    std::stringstream so, se;
+    so << std::ifstream(o).rdbuf();
+    se << std::ifstream(e).rdbuf();
+    out = so.str(), err = se.str();
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  };
+  std::string out, err;
+  ASSERT_EQ(run("--action-model rotation --solver pibt-rot", out, err), 0) << err;
+  EXPECT_NE(out.find("\"guidance\": \"arrows 1,3,1\""), std::string::npos) << out;
+  ASSERT_EQ(run("--action-model rotation --solver pibt-rot --guidance none", out, err), 0) << err;
+  EXPECT_EQ(out.find("\"guidance\""), std::string::npos);
+  const std::string bad = test::temp_path("bad_guidance.txt");
+  std::ofstream(bad) << "turn 1\n0 0 1 1 1\n";
+  EXPECT_EQ(run("--action-model rotation --solver pibt-rot --guidance " + bad, out, err), 2);
+  EXPECT_NE(err.find(bad + ":2: expected"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(run("--action-model rotation --solver pibt-rot --guidance-costs 1,0,1", out, err), 2);
+  EXPECT_NE(err.find("--guidance-costs"), std::string::npos) << err;
+  EXPECT_EQ(run("--action-model rotation --solver rtlacam --guidance arrows", out, err), 2);
+  EXPECT_NE(err.find("--guidance needs --solver pibt-rot"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
