@@ -198,7 +198,7 @@ bool RotationDist::precompute(std::chrono::steady_clock::time_point deadline)
 {
   while (!late_.empty()) {  // tables queries needed this step: first
     Table* t = late_.back();
-    if (t->done()) {
+    if (t->done() || t->pins == 1) {  // complete, or nobody holds it any more (its goal changed): not worth growing
       late_.pop_back();
       t->late = false;
       --t->pins;

@@ -243,6 +243,13 @@ TEST(Guidance, BoundedQueriesAreLowerBoundsUntilCompleteThenExact)
     EXPECT_EQ(dist.pending(), 0u);
     for (Vertex v = 0; v < g.size(); ++v)
       for (int o = 0; o < 4; ++o) ASSERT_EQ(dist.get(t, v, o), brute(g, gd, v, o, goal));
+    // A late table nobody holds any more (its agent's goal changed) is dropped unfinished.
+    RotationDist::Table* gone = dist.table(g.size() - 1);
+    EXPECT_LE(dist.get(gone, 0, 0), brute(g, gd, 0, 0, g.size() - 1));  // a bound: the deadline passed
+    EXPECT_EQ(dist.pending(), 1u);
+    EXPECT_FALSE(dist.precompute(std::chrono::steady_clock::time_point::max()));
+    EXPECT_FALSE(gone->done());
+    EXPECT_EQ(gone->pins, 0);
     // No deadline: exact on the spot again.
     dist.set_deadline(RotationDist::Deadline::max());
     RotationDist::Table* u = dist.table(0);

@@ -36,7 +36,7 @@
 // its table has not settled does not grow the table but answers a lower bound, max(the
 // search's level + 1, Manhattan distance x the cheapest forward cost + the fewest quarter
 // turns x the turn cost), and queues the table (pinned) for precompute(), which grows
-// such late tables first. So a planning step never runs a search past its deadline; the
+// such late tables first (those that nobody else holds any more it drops unfinished). So a planning step never runs a search past its deadline; the
 // tables catch up in later steps' spare time. Exact where settled or complete.
 #include <chrono>
 #include <cstdint>
@@ -107,8 +107,8 @@ class RotationDist {
 
   // Replaces the prefetch queue with `goals` (most urgent first; pinned until the next call).
   void prefetch(const std::vector<Vertex>& goals);
-  // Grows the late tables, then the queued ones, to completion, in order, until the
-  // deadline (checked every 256 states). Returns whether work remains.
+  // Grows the late tables that someone still holds, then the queued ones, to completion, in
+  // order, until the deadline (checked every 256 states). Returns whether work remains.
   bool precompute(std::chrono::steady_clock::time_point deadline);
   size_t pending() const { return late_.size() + wanted_.size() - wanted_head_; }
 
