@@ -14,6 +14,7 @@
 //  1. PIBT (Okumura et al., AIJ 2022) decides a cell per robot: its own or a 4-neighbour,
 //     ranked by the steps to the goal through it: quarter turns to face the neighbour + 1 +
 //     h(neighbour, that heading) (RotationDist, exact), staying = 1 + h(cell, heading);
+//     with guidance (set_guidance) each term in the guidance's costs instead of steps;
 //     ties: straight ahead first, then at random (seeded). No two robots decide one cell;
 //     priority inheritance as in PIBT: a robot that decides the cell of an undecided robot
 //     asks it to vacate (it may not stay, nor take the asker's cell), else tries its next.
