@@ -36,8 +36,10 @@
 // its table has not settled does not grow the table but answers a lower bound, max(the
 // search's level + 1, Manhattan distance x the cheapest forward cost + the fewest quarter
 // turns x the turn cost), and queues the table (pinned) for precompute(), which grows
-// such late tables first (those that nobody else holds any more it drops unfinished). So a planning step never runs a search past its deadline; the
-// tables catch up in later steps' spare time. Exact where settled or complete.
+// such late tables first (and drops unfinished those nobody else holds any more). So a
+// planning step never runs a search past its deadline; the tables catch up in later
+// steps' spare time. Exact where settled or complete. A guided table's open queue costs
+// 4 bytes per queued entry (stale ones included) until it is complete.
 #include <chrono>
 #include <cstdint>
 #include <memory>
