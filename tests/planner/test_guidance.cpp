@@ -257,6 +257,37 @@ TEST(Guidance, BoundedQueriesAreLowerBoundsUntilCompleteThenExact)
   }
 }
 
+TEST(Guidance, LoneRobotFollowsAGuidedShortestPath)
+{
+  // PIBT ranks by action cost + guided distance, so a lone robot's actions add up to the
+  // guided distance of its start state (turns at the turn cost, forward at its arc's cost).
+  int ran = 0;
+  for (uint64_t seed = 0; seed < 4; ++seed) {
+    const Graph g = random_grid(9, 7, 20, seed + 10);
+    const Guidance gd = seed % 2 ? planner::arrow_guidance(g, 1, 4, 2) : random_guidance(g, seed, 5);
+    planner::Rng rng(seed);
+    for (int trial = 0; trial < 5; ++trial) {
+      const Vertex s = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
+      const Vertex goal = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
+      const uint32_t want = brute(g, gd, s, 0, goal);
+      if (want == RotationDist::kInf) continue;
+      RotationPibt p(g, {s}, {goal}, seed);
+      p.set_guidance(gd);
+      uint32_t cost = 0;
+      for (int steps = 0; !p.at_goal() && steps < 300; ++steps) {
+        p.search(planner::Budget{});
+        const char a = p.actions()[0];
+        cost += a == 'F' ? gd.forward_cost(p.current()[0], p.headings()[0]) : a == 'W' ? 1000 : gd.turn;
+        p.commit();
+      }
+      EXPECT_TRUE(p.at_goal());
+      EXPECT_EQ(cost, want) << "seed " << seed << " from " << s << " to " << goal;
+      ran += want > 2;
+    }
+  }
+  EXPECT_GT(ran, 10);
+}
+
 TEST(Guidance, PibtRotWithArrowsMakesValidStepsAndRobotsArrive)
 {
   for (uint64_t seed = 0; seed < 4; ++seed) {
