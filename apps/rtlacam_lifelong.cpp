@@ -9,6 +9,7 @@
 
 #include "cli.hpp"
 #include "planner/error.hpp"
+#include "planner/guidance.hpp"
 #include "planner/movingai.hpp"
 #include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
@@ -86,6 +87,15 @@ int main(int argc, char** argv)
   app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
                "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
       ->capture_default_str();
+  // Default arrows: +8 to +20 % errands/step on all five MR23 instances (5 seeds) and on
+  // RANDOM-01..05 (docs/rotation_lorr.md "Guidance graph").
+  std::string guidance = "arrows", guidance_costs = "1,3,1";
+  app.add_option("--guidance", guidance,
+                 "pibt-rot: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | FILE "
+                 "(forward costs per cell and heading, planner/guidance.hpp); other solvers: none")
+      ->capture_default_str();
+  app.add_option("--guidance-costs", guidance_costs, "--guidance arrows: ALONG,AGAINST,TURN costs (1..60)")
+      ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
                  "rotation: PIBT's move order: turns (rotation-aware cost in steps) or ties (distance, ties by turns)")
@@ -147,6 +157,25 @@ int main(int argc, char** argv)
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
     opt.rot_back_last = rot_back_last;
+    if (!tasks::is_rotation_native(solver)) {
+      if (app.count("--guidance") && guidance != "none") throw planner::InputError("--guidance needs --solver pibt-rot");
+      guidance = "none";
+    }
+    if (guidance != "none") {
+      if (guidance == "arrows") {
+        int along = 0, against = 0, turn = 0;
+        char end = 0;
+        if (std::sscanf(guidance_costs.c_str(), "%d,%d,%d%c", &along, &against, &turn, &end) != 3)
+          throw planner::InputError("--guidance-costs '" + guidance_costs + "': expected ALONG,AGAINST,TURN");
+        try {
+          opt.guidance = planner::arrow_guidance(g, along, against, turn);
+        } catch (const std::invalid_argument& e) {
+          throw planner::InputError(std::string("--guidance-costs: ") + e.what());
+        }
+      } else {
+        opt.guidance = planner::load_guidance(g, guidance);
+      }
+    }
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);
@@ -195,6 +224,7 @@ int main(int argc, char** argv)
     const LifelongResult& r = xr.life;
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
+    if (guidance != "none") j["guidance"] = guidance == "arrows" ? "arrows " + guidance_costs : guidance;
     if (!executor_mode.empty())
       j["executor"] = {{"mode", exec.mode},
                        {"window", exec.window},

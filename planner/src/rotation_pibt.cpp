@@ -46,6 +46,15 @@ void RotationPibt::set_goals(const Config& goals, GoalTest test)
   planned_ = false;
 }
 
+void RotationPibt::set_guidance(Guidance gd)
+{
+  dist_.set_guidance(std::move(gd));
+  wait_cost_ = std::min<uint32_t>(dist_.turn_cost(), dist_.guidance().min_forward());
+  std::fill(goal_table_.begin(), goal_table_.end(), nullptr);  // dropped: take them anew
+  const Config goals = goals_;
+  set_goals(goals, test_);
+}
+
 Status RotationPibt::search(const Budget&)
 {
   if (planned_) return at_goal() ? Status::Solved : Status::Searching;
@@ -115,11 +124,12 @@ bool RotationPibt::pibt(int i, int asker)
     const Vertex c = dist_.ahead(v, d);
     if (c < 0) continue;
     const uint32_t turns = (d - o + 4) % 4 == 2 ? 2 : d == o ? 0 : 1;
-    uint32_t cost = turns + 1 + dist_.get(t, c, d);
+    // In the distances' costs (guidance.hpp; 1 per action without guidance).
+    uint32_t cost = turns * dist_.turn_cost() + dist_.forward_cost(v, d) + dist_.get(t, c, d);
     if (asker >= 0 && back_last_ && turns == 2) cost += 1u << 16;  // asked to vacate: the cell behind last
     cand[m++] = {c, cost, d == o ? 0u : 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
   }
-  if (asker < 0) cand[m++] = {v, 1u + dist_.get(t, v, o), 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
+  if (asker < 0) cand[m++] = {v, wait_cost_ + dist_.get(t, v, o), 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
   // Insertion sort of at most 5: the order std::sort gives below 16 elements (its final
   // insertion sort), without GCC 12's false -Warray-bounds on a fixed array.
   for (int a = 1; a < m; ++a)

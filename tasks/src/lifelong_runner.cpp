@@ -108,6 +108,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   p->share_dist_cache(cache);
   auto* rot = dynamic_cast<planner::RotationPibt*>(p.get());
   if (rot) rot->set_back_last(opt.rot_back_last);
+  if (rot && !opt.guidance.uniform()) rot->set_guidance(opt.guidance);
   if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.
@@ -126,10 +127,11 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   // The prefetch queue this run uses (cell tables, or pibt-rot's own).
   // Work for the steps' spare time: the cell tables' queue (prefetched goals and tables that
   // bounded queries estimated, with or without prefetch) and pibt-rot's own tables.
-  auto pending = [&] { return cache->pending() + (rot_prefetch ? rot->pending() : 0); };
+  // pibt-rot's queue also holds the tables its bounded queries met (late), prefetch or not.
+  auto pending = [&] { return cache->pending() + (rot ? rot->pending() : 0); };
   auto precompute = [&](planner::Clock::time_point deadline) {
     cache->precompute(deadline);
-    if (rot_prefetch) rot->precompute(deadline);
+    if (rot) rot->precompute(deadline);
   };
   std::unique_ptr<RotationExecutor> exec;
   if (rotation && !native) exec = std::make_unique<RotationExecutor>(g, starts, opt.rotation_window);
@@ -146,6 +148,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   const bool bounded = opt.bound_queries && opt.budget.ms > 0 && opt.budget.ms < 1e12;
   auto bound_queries = [&](planner::DistCache::Deadline d) {
     if (bounded) cache->set_deadline(d);
+    if (bounded && rot) rot->set_deadline(d);  // pibt-rot's (cell, heading) tables likewise
   };
   for (long t = 1; t <= opt.steps; ++t) {
     StepRecord rec;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "planner/guidance.hpp"
 #include "planner/validator.hpp"
 #include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_runner.hpp"
@@ -68,6 +69,43 @@ TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
   }
 }
 
+TEST(RotationNative, GuidedAndDeadlineBoundedStepsAreValidLorrActions)
+{
+  // pibt-rot on arrow guidance (planner/guidance.hpp), then also under a 0.05 ms budget
+  // whose deadline bounds its distance queries (lower bounds, tables grown in spare time):
+  // every step is checked by the runner (Validator, check_rotation_step) and replayed here.
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
+  const planner::Graph& g = L.g;
+  std::string plain;
+  {
+    RoundRobin rr(L.file);
+    plain = run_lifelong(g, L.starts, rr, kRotationSolver, 0, rotation_options(200)).actions[0];
+  }
+  for (double ms : {100.0, 0.05}) {
+    RoundRobin rr(L.file);
+    LifelongOptions opt = rotation_options(200);
+    opt.budget = planner::Budget::time_ms(ms);
+    opt.guidance = planner::arrow_guidance(g, 2, 6, 2);
+    const LifelongResult r = run_lifelong(g, L.starts, rr, kRotationSolver, 0, opt);
+    EXPECT_EQ(r.planner_errors, 0) << r.first_error;
+    EXPECT_GT(r.errands_finished, 150) << ms << " ms";  // measured ~2.7 errands/step at 500 steps
+    if (ms == 100.0) {
+      EXPECT_NE(r.actions[0], plain) << "the guidance changes the plan";
+    }
+    Config at = L.starts;
+    std::vector<int> h(L.starts.size(), 0);
+    for (long t = 1; t <= opt.steps; ++t) {
+      const Config before = at;
+      for (size_t i = 0; i < L.starts.size(); ++i) {
+        at[i] = ttest::apply(g, at[i], h[i], r.actions[i][static_cast<size_t>(t - 1)]);
+        ASSERT_GE(at[i], 0) << "agent " << i << " forward into a wall at step " << t;
+      }
+      ASSERT_EQ(planner::Validator::check_transition(g, before, at), "") << "step " << t;
+    }
+    EXPECT_EQ(h, r.final_headings);
+  }
+}
+
 TEST(RotationNative, PoolModeRunsClean)
 {
   const ttest::Lorr L("/2024/random.domain/RANDOM-01.json");
@@ -97,5 +135,37 @@ TEST(RotationNative, RefusedWithGrid4)
   ss << in.rdbuf();
   const std::string err = ss.str();
   EXPECT_NE(err.find("--action-model rotation"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+}
+
+TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)
+{
+  // rtlacam-lifelong: arrows by default for pibt-rot (reported in the log), none named; a
+  // bad guidance file, or --guidance with a cell-plan solver: one line, exit code 2.
+  auto run = [](const std::string& args, std::string& out, std::string& err) {
+    const std::string o = test::temp_path("guid.out"), e = test::temp_path("guid.err");
+    const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
+                                "/2023/random.domain/MR23-I-04.json --steps 20 --quiet " + args + " >" + o + " 2>" + e)
+                                   .c_str());
+    std::stringstream so, se;
+    so << std::ifstream(o).rdbuf();
+    se << std::ifstream(e).rdbuf();
+    out = so.str(), err = se.str();
+    return WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
+  };
+  std::string out, err;
+  ASSERT_EQ(run("--action-model rotation --solver pibt-rot", out, err), 0) << err;
+  EXPECT_NE(out.find("\"guidance\": \"arrows 1,3,1\""), std::string::npos) << out;
+  ASSERT_EQ(run("--action-model rotation --solver pibt-rot --guidance none", out, err), 0) << err;
+  EXPECT_EQ(out.find("\"guidance\""), std::string::npos);
+  const std::string bad = test::temp_path("bad_guidance.txt");
+  std::ofstream(bad) << "turn 1\n0 0 1 1 1\n";
+  EXPECT_EQ(run("--action-model rotation --solver pibt-rot --guidance " + bad, out, err), 2);
+  EXPECT_NE(err.find(bad + ":2: expected"), std::string::npos) << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  EXPECT_EQ(run("--action-model rotation --solver pibt-rot --guidance-costs 1,0,1", out, err), 2);
+  EXPECT_NE(err.find("--guidance-costs"), std::string::npos) << err;
+  EXPECT_EQ(run("--action-model rotation --solver rtlacam --guidance arrows", out, err), 2);
+  EXPECT_NE(err.find("--guidance needs --solver pibt-rot"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }

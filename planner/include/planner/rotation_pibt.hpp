@@ -14,6 +14,7 @@
 //  1. PIBT (Okumura et al., AIJ 2022) decides a cell per robot: its own or a 4-neighbour,
 //     ranked by the steps to the goal through it: quarter turns to face the neighbour + 1 +
 //     h(neighbour, that heading) (RotationDist, exact), staying = 1 + h(cell, heading);
+//     with guidance (set_guidance) each term in the guidance's costs instead of steps;
 //     ties: straight ahead first, then at random (seeded). No two robots decide one cell;
 //     priority inheritance as in PIBT: a robot that decides the cell of an undecided robot
 //     asks it to vacate (it may not stay, nor take the asker's cell), else tries its next.
@@ -76,6 +77,14 @@ class RotationPibt : public RealtimePlanner {
   // RANDOM-04 / 05 (docs/rotation_lorr.md).
   void set_back_last(bool on) { back_last_ = on; }
 
+  // Guidance (guidance.hpp): PIBT ranks a candidate by its action's cost + the guided
+  // distance from there (a quarter turn turn_cost, forward forward_cost(v, o); waiting costs
+  // the cheapest action). Drops the distance tables and takes the goals' anew; priorities
+  // restart from the guided distances.
+  void set_guidance(Guidance gd);
+  // Distance queries past `d` answer lower bounds (RotationDist::set_deadline).
+  void set_deadline(RotationDist::Deadline d) { dist_.set_deadline(d); }
+
   const std::vector<int>& headings() const { return heading_; }
   // The planned step's action per robot, one of "FRCW" (valid after search()).
   const std::string& actions() const { return action_; }
@@ -107,6 +116,7 @@ class RotationPibt : public RealtimePlanner {
   std::string action_;
   bool planned_ = false;
   bool back_last_ = false;
+  uint32_t wait_cost_ = 1;
   uint64_t steps_planned_ = 0;
 };
 
