@@ -70,7 +70,8 @@ int main(int argc, char** argv)
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
   std::vector<std::string> solvers = planner::solver_list(true);
   solvers.push_back(tasks::kRotationSolver);
-  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading), rotation only)")
+  solvers.push_back(tasks::kEpibtSolver);
+  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot | epibt (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with multi-action operations; both rotation only)")
       ->check(CLI::IsMember(solvers))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
@@ -85,6 +86,15 @@ int main(int argc, char** argv)
   bool rot_back_last = true;
   app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
                "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
+      ->capture_default_str();
+  planner::Epibt::Options ep;
+  std::string ep_priority = "distance";
+  app.add_option("--epibt-depth", ep.depth, "epibt: actions per operation")->check(CLI::Range(1, 5))->capture_default_str();
+  app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit, "epibt: each step starts from the tails of the last step's operations")->capture_default_str();
+  app.add_flag("--epibt-wait-op", ep.wait_op, "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");
+  app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
+      ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
@@ -128,7 +138,7 @@ int main(int argc, char** argv)
     policy::Model model;
     std::unique_ptr<policy::PolicyPreference> pref;
     if (tasks::is_rotation_native(solver) && action_model != "rotation")
-      throw planner::InputError("--solver pibt-rot plans LoRR rotation actions: it needs --action-model rotation");
+      throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: it needs --action-model rotation");
     if (!tasks::is_rotation_native(solver) && planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     if (!policy_file.empty()) {
       model = policy::load_weights(policy_file);
@@ -147,6 +157,8 @@ int main(int argc, char** argv)
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
     opt.rot_back_last = rot_back_last;
+    ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
+    opt.epibt = ep;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);
