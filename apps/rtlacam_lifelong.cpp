@@ -89,7 +89,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   planner::Epibt::Options ep;
   std::string ep_priority = "distance";
-  app.add_option("--epibt-depth", ep.depth, "epibt: actions per operation")->check(CLI::Range(1, 5))->capture_default_str();
+  app.add_option("--epibt-depth", ep.depth, "epibt: actions per operation")->check(CLI::Range(3, 5))->capture_default_str();
   app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit, "epibt: each step starts from the tails of the last step's operations")->capture_default_str();
   app.add_flag("--epibt-wait-op", ep.wait_op, "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");

@@ -62,7 +62,8 @@ std::vector<int> signature(const std::string& a)
 
 std::vector<std::string> Epibt::operations(int depth)
 {
-  if (depth < 1 || depth > 5) throw std::invalid_argument("epibt: operation depth must be 1..5");
+  // Below 3 the pruned set has no half turn ("RRF"): a robot facing a dead end's wall is stuck.
+  if (depth < 3 || depth > 5) throw std::invalid_argument("epibt: operation depth must be 3..5");
   std::vector<std::string> all;
   int total = 1;
   for (int d = 0; d < depth; ++d) total *= 4;

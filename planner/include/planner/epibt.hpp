@@ -52,7 +52,7 @@ namespace planner {
 
 struct EpibtOptions {
   enum class Priority { Distance, Age };
-  int depth = 3;        // actions per operation (1..5; paper: 3)
+  int depth = 3;        // actions per operation (3..5; paper: 3; below 3 no half turn)
   int revisit = 10;     // replans of one robot per step at most (paper: 10)
   bool inherit = true;  // start each step from the tails of last step's operations (paper: IO)
   bool wait_op = false; // WWW among every robot's candidates (paper: only as the kept operation)
