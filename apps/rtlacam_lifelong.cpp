@@ -93,6 +93,10 @@ int main(int argc, char** argv)
   app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit, "epibt: each step starts from the tails of the last step's operations")->capture_default_str();
   app.add_flag("--epibt-wait-op", ep.wait_op, "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");
+  app.add_option("--epibt-lns", ep.lns_rounds,
+                 "epibt: LNS rounds after the pass (EPIBT+LNS; -1: until the step's deadline, timing-dependent); 0 = off")
+      ->check(CLI::Range(-1, 1000000))
+      ->capture_default_str();
   app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
       ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();

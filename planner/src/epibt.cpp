@@ -134,6 +134,9 @@ void Epibt::set_options(const Options& opt)
   edges_.assign(n * D, -1);
   for (size_t i = 0; i < n; ++i) set_op(static_cast<int>(i), wait_), place(static_cast<int>(i));
   cand_.assign(n * ops_.size(), 0);
+  score_of_.assign(n * ops_.size(), 0);
+  power_.assign(n, 0.0);
+  rng_ = Rng(opt.seed);
   ++stamp_;  // candidates of the old set are stale
   planned_ = false;
 }
@@ -191,6 +194,7 @@ void Epibt::set_op(int i, int op)
 void Epibt::place(int i)
 {
   const size_t D = static_cast<size_t>(opt_.depth);
+  if (scoring_) score_ += gain(i);
   for (size_t d = 0; d < D; ++d) {
     int32_t& c = used_cell_[static_cast<size_t>(cells_[i * D + d]) * D + d];
     if (c >= 0) throw std::logic_error("epibt: agents " + std::to_string(c) + " and " + std::to_string(i) + " on one cell");
@@ -202,6 +206,7 @@ void Epibt::place(int i)
 void Epibt::unplace(int i)
 {
   const size_t D = static_cast<size_t>(opt_.depth);
+  if (scoring_) score_ -= gain(i);
   for (size_t d = 0; d < D; ++d) {
     used_cell_[static_cast<size_t>(cells_[i * D + d]) * D + d] = -1;
     if (edges_[i * D + d] >= 0) used_edge_[static_cast<size_t>(edges_[i * D + d]) * D + d] = -1;
@@ -239,7 +244,6 @@ void Epibt::candidates(int i)
   int32_t edges[8];
   for (size_t op = 0; op < m; ++op) {
     const bool wait = static_cast<int>(op) == wait_;
-    if (wait && !opt_.wait_op && !on_goal) continue;
     int o = 0;
     if (!walk(i, static_cast<int>(op), cells, edges, &o)) continue;
     uint32_t cost = 0;
@@ -249,6 +253,8 @@ void Epibt::candidates(int i)
         if (cells[d] == goal) first = d + 1;
     if (first) cost = static_cast<uint32_t>(first);
     else cost = static_cast<uint32_t>(D) + dist_.get(goal_table_[i], cells[D - 1], o);
+    score_of_[static_cast<size_t>(i) * m + op] = cost * static_cast<uint32_t>(m) + static_cast<uint32_t>(op);
+    if (wait && !opt_.wait_op && !on_goal) continue;
     c[k++] = {cost, static_cast<uint8_t>(op)};
   }
   std::stable_sort(c, c + k);  // cost, then the better operation
@@ -257,13 +263,13 @@ void Epibt::candidates(int i)
   ncand_[i] = static_cast<uint8_t>(k);
 }
 
-Epibt::Result Epibt::build(int i, double root_key)
+Epibt::Result Epibt::build(int i, double root_key, bool lns)
 {
   if ((++calls_ & 15) == 0 && deadline_ != Clock::time_point::max() && Clock::now() >= deadline_) timed_out_ = true;
   if (timed_out_) return Rejected;
-  if (visited_[i] != stamp_) visits_[i] = 0, visited_[i] = stamp_;
+  if (visited_[i] != round_) visits_[i] = 0, visited_[i] = round_;
   ++visits_[i];
-  placed_[i] = stamp_;  // on the current chain: nobody may take its place now
+  placed_[i] = round_;  // on the current chain: nobody may take its place now
   candidates(i);
   const int old = op_[i];
   const uint8_t* cand = &cand_[static_cast<size_t>(i) * ops_.size()];
@@ -272,13 +278,18 @@ Epibt::Result Epibt::build(int i, double root_key)
     const int j = conflict(i);
     if (j == -1) {
       place(i);
+      if (lns && score_ < lns_floor_) {  // LNS: worse than before this root's attempt
+        unplace(i);
+        set_op(i, old);
+        return Rejected;
+      }
       return Accepted;
     }
     if (j == -2) continue;
-    if (placed_[j] == stamp_ || (visited_[j] == stamp_ && visits_[j] >= opt_.revisit) || key_[j] >= root_key) continue;
+    if (placed_[j] == round_ || (visited_[j] == round_ && visits_[j] >= opt_.revisit) || (!lns && key_[j] >= root_key)) continue;
     unplace(j);
     place(i);
-    const Result r = build(j, root_key);
+    const Result r = build(j, root_key, lns);
     if (r == Accepted) return Accepted;
     unplace(i);
     place(j);  // j's operation was restored by its failed build
@@ -292,6 +303,33 @@ Epibt::Result Epibt::build(int i, double root_key)
   return Failed;
 }
 
+void Epibt::lns()
+{
+  const int n = static_cast<int>(current_.size());
+  for (int k = 0; k < n; ++k) {  // the paper's weights: rank in priority order, squared
+    const double w = static_cast<double>(n + 1 - k) / (n + 1);
+    power_[order_[k]] = w * w;
+    candidates(order_[k]);
+  }
+  scoring_ = true;
+  score_ = 0;
+  for (int i = 0; i < n; ++i) score_ += gain(i);
+  std::vector<int32_t> order = order_;
+  for (int round = 0; (opt_.lns_rounds < 0 || round < opt_.lns_rounds) && !timed_out_; ++round) {
+    rng_.shuffle(order.data(), n);
+    ++round_;
+    for (int32_t i : order) {
+      if (timed_out_) break;
+      if (visited_[i] == round_) continue;
+      lns_floor_ = score_ - 1e-9;
+      unplace(i);
+      if (build(i, 0.0, true) != Accepted) place(i);
+    }
+    ++lns_rounds_done_;
+  }
+  scoring_ = false;
+}
+
 Status Epibt::search(const Budget& b)
 {
   if (planned_) return at_goal() ? Status::Solved : Status::Searching;
@@ -299,16 +337,18 @@ Status Epibt::search(const Budget& b)
   deadline_ = b.deadline_from(Clock::now());
   timed_out_ = false;
   ++stamp_;
+  ++round_;
   for (int i = 0; i < n; ++i)
     key_[i] = opt_.priority == Priority::Age ? age_[i] : -static_cast<double>(h(i));
   for (int i = 0; i < n; ++i) order_[i] = i;
   std::stable_sort(order_.begin(), order_.end(), [this](int32_t x, int32_t y) { return key_[x] > key_[y]; });
   for (int32_t i : order_) {
     if (timed_out_) break;
-    if (visited_[i] == stamp_) continue;  // replanned (or tried) through someone else: final
+    if (visited_[i] == round_) continue;  // replanned (or tried) through someone else: final
     unplace(i);
-    if (build(i, key_[i]) != Accepted) place(i);  // keeps its operation
+    if (build(i, key_[i], false) != Accepted) place(i);  // keeps its operation
   }
+  if (opt_.lns_rounds != 0 && !timed_out_) lns();
   if (timed_out_) ++timeouts_;
   const size_t D = static_cast<size_t>(opt_.depth);
   for (int i = 0; i < n; ++i) {

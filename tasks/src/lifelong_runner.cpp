@@ -109,7 +109,11 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   p->share_dist_cache(cache);
   auto* rot = dynamic_cast<planner::RotationPlanner*>(p.get());  // pibt-rot, epibt
   if (rot) rot->set_back_last(opt.rot_back_last);
-  if (auto* ep = dynamic_cast<planner::Epibt*>(p.get())) ep->set_options(opt.epibt);
+  if (auto* ep = dynamic_cast<planner::Epibt*>(p.get())) {
+    planner::EpibtOptions o = opt.epibt;
+    o.seed = seed;
+    ep->set_options(o);
+  }
   if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.

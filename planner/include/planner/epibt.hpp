@@ -45,6 +45,7 @@
 #include <string>
 #include <vector>
 
+#include "planner/rng.hpp"
 #include "planner/rotation_dist.hpp"
 #include "planner/rotation_planner.hpp"
 
@@ -57,6 +58,11 @@ struct EpibtOptions {
   bool inherit = true;  // start each step from the tails of last step's operations (paper: IO)
   bool wait_op = false; // WWW among every robot's candidates (paper: only as the kept operation)
   Priority priority = Priority::Distance;
+  // EPIBT+LNS (the paper's EPIBT_LNS): after the pass, rounds in random order in which each
+  // robot tries its candidates again, pushing anyone (no priority rule), kept only when the
+  // weighted sum of the robots' gains does not drop. 0: off; -1: until the deadline.
+  int lns_rounds = 0;
+  uint64_t seed = 0;  // LNS order
 };
 
 class Epibt : public RotationPlanner {
@@ -100,6 +106,7 @@ class Epibt : public RotationPlanner {
   // New options: every robot's operation becomes WWW (lifelong runs set them before step 1).
   void set_options(const Options& opt);
   uint64_t timeouts() const { return timeouts_; }  // steps whose replanning the deadline cut short
+  uint64_t lns_rounds() const { return lns_rounds_done_; }
 
  private:
   struct Op {
@@ -114,7 +121,8 @@ class Epibt : public RotationPlanner {
   void place(int i);
   void unplace(int i);
   void set_op(int i, int op);
-  Result build(int i, double root_key);
+  Result build(int i, double root_key, bool lns);
+  void lns();
 
   const Graph& g_;
   Options opt_;
@@ -134,10 +142,23 @@ class Epibt : public RotationPlanner {
   std::vector<double> age_;         // Priority::Age: RotationPibt's priority
   std::vector<int32_t> order_;
   std::vector<uint8_t> cand_;       // agent * ops: candidate operations, best first
+  std::vector<uint32_t> score_of_;  // agent * ops: cost * ops + op (lower better), valid operations
+  std::vector<double> power_;       // LNS: weight of a robot's gain (priority rank, squared)
+  double score_ = 0;                // LNS: sum of power * (score_of(WWW) - score_of(op))
+  bool scoring_ = false;
+  double lns_floor_ = 0;
+  uint64_t lns_rounds_done_ = 0;
+  double gain(int i) const
+  {
+    const size_t m = ops_.size(), at = static_cast<size_t>(i) * m;
+    return power_[i] * (static_cast<double>(score_of_[at + static_cast<size_t>(wait_)]) - score_of_[at + static_cast<size_t>(op_[i])]);
+  }
+  Rng rng_{0};
   std::vector<uint8_t> ncand_;
   std::vector<uint32_t> cand_stamp_, visited_, placed_;
   std::vector<int> visits_;
-  uint32_t stamp_ = 0;
+  uint32_t stamp_ = 0;  // step: candidates
+  uint32_t round_ = 0;  // pass or LNS round: visits
   std::chrono::steady_clock::time_point deadline_;
   uint64_t calls_ = 0;
   bool timed_out_ = false;
