@@ -97,6 +97,9 @@ int main(int argc, char** argv)
                  "epibt: LNS rounds after the pass (EPIBT+LNS; -1: until the step's deadline, timing-dependent); 0 = off")
       ->check(CLI::Range(-1, 1000000))
       ->capture_default_str();
+  app.add_flag("--epibt-lns-converge,!--no-epibt-lns-converge", ep.lns_converge,
+               "epibt: LNS stops after a round that gained nothing")
+      ->capture_default_str();
   app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
       ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();

@@ -318,6 +318,7 @@ void Epibt::lns()
   for (int round = 0; (opt_.lns_rounds < 0 || round < opt_.lns_rounds) && !timed_out_; ++round) {
     rng_.shuffle(order.data(), n);
     ++round_;
+    const double before = score_;
     for (int32_t i : order) {
       if (timed_out_) break;
       if (visited_[i] == round_) continue;
@@ -326,6 +327,7 @@ void Epibt::lns()
       if (build(i, 0.0, true) != Accepted) place(i);
     }
     ++lns_rounds_done_;
+    if (opt_.lns_converge && score_ <= before + 1e-9) break;  // a round that gained nothing: converged
   }
   scoring_ = false;
 }

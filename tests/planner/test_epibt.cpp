@@ -143,13 +143,15 @@ TEST(Epibt, EveryLifelongStepIsAValidLorrJointActionAndRobotsArrive)
     const char* name;
     planner::EpibtOptions opt;
   };
-  std::vector<Variant> variants(6);
+  std::vector<Variant> variants(8);
   variants[0].name = "paper";
   variants[1].name = "age", variants[1].opt.priority = planner::EpibtOptions::Priority::Age;
   variants[2].name = "wait-op", variants[2].opt.wait_op = true;
   variants[3].name = "no-inherit", variants[3].opt.inherit = false;
   variants[4].name = "depth 5", variants[4].opt.depth = 5;
   variants[5].name = "depth 4, revisit 2", variants[5].opt.depth = 4, variants[5].opt.revisit = 2;
+  variants[6].name = "lns 4", variants[6].opt.lns_rounds = 4, variants[6].opt.lns_converge = false;
+  variants[7].name = "lns 4 converge, age", variants[7].opt.lns_rounds = 4, variants[7].opt.priority = planner::EpibtOptions::Priority::Age;
   for (const Variant& var : variants)
     for (uint64_t seed = 0; seed < 4; ++seed) {
       const Graph g = random_grid(12, 10, 15, seed + 100);
@@ -167,7 +169,9 @@ TEST(Epibt, EveryLifelongStepIsAValidLorrJointActionAndRobotsArrive)
         }
       };
       for (int i = 0; i < n; ++i) new_goal(i, starts[i]);
-      Epibt p(g, starts, goals, var.opt);
+      planner::EpibtOptions opt = var.opt;
+      opt.seed = seed;  // LNS order
+      Epibt p(g, starts, goals, opt);
       long arrivals = 0, forwards = 0, turns = 0;
       for (int t = 1; t <= 300; ++t) {
         const Config cur = p.current();

@@ -1,11 +1,12 @@
 // Lifelong runs with EPIBT (--solver epibt): validator-clean executed steps whose letters
 // replay (LoRR MAPF_T) to the robots' cells, events on the errands' cells, more errands
-// than pibt-rot on MR23-I-04; epibt is refused with grid4 (one line, exit 2).
+// than pibt-rot on MR23-I-04 and more with LNS rounds; epibt is refused with grid4 (one line, exit 2).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "planner/validator.hpp"
@@ -77,8 +78,10 @@ TEST(EpibtLifelong, StepsAreValidLorrActionsAndEventsOnTheErrandsCells)
   RoundRobin rr(L.file);
   const LifelongResult base = run_lifelong(g, L.starts, rr, kRotationSolver, 0, rotation_options(300));
   EXPECT_GT(errands[0], base.errands_finished) << "epibt " << errands[0] << " vs pibt-rot " << base.errands_finished;
-  EXPECT_GT(errands[1], 300);
-  EXPECT_GT(errands[2], 300);
+  EXPECT_GT(errands[1], errands[0]);  // measured 908 and 901 with 3 LNS rounds vs 863 without
+  EXPECT_GT(errands[2], errands[0]);
+  std::cerr << "errands in 300 steps: epibt " << errands[0] << ", +lns " << errands[1] << " / " << errands[2]
+            << ", pibt-rot " << base.errands_finished << "\n";
 }
 
 TEST(EpibtLifelong, PoolModeRunsClean)

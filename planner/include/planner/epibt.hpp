@@ -62,6 +62,7 @@ struct EpibtOptions {
   // robot tries its candidates again, pushing anyone (no priority rule), kept only when the
   // weighted sum of the robots' gains does not drop. 0: off; -1: until the deadline.
   int lns_rounds = 0;
+  bool lns_converge = true;  // stop after a round that gained nothing (the paper: until the deadline)
   uint64_t seed = 0;  // LNS order
 };
 
