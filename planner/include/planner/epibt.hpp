@@ -88,7 +88,9 @@ class Epibt : public RotationPlanner {
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
   bool at_goal() const override { return passes_goal_test(test_, current_, goals_); }
-  uint64_t expansions() const override { return steps_planned_; }
+  // Build calls (one robot trying its candidates), the unit between deadline checks: the
+  // lifelong runner stops a search one average "expansion" early, which must not be a step.
+  uint64_t expansions() const override { return calls_; }
   size_t explored() const override { return 0; }
   std::string name() const override { return "epibt"; }
 
