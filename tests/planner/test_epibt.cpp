@@ -144,14 +144,16 @@ TEST(Epibt, EveryLifelongStepIsAValidLorrJointActionAndRobotsArrive)
     planner::EpibtOptions opt;
   };
   std::vector<Variant> variants(8);
-  variants[0].name = "paper";
-  variants[1].name = "age", variants[1].opt.priority = planner::EpibtOptions::Priority::Age;
-  variants[2].name = "wait-op", variants[2].opt.wait_op = true;
-  variants[3].name = "no-inherit", variants[3].opt.inherit = false;
-  variants[4].name = "depth 5", variants[4].opt.depth = 5;
-  variants[5].name = "depth 4, revisit 2", variants[5].opt.depth = 4, variants[5].opt.revisit = 2;
-  variants[6].name = "lns 4", variants[6].opt.lns_rounds = 4, variants[6].opt.lns_converge = false;
-  variants[7].name = "lns 4 converge, age", variants[7].opt.lns_rounds = 4, variants[7].opt.priority = planner::EpibtOptions::Priority::Age;
+  variants[0].name = "default (lns 20)";
+  for (size_t k = 1; k < variants.size(); ++k) variants[k].opt.lns_rounds = 0;  // plain EPIBT
+  variants[1].name = "no lns (the paper's EPIBT)";
+  variants[2].name = "age", variants[2].opt.priority = planner::EpibtOptions::Priority::Age;
+  variants[3].name = "wait-op", variants[3].opt.wait_op = true;
+  variants[4].name = "no-inherit", variants[4].opt.inherit = false;
+  variants[5].name = "depth 5", variants[5].opt.depth = 5;
+  variants[6].name = "depth 4, revisit 2", variants[6].opt.depth = 4, variants[6].opt.revisit = 2;
+  variants[7].name = "lns 4 converge, age", variants[7].opt.lns_rounds = 4, variants[7].opt.lns_converge = true,
+  variants[7].opt.priority = planner::EpibtOptions::Priority::Age;
   for (const Variant& var : variants)
     for (uint64_t seed = 0; seed < 4; ++seed) {
       const Graph g = random_grid(12, 10, 15, seed + 100);

@@ -78,7 +78,7 @@ TEST(EpibtLifelong, StepsAreValidLorrActionsAndEventsOnTheErrandsCells)
   RoundRobin rr(L.file);
   const LifelongResult base = run_lifelong(g, L.starts, rr, kRotationSolver, 0, rotation_options(300));
   EXPECT_GT(errands[0], base.errands_finished) << "epibt " << errands[0] << " vs pibt-rot " << base.errands_finished;
-  EXPECT_GT(errands[1], errands[0]);  // measured 908 and 901 with 3 LNS rounds vs 863 without
+  EXPECT_GT(errands[1], errands[0]);  // measured 903 and 912 with 3 LNS rounds vs 863 without
   EXPECT_GT(errands[2], errands[0]);
   std::cerr << "errands in 300 steps: epibt " << errands[0] << ", +lns " << errands[1] << " / " << errands[2]
             << ", pibt-rot " << base.errands_finished << "\n";
