@@ -2,8 +2,8 @@
 // Epibt (solver `epibt`): EPIBT, PIBT with multi-action operations (Yukhnevich &
 // Andreychuk, "Enhancing PIBT via Multi-Action Operations", AAAI-26, arXiv 2511.09193; a
 // LoRR 2024 entrant), for robots with a heading (LoRR's MAPF_T: F, R, C, W). Written anew
-// from the paper's description and its public code (github.com/Straple/EPIBT, read, not
-// copied); same interface and LoRR semantics as RotationPibt (rotation_pibt.hpp).
+// from the paper's description and its public code (github.com/Straple/EPIBT, MIT; read
+// in the fork github.com/lunjohnzhang/EPIBT, not copied); same interface and LoRR semantics as RotationPibt (rotation_pibt.hpp).
 //
 // Why: a one-step PIBT over rotation actions cannot see that a turn now pays off two steps
 // later, and a robot pushed by a one-step PIBT must leave its cell in one step (with a
@@ -32,6 +32,9 @@
 //    candidate (the paper: a robot keeps its old operation when nothing else fits), except
 //    for a robot on its goal, and with `wait_op` on.
 //  - Only the first action of each operation is executed; the rest is inherited.
+//  - EPIBT+LNS (the paper's EPIBT_LNS; 20 rounds by default): rounds over the robots in
+//    random order, each trying its candidates again without the priority rule, a change
+//    kept only if the paper's weighted gain does not drop (docs/rotation_lorr.md "EPIBT").
 // Priorities (`Priority::Distance`, the paper's): nearest to its goal first (h of the
 // current state), ties by agent id; `Priority::Age`: RotationPibt's (steps since the goal
 // was set, far first, dead-end boost).
