@@ -71,7 +71,8 @@ int main(int argc, char** argv)
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
   std::vector<std::string> solvers = planner::solver_list(true);
   solvers.push_back(tasks::kRotationSolver);
-  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading), rotation only)")
+  solvers.push_back(tasks::kEpibtSolver);
+  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot | epibt (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with multi-action operations; both rotation only)")
       ->check(CLI::IsMember(solvers))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
@@ -91,10 +92,26 @@ int main(int argc, char** argv)
   // RANDOM-01..05 (docs/rotation_lorr.md "Guidance graph").
   std::string guidance = "arrows", guidance_costs = "1,3,1";
   app.add_option("--guidance", guidance,
-                 "pibt-rot: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | FILE "
+                 "pibt-rot, epibt: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | FILE "
                  "(forward costs per cell and heading, planner/guidance.hpp); other solvers: none")
       ->capture_default_str();
   app.add_option("--guidance-costs", guidance_costs, "--guidance arrows: ALONG,AGAINST,TURN costs (1..60)")
+      ->capture_default_str();
+  planner::Epibt::Options ep;
+  std::string ep_priority = "distance";
+  app.add_option("--epibt-depth", ep.depth, "epibt: actions per operation")->check(CLI::Range(3, 5))->capture_default_str();
+  app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit, "epibt: each step starts from the tails of the last step's operations")->capture_default_str();
+  app.add_flag("--epibt-wait-op", ep.wait_op, "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");
+  app.add_option("--epibt-lns", ep.lns_rounds,
+                 "epibt: LNS rounds after the pass (EPIBT+LNS; -1: until the step's deadline, timing-dependent); 0 = off")
+      ->check(CLI::Range(-1, 1000000))
+      ->capture_default_str();
+  app.add_flag("--epibt-lns-converge,!--no-epibt-lns-converge", ep.lns_converge,
+               "epibt: LNS stops after a round that gained nothing")
+      ->capture_default_str();
+  app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
+      ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
@@ -138,7 +155,7 @@ int main(int argc, char** argv)
     policy::Model model;
     std::unique_ptr<policy::PolicyPreference> pref;
     if (tasks::is_rotation_native(solver) && action_model != "rotation")
-      throw planner::InputError("--solver pibt-rot plans LoRR rotation actions: it needs --action-model rotation");
+      throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: it needs --action-model rotation");
     if (!tasks::is_rotation_native(solver) && planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     if (!policy_file.empty()) {
       model = policy::load_weights(policy_file);
@@ -158,7 +175,7 @@ int main(int argc, char** argv)
     opt.heading_ties = !no_heading_ties;
     opt.rot_back_last = rot_back_last;
     if (!tasks::is_rotation_native(solver)) {
-      if (app.count("--guidance") && guidance != "none") throw planner::InputError("--guidance needs --solver pibt-rot");
+      if (app.count("--guidance") && guidance != "none") throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot or epibt)");
       guidance = "none";
     }
     if (guidance != "none") {
@@ -176,6 +193,8 @@ int main(int argc, char** argv)
         opt.guidance = planner::load_guidance(g, guidance);
       }
     }
+    ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
+    opt.epibt = ep;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);

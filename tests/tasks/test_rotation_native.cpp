@@ -71,22 +71,25 @@ TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
 
 TEST(RotationNative, GuidedAndDeadlineBoundedStepsAreValidLorrActions)
 {
-  // pibt-rot on arrow guidance (planner/guidance.hpp), then also under a 0.05 ms budget
-  // whose deadline bounds its distance queries (lower bounds, tables grown in spare time):
-  // every step is checked by the runner (Validator, check_rotation_step) and replayed here.
+  // pibt-rot and epibt on arrow guidance (planner/guidance.hpp), then also under a 0.05 ms
+  // budget whose deadline bounds their distance queries (lower bounds, tables grown in spare
+  // time): every step is checked by the runner (Validator, check_rotation_step) and
+  // replayed here.
   const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   const planner::Graph& g = L.g;
-  std::string plain;
-  {
-    RoundRobin rr(L.file);
-    plain = run_lifelong(g, L.starts, rr, kRotationSolver, 0, rotation_options(200)).actions[0];
-  }
+  for (const std::string solver : {std::string(kRotationSolver), std::string(kEpibtSolver)})
   for (double ms : {100.0, 0.05}) {
+    SCOPED_TRACE(solver);
+    std::string plain;
+    {
+      RoundRobin rr(L.file);
+      plain = run_lifelong(g, L.starts, rr, solver, 0, rotation_options(200)).actions[0];
+    }
     RoundRobin rr(L.file);
     LifelongOptions opt = rotation_options(200);
     opt.budget = planner::Budget::time_ms(ms);
     opt.guidance = planner::arrow_guidance(g, 2, 6, 2);
-    const LifelongResult r = run_lifelong(g, L.starts, rr, kRotationSolver, 0, opt);
+    const LifelongResult r = run_lifelong(g, L.starts, rr, solver, 0, opt);
     EXPECT_EQ(r.planner_errors, 0) << r.first_error;
     EXPECT_GT(r.errands_finished, 150) << ms << " ms";  // measured ~2.7 errands/step at 500 steps
     if (ms == 100.0) {
@@ -166,6 +169,6 @@ TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)
   EXPECT_EQ(run("--action-model rotation --solver pibt-rot --guidance-costs 1,0,1", out, err), 2);
   EXPECT_NE(err.find("--guidance-costs"), std::string::npos) << err;
   EXPECT_EQ(run("--action-model rotation --solver rtlacam --guidance arrows", out, err), 2);
-  EXPECT_NE(err.find("--guidance needs --solver pibt-rot"), std::string::npos) << err;
+  EXPECT_NE(err.find("--guidance needs a rotation-native solver"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }

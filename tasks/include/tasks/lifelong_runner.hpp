@@ -36,6 +36,7 @@
 
 #include "planner/budget.hpp"
 #include "planner/dist_cache.hpp"
+#include "planner/epibt.hpp"
 #include "planner/graph.hpp"
 #include "planner/guidance.hpp"
 #include "planner/latency.hpp"
@@ -83,6 +84,7 @@ struct LifelongOptions {
   size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
   bool rot_back_last = true;       // pibt-rot: RotationPibt::set_back_last
   planner::Guidance guidance;      // pibt-rot: distances in these costs (planner/guidance.hpp); default: none
+  planner::Epibt::Options epibt;   // epibt: operation depth, revisits, priorities (planner/epibt.hpp)
   // Distance queries past the step's deadline answer lower bounds instead of growing tables
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
   // Only with a positive, finite time budget (expansion-only budgets stay deterministic).

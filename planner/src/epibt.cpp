@@ -1,0 +1,418 @@
+#include "planner/epibt.hpp"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace planner {
+
+namespace {
+
+constexpr char kActs[4] = {'F', 'R', 'C', 'W'};
+
+// The paper's weight of an operation (rotation model): forward early counts most; waits
+// and turns early cost a little. Only orders operations whose costs tie.
+int weight(const std::string& a)
+{
+  const int n = static_cast<int>(a.size());
+  int w = 0;
+  for (int d = 0; d < n; ++d) {
+    if (a[d] == 'F') w += (n - d + 1) * 10;
+    else if (a[d] == 'W') w -= (n - d) * 3;
+    else w -= (n - d) * 2;
+  }
+  return w;
+}
+
+// The paper's pruning: no turn after the last forward (the end state's h sees the heading
+// anyway), no R and C without a forward between (undone), no three equal turns without one.
+bool useful(const std::string& a)
+{
+  const int n = static_cast<int>(a.size());
+  for (int d = n - 1; d >= 0 && a[d] != 'F'; --d)
+    if (a[d] != 'W') return false;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n && a[j] != 'F'; ++j) {
+      if ((a[i] == 'R' && a[j] == 'C') || (a[i] == 'C' && a[j] == 'R')) return false;
+      for (int k = j + 1; k < n && a[k] != 'F'; ++k)
+        if (a[i] != 'W' && a[i] == a[j] && a[j] == a[k]) return false;
+    }
+  return true;
+}
+
+// Cells (relative to a robot at (0, 0) facing east) after each action, and the final heading:
+// operations with one signature occupy the same cells at the same times.
+std::vector<int> signature(const std::string& a)
+{
+  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
+  int x = 0, y = 0, o = 0;
+  std::vector<int> s;
+  for (char c : a) {
+    if (c == 'F') x += dx[o], y += dy[o];
+    else if (c == 'R') o = (o + 1) % 4;
+    else if (c == 'C') o = (o + 3) % 4;
+    s.push_back(x), s.push_back(y);
+  }
+  s.push_back(o);
+  return s;
+}
+
+}  // namespace
+
+std::vector<std::string> Epibt::operations(int depth)
+{
+  // Below 3 the pruned set has no half turn ("RRF"): a robot facing a dead end's wall is stuck.
+  if (depth < 3 || depth > 5) throw std::invalid_argument("epibt: operation depth must be 3..5");
+  std::vector<std::string> all;
+  int total = 1;
+  for (int d = 0; d < depth; ++d) total *= 4;
+  for (int code = 0; code < total; ++code) {
+    std::string a;
+    for (int d = 0, c = code; d < depth; ++d, c /= 4) a.insert(a.begin(), kActs[c % 4]);
+    if (useful(a)) all.push_back(a);
+  }
+  // One per signature: the one that acts earliest (highest weight; "RWF" before "WRF": a
+  // robot that turns now can go on if the cell clears sooner). Best first, WWW last.
+  std::stable_sort(all.begin(), all.end(), [](const std::string& x, const std::string& y) { return weight(x) > weight(y); });
+  std::map<std::vector<int>, bool> seen;
+  std::vector<std::string> out;
+  for (const std::string& a : all)
+    if (seen.emplace(signature(a), true).second) out.push_back(a);
+  return out;
+}
+
+Epibt::Epibt(const Graph& g, const Config& starts, const Config& goals, Options opt, GoalTest test, int heading)
+    : g_(g), dist_(g), current_(starts), heading_(starts.size(), heading)
+{
+  if (heading < 0 || heading > 3) throw std::invalid_argument("heading must be 0..3");
+  const size_t n = starts.size();
+  if (goals.size() != n) throw std::invalid_argument("starts and goals differ in size");
+  std::vector<char> seen(static_cast<size_t>(g.size()), 0);
+  for (size_t i = 0; i < n; ++i) {
+    if (starts[i] < 0 || starts[i] >= g.size()) throw std::invalid_argument("start of agent " + std::to_string(i) + " not in the graph");
+    if (seen[starts[i]]) throw std::invalid_argument("agent " + std::to_string(i) + " starts on another agent's cell");
+    seen[starts[i]] = 1;
+  }
+  goal_table_.assign(n, nullptr);
+  age_.assign(n, 0.0);
+  key_.assign(n, 0.0);
+  set_goals(goals, std::move(test));
+  order_.resize(n);
+  ncand_.assign(n, 0);
+  cand_stamp_.assign(n, 0);
+  visited_.assign(n, 0);
+  placed_.assign(n, 0);
+  visits_.assign(n, 0);
+  action_.assign(n, 'W');
+  next_ = current_;
+  set_options(opt);
+}
+
+void Epibt::set_options(const Options& opt)
+{
+  if (opt.revisit < 1) throw std::invalid_argument("epibt: revisit must be >= 1");
+  const std::vector<std::string> names = operations(opt.depth);
+  opt_ = opt;
+  ops_.clear();
+  std::map<std::vector<int>, int> by_sig;
+  for (size_t k = 0; k < names.size(); ++k) {
+    ops_.push_back({names[k], -1});
+    by_sig[signature(names[k])] = static_cast<int>(k);
+    if (names[k] == std::string(static_cast<size_t>(opt_.depth), 'W')) wait_ = static_cast<int>(k);
+  }
+  for (Op& op : ops_) {  // the tail plus a wait has the signature of a kept operation
+    const std::string tail = op.acts.substr(1) + "W";
+    op.next = by_sig.at(signature(tail));
+  }
+  // Every robot waits: jointly conflict-free whatever they held before.
+  const size_t n = current_.size(), D = static_cast<size_t>(opt_.depth);
+  used_cell_.assign(static_cast<size_t>(g_.size()) * D, -1);
+  used_edge_.assign(static_cast<size_t>(g_.size()) * 2 * D, -1);
+  op_.assign(n, wait_);
+  cells_.assign(n * D, -1);
+  edges_.assign(n * D, -1);
+  for (size_t i = 0; i < n; ++i) set_op(static_cast<int>(i), wait_), place(static_cast<int>(i));
+  cand_.assign(n * ops_.size(), 0);
+  score_of_.assign(n * ops_.size(), 0);
+  power_.assign(n, 0.0);
+  rng_ = Rng(opt.seed);
+  ++stamp_;  // candidates of the old set are stale
+  planned_ = false;
+}
+
+void Epibt::set_guidance(Guidance gd)
+{
+  dist_.set_guidance(std::move(gd));
+  guided_ = !dist_.guidance().uniform();
+  wait_cost_ = std::min<uint32_t>(dist_.turn_cost(), dist_.guidance().min_forward());
+  std::fill(goal_table_.begin(), goal_table_.end(), nullptr);  // dropped: take them anew
+  const Config goals = goals_;
+  set_goals(goals, test_);
+  ++stamp_;  // candidates ranked by the old costs are stale
+}
+
+void Epibt::set_goals(const Config& goals, GoalTest test)
+{
+  if (goals.size() != current_.size()) throw std::invalid_argument("goals: wrong number of agents");
+  for (size_t i = 0; i < goals.size(); ++i) {
+    if (goals[i] < 0 || goals[i] >= g_.size()) throw std::invalid_argument("goal of agent " + std::to_string(i) + " not in the graph");
+    if (goal_table_[i] && goals_[i] == goals[i]) continue;
+    if (goal_table_[i]) dist_.unpin(goal_table_[i]);
+    goal_table_[i] = dist_.table(goals[i]);
+    dist_.pin(goal_table_[i]);
+    age_[i] = static_cast<double>(h(static_cast<int>(i))) / 65536.0;  // a new goal: waiting starts again
+  }
+  goals_ = goals;
+  test_ = std::move(test);
+  dist_.trim();
+  planned_ = false;
+}
+
+bool Epibt::walk(int i, int op, Vertex* cells, int32_t* edges, int* end_heading) const
+{
+  Vertex v = current_[i];
+  int o = heading_[i];
+  const std::string& a = ops_[static_cast<size_t>(op)].acts;
+  for (size_t d = 0; d < a.size(); ++d) {
+    int32_t e = -1;
+    if (a[d] == 'F') {
+      const Vertex u = dist_.ahead(v, o);
+      if (u < 0) return false;
+      // An undirected edge: its lower cell, and the axis (0: x, 1: y).
+      e = (o == 0 || o == 1 ? v : u) * 2 + (o & 1);
+      v = u;
+    } else if (a[d] == 'R') {
+      o = (o + 1) % 4;
+    } else if (a[d] == 'C') {
+      o = (o + 3) % 4;
+    }
+    cells[d] = v;
+    edges[d] = e;
+  }
+  if (end_heading) *end_heading = o;
+  return true;
+}
+
+void Epibt::set_op(int i, int op)
+{
+  const size_t D = static_cast<size_t>(opt_.depth);
+  op_[i] = op;
+  if (!walk(i, op, &cells_[static_cast<size_t>(i) * D], &edges_[static_cast<size_t>(i) * D], nullptr))
+    throw std::logic_error("epibt: agent " + std::to_string(i) + " holds an operation into a wall");
+}
+
+void Epibt::place(int i)
+{
+  const size_t D = static_cast<size_t>(opt_.depth);
+  if (scoring_) score_ += gain(i);
+  for (size_t d = 0; d < D; ++d) {
+    int32_t& c = used_cell_[static_cast<size_t>(cells_[i * D + d]) * D + d];
+    if (c >= 0) throw std::logic_error("epibt: agents " + std::to_string(c) + " and " + std::to_string(i) + " on one cell");
+    c = i;
+    if (edges_[i * D + d] >= 0) used_edge_[static_cast<size_t>(edges_[i * D + d]) * D + d] = i;
+  }
+}
+
+void Epibt::unplace(int i)
+{
+  const size_t D = static_cast<size_t>(opt_.depth);
+  if (scoring_) score_ -= gain(i);
+  for (size_t d = 0; d < D; ++d) {
+    used_cell_[static_cast<size_t>(cells_[i * D + d]) * D + d] = -1;
+    if (edges_[i * D + d] >= 0) used_edge_[static_cast<size_t>(edges_[i * D + d]) * D + d] = -1;
+  }
+}
+
+int Epibt::conflict(int i) const
+{
+  const size_t D = static_cast<size_t>(opt_.depth);
+  int who = -1;
+  auto meet = [&who](int32_t j) {
+    if (j < 0 || j == who) return true;
+    if (who >= 0) return false;
+    who = j;
+    return true;
+  };
+  for (size_t d = 0; d < D; ++d) {
+    if (!meet(used_cell_[static_cast<size_t>(cells_[i * D + d]) * D + d])) return -2;
+    if (edges_[i * D + d] >= 0 && !meet(used_edge_[static_cast<size_t>(edges_[i * D + d]) * D + d])) return -2;
+  }
+  return who;
+}
+
+void Epibt::candidates(int i)
+{
+  if (cand_stamp_[i] == stamp_) return;
+  cand_stamp_[i] = stamp_;
+  const int D = opt_.depth;
+  const size_t m = ops_.size();
+  const Vertex goal = goals_[i];
+  const bool on_goal = current_[i] == goal;
+  std::pair<uint32_t, uint8_t> c[256];
+  int k = 0;
+  Vertex cells[8];
+  int32_t edges[8];
+  for (size_t op = 0; op < m; ++op) {
+    const bool wait = static_cast<int>(op) == wait_;
+    int o = 0;
+    if (!walk(i, static_cast<int>(op), cells, edges, &o)) continue;
+    uint32_t cost = 0;
+    int first = 0;  // the action after which it first stands on its goal (0: never)
+    if (!guided_) {
+      if (!on_goal)
+        for (int d = 0; d < D && !first; ++d)
+          if (cells[d] == goal) first = d + 1;
+      if (first) cost = static_cast<uint32_t>(first);
+      else cost = static_cast<uint32_t>(D) + dist_.get(goal_table_[i], cells[D - 1], o);
+    } else {
+      // The same with each action at its guided cost (1 each without guidance).
+      const std::string& a = ops_[op].acts;
+      Vertex v = current_[i];
+      int hd = heading_[i];
+      for (int d = 0; d < D; ++d) {
+        if (a[d] == 'F') cost += dist_.forward_cost(v, hd), v = cells[d];
+        else if (a[d] == 'W') cost += wait_cost_;
+        else cost += dist_.turn_cost(), hd = (hd + (a[d] == 'R' ? 1 : 3)) % 4;
+        if (!on_goal && cells[d] == goal) {
+          first = d + 1;
+          break;
+        }
+      }
+      if (!first) cost += dist_.get(goal_table_[i], cells[D - 1], o);
+    }
+    score_of_[static_cast<size_t>(i) * m + op] = cost * static_cast<uint32_t>(m) + static_cast<uint32_t>(op);
+    if (wait && !opt_.wait_op && !on_goal) continue;
+    c[k++] = {cost, static_cast<uint8_t>(op)};
+  }
+  std::stable_sort(c, c + k);  // cost, then the better operation
+  uint8_t* out = &cand_[static_cast<size_t>(i) * m];
+  for (int j = 0; j < k; ++j) out[j] = c[j].second;
+  ncand_[i] = static_cast<uint8_t>(k);
+}
+
+Epibt::Result Epibt::build(int i, double root_key, bool lns)
+{
+  if ((++calls_ & 15) == 0 && deadline_ != Clock::time_point::max() && Clock::now() >= deadline_) timed_out_ = true;
+  if (timed_out_) return Rejected;
+  if (visited_[i] != round_) visits_[i] = 0, visited_[i] = round_;
+  ++visits_[i];
+  placed_[i] = round_;  // on the current chain: nobody may take its place now
+  candidates(i);
+  const int old = op_[i];
+  const uint8_t* cand = &cand_[static_cast<size_t>(i) * ops_.size()];
+  for (int k = 0; k < ncand_[i]; ++k) {
+    set_op(i, cand[k]);
+    const int j = conflict(i);
+    if (j == -1) {
+      place(i);
+      if (lns && score_ < lns_floor_) {  // LNS: worse than before this root's attempt
+        unplace(i);
+        set_op(i, old);
+        return Rejected;
+      }
+      return Accepted;
+    }
+    if (j == -2) continue;
+    if (placed_[j] == round_ || (visited_[j] == round_ && visits_[j] >= opt_.revisit) || (!lns && key_[j] >= root_key)) continue;
+    unplace(j);
+    place(i);
+    const Result r = build(j, root_key, lns);
+    if (r == Accepted) return Accepted;
+    unplace(i);
+    place(j);  // j's operation was restored by its failed build
+    if (r == Rejected) {
+      set_op(i, old);
+      return Rejected;
+    }
+  }
+  set_op(i, old);
+  placed_[i] = 0;
+  return Failed;
+}
+
+void Epibt::lns()
+{
+  const int n = static_cast<int>(current_.size());
+  for (int k = 0; k < n; ++k) {  // the paper's weights: rank in priority order, squared
+    const double w = static_cast<double>(n + 1 - k) / (n + 1);
+    power_[order_[k]] = w * w;
+    candidates(order_[k]);
+  }
+  scoring_ = true;
+  score_ = 0;
+  for (int i = 0; i < n; ++i) score_ += gain(i);
+  std::vector<int32_t> order = order_;
+  for (int round = 0; (opt_.lns_rounds < 0 || round < opt_.lns_rounds) && !timed_out_; ++round) {
+    rng_.shuffle(order.data(), n);
+    ++round_;
+    const double before = score_;
+    for (int32_t i : order) {
+      if (timed_out_) break;
+      if (visited_[i] == round_) continue;
+      lns_floor_ = score_ - 1e-9;
+      unplace(i);
+      if (build(i, 0.0, true) != Accepted) place(i);
+    }
+    ++lns_rounds_done_;
+    if (opt_.lns_converge && score_ <= before + 1e-9) break;  // a round that gained nothing: converged
+  }
+  scoring_ = false;
+}
+
+Status Epibt::search(const Budget& b)
+{
+  if (planned_) return at_goal() ? Status::Solved : Status::Searching;
+  const int n = static_cast<int>(current_.size());
+  deadline_ = b.deadline_from(Clock::now());
+  timed_out_ = false;
+  ++stamp_;
+  ++round_;
+  for (int i = 0; i < n; ++i)
+    key_[i] = opt_.priority == Priority::Age ? age_[i] : -static_cast<double>(h(i));
+  for (int i = 0; i < n; ++i) order_[i] = i;
+  std::stable_sort(order_.begin(), order_.end(), [this](int32_t x, int32_t y) { return key_[x] > key_[y]; });
+  for (int32_t i : order_) {
+    if (timed_out_) break;
+    if (visited_[i] == round_) continue;  // replanned (or tried) through someone else: final
+    unplace(i);
+    if (build(i, key_[i], false) != Accepted) place(i);  // keeps its operation
+  }
+  if (opt_.lns_rounds != 0 && !timed_out_) lns();
+  if (timed_out_) ++timeouts_;
+  const size_t D = static_cast<size_t>(opt_.depth);
+  for (int i = 0; i < n; ++i) {
+    action_[i] = ops_[static_cast<size_t>(op_[i])].acts[0];
+    next_[i] = cells_[static_cast<size_t>(i) * D];
+  }
+  planned_ = true;
+  ++steps_planned_;
+  return at_goal() ? Status::Solved : Status::Searching;
+}
+
+const Config& Epibt::next()
+{
+  if (!planned_) search(Budget{});
+  return next_;
+}
+
+void Epibt::commit()
+{
+  if (!planned_) search(Budget{});
+  const int n = static_cast<int>(current_.size());
+  for (int i = 0; i < n; ++i) unplace(i);
+  for (int i = 0; i < n; ++i) {
+    current_[i] = next_[i];
+    if (action_[i] == 'R') heading_[i] = (heading_[i] + 1) % 4;
+    else if (action_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;
+    // The tail of the operation (still jointly conflict-free), or wait (no inheritance).
+    set_op(i, opt_.inherit ? ops_[static_cast<size_t>(op_[i])].next : wait_);
+    // Priority::Age: PIBT's dynamic priority (+1 per step off the goal; a dead end first).
+    age_[i] = current_[i] != goals_[i] ? age_[i] + 1.0 : age_[i] - static_cast<double>(static_cast<long>(age_[i]));
+    if (current_[i] != goals_[i] && g_.degree(current_[i]) == 1) age_[i] += 10.0;
+  }
+  for (int i = 0; i < n; ++i) place(i);
+  planned_ = false;
+}
+
+}  // namespace planner
