@@ -31,7 +31,8 @@ void Lacam::set_immobile(const std::vector<uint8_t>& immobile)
   opt_.lns = lns_wanted_ && !any_immobile(immobile);  // LNS's A* would move them
 }
 
-void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities)
+void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities,
+                  const int32_t* order)
 {
   n_ = static_cast<int>(start.size());
   goals_ = goals;
@@ -66,14 +67,15 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
     scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
     scatter_started_ = true;
   }
-  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities);
+  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities, priorities ? order : nullptr);
   scatter_root_ = root_;
   explored_.insert(root_);
   open_.push_back(root_);
   status_ = Status::Searching;
 }
 
-HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities)
+HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities,
+                       const int32_t* root_order)
 {
   HNode* h = nodes_.alloc(1);
   *h = HNode{};
@@ -88,7 +90,12 @@ HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const floa
   } else {
     if (root_priorities) std::copy(root_priorities, root_priorities + n_, prio);
     else init_priorities(c, n_, dist_, prio);
-    initial_order(prio, n_, order);
+    if (root_order) {  // the same total order as initial_order's sort, from a near-sorted start
+      std::copy(root_order, root_order + n_, order);
+      sort_by_priority(prio, n_, order);
+    } else {
+      initial_order(prio, n_, order);
+    }
   }
   h->C = c;
   h->priorities = prio;

@@ -3,12 +3,15 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 
 #include "planner/rotation_pibt.hpp"
+#include "planner/rt_lacam.hpp"
 #include "planner/validator.hpp"
+#include "tasks/cost_estimate.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/rotation_executor.hpp"
@@ -27,6 +30,8 @@ std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p
 }
 
 namespace {
+
+constexpr int kMaxSkips = 3;  // searches skipped in a row at most (skip_late_search)
 
 // CPU time of this thread: planning work, told apart from time the thread was preempted.
 double thread_cpu_ms()
@@ -139,7 +144,9 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   double carry_ms = 0;  // set_goals at the end of the last step: planning for this one
   double carry_cpu_ms = 0;
   uint64_t carry_pops = 0;
-  double ms_per_expansion = 0;  // moving average over steps
+  // CPU ms of one search expansion (cost_estimate.hpp): the step reserves its bound before
+  // the deadline, since the search checks the deadline only between expansions.
+  CostEstimate expansion;
   // One deadline for all of a step's planning: queries past it answer lower bounds instead
   // of growing tables (dist_cache.hpp). Off (bound_queries false, or no positive time
   // budget: a 0 ms budget means one expansion per step in tests): every query exact.
@@ -147,33 +154,54 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   auto bound_queries = [&](planner::DistCache::Deadline d) {
     if (bounded) cache->set_deadline(d);
   };
+  // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
+  const bool may_skip = opt.skip_late_search && bounded && dynamic_cast<planner::RtLacam*>(p.get());
+  // CPU ms by which the step's last table growth overruns its deadline (a BFS chunk past
+  // it, a page fault): the step ends that much early.
+  CostEstimate overrun;
+  int skipped = 0;  // searches skipped in a row
   for (long t = 1; t <= opt.steps; ++t) {
     StepRecord rec;
     rec.t = t;
     rec.epoch = r.epochs;
     planner::Budget b = opt.budget;
-    b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
+    const double guard = bounded ? overrun.bound(opt.expansion_deviations) : 0.0;
+    b.ms = std::max(0.0, b.ms - carry_ms - guard);  // the epoch start is inside the step's budget
     t0 = Clock::now();
     const double cpu0 = thread_cpu_ms();
     const uint64_t pops0 = cache->counters().query_pops;
     const auto step_end = b.deadline_from(t0);
     bound_queries(step_end);
-    const bool plan_now = !exec || exec->can_accept();
+    const double reserve = expansion.bound(opt.expansion_deviations);
+    bool plan_now = !exec || exec->can_accept();
     if (!plan_now) ++r.window_full;
-    if (plan_now && pending() > 0) {
+    // No room left for one expansion (the epoch start took it): no search this step. Only
+    // when a step without an epoch start has room for one, and at most kMaxSkips in a row:
+    // the search keeps making progress (and its cost estimate fresh) whatever the budget.
+    const bool skip = plan_now && may_skip && skipped < kMaxSkips && expansion.known() && b.ms < reserve &&
+                      opt.budget.ms >= reserve;
+    skipped = skip ? skipped + 1 : plan_now ? 0 : skipped;
+    const bool search_now = plan_now && !skip;
+    if (skip) {
+      ++r.searches_skipped;
+      if (exec) plan_now = false;  // the robots run their window; a wait would take a slot of it
+    }
+    if (search_now && pending() > 0) {
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
       // It leaves room for the one expansion the search always makes.
-      const double share = std::min(opt.precompute_share * b.ms, b.ms - ms_per_expansion);
+      const double share = std::min(opt.precompute_share * b.ms, b.ms - reserve);
       precompute(planner::Budget::time_ms(std::max(0.0, share)).deadline_from(t0));
       rec.precompute_ms = ms_since(t0);
       b.ms = std::max(0.0, b.ms - rec.precompute_ms);
     }
     planner::Config next;
-    if (plan_now) {
+    if (search_now) {
       // The search checks its deadline after each expansion, so it overruns by up to one:
-      // stop it one (recent average) expansion early. It still makes at least one.
-      b.ms = std::max(0.0, b.ms - ms_per_expansion);
+      // stop it one expansion (its bound) early. It still makes at least one.
+      b.ms = std::max(0.0, b.ms - reserve);
+      // No estimate yet (step 1): one expansion, to measure it.
+      if (bounded && !expansion.known()) b.expansions = 1;
       const uint64_t e0 = p->expansions();
       const auto t1 = Clock::now();
       const double c1 = thread_cpu_ms();
@@ -182,12 +210,18 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       next = p->next();
       if (const uint64_t de = p->expansions() - e0; de > 0)
         // On CPU time: a preempted step must not make the next ones stop early.
-        ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * (thread_cpu_ms() - c1) / static_cast<double>(de);
+        expansion.add((thread_cpu_ms() - c1) / static_cast<double>(de));
+    } else if (plan_now) {
+      next = p->next();
     }
     if (pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
+      const double c1 = thread_cpu_ms();
       precompute(step_end);
       rec.precompute_ms += ms_since(t1);
+      // Its overrun on CPU time (a preempted thread overran nothing of its own).
+      const double allowed = std::chrono::duration<double, std::milli>(step_end - t1).count();
+      overrun.add(std::max(0.0, thread_cpu_ms() - c1 - allowed));
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
     rec.planner_cpu_ms = thread_cpu_ms() - cpu0 + carry_cpu_ms;
@@ -252,7 +286,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     // The epoch start is the next step's planning: its table growth stops at the share of
     // that step's budget the precompute may take, less the one expansion the search will
     // make (at 1 ms on WAREHOUSE, none: the next step's precompute grows what it missed).
-    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - ms_per_expansion))
+    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - expansion.bound(opt.expansion_deviations)))
                       .deadline_from(t0));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
     if (!ev.empty() && prefetch) prefetch_upcoming(tasks, p->current(), *cache);
@@ -283,7 +317,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   if (rot) r.final_headings = rot->headings();
   r.dist_tables = cache->num_tables() + (rot ? rot->dist().num_tables() : 0);
   r.dist_counters = cache->counters();
-  r.ms_per_expansion = ms_per_expansion;
+  r.ms_per_expansion = expansion.mean;
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();

@@ -63,6 +63,7 @@ class RtLacam : public RealtimePlanner {
   const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
   std::vector<float> carried_;           // priorities carried into a new epoch
+  std::vector<int32_t> carried_order_;   // the agents' order under them
   bool keep_priorities_;
   const Graph& g_;
   std::vector<uint8_t> immobile_;        // agent -> 1 while immobile

@@ -85,6 +85,13 @@ struct LifelongOptions {
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
   // Only with a positive, finite time budget (expansion-only budgets stay deterministic).
   bool bound_queries = true;
+  // With a time budget, the search stops one expansion's cost bound early: mean + this many
+  // mean deviations of the recent expansions' CPU time (tasks/cost_estimate.hpp).
+  double expansion_deviations = 4;
+  // rtlacam with a time budget: a step whose time left (after its epoch start) is below that
+  // bound makes no expansion (the agents follow the tree or wait; under rotation nothing is
+  // pushed), instead of overrunning the budget by one expansion. false: always one.
+  bool skip_late_search = true;
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers
@@ -119,6 +126,7 @@ struct LifelongResult {
   std::vector<std::string> actions;  // per robot, one LoRR letter per step (record_actions)
   std::vector<int> final_headings;   // rotation only
   long window_full = 0;              // rotation: steps the planner waited for the slowest robot
+  long searches_skipped = 0;         // steps with no room for an expansion (skip_late_search)
 };
 
 // Starts the tasks at `starts`, builds `solver` (see make_planner) and runs.
