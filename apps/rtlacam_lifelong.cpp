@@ -33,7 +33,7 @@ int main(int argc, char** argv)
   std::string heading_cost = "turns";
   size_t max_dist_tables = 0;
   bool reset_priorities = false, reassign = false, refine = true, prefetch = true, bound_queries = true;
-  bool skip_late_search = true;
+  bool skip_late_search = false;
   double expansion_deviations = 4;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
@@ -64,7 +64,7 @@ int main(int argc, char** argv)
                "(default on; --exact-queries: every query runs its BFS on the spot)");
   app.add_flag("--skip-late-search,!--no-skip-late-search", skip_late_search,
                "rtlacam: a step with less time left than one expansion's cost bound makes none (agents follow the tree "
-               "or wait) instead of overrunning its budget (default on)");
+               "or wait) instead of overrunning its budget (default off: it costs throughput)");
   app.add_option("--expansion-deviations", expansion_deviations,
                  "the search stops this many mean deviations above the mean expansion cost before its deadline")
       ->check(CLI::NonNegativeNumber)

@@ -144,9 +144,10 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   double carry_ms = 0;  // set_goals at the end of the last step: planning for this one
   double carry_cpu_ms = 0;
   uint64_t carry_pops = 0;
-  // CPU ms of one search expansion (cost_estimate.hpp): the step reserves its bound before
-  // the deadline, since the search checks the deadline only between expansions.
-  CostEstimate expansion;
+  // CPU ms of one search expansion (cost_estimate.hpp): an expansion cannot stop halfway,
+  // so each is charged its bound before it starts. The step's first one (at the root: PIBT
+  // with the heading preference, on tables just created) costs up to twice the later ones.
+  CostEstimate first, later;
   // One deadline for all of a step's planning: queries past it answer lower bounds instead
   // of growing tables (dist_cache.hpp). Off (bound_queries false, or no positive time
   // budget: a 0 ms budget means one expansion per step in tests): every query exact.
@@ -172,13 +173,13 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     const uint64_t pops0 = cache->counters().query_pops;
     const auto step_end = b.deadline_from(t0);
     bound_queries(step_end);
-    const double reserve = expansion.bound(opt.expansion_deviations);
+    const double reserve = first.bound(opt.expansion_deviations);
     bool plan_now = !exec || exec->can_accept();
     if (!plan_now) ++r.window_full;
     // No room left for one expansion (the epoch start took it): no search this step. Only
     // when a step without an epoch start has room for one, and at most kMaxSkips in a row:
     // the search keeps making progress (and its cost estimate fresh) whatever the budget.
-    const bool skip = plan_now && may_skip && skipped < kMaxSkips && expansion.known() && b.ms < reserve &&
+    const bool skip = plan_now && may_skip && skipped < kMaxSkips && first.known() && b.ms < reserve &&
                       opt.budget.ms >= reserve;
     skipped = skip ? skipped + 1 : plan_now ? 0 : skipped;
     const bool search_now = plan_now && !skip;
@@ -190,38 +191,53 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
       // It leaves room for the one expansion the search always makes.
-      const double share = std::min(opt.precompute_share * b.ms, b.ms - reserve);
+      // It overruns its deadline too (guard).
+      const double share = std::min(opt.precompute_share * b.ms, b.ms - reserve) - guard;
       precompute(planner::Budget::time_ms(std::max(0.0, share)).deadline_from(t0));
       rec.precompute_ms = ms_since(t0);
       b.ms = std::max(0.0, b.ms - rec.precompute_ms);
     }
     planner::Config next;
     if (search_now) {
-      // The search checks its deadline after each expansion, so it overruns by up to one:
-      // stop it one expansion (its bound) early. It still makes at least one.
-      b.ms = std::max(0.0, b.ms - reserve);
-      // No estimate yet (step 1): one expansion, to measure it.
-      if (bounded && !expansion.known()) b.expansions = 1;
-      const uint64_t e0 = p->expansions();
       const auto t1 = Clock::now();
-      const double c1 = thread_cpu_ms();
-      bound_queries(b.deadline_from(t1));  // the search's own deadline: no BFS past it
-      p->search(b);
+      double c1 = thread_cpu_ms();
+      if (!bounded) {  // no time limit (or exact queries): the search's own loop, as before
+        b.ms = std::max(0.0, b.ms - reserve);  // it checks its deadline after each expansion
+        const uint64_t e0 = p->expansions();
+        p->search(b);
+        if (const uint64_t de = p->expansions() - e0; de > 0)
+          first.add((thread_cpu_ms() - c1) / static_cast<double>(de));
+      } else {
+        // One expansion at a time, each started only if its bound fits before the deadline
+        // (the first always: the skip above decided). Queries stop growing tables where the
+        // first expansion's bound begins, as the search's own deadline did.
+        const auto end = b.deadline_from(t1);
+        bound_queries(planner::Budget::time_ms(std::max(0.0, b.ms - reserve)).deadline_from(t1));
+        for (uint64_t k = 0; k < b.expansions; ++k) {
+          const CostEstimate& est = k == 0 || !later.known() ? first : later;
+          if (k > 0 && Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(
+                                          est.bound(opt.expansion_deviations))) >= end)
+            break;
+          const uint64_t e0 = p->expansions();
+          p->search(planner::Budget::expansion_count(1));
+          const double c = thread_cpu_ms();
+          const uint64_t de = p->expansions() - e0;
+          if (de == 0) break;  // solved (nothing to refine) or no expansion possible
+          (k == 0 ? first : later).add((c - c1) / static_cast<double>(de));
+          c1 = c;
+        }
+      }
       next = p->next();
-      if (const uint64_t de = p->expansions() - e0; de > 0)
-        // On CPU time: a preempted step must not make the next ones stop early.
-        expansion.add((thread_cpu_ms() - c1) / static_cast<double>(de));
     } else if (plan_now) {
       next = p->next();
     }
     if (pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
-      const double c1 = thread_cpu_ms();
       precompute(step_end);
       rec.precompute_ms += ms_since(t1);
-      // Its overrun on CPU time (a preempted thread overran nothing of its own).
-      const double allowed = std::chrono::duration<double, std::milli>(step_end - t1).count();
-      overrun.add(std::max(0.0, thread_cpu_ms() - c1 - allowed));
+      // How far it ran past the deadline, when the deadline stopped it (not when it ran out
+      // of work); a sample above a tenth of the budget is preemption, not work.
+      if (pending() > 0) overrun.add(std::clamp(ms_since(step_end), 0.0, 0.1 * opt.budget.ms));
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
     rec.planner_cpu_ms = thread_cpu_ms() - cpu0 + carry_cpu_ms;
@@ -286,7 +302,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     // The epoch start is the next step's planning: its table growth stops at the share of
     // that step's budget the precompute may take, less the one expansion the search will
     // make (at 1 ms on WAREHOUSE, none: the next step's precompute grows what it missed).
-    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - expansion.bound(opt.expansion_deviations)))
+    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - first.bound(opt.expansion_deviations)))
                       .deadline_from(t0));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
     if (!ev.empty() && prefetch) prefetch_upcoming(tasks, p->current(), *cache);
@@ -317,7 +333,8 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   if (rot) r.final_headings = rot->headings();
   r.dist_tables = cache->num_tables() + (rot ? rot->dist().num_tables() : 0);
   r.dist_counters = cache->counters();
-  r.ms_per_expansion = expansion.mean;
+  r.ms_per_expansion = later.known() ? later.mean : first.mean;
+  r.ms_per_first_expansion = first.mean;
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();
