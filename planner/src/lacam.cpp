@@ -177,6 +177,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
 {
   const auto t0 = Clock::now();
   const auto deadline = deadline_ = b.deadline_from(t0);
+  const auto reserve = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(b.reserve_ms));
   uint64_t done = 0;
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
@@ -195,7 +196,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
       if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
       break;
     }
-    if (Clock::now() >= deadline) break;
+    if (deadline != Clock::time_point::max() && Clock::now() + reserve >= deadline) break;
   }
   return status_;
 }

@@ -208,23 +208,24 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
         if (const uint64_t de = p->expansions() - e0; de > 0)
           first.add((thread_cpu_ms() - c1) / static_cast<double>(de));
       } else {
-        // One expansion at a time, each started only if its bound fits before the deadline
-        // (the first always: the skip above decided). Queries stop growing tables where the
-        // first expansion's bound begins, as the search's own deadline did.
+        // The first expansion always (the skip above decided), measured alone; then the
+        // search goes on while one more expansion's bound fits before the deadline
+        // (Budget::reserve_ms). Queries stop growing tables where the first expansion's
+        // bound begins, as the search's own deadline did.
         const auto end = b.deadline_from(t1);
         bound_queries(planner::Budget::time_ms(std::max(0.0, b.ms - reserve)).deadline_from(t1));
-        for (uint64_t k = 0; k < b.expansions; ++k) {
-          const CostEstimate& est = k == 0 || !later.known() ? first : later;
-          if (k > 0 && Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(
-                                          est.bound(opt.expansion_deviations))) >= end)
-            break;
-          const uint64_t e0 = p->expansions();
-          p->search(planner::Budget::expansion_count(1));
-          const double c = thread_cpu_ms();
-          const uint64_t de = p->expansions() - e0;
-          if (de == 0) break;  // solved (nothing to refine) or no expansion possible
-          (k == 0 ? first : later).add((c - c1) / static_cast<double>(de));
+        uint64_t e0 = p->expansions();
+        p->search(planner::Budget::expansion_count(1));
+        double c = thread_cpu_ms();
+        if (p->expansions() > e0) first.add(c - c1);
+        const CostEstimate& est = later.known() ? later : first;
+        const double left = std::chrono::duration<double, std::milli>(end - Clock::now()).count();
+        if (b.expansions > 1 && p->expansions() > e0 && left > est.bound(opt.expansion_deviations)) {
+          e0 = p->expansions();
           c1 = c;
+          p->search({left, b.expansions - 1, est.bound(opt.expansion_deviations)});
+          c = thread_cpu_ms();
+          if (const uint64_t de = p->expansions() - e0; de > 0) later.add((c - c1) / static_cast<double>(de));
         }
       }
       next = p->next();

@@ -13,9 +13,12 @@ using Clock = std::chrono::steady_clock;
 struct Budget {
   double ms = std::numeric_limits<double>::infinity();
   uint64_t expansions = std::numeric_limits<uint64_t>::max();
+  // What one expansion may cost (ms): a search starts one only while it would end by the
+  // deadline (an expansion cannot stop halfway). 0: until the deadline, as the paper's loop.
+  double reserve_ms = 0;
 
-  static Budget time_ms(double ms) { return {ms, std::numeric_limits<uint64_t>::max()}; }
-  static Budget expansion_count(uint64_t e) { return {std::numeric_limits<double>::infinity(), e}; }
+  static Budget time_ms(double ms) { return {ms, std::numeric_limits<uint64_t>::max(), 0}; }
+  static Budget expansion_count(uint64_t e) { return {std::numeric_limits<double>::infinity(), e, 0}; }
   static Budget unlimited() { return {}; }
 
   // Deadline for a call starting now (time_point::max() when unlimited).
