@@ -177,7 +177,11 @@ Status Lacam::search(const Budget& b, bool until_solved)
 {
   const auto t0 = Clock::now();
   const auto deadline = deadline_ = b.deadline_from(t0);
-  const auto reserve = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(b.reserve_ms));
+  // With a reserve, the costliest expansion of this call so far counts too (on this thread's
+  // CPU time, which preemption does not inflate; an LNS step: its cost over its units).
+  const bool reserving = b.reserve_ms > 0 && deadline != Clock::time_point::max();
+  double cpu_last = reserving ? thread_cpu_ms() : 0.0;
+  max_unit_ms_ = 0;
   uint64_t done = 0;
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
@@ -196,7 +200,16 @@ Status Lacam::search(const Budget& b, bool until_solved)
       if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
       break;
     }
-    if (deadline != Clock::time_point::max() && Clock::now() + reserve >= deadline) break;
+    if (reserving) {
+      const double c = thread_cpu_ms();
+      max_unit_ms_ = std::max(max_unit_ms_, (c - cpu_last) / static_cast<double>(units_));
+      cpu_last = c;
+      const double r = std::max(b.reserve_ms, max_unit_ms_);
+      if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >= deadline)
+        break;
+    } else if (Clock::now() >= deadline) {
+      break;
+    }
   }
   return status_;
 }

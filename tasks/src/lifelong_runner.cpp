@@ -156,7 +156,8 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     if (bounded) cache->set_deadline(d);
   };
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
-  const bool may_skip = opt.skip_late_search && bounded && dynamic_cast<planner::RtLacam*>(p.get());
+  const auto* rt = dynamic_cast<const planner::RtLacam*>(p.get());
+  const bool may_skip = opt.skip_late_search && bounded && rt;
   // CPU ms by which the step's last table growth overruns its deadline (a BFS chunk past
   // it, a page fault): the step ends that much early.
   CostEstimate overrun;
@@ -225,7 +226,10 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
           c1 = c;
           p->search({left, b.expansions - 1, est.bound(opt.expansion_deviations)});
           c = thread_cpu_ms();
-          if (const uint64_t de = p->expansions() - e0; de > 0) later.add((c - c1) / static_cast<double>(de));
+          // The call's costliest expansion where the search tells it (RT-LaCAM), else the mean:
+          // expansions that revisit a known configuration are cheap, new nodes are not.
+          if (const uint64_t de = p->expansions() - e0; de > 0)
+            later.add(rt ? rt->max_expansion_ms() : (c - c1) / static_cast<double>(de));
         }
       }
       next = p->next();

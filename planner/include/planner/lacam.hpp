@@ -167,6 +167,8 @@ class Lacam {
   void reroot(const HNode* child);
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
+  // CPU ms of the costliest expansion of the last search() with a reserve (Budget::reserve_ms).
+  double max_expansion_ms() const { return max_unit_ms_; }
   // expansions() and explored() when the current search found its first solution
   uint64_t expansions_at_solution() const { return solved_expansions_; }
   size_t explored_at_solution() const { return solved_explored_; }
@@ -223,6 +225,7 @@ class Lacam {
   HNode* goal_ = nullptr;
   Status status_ = Status::NoSolution;
   uint64_t expansions_ = 0;
+  double max_unit_ms_ = 0;  // max_expansion_ms()
   bool refining_ = false, refine_capped_ = false;
   LnsRefiner lns_;
   Scatter scatter_;
