@@ -1,7 +1,5 @@
 #include "tasks/lifelong_runner.hpp"
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -21,6 +19,7 @@ namespace tasks {
 
 using planner::Clock;
 using planner::ms_since;
+using planner::thread_cpu_ms;  // planning work, told apart from time the thread was preempted
 
 std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p, long t)
 {
@@ -32,14 +31,6 @@ std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p
 namespace {
 
 constexpr int kMaxSkips = 3;  // searches skipped in a row at most (skip_late_search)
-
-// CPU time of this thread: planning work, told apart from time the thread was preempted.
-double thread_cpu_ms()
-{
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
-}
 
 bool has_pending(const TaskManager& tasks, const planner::Config& at)
 {
@@ -158,8 +149,8 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
   const auto* rt = dynamic_cast<const planner::RtLacam*>(p.get());
   const bool may_skip = opt.skip_late_search && bounded && rt;
-  // CPU ms by which the step's last table growth overruns its deadline (a BFS chunk past
-  // it, a page fault): the step ends that much early.
+  // How far (ms) the step's last table growth runs past its deadline (a BFS chunk, a page
+  // fault): the step ends that much early.
   CostEstimate overrun;
   int skipped = 0;  // searches skipped in a row
   for (long t = 1; t <= opt.steps; ++t) {
