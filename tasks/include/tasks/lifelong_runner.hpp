@@ -91,8 +91,9 @@ struct LifelongOptions {
   // rtlacam with a time budget: a step whose time left (after its epoch start) is below the
   // first expansion's bound makes no expansion (the agents follow the tree or wait; under
   // rotation nothing is pushed) instead of overrunning the budget by one. Off by default: on
-  // WAREHOUSE 1,000 agents it cut rotation throughput by 4-39 % for no better p99
-  // (docs/rotation_lorr.md "Budget at 1 ms"); false: every step makes at least one.
+  // WAREHOUSE 1,000 agents at 1 ms it changed rotation throughput by -34 to +5 % for no
+  // reliably better p99 (docs/rotation_lorr.md "Budget at 1 ms"); false: every step makes
+  // at least one.
   bool skip_late_search = false;
 };
 
