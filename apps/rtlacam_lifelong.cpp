@@ -34,6 +34,8 @@ int main(int argc, char** argv)
   std::string heading_cost = "turns";
   size_t max_dist_tables = 0;
   bool reset_priorities = false, reassign = false, refine = true, prefetch = true, bound_queries = true;
+  bool skip_late_search = false;
+  double expansion_deviations = 4;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0, seed = 0;
@@ -61,6 +63,13 @@ int main(int argc, char** argv)
   app.add_flag("--bound-queries,!--exact-queries", bound_queries,
                "distance queries past the step's deadline answer a lower bound instead of growing the table "
                "(default on; --exact-queries: every query runs its BFS on the spot)");
+  app.add_flag("--skip-late-search,!--no-skip-late-search", skip_late_search,
+               "rtlacam: a step with less time left than one expansion's cost bound makes none (agents follow the tree "
+               "or wait) instead of overrunning its budget (default off: it costs throughput)");
+  app.add_option("--expansion-deviations", expansion_deviations,
+                 "the search stops this many mean deviations above the mean expansion cost before its deadline")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--max-dist-tables", max_dist_tables,
                  "distance tables kept (LRU; tables in use are kept beyond it); 0 = 2 x agents + 256");
   app.add_flag("--refine,!--no-refine", refine,
@@ -169,6 +178,8 @@ int main(int argc, char** argv)
     opt.prefetch = prefetch;
     opt.max_dist_tables = max_dist_tables;
     opt.bound_queries = bound_queries;
+    opt.skip_late_search = skip_late_search;
+    opt.expansion_deviations = expansion_deviations;
     opt.steps = steps;
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;

@@ -8,12 +8,27 @@
 namespace planner {
 
 namespace {
-constexpr size_t kChunk = 256;  // BFS vertices between clock reads (a few microseconds)
+constexpr size_t kChunk = 64;   // BFS vertices between clock reads (10-20 us at most on WAREHOUSE)
+constexpr size_t kSpare = 16;   // dropped tables kept for reuse
 }
 
 DistCache::Table::Table(const Graph& g, Vertex goal_vertex, DistCache* cache)
     : dist(g.size(), kInf), goal(goal_vertex), owner(cache)
 {
+  dist[goal] = 0;
+  queue.push_back(goal);
+}
+
+void DistCache::Table::restart(Vertex goal_vertex)
+{
+  std::fill(dist.begin(), dist.end(), kInf);
+  queue.clear();
+  head = 0;
+  goal = goal_vertex;
+  pins = 0;
+  used = 0;
+  missed = false;
+  popped = 0;
   dist[goal] = 0;
   queue.push_back(goal);
 }
@@ -111,7 +126,13 @@ DistCache::Table* DistCache::table(Vertex goal)
 {
   auto it = by_goal_.find(goal);
   if (it != by_goal_.end()) return it->second;
-  tables_.push_back(std::make_unique<Table>(g_, goal, this));
+  if (spare_.empty()) {
+    tables_.push_back(std::make_unique<Table>(g_, goal, this));
+  } else {
+    tables_.push_back(std::move(spare_.back()));
+    spare_.pop_back();
+    tables_.back()->restart(goal);
+  }
   return by_goal_[goal] = tables_.back().get();
 }
 
@@ -127,7 +148,10 @@ void DistCache::trim()
   size_t keep = max_tables_;
   for (size_t k = keep; k < tables_.size(); ++k)
     if (tables_[k]->pins > 0) std::swap(tables_[k], tables_[keep++]);
-  for (size_t k = keep; k < tables_.size(); ++k) by_goal_.erase(tables_[k]->goal);
+  for (size_t k = keep; k < tables_.size(); ++k) {
+    by_goal_.erase(tables_[k]->goal);
+    if (spare_.size() < kSpare) spare_.push_back(std::move(tables_[k]));
+  }
   tables_.resize(keep);
 }
 
@@ -198,6 +222,7 @@ size_t DistCache::bytes() const
 {
   size_t b = 0;
   for (const auto& t : tables_) b += t->dist.capacity() * sizeof(int32_t) + t->queue.capacity() * sizeof(Vertex);
+  for (const auto& t : spare_) b += t->dist.capacity() * sizeof(int32_t) + t->queue.capacity() * sizeof(Vertex);
   return b;
 }
 

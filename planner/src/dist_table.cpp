@@ -25,6 +25,21 @@ void DistTable::share(std::shared_ptr<DistCache> cache)
 
 void DistTable::set_goals(const Config& goals)
 {
+  if (goals.size() == agent_table_.size()) {
+    // A lifelong epoch: a few goals changed; the others keep their pinned tables (no lookup
+    // of every agent's table at every epoch start).
+    bool changed = false;
+    for (size_t i = 0; i < goals.size(); ++i) {
+      if (agent_table_[i]->goal == goals[i]) continue;
+      DistCache::Table* t = cache_->table(goals[i]);
+      cache_->pin(t);
+      cache_->unpin(agent_table_[i]);
+      agent_table_[i] = t;
+      changed = true;
+    }
+    if (changed) cache_->trim();
+    return;
+  }
   // Pin the new tables before unpinning the old, so tables kept across the change stay.
   std::vector<DistCache::Table*> next(goals.size());
   for (size_t i = 0; i < goals.size(); ++i) cache_->pin(next[i] = cache_->table(goals[i]));

@@ -31,7 +31,8 @@ void Lacam::set_immobile(const std::vector<uint8_t>& immobile)
   opt_.lns = lns_wanted_ && !any_immobile(immobile);  // LNS's A* would move them
 }
 
-void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities)
+void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities,
+                  const int32_t* order)
 {
   n_ = static_cast<int>(start.size());
   goals_ = goals;
@@ -66,14 +67,15 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
     scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
     scatter_started_ = true;
   }
-  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities);
+  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities, priorities ? order : nullptr);
   scatter_root_ = root_;
   explored_.insert(root_);
   open_.push_back(root_);
   status_ = Status::Searching;
 }
 
-HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities)
+HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities,
+                       const int32_t* root_order)
 {
   HNode* h = nodes_.alloc(1);
   *h = HNode{};
@@ -88,7 +90,12 @@ HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const floa
   } else {
     if (root_priorities) std::copy(root_priorities, root_priorities + n_, prio);
     else init_priorities(c, n_, dist_, prio);
-    initial_order(prio, n_, order);
+    if (root_order) {  // the same total order as initial_order's sort, from a near-sorted start
+      std::copy(root_order, root_order + n_, order);
+      sort_by_priority(prio, n_, order);
+    } else {
+      initial_order(prio, n_, order);
+    }
   }
   h->C = c;
   h->priorities = prio;
@@ -170,6 +177,11 @@ Status Lacam::search(const Budget& b, bool until_solved)
 {
   const auto t0 = Clock::now();
   const auto deadline = deadline_ = b.deadline_from(t0);
+  // With a reserve, the costliest expansion of this call so far counts too (on this thread's
+  // CPU time, which preemption does not inflate; an LNS step: its cost over its units).
+  const bool reserving = b.reserve_ms > 0 && deadline != Clock::time_point::max();
+  double cpu_last = reserving ? thread_cpu_ms() : 0.0;
+  max_unit_ms_ = 0;
   uint64_t done = 0;
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
@@ -188,7 +200,16 @@ Status Lacam::search(const Budget& b, bool until_solved)
       if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
       break;
     }
-    if (Clock::now() >= deadline) break;
+    if (reserving) {
+      const double c = thread_cpu_ms();
+      max_unit_ms_ = std::max(max_unit_ms_, (c - cpu_last) / static_cast<double>(units_));
+      cpu_last = c;
+      const double r = std::max(b.reserve_ms, max_unit_ms_);
+      if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >= deadline)
+        break;
+    } else if (Clock::now() >= deadline) {
+      break;
+    }
   }
   return status_;
 }

@@ -37,6 +37,11 @@ bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* 
     next_[i] = -1;
     occ_now_[from[i]] = i;
   }
+  // The candidates' distances, all agents at once (DistTable::prefetch).
+  for (int i = 0; i < n_; ++i) {
+    d_.prefetch(i, from[i]);
+    for (Vertex u : g_.neighbors(from[i])) d_.prefetch(i, u);
+  }
   if (pref_) pref_->prepare(from, n_);
   if (!immobile_.empty()) {  // immobile agents never move: their cells are fixed obstacles
     std::vector<Vertex> blocked;

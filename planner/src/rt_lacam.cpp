@@ -33,7 +33,8 @@ void RtLacam::restart(const Config& goals)
   const HNode* root = lacam_.root();
   if (keep_priorities_ && root && goals.size() == current_.size()) {
     carried_.assign(root->priorities, root->priorities + lacam_.num_agents());
-    lacam_.reset(current_, goals, std::move(test), carried_.data());
+    carried_order_.assign(root->order, root->order + lacam_.num_agents());
+    lacam_.reset(current_, goals, std::move(test), carried_.data(), carried_order_.data());
   } else {
     lacam_.reset(current_, goals, std::move(test));
   }

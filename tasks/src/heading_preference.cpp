@@ -45,6 +45,17 @@ float HeadingPreference::score(int agent, planner::Vertex from, planner::Vertex 
   return static_cast<float>(quarter_turns(heading_[agent], h) + 1 + cost_to_go(agent, to, h)) + 0.9f * noise;
 }
 
+void HeadingPreference::prepare(const planner::Vertex* config, int n)
+{
+  if (cost_ != HeadingCost::Turns) return;
+  for (int i = 0; i < n && i < static_cast<int>(at_.size()); ++i) {
+    if (config[i] != at_[i]) continue;  // no heading known: plain distances
+    for (planner::Vertex u : g_.neighbors(config[i]))
+      for (planner::Vertex w : g_.neighbors(u))
+        if (w != config[i]) dist_.prefetch(i, w);
+  }
+}
+
 void HeadingPreference::committed(const planner::Config& next)
 {
   for (size_t i = 0; i < next.size(); ++i)

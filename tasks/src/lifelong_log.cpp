@@ -34,6 +34,8 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   const PlannerTimes ecpu = summarize(r.epoch_start_cpu_ms);
   j["epochStartCpuStats"] = {{"mean", ecpu.mean}, {"p50", ecpu.p50}, {"p99", ecpu.p99}, {"max", ecpu.max}};
   j["msPerExpansion"] = r.ms_per_expansion;
+  j["msPerFirstExpansion"] = r.ms_per_first_expansion;
+  j["searchesSkipped"] = r.searches_skipped;
   j["distTables"] = {{"end", r.dist_tables},
                      {"max", r.dist_tables_max},
                      {"maxMB", r.dist_mb_max},

@@ -1,15 +1,16 @@
 #include "tasks/lifelong_runner.hpp"
 
-#include <time.h>
-
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <memory>
 #include <stdexcept>
 
 #include "planner/epibt.hpp"
 #include "planner/rotation_pibt.hpp"
+#include "planner/rt_lacam.hpp"
 #include "planner/validator.hpp"
+#include "tasks/cost_estimate.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/rotation_executor.hpp"
@@ -19,6 +20,7 @@ namespace tasks {
 
 using planner::Clock;
 using planner::ms_since;
+using planner::thread_cpu_ms;  // planning work, told apart from time the thread was preempted
 
 std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p, long t)
 {
@@ -29,13 +31,7 @@ std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p
 
 namespace {
 
-// CPU time of this thread: planning work, told apart from time the thread was preempted.
-double thread_cpu_ms()
-{
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
-}
+constexpr int kMaxSkips = 3;  // searches skipped in a row at most (skip_late_search)
 
 bool has_pending(const TaskManager& tasks, const planner::Config& at)
 {
@@ -147,7 +143,10 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   double carry_ms = 0;  // set_goals at the end of the last step: planning for this one
   double carry_cpu_ms = 0;
   uint64_t carry_pops = 0;
-  double ms_per_expansion = 0;  // moving average over steps
+  // CPU ms of one search expansion (cost_estimate.hpp): an expansion cannot stop halfway,
+  // so each is charged its bound before it starts. The step's first one (at the root: PIBT
+  // with the heading preference, on tables just created) costs up to twice the later ones.
+  CostEstimate first, later;
   // One deadline for all of a step's planning: queries past it answer lower bounds instead
   // of growing tables (dist_cache.hpp). Off (bound_queries false, or no positive time
   // budget: a 0 ms budget means one expansion per step in tests): every query exact.
@@ -156,47 +155,94 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     if (bounded) cache->set_deadline(d);
     if (bounded && rot) rot->set_deadline(d);  // pibt-rot's (cell, heading) tables likewise
   };
+  // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
+  const auto* rt = dynamic_cast<const planner::RtLacam*>(p.get());
+  const bool may_skip = opt.skip_late_search && bounded && rt;
+  // How far (ms) the step's last table growth runs past its deadline (a BFS chunk, a page
+  // fault): the step ends that much early.
+  CostEstimate overrun;
+  int skipped = 0;  // searches skipped in a row
   for (long t = 1; t <= opt.steps; ++t) {
     StepRecord rec;
     rec.t = t;
     rec.epoch = r.epochs;
     planner::Budget b = opt.budget;
-    b.ms = std::max(0.0, b.ms - carry_ms);  // the epoch start is inside the step's budget
+    const double guard = bounded ? overrun.bound(opt.expansion_deviations) : 0.0;
+    b.ms = std::max(0.0, b.ms - carry_ms - guard);  // the epoch start is inside the step's budget
     t0 = Clock::now();
     const double cpu0 = thread_cpu_ms();
     const uint64_t pops0 = cache->counters().query_pops;
     const auto step_end = b.deadline_from(t0);
     bound_queries(step_end);
-    const bool plan_now = !exec || exec->can_accept();
+    const double reserve = first.bound(opt.expansion_deviations);
+    bool plan_now = !exec || exec->can_accept();
     if (!plan_now) ++r.window_full;
-    if (plan_now && pending() > 0) {
+    // No room left for one expansion (the epoch start took it): no search this step. Only
+    // when a step without an epoch start has room for one, and at most kMaxSkips in a row:
+    // the search keeps making progress (and its cost estimate fresh) whatever the budget.
+    const bool skip = plan_now && may_skip && skipped < kMaxSkips && first.known() && b.ms < reserve &&
+                      opt.budget.ms >= reserve;
+    skipped = skip ? skipped + 1 : plan_now ? 0 : skipped;
+    const bool search_now = plan_now && !skip;
+    if (skip) {
+      ++r.searches_skipped;
+      if (exec) plan_now = false;  // the robots run their window; a wait would take a slot of it
+    }
+    if (search_now && pending() > 0) {
       // Tables first, up to the share: an expansion that meets an incomplete table would pay
       // its BFS anyway, all at once.
       // It leaves room for the one expansion the search always makes.
-      const double share = std::min(opt.precompute_share * b.ms, b.ms - ms_per_expansion);
+      // It overruns its deadline too (guard).
+      const double share = std::min(opt.precompute_share * b.ms, b.ms - reserve) - guard;
       precompute(planner::Budget::time_ms(std::max(0.0, share)).deadline_from(t0));
       rec.precompute_ms = ms_since(t0);
       b.ms = std::max(0.0, b.ms - rec.precompute_ms);
     }
     planner::Config next;
-    if (plan_now) {
-      // The search checks its deadline after each expansion, so it overruns by up to one:
-      // stop it one (recent average) expansion early. It still makes at least one.
-      b.ms = std::max(0.0, b.ms - ms_per_expansion);
-      const uint64_t e0 = p->expansions();
+    if (search_now) {
       const auto t1 = Clock::now();
-      const double c1 = thread_cpu_ms();
-      bound_queries(b.deadline_from(t1));  // the search's own deadline: no BFS past it
-      p->search(b);
+      double c1 = thread_cpu_ms();
+      if (!bounded) {  // no time limit (or exact queries): the search's own loop, as before
+        b.ms = std::max(0.0, b.ms - reserve);  // it checks its deadline after each expansion
+        const uint64_t e0 = p->expansions();
+        p->search(b);
+        if (const uint64_t de = p->expansions() - e0; de > 0)
+          first.add((thread_cpu_ms() - c1) / static_cast<double>(de));
+      } else {
+        // The first expansion always (the skip above decided), measured alone; then the
+        // search goes on while one more expansion's bound fits before the deadline
+        // (Budget::reserve_ms). Queries stop growing tables where the first expansion's
+        // bound begins, as the search's own deadline did.
+        const auto end = b.deadline_from(t1);
+        bound_queries(planner::Budget::time_ms(std::max(0.0, b.ms - reserve)).deadline_from(t1));
+        uint64_t e0 = p->expansions();
+        p->search(planner::Budget::expansion_count(1));
+        double c = thread_cpu_ms();
+        if (p->expansions() > e0) first.add(c - c1);
+        const CostEstimate& est = later.known() ? later : first;
+        const double left = std::chrono::duration<double, std::milli>(end - Clock::now()).count();
+        if (b.expansions > 1 && p->expansions() > e0 && left > est.bound(opt.expansion_deviations)) {
+          e0 = p->expansions();
+          c1 = c;
+          p->search({left, b.expansions - 1, est.bound(opt.expansion_deviations)});
+          c = thread_cpu_ms();
+          // The call's costliest expansion where the search tells it (RT-LaCAM), else the mean:
+          // expansions that revisit a known configuration are cheap, new nodes are not.
+          if (const uint64_t de = p->expansions() - e0; de > 0)
+            later.add(rt ? rt->max_expansion_ms() : (c - c1) / static_cast<double>(de));
+        }
+      }
       next = p->next();
-      if (const uint64_t de = p->expansions() - e0; de > 0)
-        // On CPU time: a preempted step must not make the next ones stop early.
-        ms_per_expansion = 0.8 * ms_per_expansion + 0.2 * (thread_cpu_ms() - c1) / static_cast<double>(de);
+    } else if (plan_now) {
+      next = p->next();
     }
     if (pending() > 0 && Clock::now() < step_end) {
       const auto t1 = Clock::now();  // time left: the search ended early or the window is full
       precompute(step_end);
       rec.precompute_ms += ms_since(t1);
+      // How far it ran past the deadline, when the deadline stopped it (not when it ran out
+      // of work); a sample above a tenth of the budget is preemption, not work.
+      if (pending() > 0) overrun.add(std::clamp(ms_since(step_end), 0.0, 0.1 * opt.budget.ms));
     }
     rec.planner_ms = ms_since(t0) + carry_ms;
     rec.planner_cpu_ms = thread_cpu_ms() - cpu0 + carry_cpu_ms;
@@ -261,7 +307,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     // The epoch start is the next step's planning: its table growth stops at the share of
     // that step's budget the precompute may take, less the one expansion the search will
     // make (at 1 ms on WAREHOUSE, none: the next step's precompute grows what it missed).
-    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - ms_per_expansion))
+    bound_queries(planner::Budget::time_ms(std::max(0.0, opt.precompute_share * opt.budget.ms - first.bound(opt.expansion_deviations)))
                       .deadline_from(t0));
     if (replan) p->set_goals(tasks.goals(), lifelong_goal_test(tasks, p->current()));
     if (!ev.empty() && prefetch) prefetch_upcoming(tasks, p->current(), *cache);
@@ -292,7 +338,8 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   if (rot) r.final_headings = rot->headings();
   r.dist_tables = cache->num_tables() + (rot ? rot->dist().num_tables() : 0);
   r.dist_counters = cache->counters();
-  r.ms_per_expansion = ms_per_expansion;
+  r.ms_per_expansion = later.known() ? later.mean : first.mean;
+  r.ms_per_first_expansion = first.mean;
   r.errands_finished = tasks.errands_finished();
   r.tasks_finished = tasks.tasks_finished();
   r.expansions = p->expansions();

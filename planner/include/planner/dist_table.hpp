@@ -40,6 +40,10 @@ class DistTable {
 
   // Distance from v to agent i's goal.
   int32_t get(int agent, Vertex v) { return agent_table_[agent]->at(v, g_); }
+  // Asks the CPU to start loading agent i's distance of v (no effect on results). A PIBT
+  // call reads a few cells around every agent, each agent in its own table: thousands of
+  // cache misses, which prefetching them all first overlaps instead of paying one by one.
+  void prefetch(int agent, Vertex v) const { __builtin_prefetch(agent_table_[agent]->dist.data() + v); }
   // Distance from v to `goal` (creates the table on first use).
   int32_t from_goal(Vertex goal, Vertex v) { return cache_->table(goal)->at(v, g_); }
 

@@ -118,8 +118,11 @@ class Lacam {
 
   // Drops the tree and starts a new search rooted at `start` towards `goals`. The root's
   // PIBT priorities are `priorities` when given (a lifelong epoch carries them over, so
-  // agents that waited long keep winning conflicts), else distance / N.
-  void reset(const Config& start, const Config& goals, GoalTest test = {}, const float* priorities = nullptr);
+  // agents that waited long keep winning conflicts), else distance / N. `order`, with
+  // `priorities`, is the agents' order under them (or a near one) to sort from: the root's
+  // order is the same, found in O(N) instead of a full sort at each epoch start.
+  void reset(const Config& start, const Config& goals, GoalTest test = {}, const float* priorities = nullptr,
+             const int32_t* order = nullptr);
 
   // Immobile agents (immobile.hpp; per agent, 1 = immobile, empty = none): PIBT keeps them
   // in place, their constraints only let them stay, and LNS refinement is off while any
@@ -164,6 +167,8 @@ class Lacam {
   void reroot(const HNode* child);
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
+  // CPU ms of the costliest expansion of the last search() with a reserve (Budget::reserve_ms).
+  double max_expansion_ms() const { return max_unit_ms_; }
   // expansions() and explored() when the current search found its first solution
   uint64_t expansions_at_solution() const { return solved_expansions_; }
   size_t explored_at_solution() const { return solved_explored_; }
@@ -175,7 +180,8 @@ class Lacam {
   bool check_tree(std::string* why = nullptr) const;
 
  private:
-  HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities = nullptr);
+  HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities = nullptr,
+                  const int32_t* root_order = nullptr);
   bool is_goal(const HNode* h) const;
   // LaCAM* (lacam_star.cpp)
   void link(HNode* a, HNode* b);           // neighbour links both ways, no duplicates
@@ -219,6 +225,7 @@ class Lacam {
   HNode* goal_ = nullptr;
   Status status_ = Status::NoSolution;
   uint64_t expansions_ = 0;
+  double max_unit_ms_ = 0;  // max_expansion_ms()
   bool refining_ = false, refine_capped_ = false;
   LnsRefiner lns_;
   Scatter scatter_;

@@ -46,6 +46,7 @@ class RtLacam : public RealtimePlanner {
   // Never while an agent is immobile: the relaxed search may run dry, the immobility ends.
   bool exhausted() const override { return lacam_.status() == Status::NoSolution && !any_immobile(immobile_); }
   uint64_t expansions() const override { return lacam_.expansions(); }
+  double max_expansion_ms() const { return lacam_.max_expansion_ms(); }  // Lacam::max_expansion_ms
   size_t explored() const override { return lacam_.explored(); }
   std::string name() const override { return "rtlacam"; }
 
@@ -63,6 +64,7 @@ class RtLacam : public RealtimePlanner {
   const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
   std::vector<float> carried_;           // priorities carried into a new epoch
+  std::vector<int32_t> carried_order_;   // the agents' order under them
   bool keep_priorities_;
   const Graph& g_;
   std::vector<uint8_t> immobile_;        // agent -> 1 while immobile

@@ -89,6 +89,16 @@ struct LifelongOptions {
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
   // Only with a positive, finite time budget (expansion-only budgets stay deterministic).
   bool bound_queries = true;
+  // With a time budget, the search stops one expansion's cost bound early: mean + this many
+  // mean deviations of the recent expansions' CPU time (tasks/cost_estimate.hpp).
+  double expansion_deviations = 4;
+  // rtlacam with a time budget: a step whose time left (after its epoch start) is below the
+  // first expansion's bound makes no expansion (the agents follow the tree or wait; under
+  // rotation nothing is pushed) instead of overrunning the budget by one. Off by default: on
+  // WAREHOUSE 1,000 agents at 1 ms it changed rotation throughput by -34 to +5 % for no
+  // reliably better p99 (docs/rotation_lorr.md "Budget at 1 ms"); false: every step makes
+  // at least one.
+  bool skip_late_search = false;
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers
@@ -106,6 +116,7 @@ struct LifelongResult {
   std::vector<double> planner_cpu_ms;  // per step: thread CPU time of the planner_ms work
   std::vector<double> epoch_start_cpu_ms;  // per step: thread CPU time of the epoch_start_ms work
   double ms_per_expansion = 0;      // the runner's moving average of a search expansion, at the end
+  double ms_per_first_expansion = 0;  // the same for a step's first expansion (at the root)
   long steps_over_budget_cpu = 0;   // the same count on CPU time (preemption does not count)
   uint64_t query_pops_max = 0;      // most BFS vertices grown inside queries in one step
   planner::DistCache::Counters dist_counters;  // the shared cache's work counters at the end
@@ -123,6 +134,7 @@ struct LifelongResult {
   std::vector<std::string> actions;  // per robot, one LoRR letter per step (record_actions)
   std::vector<int> final_headings;   // rotation only
   long window_full = 0;              // rotation: steps the planner waited for the slowest robot
+  long searches_skipped = 0;         // steps with no room for an expansion (skip_late_search)
 };
 
 // Starts the tasks at `starts`, builds `solver` (see make_planner) and runs.
