@@ -70,11 +70,12 @@ int main(int argc, char** argv)
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
   std::vector<std::string> solvers = planner::solver_list(true);
   solvers.push_back(tasks::kRotationSolver);
-  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading), rotation only)")
+  solvers.push_back(tasks::kWpplSolver);
+  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot | wppl (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); wppl: windowed LNS over pibt-rot rollouts; both rotation only)")
       ->check(CLI::IsMember(solvers))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
-  app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions per step (deterministic); 0 = none");
+  app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions (wppl: LNS iterations) per step (deterministic); 0 = none");
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_option("--action-model", action_model, "grid4 (4-connected moves) | rotation (LoRR MAPF_T: heading, a step per quarter turn)")
       ->check(CLI::IsMember({"grid4", "rotation"}))
@@ -85,6 +86,14 @@ int main(int argc, char** argv)
   bool rot_back_last = true;
   app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
                "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
+      ->capture_default_str();
+  planner::WpplOptions wppl;
+  app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_flag("--wppl-tail,!--no-wppl-tail", wppl.reuse_tail,
+               "wppl: start from the last window's refined tail when it beats the PIBT rollout")
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
@@ -128,7 +137,7 @@ int main(int argc, char** argv)
     policy::Model model;
     std::unique_ptr<policy::PolicyPreference> pref;
     if (tasks::is_rotation_native(solver) && action_model != "rotation")
-      throw planner::InputError("--solver pibt-rot plans LoRR rotation actions: it needs --action-model rotation");
+      throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: it needs --action-model rotation");
     if (!tasks::is_rotation_native(solver) && planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     if (!policy_file.empty()) {
       model = policy::load_weights(policy_file);
@@ -147,6 +156,7 @@ int main(int argc, char** argv)
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
     opt.rot_back_last = rot_back_last;
+    opt.wppl = wppl;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);

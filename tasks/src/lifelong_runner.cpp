@@ -7,7 +7,8 @@
 #include <memory>
 #include <stdexcept>
 
-#include "planner/rotation_pibt.hpp"
+#include "planner/rotation_planner.hpp"
+#include "planner/wppl.hpp"
 #include "planner/validator.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
@@ -61,7 +62,7 @@ void prefetch_upcoming(const TaskManager& tasks, const planner::Config& at, plan
 }
 
 // pibt-rot: the same goals to come, for its own (cell, heading) tables; nearest agent first.
-void prefetch_rotation(const TaskManager& tasks, planner::RotationPibt& rot)
+void prefetch_rotation(const TaskManager& tasks, planner::RotationPlanner& rot)
 {
   std::vector<std::pair<uint16_t, planner::Vertex>> order;
   for (const auto& u : tasks.upcoming()) order.push_back({rot.h(u.agent), u.goal});
@@ -106,8 +107,9 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   }
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
   p->share_dist_cache(cache);
-  auto* rot = dynamic_cast<planner::RotationPibt*>(p.get());
+  auto* rot = dynamic_cast<planner::RotationPlanner*>(p.get());
   if (rot) rot->set_back_last(opt.rot_back_last);
+  if (auto* w = dynamic_cast<planner::Wppl*>(p.get())) w->set_options(opt.wppl);
   if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.

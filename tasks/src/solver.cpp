@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "planner/rotation_pibt.hpp"
+#include "planner/wppl.hpp"
 #include "planner/solver.hpp"
 
 namespace tasks {
@@ -12,6 +13,11 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver
                                                        planner::GoalTest test, uint64_t seed,
                                                        planner::ActionPreference* pref, bool keep_priorities, bool refine)
 {
+  if (solver == kWpplSolver) {
+    auto p = std::make_unique<planner::Wppl>(g, starts, goals, seed, std::move(test));
+    p->set_max_dist_tables(starts.size() + 256);  // as pibt-rot's
+    return p;
+  }
   if (is_rotation_native(solver)) {
     auto p = std::make_unique<planner::RotationPibt>(g, starts, goals, seed, std::move(test));
     // (cell, heading) tables are 2x a cell table: keep the goals in use + a few hundred.

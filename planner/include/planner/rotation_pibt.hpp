@@ -41,13 +41,13 @@
 #include <string>
 #include <vector>
 
-#include "planner/realtime_planner.hpp"
 #include "planner/rng.hpp"
 #include "planner/rotation_dist.hpp"
+#include "planner/rotation_planner.hpp"
 
 namespace planner {
 
-class RotationPibt : public RealtimePlanner {
+class RotationPibt : public RotationPlanner {
  public:
   static constexpr int kPatience = 3;           // steps a robot facing its cell waits for it before choosing anew
   static constexpr double kDeadEndBoost = 10.0;  // priority per step in a dead end (away from the goal)
@@ -74,17 +74,36 @@ class RotationPibt : public RealtimePlanner {
   // turns it on by default (--no-rot-back-last): +4 to +7 % errands/step on MR23-I-04 / 03 /
   // 05 / 07 and +6 % tasks/step on WAREHOUSE, but -7 % on I-08 and -3 / -9 % on LoRR 2024
   // RANDOM-04 / 05 (docs/rotation_lorr.md).
-  void set_back_last(bool on) { back_last_ = on; }
+  void set_back_last(bool on) override { back_last_ = on; }
 
-  const std::vector<int>& headings() const { return heading_; }
+  const std::vector<int>& headings() const override { return heading_; }
   // The planned step's action per robot, one of "FRCW" (valid after search()).
-  const std::string& actions() const { return action_; }
-  uint16_t h(int agent) const { return dist_.get(goal_table_[agent], current_[agent], heading_[agent]); }
-  const RotationDist& dist() const { return dist_; }
+  const std::string& actions() const override { return action_; }
+  uint16_t h(int agent) const override { return dist_.get(goal_table_[agent], current_[agent], heading_[agent]); }
+  const RotationDist& dist() const override { return dist_; }
+  RotationDist& dist() { return dist_; }
+  RotationDist::Table* goal_table(int agent) const { return goal_table_[agent]; }
   // Lifelong runs: goals known to come (RotationDist::prefetch), grown in spare time.
-  void prefetch(const std::vector<Vertex>& goals) { dist_.prefetch(goals); }
-  bool precompute(std::chrono::steady_clock::time_point deadline) { return dist_.precompute(deadline); }
-  size_t pending() const { return dist_.pending(); }
+  void prefetch(const std::vector<Vertex>& goals) override { dist_.prefetch(goals); }
+  bool precompute(std::chrono::steady_clock::time_point deadline) override { return dist_.precompute(deadline); }
+  size_t pending() const override { return dist_.pending(); }
+
+  // Rollouts (Wppl): the state that commit() changes, to step the planner ahead and back.
+  struct Snapshot {
+    Config current;
+    std::vector<int> heading;
+    std::vector<double> prio;
+    std::vector<int32_t> order;
+    std::vector<Vertex> target;
+    std::vector<int> blocked;
+    Rng rng;
+    uint64_t steps_planned = 0;
+  };
+  Snapshot snapshot() const;
+  void restore(const Snapshot& s);
+  // Commits `actions` (one of "FRCW" per robot; a valid joint step, the caller's check)
+  // instead of the planned ones; a robot whose action differs drops the cell it turned to.
+  void commit_actions(const std::string& actions);
 
  private:
   bool pibt(int i, int asker);  // decides i's cell (decided_); asker: who asked i to vacate its cell

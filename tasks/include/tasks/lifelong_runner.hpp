@@ -40,6 +40,7 @@
 #include "planner/latency.hpp"
 #include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
+#include "planner/wppl.hpp"
 #include "tasks/action_model.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/task_manager.hpp"
@@ -81,6 +82,7 @@ struct LifelongOptions {
   double precompute_share = 0.5;   // of a step's budget at most, first, while prefetched tables are incomplete
   size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
   bool rot_back_last = true;       // pibt-rot: RotationPibt::set_back_last
+  planner::WpplOptions wppl;       // wppl: window, neighbourhood, ...
   // Distance queries past the step's deadline answer lower bounds instead of growing tables
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
   // Only with a positive, finite time budget (expansion-only budgets stay deterministic).
