@@ -92,6 +92,9 @@ int main(int argc, char** argv)
   app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_flag("--wppl-pareto,!--no-wppl-pareto", wppl.pareto,
+               "wppl: accept LNS paths only if no robot of the neighbourhood is worse off")
+      ->capture_default_str();
   app.add_flag("--wppl-tail,!--no-wppl-tail", wppl.reuse_tail,
                "wppl: start from the last window's refined tail when it beats the PIBT rollout")
       ->capture_default_str();

@@ -63,6 +63,17 @@ void Wppl::initial_plan()
   objective_ = 0;
   for (int i = 0; i < n; ++i) objective_ += cost_[i] = cost(i);
   if (tail_valid_ && tail_.size() == plan_.size()) {
+    // The last plan's tail (W states from t = 1) gets its last step from PIBT, one step
+    // from the tail's end states (WPPL extends its previous plan the same way).
+    RotationPibt::Snapshot end = snap;
+    for (int i = 0; i < n; ++i) end.current[i] = tail_[i].back().v, end.heading[i] = tail_[i].back().o;
+    std::fill(end.target.begin(), end.target.end(), -1);
+    std::fill(end.blocked.begin(), end.blocked.end(), 0);
+    pibt_.restore(end);
+    pibt_.search(Budget{});
+    pibt_.commit();
+    for (int i = 0; i < n; ++i) tail_[i].push_back({pibt_.current()[i], pibt_.headings()[i]});
+    pibt_.restore(snap);
     int64_t tail_obj = 0;
     for (int i = 0; i < n; ++i) tail_obj += windowed_cost(pibt_.dist(), pibt_.goal_table(i), goals()[i], tail_[i]);
     if (tail_obj < objective_) {
@@ -141,7 +152,9 @@ bool Wppl::lns_iteration(Clock::time_point deadline)
     res_.add(i, paths[k]);
     new_sum += costs[k];
   }
-  const bool accept = k == nb.size() && new_sum < old_sum;
+  bool accept = k == nb.size() && new_sum < old_sum;
+  if (accept && opt_.pareto)  // nobody worse off: PIBT's precedence (who pushed whom) stands
+    for (size_t j = 0; j < nb.size(); ++j) accept &= costs[j] <= cost_[nb[j]];
   for (size_t j = 0; j < k; ++j) res_.remove(nb[j], paths[j]);
   for (size_t j = 0; j < nb.size(); ++j) {
     const int i = nb[j];
@@ -190,13 +203,9 @@ void Wppl::commit()
   pibt_.search(Budget{});  // the step the rollout started with (same state, same draws)
   pibt_.commit_actions(action_);
   if (opt_.reuse_tail) {
-    // The refined plan one step on, a wait at the end: its cells are distinct at every t
-    // and nobody moves in the last step, so it is conflict-free.
+    // The refined plan one step on (its last step comes from PIBT in initial_plan()).
     tail_.resize(plan_.size());
-    for (size_t i = 0; i < plan_.size(); ++i) {
-      tail_[i].assign(plan_[i].begin() + 1, plan_[i].end());
-      tail_[i].push_back(plan_[i].back());
-    }
+    for (size_t i = 0; i < plan_.size(); ++i) tail_[i].assign(plan_[i].begin() + 1, plan_[i].end());
     tail_valid_ = true;
   }
   planned_ = false;

@@ -44,6 +44,7 @@ struct WpplOptions {
   int neighbourhood = 8;   // robots replanned per LNS iteration
   uint64_t max_iters = 0;  // LNS iterations per step at most (0: the budget decides)
   bool reuse_tail = true;  // start from the last plan's tail when it is better than the rollout
+  bool pareto = false;     // accept a neighbourhood's new paths only if none costs more
 };
 
 class Wppl : public RotationPlanner {
