@@ -41,7 +41,7 @@ namespace planner {
 
 struct WpplOptions {
   int window = 15;         // W: steps planned ahead (WPPL's default in LoRR 2023)
-  int neighbourhood = 8;   // robots replanned per LNS iteration
+  int neighbourhood = 64;  // robots replanned per LNS iteration at most (docs/rotation_lorr.md: 8 / 32 / 64)
   uint64_t max_iters = 0;  // LNS iterations per step at most (0: the budget decides)
   bool reuse_tail = true;  // start from the last plan's tail when it is better than the rollout
   bool pareto = false;     // accept a neighbourhood's new paths only if none costs more
