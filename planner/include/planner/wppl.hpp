@@ -8,12 +8,15 @@
 //  1. An initial plan of every robot's (cell, heading) over a window of W steps: RotationPibt
 //     (the `pibt-rot` step) rolled forward W steps from the current state and put back
 //     (RotationPibt::snapshot / restore; goals stay fixed inside the window). With
-//     `reuse_tail`, the last step's refined plan shifted by the executed step (and a wait
-//     appended: its end cells are distinct, so it stays conflict-free) competes with it:
-//     the one of lower objective starts the LNS, so LNS work carries over between steps.
+//     `reuse_tail`, the last step's refined plan shifted by the executed step, its last
+//     step made by one PIBT step from its end states (as WPPL extends its previous plan;
+//     conflict-free: PIBT's step is), competes with it: the one of lower objective starts
+//     the LNS, so LNS work carries over between steps. (A wait as the last step instead
+//     deadlocked dense maps: MR23-I-07 0.20 errands/step, docs/rotation_lorr.md.)
 //  2. LNS (MAPF-LNS, Li et al. IJCAI 2021) until the budget ends: a neighbourhood of up to
 //     `neighbourhood` robots (a delayed robot, picked at random, and the robots whose
-//     windowed paths stand on the cells of its ideal route, the descent of its h), its paths
+//     windowed paths stand, at any t, on the cells of its ideal route, the descent of its h
+//     over W steps: the robots in its way; at 64, usually all of them), its paths
 //     removed and replanned one by one in random order by space-time A* over (cell,
 //     heading, t) against the others' (st_astar_rot.hpp); kept if the sum of their windowed
 //     costs drops, else put back. Objective: the sum over robots of the windowed cost (the
