@@ -81,11 +81,12 @@ int main(int argc, char** argv)
   std::vector<std::string> solvers = planner::solver_list(true);
   solvers.push_back(tasks::kRotationSolver);
   solvers.push_back(tasks::kEpibtSolver);
-  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot | epibt (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with multi-action operations; both rotation only)")
+  solvers.push_back(tasks::kWpplSolver);
+  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot | epibt | wppl (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with multi-action operations; wppl: windowed LNS over pibt-rot rollouts; the last three rotation only)")
       ->check(CLI::IsMember(solvers))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
-  app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions per step (deterministic); 0 = none");
+  app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions (wppl: LNS iterations) per step (deterministic); 0 = none");
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_option("--action-model", action_model, "grid4 (4-connected moves) | rotation (LoRR MAPF_T: heading, a step per quarter turn)")
       ->check(CLI::IsMember({"grid4", "rotation"}))
@@ -101,7 +102,7 @@ int main(int argc, char** argv)
   // RANDOM-01..05 (docs/rotation_lorr.md "Guidance graph").
   std::string guidance = "arrows", guidance_costs = "1,3,1";
   app.add_option("--guidance", guidance,
-                 "pibt-rot, epibt: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | FILE "
+                 "pibt-rot, epibt, wppl: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | FILE "
                  "(forward costs per cell and heading, planner/guidance.hpp); other solvers: none")
       ->capture_default_str();
   app.add_option("--guidance-costs", guidance_costs, "--guidance arrows: ALONG,AGAINST,TURN costs (1..60)")
@@ -121,6 +122,17 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
       ->check(CLI::IsMember({"distance", "age"}))
+      ->capture_default_str();
+  planner::WpplOptions wppl;
+  app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_flag("--wppl-pareto,!--no-wppl-pareto", wppl.pareto,
+               "wppl: accept LNS paths only if no robot of the neighbourhood is worse off")
+      ->capture_default_str();
+  app.add_flag("--wppl-tail,!--no-wppl-tail", wppl.reuse_tail,
+               "wppl: start from the last window's refined tail when it beats the PIBT rollout")
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
@@ -186,7 +198,7 @@ int main(int argc, char** argv)
     opt.heading_ties = !no_heading_ties;
     opt.rot_back_last = rot_back_last;
     if (!tasks::is_rotation_native(solver)) {
-      if (app.count("--guidance") && guidance != "none") throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot or epibt)");
+      if (app.count("--guidance") && guidance != "none") throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot, epibt or wppl)");
       guidance = "none";
     }
     if (guidance != "none") {
@@ -206,6 +218,7 @@ int main(int argc, char** argv)
     }
     ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
     opt.epibt = ep;
+    opt.wppl = wppl;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);

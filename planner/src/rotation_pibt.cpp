@@ -194,3 +194,40 @@ void RotationPibt::commit()
 }
 
 }  // namespace planner
+
+namespace planner {
+
+RotationPibt::Snapshot RotationPibt::snapshot() const
+{
+  return {current_, heading_, prio_, order_, target_, blocked_, rng_, steps_planned_};
+}
+
+void RotationPibt::restore(const Snapshot& s)
+{
+  for (Vertex v : current_) occ_now_[v] = -1;
+  current_ = s.current;
+  for (size_t i = 0; i < current_.size(); ++i) occ_now_[current_[i]] = static_cast<int32_t>(i);
+  heading_ = s.heading;
+  prio_ = s.prio;
+  order_ = s.order;
+  target_ = s.target;
+  blocked_ = s.blocked;
+  rng_ = s.rng;
+  steps_planned_ = s.steps_planned;
+  next_ = current_;
+  planned_ = false;
+}
+
+void RotationPibt::commit_actions(const std::string& actions)
+{
+  if (!planned_) search(Budget{});
+  if (actions.size() != current_.size()) throw std::invalid_argument("commit_actions: wrong number of actions");
+  for (size_t i = 0; i < current_.size(); ++i) {
+    if (actions[i] != action_[i]) target_[i] = -1, blocked_[i] = 0;  // the cell it turned toward is no longer its plan
+    next_[i] = actions[i] == 'F' ? dist_.ahead(current_[i], heading_[i]) : current_[i];
+  }
+  action_ = actions;
+  commit();
+}
+
+}  // namespace planner

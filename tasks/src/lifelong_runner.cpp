@@ -8,8 +8,10 @@
 
 #include "planner/epibt.hpp"
 #include "planner/rotation_pibt.hpp"
+#include "planner/rotation_planner.hpp"
 #include "planner/rt_lacam.hpp"
 #include "planner/validator.hpp"
+#include "planner/wppl.hpp"
 #include "tasks/cost_estimate.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
@@ -103,7 +105,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   }
   auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
   p->share_dist_cache(cache);
-  auto* rot = dynamic_cast<planner::RotationPlanner*>(p.get());  // pibt-rot, epibt
+  auto* rot = dynamic_cast<planner::RotationPlanner*>(p.get());  // pibt-rot, epibt, wppl
   if (rot) rot->set_back_last(opt.rot_back_last);
   if (rot && !opt.guidance.uniform()) rot->set_guidance(opt.guidance);
   if (auto* ep = dynamic_cast<planner::Epibt*>(p.get())) {
@@ -111,6 +113,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     o.seed = seed;
     ep->set_options(o);
   }
+  if (auto* w = dynamic_cast<planner::Wppl*>(p.get())) w->set_options(opt.wppl);
   if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.

@@ -4,6 +4,7 @@
 
 #include "planner/epibt.hpp"
 #include "planner/rotation_pibt.hpp"
+#include "planner/wppl.hpp"
 #include "planner/solver.hpp"
 
 namespace tasks {
@@ -15,6 +16,11 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver
 {
   if (solver == kEpibtSolver) {
     auto p = std::make_unique<planner::Epibt>(g, starts, goals, planner::Epibt::Options{}, std::move(test));
+    p->set_max_dist_tables(starts.size() + 256);  // as pibt-rot's
+    return p;
+  }
+  if (solver == kWpplSolver) {
+    auto p = std::make_unique<planner::Wppl>(g, starts, goals, seed, std::move(test));
     p->set_max_dist_tables(starts.size() + 256);  // as pibt-rot's
     return p;
   }

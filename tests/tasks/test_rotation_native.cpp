@@ -1,11 +1,12 @@
-// Lifelong runs with the rotation-native planner (--solver pibt-rot): validator-clean
+// Lifelong runs with the rotation-native planners (--solver pibt-rot, wppl): validator-clean
 // executed steps whose letters replay (LoRR MAPF_T) to the robots' cells, events on the
-// errands' cells, throughput > 0 on several seeds; pibt-rot is refused with grid4.
+// errands' cells, throughput > 0 on several seeds; pibt-rot and wppl are refused with grid4.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "planner/guidance.hpp"
@@ -34,18 +35,18 @@ LifelongOptions rotation_options(long steps)
   return opt;
 }
 
-}  // namespace
-
-TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
+// Runs `solver` on MR23-I-04 (100 robots, random-32-32-20) for opt.steps steps with
+// several seeds; every executed step replays (LoRR MAPF_T) to validator-clean cells and
+// errands complete on their cells. At least `min_errands` per run.
+void expect_valid_lorr_runs(const std::string& solver, const LifelongOptions& opt, long min_errands)
 {
-  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");  // 100 robots, random-32-32-20
+  const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   const planner::Graph& g = L.g;
   for (uint64_t seed : {0, 1, 2}) {
     RoundRobin rr(L.file);
-    const LifelongOptions opt = rotation_options(300);
-    const LifelongResult r = run_lifelong(g, L.starts, rr, kRotationSolver, seed, opt);
+    const LifelongResult r = run_lifelong(g, L.starts, rr, solver, seed, opt);
     EXPECT_EQ(r.planner_errors, 0) << r.first_error;
-    EXPECT_GT(r.errands_finished, 300) << "seed " << seed;  // measured ~2.4 errands/step at 500 steps
+    EXPECT_GT(r.errands_finished, min_errands) << solver << " seed " << seed;
     std::vector<Config> at(static_cast<size_t>(opt.steps) + 1, L.starts);
     std::vector<int> h(L.starts.size(), 0);  // all start facing east
     long turns = 0;
@@ -69,26 +70,43 @@ TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
   }
 }
 
+}  // namespace
+
+TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
+{
+  expect_valid_lorr_runs(kRotationSolver, rotation_options(300), 300);  // measured ~2.4 errands/step at 500 steps
+}
+
+TEST(RotationNative, WpplLifelongStepsAreValidLorrActionsOnSeveralSeeds)
+{
+  LifelongOptions opt = rotation_options(300);
+  opt.budget = planner::Budget::expansion_count(10);  // 10 LNS iterations per step: deterministic
+  expect_valid_lorr_runs(kWpplSolver, opt, 300);
+}
+
 TEST(RotationNative, GuidedAndDeadlineBoundedStepsAreValidLorrActions)
 {
-  // pibt-rot and epibt on arrow guidance (planner/guidance.hpp), then also under a 0.05 ms
+  // pibt-rot, epibt and wppl on arrow guidance (planner/guidance.hpp), then also under a 0.05 ms
   // budget whose deadline bounds their distance queries (lower bounds, tables grown in spare
   // time): every step is checked by the runner (Validator, check_rotation_step) and
   // replayed here.
   const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   const planner::Graph& g = L.g;
-  for (const std::string solver : {std::string(kRotationSolver), std::string(kEpibtSolver)})
+  for (const std::string solver : {std::string(kRotationSolver), std::string(kEpibtSolver), std::string(kWpplSolver)})
   for (double ms : {100.0, 0.05}) {
     SCOPED_TRACE(solver);
     std::string plain;
     {
       RoundRobin rr(L.file);
-      plain = run_lifelong(g, L.starts, rr, solver, 0, rotation_options(200)).actions[0];
+      LifelongOptions po = rotation_options(200);
+      if (solver == kWpplSolver) po.budget = planner::Budget::expansion_count(10);
+      plain = run_lifelong(g, L.starts, rr, solver, 0, po).actions[0];
     }
     RoundRobin rr(L.file);
     LifelongOptions opt = rotation_options(200);
     opt.budget = planner::Budget::time_ms(ms);
     opt.guidance = planner::arrow_guidance(g, 2, 6, 2);
+    if (solver == kWpplSolver && ms == 100.0) opt.budget = planner::Budget::expansion_count(10);  // deterministic
     const LifelongResult r = run_lifelong(g, L.starts, rr, solver, 0, opt);
     EXPECT_EQ(r.planner_errors, 0) << r.first_error;
     EXPECT_GT(r.errands_finished, 150) << ms << " ms";  // measured ~2.7 errands/step at 500 steps
@@ -126,6 +144,7 @@ TEST(RotationNative, RefusedWithGrid4)
   opt.action_model = ActionModel::Grid4;
   EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kRotationSolver, 0, opt), std::invalid_argument);
   EXPECT_THROW(run_lifelong_exec(L.g, L.starts, rr, kRotationSolver, 0, opt, {}, {}), std::invalid_argument);
+  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kWpplSolver, 0, opt), std::invalid_argument);
   // The app: one line naming the option, exit code 2.
   const std::string e = test::temp_path("pibt-rot.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
@@ -139,6 +158,15 @@ TEST(RotationNative, RefusedWithGrid4)
   const std::string err = ss.str();
   EXPECT_NE(err.find("--action-model rotation"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  const int rc2 = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
+                               "/2023/random.domain/MR23-I-04.json --solver wppl --steps 5 >/dev/null 2>" + e)
+                                  .c_str());
+  ASSERT_TRUE(WIFEXITED(rc2));
+  EXPECT_EQ(WEXITSTATUS(rc2), 2);
+  std::ifstream in2(e);
+  const std::string err2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+  EXPECT_NE(err2.find("--solver wppl"), std::string::npos) << err2;
+  EXPECT_EQ(std::count(err2.begin(), err2.end(), '\n'), 1) << err2;
 }
 
 TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)

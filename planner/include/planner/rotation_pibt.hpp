@@ -90,10 +90,29 @@ class RotationPibt : public RotationPlanner {
   const std::string& actions() const override { return action_; }
   uint16_t h(int agent) const override { return dist_.get(goal_table_[agent], current_[agent], heading_[agent]); }
   const RotationDist& dist() const override { return dist_; }
+  RotationDist& dist() { return dist_; }
+  RotationDist::Table* goal_table(int agent) const { return goal_table_[agent]; }
   // Lifelong runs: goals known to come (RotationDist::prefetch), grown in spare time.
   void prefetch(const std::vector<Vertex>& goals) override { dist_.prefetch(goals); }
   bool precompute(std::chrono::steady_clock::time_point deadline) override { return dist_.precompute(deadline); }
   size_t pending() const override { return dist_.pending(); }
+
+  // Rollouts (Wppl): the state that commit() changes, to step the planner ahead and back.
+  struct Snapshot {
+    Config current;
+    std::vector<int> heading;
+    std::vector<double> prio;
+    std::vector<int32_t> order;
+    std::vector<Vertex> target;
+    std::vector<int> blocked;
+    Rng rng;
+    uint64_t steps_planned = 0;
+  };
+  Snapshot snapshot() const;
+  void restore(const Snapshot& s);
+  // Commits `actions` (one of "FRCW" per robot; a valid joint step, the caller's check)
+  // instead of the planned ones; a robot whose action differs drops the cell it turned to.
+  void commit_actions(const std::string& actions);
 
  private:
   bool pibt(int i, int asker);  // decides i's cell (decided_); asker: who asked i to vacate its cell

@@ -42,6 +42,7 @@
 #include "planner/latency.hpp"
 #include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
+#include "planner/wppl.hpp"
 #include "tasks/action_model.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/task_manager.hpp"
@@ -85,6 +86,7 @@ struct LifelongOptions {
   bool rot_back_last = true;       // pibt-rot: RotationPibt::set_back_last
   planner::Guidance guidance;      // pibt-rot: distances in these costs (planner/guidance.hpp); default: none
   planner::Epibt::Options epibt;   // epibt: operation depth, revisits, priorities (planner/epibt.hpp)
+  planner::WpplOptions wppl;       // wppl: window, neighbourhood, ...
   // Distance queries past the step's deadline answer lower bounds instead of growing tables
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
   // Only with a positive, finite time budget (expansion-only budgets stay deterministic).

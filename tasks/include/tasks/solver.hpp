@@ -13,10 +13,12 @@ namespace tasks {
 
 // pibt-rot (planner/rotation_pibt.hpp) plans LoRR rotation actions itself: the runner
 // then executes its actions directly (no RotationExecutor); rotation action model only.
+// wppl (planner/wppl.hpp): windowed LNS over pibt-rot's rollouts, the same contract.
 constexpr const char* kRotationSolver = "pibt-rot";
 // epibt (planner/epibt.hpp): EPIBT, PIBT with multi-action operations; rotation only too.
 constexpr const char* kEpibtSolver = "epibt";
-inline bool is_rotation_native(const std::string& solver) { return solver == kRotationSolver || solver == kEpibtSolver; }
+constexpr const char* kWpplSolver = "wppl";
+inline bool is_rotation_native(const std::string& solver) { return solver == kRotationSolver || solver == kEpibtSolver || solver == kWpplSolver; }
 
 // Throws std::invalid_argument for other names (lacam too), and for cspibt without `pref`.
 std::unique_ptr<planner::RealtimePlanner> make_planner(const std::string& solver, const planner::Graph& g,
