@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "planner/graph.hpp"
+#include "planner/rng.hpp"
 
 namespace test {
 
@@ -15,6 +16,17 @@ inline planner::Graph grid(const std::vector<std::string>& rows)
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) free[static_cast<size_t>(y) * w + x] = rows[y].at(x) == '.';
   return planner::Graph::from_grid(w, h, free);
+}
+
+// A random w x h grid with about `pct` % obstacles (seeded), its free cells connected or not.
+inline planner::Graph random_grid(int w, int h, int pct, uint64_t seed)
+{
+  planner::Rng rng(seed);
+  std::vector<std::string> rows(static_cast<size_t>(h), std::string(static_cast<size_t>(w), '.'));
+  for (auto& r : rows)
+    for (auto& c : r)
+      if (rng.below(100) < static_cast<uint32_t>(pct)) c = '@';
+  return grid(rows);
 }
 
 }  // namespace test

@@ -23,16 +23,7 @@ using planner::Vertex;
 
 namespace {
 
-// A random w x h grid with about `pct` % obstacles (as in test_rotation_pibt.cpp).
-Graph random_grid(int w, int h, int pct, uint64_t seed)
-{
-  planner::Rng rng(seed);
-  std::vector<std::string> rows(static_cast<size_t>(h), std::string(static_cast<size_t>(w), '.'));
-  for (auto& r : rows)
-    for (auto& c : r)
-      if (rng.below(100) < static_cast<uint32_t>(pct)) c = '@';
-  return test::grid(rows);
-}
+using test::random_grid;
 
 // Brute force: forward BFS over (cell, heading) with the MAPF_T moves from (v, o) until a
 // state on `goal`; kInf when none is reachable.

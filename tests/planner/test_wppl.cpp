@@ -29,15 +29,7 @@ using planner::WpplOptions;
 
 namespace {
 
-Graph random_grid(int w, int h, int pct, uint64_t seed)
-{
-  planner::Rng rng(seed);
-  std::vector<std::string> rows(static_cast<size_t>(h), std::string(static_cast<size_t>(w), '.'));
-  for (auto& r : rows)
-    for (auto& c : r)
-      if (rng.below(100) < static_cast<uint32_t>(pct)) c = '@';
-  return test::grid(rows);
-}
+using test::random_grid;
 
 // One MAPF_T action from s: F into the cell ahead (-1 if none), R, C, W.
 RotState apply(const RotationDist& d, RotState s, char a)
