@@ -171,7 +171,8 @@ TEST(RotationNative, RefusedWithGrid4)
 
 TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)
 {
-  // rtlacam-lifelong: arrows by default for pibt-rot (reported in the log), none named; a
+  // rtlacam-lifelong: arrows by default for pibt-rot and epibt (reported in the log), none
+  // for wppl, and none named; a
   // bad guidance file, or --guidance with a cell-plan solver: one line, exit code 2.
   auto run = [](const std::string& args, std::string& out, std::string& err) {
     const std::string o = test::temp_path("guid.out"), e = test::temp_path("guid.err");
@@ -189,6 +190,13 @@ TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)
   EXPECT_NE(out.find("\"guidance\": \"arrows 1,3,1\""), std::string::npos) << out;
   ASSERT_EQ(run("--action-model rotation --solver pibt-rot --guidance none", out, err), 0) << err;
   EXPECT_EQ(out.find("\"guidance\""), std::string::npos);
+  // epibt: arrows by default as well; wppl: none unless named.
+  ASSERT_EQ(run("--action-model rotation --solver epibt", out, err), 0) << err;
+  EXPECT_NE(out.find("\"guidance\": \"arrows 1,3,1\""), std::string::npos) << out;
+  ASSERT_EQ(run("--action-model rotation --solver wppl --budget-expansions 2", out, err), 0) << err;
+  EXPECT_EQ(out.find("\"guidance\""), std::string::npos) << out;
+  ASSERT_EQ(run("--action-model rotation --solver wppl --budget-expansions 2 --guidance arrows", out, err), 0) << err;
+  EXPECT_NE(out.find("\"guidance\": \"arrows 1,3,1\""), std::string::npos) << out;
   const std::string bad = test::temp_path("bad_guidance.txt");
   std::ofstream(bad) << "turn 1\n0 0 1 1 1\n";
   EXPECT_EQ(run("--action-model rotation --solver pibt-rot --guidance " + bad, out, err), 2);
