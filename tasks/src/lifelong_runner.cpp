@@ -205,8 +205,12 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     if (search_now) {
       const auto t1 = Clock::now();
       double c1 = thread_cpu_ms();
-      if (!bounded) {  // no time limit (or exact queries): the search's own loop, as before
+      // Rotation-native planners (pibt-rot, epibt, wppl) plan a whole step in one call and
+      // check the deadline themselves: give them the time left (an expansion-count call
+      // would run them without a clock).
+      if (!bounded || rot) {  // no time limit (or exact queries): the search's own loop, as before
         b.ms = std::max(0.0, b.ms - reserve);  // it checks its deadline after each expansion
+        if (bounded) bound_queries(b.deadline_from(t1));
         const uint64_t e0 = p->expansions();
         p->search(b);
         if (const uint64_t de = p->expansions() - e0; de > 0)
