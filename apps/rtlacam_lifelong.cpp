@@ -123,6 +123,16 @@ int main(int argc, char** argv)
   app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
       ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();
+  // Online traffic-flow guide paths for epibt (planner/traffic_flow.hpp; docs/rotation_lorr.md "Traffic flow").
+  std::string traffic_flow = "off", tf_weights = "1,0.25";
+  app.add_option("--traffic-flow", traffic_flow, "epibt: off | on (congestion-aware guide path per robot, computed online)")
+      ->check(CLI::IsMember({"off", "on"}))
+      ->capture_default_str();
+  app.add_option("--tf-weights", tf_weights, "--traffic-flow on: CONTRAFLOW,VERTEX weights (0..1000) of the congestion costs")
+      ->capture_default_str();
+  app.add_option("--tf-refresh", ep.tf.refresh, "--traffic-flow on: guide paths re-planned per step beyond goal changes")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   planner::WpplOptions wppl;
   app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
@@ -220,6 +230,14 @@ int main(int argc, char** argv)
       }
     }
     ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
+    if (traffic_flow == "on") {
+      if (solver != tasks::kEpibtSolver) throw planner::InputError("--traffic-flow on needs --solver epibt");
+      char end = 0;
+      if (std::sscanf(tf_weights.c_str(), "%lf,%lf%c", &ep.tf.contraflow, &ep.tf.vertex, &end) != 2 || !(ep.tf.contraflow >= 0) ||
+          !(ep.tf.vertex >= 0) || ep.tf.contraflow > 1000 || ep.tf.vertex > 1000)
+        throw planner::InputError("--tf-weights '" + tf_weights + "': expected CONTRAFLOW,VERTEX, each 0..1000");
+      ep.tf.on = true;
+    }
     opt.epibt = ep;
     opt.wppl = wppl;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
@@ -271,6 +289,7 @@ int main(int argc, char** argv)
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
     if (guidance != "none") j["guidance"] = guidance == "arrows" ? "arrows " + guidance_costs : guidance;
+    if (ep.tf.on) j["trafficFlow"] = {{"contraflow", ep.tf.contraflow}, {"vertex", ep.tf.vertex}, {"refresh", ep.tf.refresh}};
     if (!executor_mode.empty())
       j["executor"] = {{"mode", exec.mode},
                        {"window", exec.window},
