@@ -125,6 +125,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   // Online traffic-flow guide paths for epibt (planner/traffic_flow.hpp; docs/rotation_lorr.md "Traffic flow").
   std::string traffic_flow = "off", tf_weights = "1,0.25";
+  bool tf_active = true;
   app.add_option("--traffic-flow", traffic_flow, "epibt: off | on (congestion-aware guide path per robot, computed online)")
       ->check(CLI::IsMember({"off", "on"}))
       ->capture_default_str();
@@ -237,6 +238,12 @@ int main(int argc, char** argv)
           !(ep.tf.vertex >= 0) || ep.tf.contraflow > 1000 || ep.tf.vertex > 1000)
         throw planner::InputError("--tf-weights '" + tf_weights + "': expected CONTRAFLOW,VERTEX, each 0..1000");
       ep.tf.on = true;
+      // Epibt keeps it off where the per-robot tables would not fit (TrafficFlowOptions::max_entries).
+      if (starts.size() * 4 * static_cast<size_t>(g.size()) > ep.tf.max_entries) {
+        std::cerr << "--traffic-flow on: off for this run (" << starts.size() << " robots x 4 x " << g.size()
+                  << " cells of guide tables > " << ep.tf.max_entries << " entries)\n";
+        tf_active = false;
+      }
     }
     opt.epibt = ep;
     opt.wppl = wppl;
@@ -289,7 +296,8 @@ int main(int argc, char** argv)
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
     if (guidance != "none") j["guidance"] = guidance == "arrows" ? "arrows " + guidance_costs : guidance;
-    if (ep.tf.on) j["trafficFlow"] = {{"contraflow", ep.tf.contraflow}, {"vertex", ep.tf.vertex}, {"refresh", ep.tf.refresh}};
+    if (ep.tf.on)
+      j["trafficFlow"] = {{"active", tf_active}, {"contraflow", ep.tf.contraflow}, {"vertex", ep.tf.vertex}, {"refresh", ep.tf.refresh}};
     if (!executor_mode.empty())
       j["executor"] = {{"mode", exec.mode},
                        {"window", exec.window},
