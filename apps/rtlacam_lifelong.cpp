@@ -124,9 +124,10 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();
   // Online traffic-flow guide paths for epibt (planner/traffic_flow.hpp; docs/rotation_lorr.md "Traffic flow").
-  std::string traffic_flow = "off", tf_weights = "1,0.25";
+  // Default on for epibt (rotation): +X to +Y % errands/step on MR23 (docs/rotation_lorr.md "Traffic flow").
+  std::string traffic_flow = "on", tf_weights = "1,0.1";
   bool tf_active = true;
-  app.add_option("--traffic-flow", traffic_flow, "epibt: off | on (congestion-aware guide path per robot, computed online)")
+  app.add_option("--traffic-flow", traffic_flow, "epibt: off | on (congestion-aware guide path per robot, computed online; default on for epibt)")
       ->check(CLI::IsMember({"off", "on"}))
       ->capture_default_str();
   app.add_option("--tf-weights", tf_weights, "--traffic-flow on: CONTRAFLOW,VERTEX weights (0..1000) of the congestion costs")
@@ -231,8 +232,11 @@ int main(int argc, char** argv)
       }
     }
     ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
+    if (traffic_flow == "on" && solver != tasks::kEpibtSolver) {
+      if (app.count("--traffic-flow")) throw planner::InputError("--traffic-flow on needs --solver epibt");
+      traffic_flow = "off";  // the default applies to epibt only
+    }
     if (traffic_flow == "on") {
-      if (solver != tasks::kEpibtSolver) throw planner::InputError("--traffic-flow on needs --solver epibt");
       char end = 0;
       if (std::sscanf(tf_weights.c_str(), "%lf,%lf%c", &ep.tf.contraflow, &ep.tf.vertex, &end) != 2 || !(ep.tf.contraflow >= 0) ||
           !(ep.tf.vertex >= 0) || ep.tf.contraflow > 1000 || ep.tf.vertex > 1000)
@@ -240,8 +244,9 @@ int main(int argc, char** argv)
       ep.tf.on = true;
       // Epibt keeps it off where the per-robot tables would not fit (TrafficFlowOptions::max_entries).
       if (starts.size() * 4 * static_cast<size_t>(g.size()) > ep.tf.max_entries) {
-        std::cerr << "--traffic-flow on: off for this run (" << starts.size() << " robots x 4 x " << g.size()
-                  << " cells of guide tables > " << ep.tf.max_entries << " entries)\n";
+        if (app.count("--traffic-flow"))
+          std::cerr << "--traffic-flow on: off for this run (" << starts.size() << " robots x 4 x " << g.size()
+                    << " cells of guide tables > " << ep.tf.max_entries << " entries)\n";
         tf_active = false;
       }
     }

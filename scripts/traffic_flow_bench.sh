@@ -14,5 +14,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 export OUT=${OUT:-out/traffic_flow}
 export SEEDS=${SEEDS:-"0 1 2"}
-export VARIANTS=${VARIANTS:-"epibt-arrows=--solver epibt;epibt-arrows-tf=--solver epibt --traffic-flow on"}
+export VARIANTS=${VARIANTS:-"epibt-arrows=--solver epibt --traffic-flow off;epibt-arrows-tf=--solver epibt --traffic-flow on"}
 exec scripts/epibt_bench.sh

@@ -80,3 +80,22 @@ TEST(TrafficFlowLifelong, BadOptionsAreOneLineAndExitCode2)
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << b.args << ": " << err;
   }
 }
+
+TEST(TrafficFlowLifelong, OnByDefaultForEpibtOnly)
+{
+  const std::string p = ttest::kData + "/2023/random.domain/MR23-I-04.json --action-model rotation --steps 5 --quiet";
+  auto json_of = [&p](const std::string& args) {
+    const std::string o = test::temp_path("tf.json");
+    const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + p + " " + args + " >" + o + " 2>/dev/null").c_str());
+    EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) == 0) << args;
+    std::ifstream in(o);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  const std::string ep = json_of("--solver epibt");
+  EXPECT_NE(ep.find("\"trafficFlow\""), std::string::npos) << ep;
+  EXPECT_NE(ep.find("\"active\": true"), std::string::npos) << ep;
+  EXPECT_EQ(json_of("--solver epibt --traffic-flow off").find("\"trafficFlow\""), std::string::npos);
+  EXPECT_EQ(json_of("--solver pibt-rot").find("\"trafficFlow\""), std::string::npos);
+}

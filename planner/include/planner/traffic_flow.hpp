@@ -42,10 +42,11 @@ namespace planner {
 
 struct TrafficFlowOptions {
   bool on = false;
+  // Weights and refresh chosen on MR23-I-05 / I-07 seed 0 (docs/rotation_lorr.md "Traffic flow").
   double contraflow = 1.0;  // weight of each robot planned across the edge the other way
-  double vertex = 0.25;     // weight of each guide-path move into the cell
+  double vertex = 0.1;      // weight of each guide-path move into the cell
   // Guide paths re-planned per step beyond goal changes (round robin; 0: only on a goal change).
-  int refresh = 0;
+  int refresh = 4;
   double share = 0.5;          // of a step's budget for guide-path work; the rest waits for the next step
   size_t max_entries = 1u << 26;  // robots x 4 x cells above this: off (256 MB of tables)
 };
