@@ -82,7 +82,8 @@ void TrafficFlow::plan(int agent, Vertex v0, int o0, Vertex goal)
   const auto later = std::greater<std::pair<uint32_t, int32_t>>();
   for (int o = 0; o < 4; ++o) t[static_cast<size_t>(goal) * 4 + static_cast<size_t>(o)] = 0, heap_.push_back({0, goal * 4 + o});
   const uint32_t turn_cost = turn();
-  auto relax = [&](int32_t s, uint32_t d) {
+  auto relax = [&](int32_t s, uint64_t d64) {
+    const uint32_t d = static_cast<uint32_t>(std::min<uint64_t>(d64, kInf - 1));  // heavy weights saturate, never wrap
     if (d < t[static_cast<size_t>(s)]) {
       t[static_cast<size_t>(s)] = d;
       heap_.push_back({d, s});
@@ -96,10 +97,10 @@ void TrafficFlow::plan(int agent, Vertex v0, int o0, Vertex goal)
     if (d > t[static_cast<size_t>(s)]) continue;
     const Vertex u = s / 4;
     const int o = s % 4;
-    relax(u * 4 + (o + 1) % 4, d + turn_cost);  // (u, o + 1) turns counter-clockwise into (u, o)
-    relax(u * 4 + (o + 3) % 4, d + turn_cost);  // (u, o - 1) turns clockwise
+    relax(u * 4 + (o + 1) % 4, uint64_t{d} + turn_cost);  // (u, o + 1) turns counter-clockwise into (u, o)
+    relax(u * 4 + (o + 3) % 4, uint64_t{d} + turn_cost);  // (u, o - 1) turns clockwise
     const Vertex v = dist_.ahead(u, (o + 2) % 4);  // (v, o) moves forward into u
-    if (v >= 0) relax(v * 4 + o, d + forward(v, o));
+    if (v >= 0) relax(v * 4 + o, uint64_t{d} + forward(v, o));
   }
   // The guide path: down the table from (v0, o0), forward first on ties.
   std::vector<int32_t>& p = path_[static_cast<size_t>(agent)];
