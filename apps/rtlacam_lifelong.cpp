@@ -124,7 +124,7 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();
   // Online traffic-flow guide paths for epibt (planner/traffic_flow.hpp; docs/rotation_lorr.md "Traffic flow").
-  // Default on for epibt (rotation): +X to +Y % errands/step on MR23 (docs/rotation_lorr.md "Traffic flow").
+  // Default on for epibt (rotation): +2 to +69 % errands/step on MR23, 5 seeds (docs/rotation_lorr.md "Traffic flow").
   std::string traffic_flow = "on", tf_weights = "1,0.1";
   bool tf_active = true;
   app.add_option("--traffic-flow", traffic_flow, "epibt: off | on (congestion-aware guide path per robot, computed online; default on for epibt)")
