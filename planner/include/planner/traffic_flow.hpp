@@ -45,7 +45,9 @@ struct TrafficFlowOptions {
   // Weights and refresh chosen on MR23-I-05 / I-07 seed 0 (docs/rotation_lorr.md "Traffic flow").
   double contraflow = 1.0;  // weight of each robot planned across the edge the other way
   double vertex = 0.1;      // weight of each guide-path move into the cell
-  // Guide paths re-planned per step beyond goal changes (round robin; 0: only on a goal change).
+  // Guide paths re-planned beyond goal changes (round robin; 0: only on a goal change): Epibt
+  // re-plans this many each time its queue of new goals is done before a step is planned
+  // (in search(), and in a pre-search precompute() that had new goals: up to twice per step).
   int refresh = 4;
   double share = 0.5;          // of a step's budget for guide-path work; the rest waits for the next step
   size_t max_entries = 1u << 26;  // robots x 4 x cells above this: off (256 MB of tables)
