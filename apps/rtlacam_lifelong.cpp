@@ -123,6 +123,18 @@ int main(int argc, char** argv)
   app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
       ->check(CLI::IsMember({"distance", "age"}))
       ->capture_default_str();
+  // Online traffic-flow guide paths for epibt (planner/traffic_flow.hpp; docs/rotation_lorr.md "Traffic flow").
+  // Default on for epibt (rotation): +2 to +69 % errands/step on MR23, 5 seeds (docs/rotation_lorr.md "Traffic flow").
+  std::string traffic_flow = "on", tf_weights = "1,0.1";
+  bool tf_active = true;
+  app.add_option("--traffic-flow", traffic_flow, "epibt: off | on (congestion-aware guide path per robot, computed online; default on for epibt)")
+      ->check(CLI::IsMember({"off", "on"}))
+      ->capture_default_str();
+  app.add_option("--tf-weights", tf_weights, "--traffic-flow on: CONTRAFLOW,VERTEX weights (0..1000) of the congestion costs")
+      ->capture_default_str();
+  app.add_option("--tf-refresh", ep.tf.refresh, "--traffic-flow on: guide paths re-planned per step beyond goal changes")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   planner::WpplOptions wppl;
   app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
@@ -220,6 +232,24 @@ int main(int argc, char** argv)
       }
     }
     ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
+    if (traffic_flow == "on" && solver != tasks::kEpibtSolver) {
+      if (app.count("--traffic-flow")) throw planner::InputError("--traffic-flow on needs --solver epibt");
+      traffic_flow = "off";  // the default applies to epibt only
+    }
+    if (traffic_flow == "on") {
+      char end = 0;
+      if (std::sscanf(tf_weights.c_str(), "%lf,%lf%c", &ep.tf.contraflow, &ep.tf.vertex, &end) != 2 || !(ep.tf.contraflow >= 0) ||
+          !(ep.tf.vertex >= 0) || ep.tf.contraflow > 1000 || ep.tf.vertex > 1000)
+        throw planner::InputError("--tf-weights '" + tf_weights + "': expected CONTRAFLOW,VERTEX, each 0..1000");
+      ep.tf.on = true;
+      // Epibt keeps it off where the per-robot tables would not fit (TrafficFlowOptions::max_entries).
+      if (starts.size() * 4 * static_cast<size_t>(g.size()) > ep.tf.max_entries) {
+        if (app.count("--traffic-flow"))
+          std::cerr << "--traffic-flow on: off for this run (" << starts.size() << " robots x 4 x " << g.size()
+                    << " cells of guide tables > " << ep.tf.max_entries << " entries)\n";
+        tf_active = false;
+      }
+    }
     opt.epibt = ep;
     opt.wppl = wppl;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
@@ -271,6 +301,8 @@ int main(int argc, char** argv)
     RunInfo info{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed};
     nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
     if (guidance != "none") j["guidance"] = guidance == "arrows" ? "arrows " + guidance_costs : guidance;
+    if (ep.tf.on)
+      j["trafficFlow"] = {{"active", tf_active}, {"contraflow", ep.tf.contraflow}, {"vertex", ep.tf.vertex}, {"refresh", ep.tf.refresh}};
     if (!executor_mode.empty())
       j["executor"] = {{"mode", exec.mode},
                        {"window", exec.window},

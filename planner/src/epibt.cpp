@@ -139,6 +139,46 @@ void Epibt::set_options(const Options& opt)
   rng_ = Rng(opt.seed);
   ++stamp_;  // candidates of the old set are stale
   planned_ = false;
+  tf_reset();
+}
+
+void Epibt::tf_reset()
+{
+  tf_.reset();
+  tf_queue_.clear();
+  const size_t n = current_.size();
+  tf_queued_.assign(n, 0);
+  tf_next_ = 0;
+  if (!opt_.tf.on || n * 4 * static_cast<size_t>(g_.size()) > opt_.tf.max_entries) return;
+  tf_ = std::make_unique<TrafficFlow>(dist_, n, opt_.tf);
+  for (size_t i = 0; i < n; ++i) tf_queue_.push_back(static_cast<int32_t>(i)), tf_queued_[i] = 1;
+}
+
+void Epibt::tf_work(Clock::time_point deadline)
+{
+  if (!tf_) return;
+  const bool clock = deadline != Clock::time_point::max();
+  while (!tf_queue_.empty() && !(clock && Clock::now() >= deadline)) {
+    const int i = tf_queue_.front();
+    tf_queue_.pop_front();
+    tf_queued_[static_cast<size_t>(i)] = 0;
+    tf_->plan(i, current_[i], heading_[i], goals_[i]);
+    cand_stamp_[i] = 0;  // ranked anew
+  }
+  if (!tf_queue_.empty() || planned_) return;
+  // Refresh: the oldest guide paths again under today's traffic (round robin).
+  const size_t n = current_.size();
+  for (int k = 0; k < opt_.tf.refresh && n > 0 && !(clock && Clock::now() >= deadline); ++k) {
+    const int i = static_cast<int>(tf_next_++ % n);
+    tf_->plan(i, current_[i], heading_[i], goals_[i]);
+    cand_stamp_[i] = 0;
+  }
+}
+
+bool Epibt::precompute(std::chrono::steady_clock::time_point deadline)
+{
+  if (tf_ && !tf_queue_.empty()) tf_work(deadline);
+  return dist_.precompute(deadline) || !tf_queue_.empty();
 }
 
 void Epibt::set_guidance(Guidance gd)
@@ -150,6 +190,7 @@ void Epibt::set_guidance(Guidance gd)
   const Config goals = goals_;
   set_goals(goals, test_);
   ++stamp_;  // candidates ranked by the old costs are stale
+  if (tf_) tf_reset();  // guide tables in the old costs: all anew
 }
 
 void Epibt::set_goals(const Config& goals, GoalTest test)
@@ -158,6 +199,10 @@ void Epibt::set_goals(const Config& goals, GoalTest test)
   for (size_t i = 0; i < goals.size(); ++i) {
     if (goals[i] < 0 || goals[i] >= g_.size()) throw std::invalid_argument("goal of agent " + std::to_string(i) + " not in the graph");
     if (goal_table_[i] && goals_[i] == goals[i]) continue;
+    if (tf_) {  // a new goal: the old guide path leaves the flows, a new one is wanted
+      tf_->drop(static_cast<int>(i));
+      if (!tf_queued_[i]) tf_queue_.push_back(static_cast<int32_t>(i)), tf_queued_[i] = 1;
+    }
     if (goal_table_[i]) dist_.unpin(goal_table_[i]);
     goal_table_[i] = dist_.table(goals[i]);
     dist_.pin(goal_table_[i]);
@@ -259,7 +304,24 @@ void Epibt::candidates(int i)
     if (!walk(i, static_cast<int>(op), cells, edges, &o)) continue;
     uint32_t cost = 0;
     int first = 0;  // the action after which it first stands on its goal (0: never)
-    if (!guided_) {
+    if (tf_ && tf_->has(i)) {
+      // Traffic flow: the actions at their guided costs (in kScale units) + the robot's
+      // congestion-aware h of the end state (its own guide table).
+      const std::string& a = ops_[op].acts;
+      const uint32_t unit = TrafficFlow::kScale;
+      Vertex v = current_[i];
+      int hd = heading_[i];
+      for (int d = 0; d < D; ++d) {
+        if (a[d] == 'F') cost += unit * dist_.forward_cost(v, hd), v = cells[d];
+        else if (a[d] == 'W') cost += unit * wait_cost_;
+        else cost += unit * dist_.turn_cost(), hd = (hd + (a[d] == 'R' ? 1 : 3)) % 4;
+        if (!on_goal && cells[d] == goal) {
+          first = d + 1;
+          break;
+        }
+      }
+      if (!first) cost += std::min<uint32_t>(tf_->h(i, cells[D - 1], o), 1u << 24);
+    } else if (!guided_) {
       if (!on_goal)
         for (int d = 0; d < D && !first; ++d)
           if (cells[d] == goal) first = d + 1;
@@ -281,6 +343,7 @@ void Epibt::candidates(int i)
       }
       if (!first) cost += dist_.get(goal_table_[i], cells[D - 1], o);
     }
+    if (tf_ && !tf_->has(i)) cost *= tf_unit();  // one scale for every robot (LNS gains)
     score_of_[static_cast<size_t>(i) * m + op] = cost * static_cast<uint32_t>(m) + static_cast<uint32_t>(op);
     if (wait && !opt_.wait_op && !on_goal) continue;
     c[k++] = {cost, static_cast<uint8_t>(op)};
@@ -364,8 +427,10 @@ Status Epibt::search(const Budget& b)
 {
   if (planned_) return at_goal() ? Status::Solved : Status::Searching;
   const int n = static_cast<int>(current_.size());
-  deadline_ = b.deadline_from(Clock::now());
+  const Clock::time_point start = Clock::now();
+  deadline_ = b.deadline_from(start);
   timed_out_ = false;
+  if (tf_) tf_work(deadline_ == Clock::time_point::max() ? deadline_ : start + std::chrono::duration_cast<Clock::duration>((deadline_ - start) * opt_.tf.share));
   ++stamp_;
   ++round_;
   for (int i = 0; i < n; ++i)
@@ -402,6 +467,7 @@ void Epibt::commit()
   const int n = static_cast<int>(current_.size());
   for (int i = 0; i < n; ++i) unplace(i);
   for (int i = 0; i < n; ++i) {
+    if (tf_ && action_[i] == 'F') tf_->advance(i, current_[i], heading_[i]);
     current_[i] = next_[i];
     if (action_[i] == 'R') heading_[i] = (heading_[i] + 1) % 4;
     else if (action_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;

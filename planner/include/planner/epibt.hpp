@@ -45,12 +45,15 @@
 // decisions depend on timing only in steps that hit the deadline (counted: timeouts()).
 #include <chrono>
 #include <cstdint>
+#include <deque>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "planner/rng.hpp"
 #include "planner/rotation_dist.hpp"
 #include "planner/rotation_planner.hpp"
+#include "planner/traffic_flow.hpp"
 
 namespace planner {
 
@@ -69,6 +72,12 @@ struct EpibtOptions {
   int lns_rounds = 20;
   bool lns_converge = false;  // stop after a round that gained nothing (worse on 4 of 5 MR23)
   uint64_t seed = 0;  // LNS order
+  // Online traffic-flow guide paths (traffic_flow.hpp; off by default): with it on, a robot
+  // with a guide table ranks its operations by the congestion-aware h instead of the shared
+  // goal table (priorities still use the shared one). Guide-path work runs at the start of
+  // search(), within tf.share of the step's budget; robots whose table is not computed yet
+  // use the shared goal table meanwhile.
+  TrafficFlowOptions tf;
 };
 
 class Epibt : public RotationPlanner {
@@ -104,8 +113,9 @@ class Epibt : public RotationPlanner {
   uint16_t h(int agent) const override { return dist_.get(goal_table_[agent], current_[agent], heading_[agent]); }
   const RotationDist& dist() const override { return dist_; }
   void prefetch(const std::vector<Vertex>& goals) override { dist_.prefetch(goals); }
-  bool precompute(std::chrono::steady_clock::time_point deadline) override { return dist_.precompute(deadline); }
-  size_t pending() const override { return dist_.pending(); }
+  // Guide tables wanted (traffic flow) first, then the distance tables.
+  bool precompute(std::chrono::steady_clock::time_point deadline) override;
+  size_t pending() const override { return dist_.pending() + tf_queue_.size(); }
   void set_back_last(bool) override {}  // a RotationPibt option; operations decide how a robot yields
   // Guided: an operation costs the sum of its actions' costs (a quarter turn turn_cost, F
   // forward_cost(v, o), W the cheapest action) up to the goal, or all D + h(end state);
@@ -120,6 +130,8 @@ class Epibt : public RotationPlanner {
   void set_options(const Options& opt);
   uint64_t timeouts() const { return timeouts_; }  // steps whose replanning the deadline cut short
   uint64_t lns_rounds() const { return lns_rounds_done_; }
+  const TrafficFlow* traffic_flow() const { return tf_.get(); }  // null when off
+  size_t tf_pending() const { return tf_queue_.size(); }       // robots waiting for a guide table
 
  private:
   struct Op {
@@ -136,6 +148,9 @@ class Epibt : public RotationPlanner {
   void set_op(int i, int op);
   Result build(int i, double root_key, bool lns);
   void lns();
+  void tf_reset();                  // (re)creates tf_ and queues every robot
+  void tf_work(Clock::time_point deadline);  // queued guide tables, then refreshes
+  uint32_t tf_unit() const { return tf_ ? TrafficFlow::kScale : 1; }
 
   const Graph& g_;
   Options opt_;
@@ -180,6 +195,10 @@ class Epibt : public RotationPlanner {
   std::string action_;
   bool planned_ = false;
   uint64_t steps_planned_ = 0, timeouts_ = 0;
+  std::unique_ptr<TrafficFlow> tf_;
+  std::deque<int32_t> tf_queue_;      // robots whose goal changed: guide table wanted
+  std::vector<char> tf_queued_;
+  size_t tf_next_ = 0;                // refresh: round robin over the robots
 };
 
 }  // namespace planner
