@@ -16,7 +16,8 @@
 //  2. LNS (MAPF-LNS, Li et al. IJCAI 2021) until the budget ends: a neighbourhood of up to
 //     `neighbourhood` robots (a delayed robot, picked at random, and the robots whose
 //     windowed paths stand, at any t, on the cells of its ideal route, the descent of its h
-//     over W steps: the robots in its way; at 64, usually all of them), its paths
+//     over W steps: the robots in its way, `neighbourhood` of them at most: 8 by default, best at the
+//     low densities where wppl is the solver to use), its paths
 //     removed and replanned one by one in random order by space-time A* over (cell,
 //     heading, t) against the others' (st_astar_rot.hpp); kept if the sum of their windowed
 //     costs drops, else put back. Objective: the sum over robots of the windowed cost (the
@@ -44,7 +45,7 @@ namespace planner {
 
 struct WpplOptions {
   int window = 15;         // W: steps planned ahead (WPPL's default in LoRR 2023)
-  int neighbourhood = 64;  // robots replanned per LNS iteration at most (docs/rotation_lorr.md: 8 / 32 / 64)
+  int neighbourhood = 8;  // robots replanned per LNS iteration at most (64 before s17; docs/rotation_lorr.md "Where it stands (s17)")
   uint64_t max_iters = 0;  // LNS iterations per step at most (0: the budget decides)
   bool reuse_tail = true;  // start from the last plan's tail when it is better than the rollout
   bool pareto = false;     // accept a neighbourhood's new paths only if none costs more
