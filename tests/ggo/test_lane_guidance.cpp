@@ -127,7 +127,7 @@ TEST(CommittedGuidance, LoadsAndRunsClean)
 TEST(GgoCli, RunsAGenerationAndWritesALoadableFile)
 {
   const std::string out = test::temp_path("ggo.guidance"), log = test::temp_path("ggo.log");
-  test::temp_path("ggo.guidance.params");
+  const std::string params = test::temp_path("ggo.guidance.params"), mean = test::temp_path("ggo.guidance.mean.params");
   const test::CliResult r = test::run_cli(RTLACAM_GGO_BIN, "--problem " + kLorr + "/MR23-I-04.json --steps 60 --generations 1 --lambda 2 --unit 1 --out " + out + " --log " + log);
   ASSERT_EQ(r.code, 0) << r.err;
   const planner::Graph g = planner::load_map(kMap);
@@ -137,6 +137,12 @@ TEST(GgoCli, RunsAGenerationAndWritesALoadableFile)
   int lines = 0;
   for (std::string l; std::getline(in, l);) lines += !l.empty() && l[0] != '#';
   EXPECT_EQ(lines, 1 + 1 + 2);  // header, start, two candidates
+  for (const std::string& f : {params, mean}) {  // one parameter a line after a comment
+    std::ifstream p(f);
+    int n = 0;
+    for (std::string l; std::getline(p, l);) n += !l.empty() && l[0] != '#';
+    EXPECT_EQ(n, 129) << f;
+  }
   // --init with a bad parameter file: one line naming file:line, exit 2.
   const std::string bad = test::temp_file("bad.params", "# x\n0.5\nabc\n");
   const test::CliResult b = test::run_cli(RTLACAM_GGO_BIN, "--problem " + kLorr + "/MR23-I-04.json --init " + bad + " --out " + out + " --log " + log);

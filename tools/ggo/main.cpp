@@ -3,7 +3,8 @@
 // fitness = errands/step of epibt on LoRR problems (in-process, deterministic), relative to
 // the arrow field's on the same (problem, seed). Writes the best guidance so far after
 // every generation (--out, loadable with rtlacam-lifelong --guidance FILE), its parameters
-// (--out.params, reusable with --init) and a log of every evaluation (--log).
+// (--out.params, reusable with --init), the CMA-ES mean (--out.mean.params) and a log of
+// every evaluation (--log).
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
@@ -153,6 +154,8 @@ int main(int argc, char** argv)
       }
       es.tell(f);
       write_best("");
+      // The distribution's mean: less overfitted to the fitness runs' noise than the best sample.
+      save_params(out_file + ".mean.params", es.mean(), "rtlacam-ggo CMA-ES mean after generation " + std::to_string(gen));
       std::cerr << "gen " << gen << ": best " << best_f << " gen best " << -*std::min_element(f.begin(), f.end())
                 << " sigma " << es.sigma() << " evals " << evals << " " << static_cast<int>(secs()) << " s" << std::endl;
       log << "# gen " << gen << " best " << best_f << " sigma " << es.sigma() << std::endl;
