@@ -57,6 +57,7 @@ Guidance arrow_guidance(const Graph& g, int along, int against, int turn);
 bool cheap_arcs_strongly_connected(const Graph& g, const Guidance& gd, uint16_t cheap);
 
 Guidance load_guidance(const Graph& g, const std::string& path);
-void save_guidance(const Graph& g, const Guidance& gd, const std::string& path);
+// `header`: lines written first as '# ' comments (how the weights were made).
+void save_guidance(const Graph& g, const Guidance& gd, const std::string& path, const std::string& header = "");
 
 }  // namespace planner
