@@ -29,4 +29,24 @@ inline planner::Graph random_grid(int w, int h, int pct, uint64_t seed)
   return grid(rows);
 }
 
+// Every vertex of g in an order shuffled by rng: distinct random starts (and goals).
+inline std::vector<planner::Vertex> shuffled_cells(const planner::Graph& g, planner::Rng& rng)
+{
+  std::vector<planner::Vertex> cells;
+  for (planner::Vertex v = 0; v < g.size(); ++v) cells.push_back(v);
+  rng.shuffle(cells.data(), static_cast<int>(cells.size()));
+  return cells;
+}
+
+// A random vertex other than `from` in its component (`comp`: g.components()): a lifelong
+// robot's next goal.
+inline planner::Vertex random_goal(const planner::Graph& g, const std::vector<int>& comp, planner::Rng& rng,
+                                   planner::Vertex from)
+{
+  for (;;) {
+    const auto v = static_cast<planner::Vertex>(rng.below(static_cast<uint32_t>(g.size())));
+    if (v != from && comp[v] == comp[from]) return v;
+  }
+}
+
 }  // namespace test

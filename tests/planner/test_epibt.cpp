@@ -195,9 +195,7 @@ TEST(Epibt, AStepCutShortByItsDeadlineIsStillValid)
   // A 0 ms budget: replanning stops at once; robots keep their inherited operations.
   const Graph g = random_grid(16, 16, 10, 7);
   planner::Rng rng(3);
-  std::vector<Vertex> cells;
-  for (Vertex v = 0; v < g.size(); ++v) cells.push_back(v);
-  rng.shuffle(cells.data(), static_cast<int>(cells.size()));
+  const std::vector<Vertex> cells = test::shuffled_cells(g, rng);
   const Config starts(cells.begin(), cells.begin() + 60), goals(cells.begin() + 60, cells.begin() + 120);
   Epibt p(g, starts, goals);
   for (int t = 0; t < 40; ++t) {

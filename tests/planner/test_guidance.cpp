@@ -286,17 +286,10 @@ TEST(Guidance, PibtRotWithArrowsMakesValidStepsAndRobotsArrive)
     const Graph g = random_grid(12, 10, 15, seed + 100);
     std::vector<int> comp = g.components();
     planner::Rng rng(seed);
-    std::vector<Vertex> cells;
-    for (Vertex v = 0; v < g.size(); ++v) cells.push_back(v);
-    rng.shuffle(cells.data(), static_cast<int>(cells.size()));
+    const std::vector<Vertex> cells = test::shuffled_cells(g, rng);
     const int n = 25;
     Config starts(cells.begin(), cells.begin() + n), goals(static_cast<size_t>(n));
-    auto new_goal = [&](int i, Vertex from) {
-      for (;;) {
-        const Vertex v = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
-        if (v != from && comp[v] == comp[from]) return goals[i] = v;
-      }
-    };
+    auto new_goal = [&](int i, Vertex from) { return goals[i] = test::random_goal(g, comp, rng, from); };
     for (int i = 0; i < n; ++i) new_goal(i, starts[i]);
     RotationPibt p(g, starts, goals, seed);
     p.set_guidance(planner::arrow_guidance(g, 2, 6, 2));

@@ -209,17 +209,10 @@ TEST(TrafficFlow, EpibtWithGuidePathsStaysValidInDenseLifelongRuns)
       const Graph g = random_grid(12, 10, 15, seed + 100);
       const std::vector<int> comp = g.components();
       planner::Rng rng(seed);
-      std::vector<Vertex> cells;
-      for (Vertex v = 0; v < g.size(); ++v) cells.push_back(v);
-      rng.shuffle(cells.data(), static_cast<int>(cells.size()));
+      const std::vector<Vertex> cells = test::shuffled_cells(g, rng);
       const int n = 30;
       Config starts(cells.begin(), cells.begin() + n), goals(static_cast<size_t>(n));
-      auto new_goal = [&](int i, Vertex from) {
-        for (;;) {
-          const Vertex v = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
-          if (v != from && comp[v] == comp[from]) return goals[i] = v;
-        }
-      };
+      auto new_goal = [&](int i, Vertex from) { return goals[i] = test::random_goal(g, comp, rng, from); };
       for (int i = 0; i < n; ++i) new_goal(i, starts[i]);
       planner::EpibtOptions opt;
       opt.seed = seed;
@@ -255,9 +248,7 @@ TEST(TrafficFlow, GuideWorkPastTheBudgetWaitsAndTheStepStaysValid)
 {
   const Graph g = random_grid(16, 16, 10, 7);
   planner::Rng rng(3);
-  std::vector<Vertex> cells;
-  for (Vertex v = 0; v < g.size(); ++v) cells.push_back(v);
-  rng.shuffle(cells.data(), static_cast<int>(cells.size()));
+  const std::vector<Vertex> cells = test::shuffled_cells(g, rng);
   const Config starts(cells.begin(), cells.begin() + 60), goals(cells.begin() + 60, cells.begin() + 120);
   planner::EpibtOptions opt;
   opt.tf.on = true;

@@ -202,22 +202,14 @@ struct DenseRun {
   Config starts, goals;
   DenseRun(int w, int h, int pct, int n, uint64_t seed) : g(random_grid(w, h, pct, seed + 100)), comp(g.components()), rng(seed)
   {
-    std::vector<Vertex> cells;
-    for (Vertex v = 0; v < g.size(); ++v) cells.push_back(v);
-    rng.shuffle(cells.data(), static_cast<int>(cells.size()));
+    const std::vector<Vertex> cells = test::shuffled_cells(g, rng);
     starts.assign(cells.begin(), cells.begin() + n);
     goals.resize(static_cast<size_t>(n));
     for (int i = 0; i < n; ++i) new_goal(i, starts[i]);
   }
   void new_goal(int i, Vertex from)
   {
-    for (;;) {
-      const Vertex v = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
-      if (v != from && comp[v] == comp[from]) {
-        goals[i] = v;
-        return;
-      }
-    }
+    goals[i] = test::random_goal(g, comp, rng, from);
   }
 };
 
