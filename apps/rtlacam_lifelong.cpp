@@ -243,7 +243,7 @@ int main(int argc, char** argv)
         throw planner::InputError("--tf-weights '" + tf_weights + "': expected CONTRAFLOW,VERTEX, each 0..1000");
       ep.tf.on = true;
       // Epibt keeps it off where the per-robot tables would not fit (TrafficFlowOptions::max_entries).
-      if (starts.size() * 4 * static_cast<size_t>(g.size()) > ep.tf.max_entries) {
+      if (!planner::TrafficFlow::fits(starts.size(), g.size(), ep.tf)) {
         if (app.count("--traffic-flow"))
           std::cerr << "--traffic-flow on: off for this run (" << starts.size() << " robots x 4 x " << g.size()
                     << " cells of guide tables > " << ep.tf.max_entries << " entries)\n";

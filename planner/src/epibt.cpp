@@ -40,7 +40,7 @@ void Epibt::tf_reset()
   const size_t n = current_.size();
   tf_queued_.assign(n, 0);
   tf_next_ = 0;
-  if (!opt_.tf.on || n * 4 * static_cast<size_t>(g_.size()) > opt_.tf.max_entries) return;
+  if (!opt_.tf.on || !TrafficFlow::fits(n, g_.size(), opt_.tf)) return;
   tf_ = std::make_unique<TrafficFlow>(dist_, n, opt_.tf);
   for (size_t i = 0; i < n; ++i) tf_queue_.push_back(static_cast<int32_t>(i)), tf_queued_[i] = 1;
 }
@@ -195,11 +195,18 @@ void Epibt::candidates(int i)
     if (!walk(i, static_cast<int>(op), cells, edges, &o)) continue;
     uint32_t cost = 0;
     int first = 0;  // the action after which it first stands on its goal (0: never)
-    if (tf_ && tf_->has(i)) {
-      // Traffic flow: the actions at their guided costs (in kScale units) + the robot's
-      // congestion-aware h of the end state (its own guide table).
+    const bool own = tf_ && tf_->has(i);  // traffic flow: its own guide table gives h
+    if (!guided_ && !own) {
+      if (!on_goal)
+        for (int d = 0; d < D && !first; ++d)
+          if (cells[d] == goal) first = d + 1;
+      if (first) cost = static_cast<uint32_t>(first);
+      else cost = static_cast<uint32_t>(D) + dist_.get(goal_table_[i], cells[D - 1], o);
+    } else {
+      // The same with each action at its guided cost (1 each without guidance); with its
+      // own table, in that table's kScale units plus its congestion-aware h of the end state.
+      const uint32_t unit = own ? TrafficFlow::kScale : 1;
       const std::string& a = ops_[op].acts;
-      const uint32_t unit = TrafficFlow::kScale;
       Vertex v = current_[i];
       int hd = heading_[i];
       for (int d = 0; d < D; ++d) {
@@ -211,30 +218,9 @@ void Epibt::candidates(int i)
           break;
         }
       }
-      if (!first) cost += std::min<uint32_t>(tf_->h(i, cells[D - 1], o), 1u << 24);
-    } else if (!guided_) {
-      if (!on_goal)
-        for (int d = 0; d < D && !first; ++d)
-          if (cells[d] == goal) first = d + 1;
-      if (first) cost = static_cast<uint32_t>(first);
-      else cost = static_cast<uint32_t>(D) + dist_.get(goal_table_[i], cells[D - 1], o);
-    } else {
-      // The same with each action at its guided cost (1 each without guidance).
-      const std::string& a = ops_[op].acts;
-      Vertex v = current_[i];
-      int hd = heading_[i];
-      for (int d = 0; d < D; ++d) {
-        if (a[d] == 'F') cost += dist_.forward_cost(v, hd), v = cells[d];
-        else if (a[d] == 'W') cost += wait_cost_;
-        else cost += dist_.turn_cost(), hd = (hd + (a[d] == 'R' ? 1 : 3)) % 4;
-        if (!on_goal && cells[d] == goal) {
-          first = d + 1;
-          break;
-        }
-      }
-      if (!first) cost += dist_.get(goal_table_[i], cells[D - 1], o);
+      if (!first) cost += own ? std::min<uint32_t>(tf_->h(i, cells[D - 1], o), 1u << 24) : dist_.get(goal_table_[i], cells[D - 1], o);
     }
-    if (tf_ && !tf_->has(i)) cost *= tf_unit();  // one scale for every robot (LNS gains)
+    if (tf_ && !own) cost *= TrafficFlow::kScale;  // one scale for every robot (LNS gains)
     score_of_[static_cast<size_t>(i) * m + op] = cost * static_cast<uint32_t>(m) + static_cast<uint32_t>(op);
     if (wait && !opt_.wait_op && !on_goal) continue;
     c[k++] = {cost, static_cast<uint8_t>(op)};

@@ -150,7 +150,6 @@ class Epibt : public RotationPlanner {
   void lns();
   void tf_reset();                  // (re)creates tf_ and queues every robot
   void tf_work(Clock::time_point deadline);  // queued guide tables, then refreshes
-  uint32_t tf_unit() const { return tf_ ? TrafficFlow::kScale : 1; }
 
   const Graph& g_;
   Options opt_;

@@ -59,6 +59,10 @@ class TrafficFlow {
   static constexpr uint32_t kScale = 16;
   static constexpr uint32_t kInf = 0xFFFFFFFFu;
 
+  // Whether the guide tables of `agents` robots on `cells` cells stay within opt.max_entries
+  // (owners keep the feature off otherwise).
+  static bool fits(size_t agents, int cells, const Options& opt) { return agents * 4 * static_cast<size_t>(cells) <= opt.max_entries; }
+
   // `dist` gives the map (ahead) and the guidance costs; it must outlive this object.
   TrafficFlow(const RotationDist& dist, size_t agents, Options opt);
 
