@@ -143,6 +143,9 @@ int main(int argc, char** argv)
   app.add_flag("--wppl-pareto,!--no-wppl-pareto", wppl.pareto,
                "wppl: accept LNS paths only if no robot of the neighbourhood is worse off")
       ->capture_default_str();
+  app.add_flag("--wppl-ties,!--no-wppl-ties", wppl.accept_ties,
+               "wppl: LNS also keeps new paths of equal windowed cost (sideways moves)")
+      ->capture_default_str();
   app.add_flag("--wppl-tail,!--no-wppl-tail", wppl.reuse_tail,
                "wppl: start from the last window's refined tail when it beats the PIBT rollout")
       ->capture_default_str();

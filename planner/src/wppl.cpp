@@ -152,7 +152,9 @@ bool Wppl::lns_iteration(Clock::time_point deadline)
     res_.add(i, paths[k]);
     new_sum += costs[k];
   }
-  bool accept = k == nb.size() && new_sum < old_sum;
+  // Equal cost is accepted too (a sideways move): the search drifts across the plateaus
+  // of the windowed objective instead of stopping at the first plan it cannot better.
+  bool accept = k == nb.size() && (new_sum < old_sum || (opt_.accept_ties && new_sum == old_sum));
   if (accept && opt_.pareto)  // nobody worse off: PIBT's precedence (who pushed whom) stands
     for (size_t j = 0; j < nb.size(); ++j) accept &= costs[j] <= cost_[nb[j]];
   for (size_t j = 0; j < k; ++j) res_.remove(nb[j], paths[j]);
@@ -161,7 +163,7 @@ bool Wppl::lns_iteration(Clock::time_point deadline)
     if (accept) plan_[i].swap(paths[j]), cost_[i] = costs[j];
     res_.add(i, plan_[i]);
   }
-  if (accept) objective_ += new_sum - old_sum, ++accepted_;
+  if (accept) objective_ += new_sum - old_sum, ++accepted_, sideways_ += new_sum == old_sum;
   return true;
 }
 

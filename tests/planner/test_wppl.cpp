@@ -226,6 +226,7 @@ TEST(Wppl, EveryLifelongStepIsAValidLorrJointActionAndLnsNeverWorsensTheWindow)
     opt.window = seed % 2 ? 8 : 15;
     opt.neighbourhood = seed < 2 ? 4 : 8;
     opt.reuse_tail = seed != 3;
+    opt.accept_ties = seed != 2;
     Wppl p(run.g, run.starts, run.goals, seed, {}, 0, opt);
     p.set_back_last(seed % 2 == 1);
     long arrivals = 0, forwards = 0, turns = 0, improved = 0;
@@ -260,7 +261,41 @@ TEST(Wppl, EveryLifelongStepIsAValidLorrJointActionAndLnsNeverWorsensTheWindow)
     EXPECT_GT(turns, 0);
     if (opt.reuse_tail) EXPECT_GT(p.tail_starts(), 0u) << "seed " << seed;
     else EXPECT_EQ(p.tail_starts(), 0u);
+    if (opt.accept_ties) EXPECT_GT(p.lns_sideways(), 0u) << "seed " << seed;
+    else EXPECT_EQ(p.lns_sideways(), 0u);
   }
+}
+
+TEST(Wppl, SidewaysMovesKeepTheObjectiveAndChangeTheWindow)
+{
+  // One LNS iteration at a time (search() goes on with the same window until commit()): the
+  // objective never rises; an iteration accepted at equal cost (accept_ties, the default)
+  // leaves it unchanged and, in some, replaces paths by other conflict-free ones.
+  DenseRun run(12, 10, 15, 30, 7);
+  Wppl p(run.g, run.starts, run.goals, 7);
+  ASSERT_TRUE(p.options().accept_ties);
+  int changed_windows = 0;
+  for (int t = 1; t <= 60; ++t) {
+    p.search(planner::Budget::expansion_count(0));
+    for (int k = 0; k < 40; ++k) {
+      const int64_t before = p.objective();
+      const uint64_t sideways = p.lns_sideways();
+      const std::vector<RotPath> window = p.plan();
+      p.search(planner::Budget::expansion_count(1));
+      ASSERT_LE(p.objective(), before) << "step " << t;
+      if (p.lns_sideways() > sideways) {
+        ASSERT_EQ(p.objective(), before);
+        ASSERT_EQ(check_window(run.g, p.dist(), p.plan()), "") << "step " << t;
+        changed_windows += !(p.plan() == window);
+      }
+    }
+    p.commit();
+    bool changed = false;
+    for (int i = 0; i < static_cast<int>(run.goals.size()); ++i)
+      if (p.current()[i] == run.goals[i]) run.new_goal(i, run.goals[i]), changed = true;
+    if (changed) p.set_goals(run.goals);
+  }
+  EXPECT_GT(changed_windows, 10);
 }
 
 TEST(Wppl, WithoutLnsItTakesPibtRotsSteps)

@@ -20,8 +20,9 @@
 //     low densities where wppl is the solver to use), its paths
 //     removed and replanned one by one in random order by space-time A* over (cell,
 //     heading, t) against the others' (st_astar_rot.hpp); kept if the sum of their windowed
-//     costs drops, else put back. Objective: the sum over robots of the windowed cost (the
-//     first time on the goal, else W + h(end state) from RotationDist: the cost to goal).
+//     costs drops or stays equal (`accept_ties`: sideways moves), else put back. Objective:
+//     the sum over robots of the windowed cost (the first time on the goal, else W + h(end
+//     state) from RotationDist: the cost to goal).
 //  3. The first step of the refined plan is the step: one F / R / C / W per robot, free of
 //     vertex and swap conflicts on cells (turns keep the cell, following allowed), as
 //     LoRR's ActionModelWithRotate checks it. With no LNS iteration it is pibt-rot's step.
@@ -49,6 +50,7 @@ struct WpplOptions {
   uint64_t max_iters = 0;  // LNS iterations per step at most (0: the budget decides)
   bool reuse_tail = true;  // start from the last plan's tail when it is better than the rollout
   bool pareto = false;     // accept a neighbourhood's new paths only if none costs more
+  bool accept_ties = true; // accept new paths of equal windowed cost too (sideways moves)
 };
 
 class Wppl : public RotationPlanner {
@@ -91,6 +93,7 @@ class Wppl : public RotationPlanner {
   int64_t initial_objective() const { return initial_objective_; }  // of this step's initial plan
   uint64_t lns_iterations() const { return iters_; }                // totals over all steps
   uint64_t lns_accepted() const { return accepted_; }
+  uint64_t lns_sideways() const { return sideways_; }             // accepted at equal cost
   uint64_t tail_starts() const { return tail_starts_; }             // steps that started from the last plan's tail
 
  private:
@@ -113,7 +116,7 @@ class Wppl : public RotationPlanner {
   std::string action_;
   bool planned_ = false, tail_valid_ = false;
   int64_t objective_ = 0, initial_objective_ = 0;
-  uint64_t steps_ = 0, iters_ = 0, accepted_ = 0, tail_starts_ = 0, iters_step_ = 0;
+  uint64_t steps_ = 0, iters_ = 0, accepted_ = 0, sideways_ = 0, tail_starts_ = 0, iters_step_ = 0;
 };
 
 }  // namespace planner
