@@ -10,15 +10,13 @@
 #include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/guidance.hpp"
-#include "planner/movingai.hpp"
 #include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
-#include "tasks/lorr_files.hpp"
-#include "tasks/lorr_problem.hpp"
+#include "tasks/lorr_instance.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/solver.hpp"
 #include "tasks/task_pool.hpp"
@@ -172,13 +170,11 @@ int main(int argc, char** argv)
   RTLACAM_PARSE(app, argc, argv);
 
   try {
-    LorrProblem pr = load_lorr_problem(problem_file);
-    if (agents > pr.team_size)
-      throw planner::input_error(problem_file, 0, "--agents " + std::to_string(agents) + " but teamSize is " + std::to_string(pr.team_size));
-    if (agents > 0) pr.team_size = agents;
-    const planner::Graph g = planner::load_map(pr.map_file);
-    const planner::Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
-    auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+    const LorrInstance in = load_lorr_instance(problem_file, agents, "--agents ");
+    const LorrProblem& pr = in.problem;
+    const planner::Graph& g = in.g;
+    const planner::Config& starts = in.starts;
+    const std::shared_ptr<const TaskFile>& file = in.tasks;
     if (mode.empty()) mode = pr.default_mode();
     if (steps < 0) steps = pr.simulation_time;
     if (steps < 0) throw planner::input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass --steps");

@@ -20,8 +20,7 @@
 #include "tasks/assigner.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
-#include "tasks/lorr_files.hpp"
-#include "tasks/lorr_problem.hpp"
+#include "tasks/lorr_instance.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/task_pool.hpp"
 
@@ -69,13 +68,11 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
                     int agents, bool reassign, const std::string& policy_file)
 {
   using namespace tasks;
-  LorrProblem pr = load_lorr_problem(problem_file);
-  if (agents > pr.team_size)
-    throw input_error(problem_file, 0, "agents=" + std::to_string(agents) + " but teamSize is " + std::to_string(pr.team_size));
-  if (agents > 0) pr.team_size = agents;
-  const Graph g = load_map(pr.map_file);
-  const Config starts = load_lorr_agents(pr.agent_file, g, pr.team_size);
-  auto file = std::make_shared<const TaskFile>(load_lorr_tasks(pr.task_file, g));
+  const LorrInstance in = load_lorr_instance(problem_file, agents, "agents=");
+  const LorrProblem& pr = in.problem;
+  const Graph& g = in.g;
+  const Config& starts = in.starts;
+  const std::shared_ptr<const TaskFile>& file = in.tasks;
   if (mode.empty()) mode = pr.default_mode();
   if (steps < 0) steps = pr.simulation_time;
   if (steps < 0) throw input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass steps=");

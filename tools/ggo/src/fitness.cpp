@@ -1,9 +1,7 @@
 #include "ggo/fitness.hpp"
 
-#include "planner/movingai.hpp"
 #include "tasks/lifelong_runner.hpp"
-#include "tasks/lorr_files.hpp"
-#include "tasks/lorr_problem.hpp"
+#include "tasks/lorr_instance.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/solver.hpp"
 
@@ -11,13 +9,13 @@ namespace ggo {
 
 Problem load_problem(const std::string& path)
 {
-  const tasks::LorrProblem lp = tasks::load_lorr_problem(path);
+  tasks::LorrInstance in = tasks::load_lorr_instance(path);
   Problem pr;
-  pr.name = lp.name;
-  pr.g = planner::load_map(lp.map_file);
-  pr.starts = tasks::load_lorr_agents(lp.agent_file, pr.g, lp.team_size);
-  pr.tasks = std::make_shared<const tasks::TaskFile>(tasks::load_lorr_tasks(lp.task_file, pr.g));
-  pr.steps = lp.simulation_time;
+  pr.name = in.problem.name;
+  pr.g = std::move(in.g);
+  pr.starts = std::move(in.starts);
+  pr.tasks = std::move(in.tasks);
+  pr.steps = in.problem.simulation_time;
   return pr;
 }
 
