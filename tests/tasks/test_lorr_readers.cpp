@@ -2,11 +2,13 @@
 // naming file:line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
 #include "tasks/lorr_files.hpp"
+#include "tasks/lorr_instance.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks_test_util.hpp"
 
@@ -151,4 +153,21 @@ TEST(LorrFiles, Errors)
   // Extra lines after the declared count are ignored (as the start kits do); CRLF is fine.
   const std::string crlf = ttest::temp_file("crlf.tasks", "1\r\n2,3\r\n4\r\n");
   EXPECT_EQ(load_lorr_tasks(crlf, g).size(), 1);
+}
+
+TEST(LorrInstance, LoadsEverythingTheProblemNamesAndTakesAPrefixOfTheTeam)
+{
+  const std::string p = ttest::kData + "/2023/random.domain/MR23-I-04.json";
+  const LorrInstance in = load_lorr_instance(p);
+  EXPECT_EQ(in.problem.team_size, 100);
+  EXPECT_EQ(in.g.size(), planner::load_map(kMap2023).size());
+  ASSERT_EQ(in.starts.size(), 100u);
+  EXPECT_EQ(in.starts[0], in.g.at(516 % 32, 516 / 32));
+  ASSERT_TRUE(in.tasks);
+  EXPECT_EQ(in.tasks->size(), 2000);
+  const LorrInstance some = load_lorr_instance(p, 30);
+  EXPECT_EQ(some.problem.team_size, 30);
+  ASSERT_EQ(some.starts.size(), 30u);
+  EXPECT_TRUE(std::equal(some.starts.begin(), some.starts.end(), in.starts.begin()));
+  expect_error([&] { load_lorr_instance(p, 101, "agents="); }, {p + ": ", "agents=101 but teamSize is 100"});
 }
