@@ -13,9 +13,10 @@
 // the robot stands on its goal cell (any heading), else W + h(state at W) from its
 // RotationDist table. A* on f = g + h with g = t until the goal is reached (then the path
 // only has to stay conflict-free to W, at no cost): exact when h is (h is consistent for
-// unit steps, and W + h(end) >= t + h(now) as h drops by at most one per step). Ties go to
-// the larger t (dives). Reached and not-reached states are distinct (a state after the goal
-// was reached costs nothing more).
+// unit steps, and W + h(end) >= t + h(now) as h drops by at most one per step). The open
+// list is a bucket queue on f, last in first out within a bucket (ties go to the states
+// generated last, mostly the deeper ones: dives). Reached and not-reached states are
+// distinct (a state after the goal was reached costs nothing more).
 #include <chrono>
 #include <cstdint>
 #include <vector>
@@ -69,18 +70,15 @@ class StAstarRot {
   uint64_t expanded() const { return expanded_; }  // total over all calls
 
  private:
-  struct Open {
-    int64_t f;
-    int32_t t;
-    int32_t key;
-    bool operator<(const Open& x) const { return f != x.f ? f > x.f : t < x.t; }  // a max-heap's "less": min f, then max t
+  struct Node {
+    uint32_t seen = 0;    // stamp of the call that generated it
+    uint32_t closed = 0;  // stamp of the call that expanded it
+    int32_t g = 0;        // best cost so far (valid where seen)
+    int32_t parent = -1;
   };
   const RotationDist& dist_;
-  std::vector<uint32_t> seen_;    // per key: stamp of the call that generated it
-  std::vector<uint32_t> closed_;  // per key: stamp of the call that expanded it
-  std::vector<int32_t> g_;        // per key: best cost so far (valid where seen_)
-  std::vector<int32_t> parent_;   // per key
-  std::vector<Open> heap_;
+  std::vector<Node> node_;                     // per key (t, cell, heading, reached)
+  std::vector<std::vector<int32_t>> bucket_;   // open keys per f (LIFO: deeper states first)
   uint32_t stamp_ = 0;
   uint64_t expanded_ = 0;
 };
