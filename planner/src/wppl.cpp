@@ -85,6 +85,8 @@ void Wppl::initial_plan()
   }
   res_.reset(g_.size(), w);
   for (int i = 0; i < n; ++i) res_.add(i, plan_[i]);
+  h0_.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) h0_[i] = pibt_.dist().get(pibt_.goal_table(i), plan_[i][0].v, plan_[i][0].o);
   initial_objective_ = objective_;
   in_nb_.resize(static_cast<size_t>(n), 0);
 }
@@ -95,11 +97,10 @@ void Wppl::neighbourhood(std::vector<int>& nb)
   const int n = static_cast<int>(plan_.size());
   const RotationDist& d = pibt_.dist();
   // Delayed robots: their windowed cost exceeds their distance (others are in the way).
-  std::vector<int> delayed;
-  for (int i = 0; i < n; ++i) {
-    const uint16_t h0 = d.get(pibt_.goal_table(i), plan_[i][0].v, plan_[i][0].o);
-    if (h0 < RotationDist::kFar && cost_[i] > h0) delayed.push_back(i);
-  }
+  std::vector<int>& delayed = delayed_;
+  delayed.clear();
+  for (int i = 0; i < n; ++i)
+    if (h0_[i] < RotationDist::kFar && cost_[i] > h0_[i]) delayed.push_back(i);
   if (delayed.empty()) return;
   const int a = delayed[rng_.below(static_cast<uint32_t>(delayed.size()))];
   if (++nb_stamp_ == 0) std::fill(in_nb_.begin(), in_nb_.end(), 0), nb_stamp_ = 1;
@@ -109,13 +110,17 @@ void Wppl::neighbourhood(std::vector<int>& nb)
   RotationDist::Table* t = pibt_.goal_table(a);
   const Vertex goal = goals()[a];
   RotState s = plan_[a][0];
-  std::vector<int> cand;
+  std::vector<int>& cand = cand_;
+  cand.clear();
   const int w = opt_.window;
+  Vertex scanned = -1;
   for (int k = 0; k <= w; ++k) {
-    for (int tt = 0; tt <= w; ++tt) {
-      const int b = res_.at(s.v, tt);
-      if (b >= 0 && in_nb_[b] != nb_stamp_) in_nb_[b] = nb_stamp_, cand.push_back(b);
-    }
+    if (s.v != scanned)  // a turn keeps the cell: scanned already
+      for (int tt = 0; tt <= w; ++tt) {
+        const int b = res_.at(s.v, tt);
+        if (b >= 0 && in_nb_[b] != nb_stamp_) in_nb_[b] = nb_stamp_, cand.push_back(b);
+      }
+    scanned = s.v;
     if (s.v == goal) break;
     RotState best{s.v, (s.o + 1) % 4};
     uint32_t best_h = d.get(t, best.v, best.o);
@@ -135,14 +140,16 @@ void Wppl::neighbourhood(std::vector<int>& nb)
 
 bool Wppl::lns_iteration(Clock::time_point deadline)
 {
-  std::vector<int> nb;
+  std::vector<int>& nb = nb_;
   neighbourhood(nb);
   if (nb.empty()) return false;
   rng_.shuffle(nb.data(), static_cast<int>(nb.size()));  // the order of prioritized planning
   int64_t old_sum = 0;
   for (int i : nb) old_sum += cost_[i], res_.remove(i, plan_[i]);
-  std::vector<RotPath> paths(nb.size());
-  std::vector<int64_t> costs(nb.size());
+  std::vector<RotPath>& paths = paths_;
+  std::vector<int64_t>& costs = costs_;
+  if (paths.size() < nb.size()) paths.resize(nb.size());
+  costs.resize(nb.size());
   size_t k = 0;
   int64_t new_sum = 0;
   for (; k < nb.size(); ++k) {

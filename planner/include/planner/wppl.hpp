@@ -111,6 +111,10 @@ class Wppl : public RotationPlanner {
   std::vector<RotPath> plan_, tail_;
   std::vector<int64_t> cost_;
   std::vector<int> in_nb_;  // per robot: stamp of the neighbourhood it is in
+  std::vector<uint16_t> h0_;  // per robot: h of its state now (this step's)
+  std::vector<int> delayed_, cand_, nb_;  // neighbourhood() buffers
+  std::vector<RotPath> paths_;              // lns_iteration() buffers
+  std::vector<int64_t> costs_;
   int nb_stamp_ = 0;
   Config next_;
   std::string action_;
