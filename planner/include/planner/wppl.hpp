@@ -45,7 +45,7 @@
 namespace planner {
 
 struct WpplOptions {
-  int window = 20;         // W: steps planned ahead (15 in WPPL; 20 is better here: MR23 I-04 3.489 vs 3.464, I-03 6.17 vs 6.15, docs/rotation_lorr.md s18)
+  int window = 20;         // W: steps planned ahead (WPPL: 15; 20 wins here, docs/rotation_lorr.md s18)
   int neighbourhood = 8;  // robots replanned per LNS iteration at most (64 before s17; docs/rotation_lorr.md "Where it stands (s17)")
   uint64_t max_iters = 0;  // LNS iterations per step at most (0: the budget decides)
   bool reuse_tail = true;  // start from the last plan's tail when it is better than the rollout
