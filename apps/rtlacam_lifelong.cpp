@@ -9,7 +9,7 @@
 
 #include "cli.hpp"
 #include "planner/error.hpp"
-#include "planner/guidance.hpp"
+#include "planner/rotation/guidance.hpp"
 #include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"

@@ -9,7 +9,7 @@
 
 #include "cli.hpp"
 #include "planner/error.hpp"
-#include "planner/lacam.hpp"
+#include "planner/lacam/lacam.hpp"
 #include "planner/movingai.hpp"
 #include "planner/rng.hpp"
 #include "policy/actions.hpp"

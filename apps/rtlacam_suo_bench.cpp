@@ -10,7 +10,7 @@
 
 #include "cli.hpp"
 #include "planner/movingai.hpp"
-#include "planner/scatter.hpp"
+#include "planner/lacam/scatter.hpp"
 
 using namespace planner;
 

@@ -4,6 +4,7 @@
 include(GNUInstallDirs)
 
 function(rtlacam_library name)
+  cmake_parse_arguments(ARG "NO_HEADERS" "" "" ${ARGN})
   add_library(rtlacam::${name} ALIAS ${name})
   set_target_properties(${name} PROPERTIES
     EXPORT_NAME ${name}
@@ -23,5 +24,7 @@ function(rtlacam_library name)
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
     LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
     INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-  install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  if(NOT ARG_NO_HEADERS)
+    install(DIRECTORY ${CMAKE_CURRENT_SOURCE_DIR}/include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+  endif()
 endfunction()

@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "planner/naive_rt_lacam.hpp"
-#include "planner/pibt_planner.hpp"
-#include "planner/rt_lacam.hpp"
+#include "planner/lacam/naive_rt_lacam.hpp"
+#include "planner/lacam/pibt_planner.hpp"
+#include "planner/lacam/rt_lacam.hpp"
 
 namespace planner {
 namespace {

@@ -12,7 +12,7 @@
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
 #include "planner/plan_io.hpp"
-#include "planner/runner.hpp"
+#include "planner/lacam/runner.hpp"
 #include "planner/solver.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"

@@ -6,12 +6,12 @@
 #include <memory>
 #include <stdexcept>
 
-#include "planner/epibt.hpp"
-#include "planner/rotation_pibt.hpp"
-#include "planner/rotation_planner.hpp"
-#include "planner/rt_lacam.hpp"
+#include "planner/rotation/epibt.hpp"
+#include "planner/rotation/rotation_pibt.hpp"
+#include "planner/rotation/rotation_planner.hpp"
+#include "planner/lacam/rt_lacam.hpp"
 #include "planner/validator.hpp"
-#include "planner/wppl.hpp"
+#include "planner/rotation/wppl.hpp"
 #include "tasks/cost_estimate.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"

@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "planner/epibt.hpp"
-#include "planner/rotation_pibt.hpp"
-#include "planner/wppl.hpp"
+#include "planner/rotation/epibt.hpp"
+#include "planner/rotation/rotation_pibt.hpp"
+#include "planner/rotation/wppl.hpp"
 #include "planner/solver.hpp"
 
 namespace tasks {

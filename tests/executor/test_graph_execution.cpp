@@ -8,7 +8,7 @@
 #include "executor/graph_execution.hpp"
 #include "grid.hpp"
 #include "planner/movingai.hpp"
-#include "planner/rt_lacam.hpp"
+#include "planner/lacam/rt_lacam.hpp"
 #include "planner/validator.hpp"
 
 using namespace executor;

@@ -2,12 +2,12 @@
 // PIBT keeps every run valid and the complete planners complete.
 #include <gtest/gtest.h>
 
-#include "planner/lacam.hpp"
+#include "planner/lacam/lacam.hpp"
 #include "planner/movingai.hpp"
-#include "planner/naive_rt_lacam.hpp"
-#include "planner/pibt_planner.hpp"
-#include "planner/rt_lacam.hpp"
-#include "planner/runner.hpp"
+#include "planner/lacam/naive_rt_lacam.hpp"
+#include "planner/lacam/pibt_planner.hpp"
+#include "planner/lacam/rt_lacam.hpp"
+#include "planner/lacam/runner.hpp"
 #include "planner/validator.hpp"
 #include "policy/actions.hpp"
 #include "policy/policy_preference.hpp"

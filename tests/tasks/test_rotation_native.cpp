@@ -9,7 +9,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "planner/guidance.hpp"
+#include "planner/rotation/guidance.hpp"
 #include "planner/validator.hpp"
 #include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_runner.hpp"

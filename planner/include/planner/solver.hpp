@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "planner/action_preference.hpp"
-#include "planner/lacam.hpp"
+#include "planner/lacam/lacam.hpp"
 #include "planner/realtime_planner.hpp"
 
 namespace planner {

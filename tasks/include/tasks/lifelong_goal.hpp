@@ -10,7 +10,7 @@
 // the next epoch.
 #include <vector>
 
-#include "planner/lacam.hpp"
+#include "planner/lacam/lacam.hpp"
 
 namespace tasks {
 

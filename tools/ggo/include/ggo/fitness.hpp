@@ -7,9 +7,9 @@
 #include <memory>
 #include <string>
 
-#include "planner/epibt.hpp"
+#include "planner/rotation/epibt.hpp"
 #include "planner/graph.hpp"
-#include "planner/guidance.hpp"
+#include "planner/rotation/guidance.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace ggo {

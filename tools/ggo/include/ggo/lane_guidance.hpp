@@ -17,7 +17,7 @@
 #include <Eigen/Dense>
 
 #include "planner/graph.hpp"
-#include "planner/guidance.hpp"
+#include "planner/rotation/guidance.hpp"
 
 namespace ggo {
 

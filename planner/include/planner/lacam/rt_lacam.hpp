@@ -1,0 +1,73 @@
+#pragma once
+// RtLacam: Real-Time LaCAM (Liang, Veerapaneni, Harabor, Li, Likhachev; SoCS 2025).
+//
+// One LaCAM search is built up across planning iterations. search(budget) continues the
+// DFS where the last call stopped; next() walks parent pointers from the top of the DFS
+// stack back to the root -- which is always the current configuration -- and returns the
+// root's child on that path (or the root: wait). commit() moves the agents there and
+// reroots the tree by reversing that one edge. The explored table and every constraint
+// survive, so revisits still force new successors and the search is the very same one
+// full-horizon LaCAM runs: same expansions, same explored set, hence complete, with no
+// deadlock or livelock. Once the goal is found the agents follow the tree path to it: with
+// LacamOptions::refine off (the paper) without further search; with it on (RT-LaCAM*) the
+// search goes on as LaCAM* with every iteration's budget, and next() follows the best path
+// to the goal known now, re-read each iteration, so the path improves while the agents
+// move. Rerooting re-bases g at the new root (lacam.hpp): the executed prefix is sunk cost.
+//
+// commit() moves to the configuration next() last returned, even if search() ran in
+// between (an executor may keep thinking while the agents move): that node was the root's
+// tree child, hence a valid move; if LaCAM* re-parented it meanwhile, reroot() still makes
+// it the root (the link to the old root stays).
+#include <vector>
+
+#include "planner/lacam/immobile.hpp"
+#include "planner/lacam/lacam.hpp"
+#include "planner/realtime_planner.hpp"
+
+namespace planner {
+
+class RtLacam : public RealtimePlanner {
+ public:
+  RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
+          ActionPreference* pref = nullptr, GoalTest test = {});
+
+
+  Status search(const Budget& b) override;
+  const Config& next() override;
+  void commit() override;
+  void set_goals(const Config& goals, GoalTest test = {}) override;
+  void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
+  void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
+  void set_immobile(int agent, bool immobile) override;
+
+  const Config& current() const override { return current_; }
+  const Config& goals() const override { return lacam_.goals(); }
+  bool at_goal() const override;
+  // Never while an agent is immobile: the relaxed search may run dry, the immobility ends.
+  bool exhausted() const override { return lacam_.status() == Status::NoSolution && !any_immobile(immobile_); }
+  uint64_t expansions() const override { return lacam_.expansions(); }
+  double max_expansion_ms() const { return lacam_.max_expansion_ms(); }  // Lacam::max_expansion_ms
+  size_t explored() const override { return lacam_.explored(); }
+  std::string name() const override { return "rtlacam"; }
+
+  const Lacam& lacam() const { return lacam_; }  // for tests and statistics
+
+ private:
+  const HNode* planned();
+  void restart(const Config& goals);  // a new search at current_ (priorities carried if kept)
+
+  DistTable dist_;
+  Lacam lacam_;
+  Config current_;
+  Config next_;
+  GoalTest test_;
+  const HNode* planned_ = nullptr;       // cache of planned() until the tree or root changes
+  const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
+  std::vector<float> carried_;           // priorities carried into a new epoch
+  std::vector<int32_t> carried_order_;   // the agents' order under them
+  bool keep_priorities_;
+  const Graph& g_;
+  std::vector<uint8_t> immobile_;        // agent -> 1 while immobile
+};
+
+}  // namespace planner

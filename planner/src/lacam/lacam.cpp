@@ -1,0 +1,273 @@
+#include "planner/lacam/lacam.hpp"
+
+#include <algorithm>
+
+#include "planner/lacam/immobile.hpp"
+#include "planner/lacam/priority.hpp"
+
+namespace planner {
+
+const char* to_string(Status s)
+{
+  switch (s) {
+    case Status::Searching: return "searching";
+    case Status::Solved: return "solved";
+    case Status::NoSolution: return "no_solution";
+  }
+  return "?";
+}
+
+Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood), scatter_(g, dist), moves_(g.max_degree() + 1)
+{
+  pibt_.set_preference(pref);
+  lns_wanted_ = opt.lns;
+}
+
+void Lacam::set_immobile(const std::vector<uint8_t>& immobile)
+{
+  immobile_ = immobile;
+  pibt_.set_immobile(immobile);
+  opt_.lns = lns_wanted_ && !any_immobile(immobile);  // LNS's A* would move them
+}
+
+void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities,
+                  const int32_t* order)
+{
+  n_ = static_cast<int>(start.size());
+  goals_ = goals;
+  goal_test_ = std::move(test);
+  dist_.set_goals(goals);
+  pibt_.set_goals(goals);
+  nodes_.reset();
+  constraints_.reset();
+  configs_.reset();
+  orders_.reset();
+  priorities_.reset();
+  links_.reset();
+  refining_ = refine_capped_ = false;
+  refine_iterations_ = guide_iterations_ = 0;
+  lns_failures_ = 0;
+  debt_ = 0;
+  explored_.clear();
+  explored_.set_num_agents(n_);
+  open_.clear();
+  all_.clear();
+  goal_ = nullptr;
+  scratch_.assign(n_, -1);
+  pibt_.set_scatter(nullptr);
+  scatter_.clear();
+  scatter_started_ = first_dive_done_ = false;
+  scatter_root_ = nullptr;
+  scatter_probed_ = guided_dive_ = scatter_stopped_ = false;
+  passes_dived_ = 0;
+  dive_ = nullptr;
+  dive_failures_ = 0;
+  if (opt_.scatter_first && !test) {
+    scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
+    scatter_started_ = true;
+  }
+  root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities, priorities ? order : nullptr);
+  scatter_root_ = root_;
+  explored_.insert(root_);
+  open_.push_back(root_);
+  status_ = Status::Searching;
+}
+
+HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities,
+                       const int32_t* root_order)
+{
+  HNode* h = nodes_.alloc(1);
+  *h = HNode{};
+  Vertex* c = configs_.alloc(n_);
+  std::copy(C, C + n_, c);
+  float* prio = priorities_.alloc(n_);
+  int32_t* order = orders_.alloc(n_);
+  if (parent) {
+    next_priorities(c, n_, dist_, parent->priorities, prio);
+    std::copy(parent->order, parent->order + n_, order);
+    sort_by_priority(prio, n_, order);
+  } else {
+    if (root_priorities) std::copy(root_priorities, root_priorities + n_, prio);
+    else init_priorities(c, n_, dist_, prio);
+    if (root_order) {  // the same total order as initial_order's sort, from a near-sorted start
+      std::copy(root_order, root_order + n_, order);
+      sort_by_priority(prio, n_, order);
+    } else {
+      initial_order(prio, n_, order);
+    }
+  }
+  h->C = c;
+  h->priorities = prio;
+  h->order = order;
+  h->parent = parent;
+  h->hash = hash;
+  h->id = static_cast<uint32_t>(all_.size());
+  Constraint* root = constraints_.alloc(1);
+  *root = Constraint{};
+  h->push(root);
+  all_.push_back(h);
+  return h;
+}
+
+bool Lacam::is_goal(const HNode* h) const
+{
+  return goal_test_ ? goal_test_(h->C) : config_equal(h->C, goals_.data(), n_);
+}
+
+Status Lacam::expand()
+{
+  if (refining_) return refine_expand();
+  if (status_ != Status::Searching) return status_;
+  if (open_.empty()) return status_ = Status::NoSolution;
+  if (opt_.scatter_first && scatter_started_ && scatter_step()) return status_;  // SUO first (lacam3's order)
+  HNode* H = open_.back();
+  if (is_goal(H)) {
+    goal_ = H;
+    status_ = Status::Solved;
+    solved_expansions_ = expansions_;
+    solved_explored_ = explored_.size();
+    if (opt_.refine) start_refining();
+    return status_;
+  }
+  ++expansions_;
+  Constraint* L = H->pop();
+  if (!L) {  // every successor of H has been tried
+    open_.pop_back();
+    return status_;
+  }
+  grow_lowlevel(H, L);
+
+  if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
+  const uint64_t hash = config_hash(scratch_.data(), n_);
+  if (HNode* known = explored_.find(scratch_.data(), hash)) {
+    if (opt_.refine) link(H, known);
+    open_.push_back(known);  // revisit: its next constraint yields another successor
+  } else {
+    HNode* h = new_node(scratch_.data(), H, hash);
+    if (opt_.refine) link(H, h);
+    explored_.insert(h);
+    open_.push_back(h);
+  }
+  return status_;
+}
+
+// Grow the low-level tree lazily: children fix the next agent in H's order.
+void Lacam::grow_lowlevel(HNode* H, const Constraint* L)
+{
+  if (L->depth >= n_) return;
+  const int32_t i = H->order[L->depth];
+  const Vertex v = H->C[i];
+  const auto nb = g_.neighbors(v);
+  Vertex* moves = moves_.data();
+  int k = 0;
+  const bool stays = !immobile_.empty() && immobile_[i];  // an immobile agent's one move
+  if (!stays)
+    for (Vertex u : nb) moves[k++] = u;
+  moves[k++] = v;
+  rng_.shuffle(moves, k);
+  Constraint* kids = constraints_.alloc(k);
+  for (int m = 0; m < k; ++m) {
+    kids[m] = Constraint{L, nullptr, i, moves[m], L->depth + 1};
+    H->push(&kids[m]);
+  }
+}
+
+Status Lacam::search(const Budget& b, bool until_solved)
+{
+  const auto t0 = Clock::now();
+  const auto deadline = deadline_ = b.deadline_from(t0);
+  // With a reserve, the costliest expansion of this call so far counts too (on this thread's
+  // CPU time, which preemption does not inflate; an LNS step: its cost over its units).
+  const bool reserving = b.reserve_ms > 0 && deadline != Clock::time_point::max();
+  double cpu_last = reserving ? thread_cpu_ms() : 0.0;
+  max_unit_ms_ = 0;
+  uint64_t done = 0;
+  // An LNS step larger than an expansions budget is paid off by the next calls (refinement
+  // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
+  if (refining_ && !until_solved && debt_ > 0) {
+    const uint64_t paid = std::min(debt_, b.expansions);
+    debt_ -= paid;
+    done = paid;
+    if (done >= b.expansions) return status_;
+  }
+  while (status_ == Status::Searching || (refining_ && !until_solved)) {
+    units_ = 1;
+    left_ = b.expansions - done;
+    expand();
+    done += units_;
+    if (done >= b.expansions) {
+      if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
+      break;
+    }
+    if (reserving) {
+      const double c = thread_cpu_ms();
+      max_unit_ms_ = std::max(max_unit_ms_, (c - cpu_last) / static_cast<double>(units_));
+      cpu_last = c;
+      const double r = std::max(b.reserve_ms, max_unit_ms_);
+      if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >= deadline)
+        break;
+    } else if (Clock::now() >= deadline) {
+      break;
+    }
+  }
+  return status_;
+}
+
+std::vector<Config> Lacam::path(const HNode* to) const
+{
+  std::vector<Config> out;
+  for (const HNode* h = to; h; h = h->parent) out.emplace_back(h->C, h->C + n_);
+  std::reverse(out.begin(), out.end());
+  return out;
+}
+
+const HNode* Lacam::next_toward(const HNode* target) const
+{
+  if (!target || target == root_) return root_;
+  const HNode* h = target;
+  while (h->parent != root_) h = h->parent;
+  return h;
+}
+
+void Lacam::reroot(const HNode* child)
+{
+  if (child == root_) return;
+  ++reroots_;
+  HNode* c = all_[child->id];  // non-const handle of the same node
+  HNode* old = root_;
+  old->parent = c;
+  c->parent = nullptr;
+  root_ = c;
+  if (refining_) rebase(c, old, false);
+}
+
+bool Lacam::check_tree(std::string* why) const
+{
+  auto fail = [&](const std::string& w) {
+    if (why) *why = w;
+    return false;
+  };
+  if (!root_) return fail("no root");
+  if (root_->parent) return fail("root has a parent");
+  // 0 = unknown, 1 = on the current walk, 2 = reaches the root
+  std::vector<uint8_t> mark(all_.size(), 0);
+  mark[root_->id] = 2;
+  std::vector<const HNode*> walk;
+  for (const HNode* s : all_) {
+    walk.clear();
+    const HNode* h = s;
+    while (mark[h->id] == 0) {
+      mark[h->id] = 1;
+      walk.push_back(h);
+      if (!h->parent) return fail("node " + std::to_string(h->id) + " has no parent but is not the root");
+      h = h->parent;
+    }
+    if (mark[h->id] == 1) return fail("cycle through node " + std::to_string(h->id));
+    for (const HNode* w : walk) mark[w->id] = 2;
+  }
+  if (explored_.size() != all_.size()) return fail("explored table and node list differ in size");
+  return true;
+}
+
+}  // namespace planner

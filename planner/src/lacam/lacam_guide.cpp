@@ -1,0 +1,159 @@
+// Engineering LaCAM* guidance of the refinement (LacamOptions::scatter, dive, scatter_first;
+// lacam.hpp): SUO computed in the refinement's budget, and dives -- PIBT rollouts from the
+// current root to the goals -- whose configurations are inserted and rewired like an LNS path.
+#include <algorithm>
+
+#include "planner/lacam/lacam.hpp"
+
+namespace planner {
+
+// Known or new node for configuration C reached from `from`, linked to it; a known one is
+// rewired (its g, and what hangs on it, drops when `from` is the cheaper way).
+HNode* Lacam::step_to(HNode* from, const Vertex* C)
+{
+  const uint64_t hash = config_hash(C, n_);
+  HNode* h = explored_.find(C, hash);
+  if (h) {
+    link(from, h);
+    rewrite(from, h);
+    return h;
+  }
+  h = new_node(C, from, hash);
+  h->g = from->g + edge_cost(from->C, h->C);
+  h->h = heuristic(h->C);
+  link(from, h);
+  explored_.insert(h);
+  return h;
+}
+
+// SUO from the configuration `lead` steps ahead on the best path (the root without one).
+void Lacam::start_scatter(int lead)
+{
+  scatter_root_ = root_;
+  if (goal_ && lead > 0) {
+    std::vector<HNode*> p;
+    for (HNode* h = goal_; h; h = h->parent) p.push_back(h);
+    scatter_root_ = p[p.size() - 1 - std::min<size_t>(lead, p.size() - 1)];
+  }
+  scatter_.reset(Config(scatter_root_->C, scatter_root_->C + n_), opt_.scatter_margin, opt_.seed + 3,
+                 opt_.scatter_max_passes);
+  scatter_started_ = true;
+  scatter_reroots0_ = reroots_;
+}
+
+// SUO work until the deadline or the budget left; charged work / N expansions. Returns false
+// (nothing done) once SUO is finished or off. The lead is checked once, when an eighth of
+// the agents of the first pass is done: if the agents moved m steps meanwhile, the pass
+// needs about 8m, and when that is more than the steps left to SUO's start, SUO restarts
+// 1.25 x 8m + 2 steps ahead (an eighth of a pass lost, instead of a dive from a
+// configuration the agents have passed).
+bool Lacam::scatter_step()
+{
+  if (!opt_.scatter && !opt_.scatter_first) return false;
+  if (!scatter_started_) start_scatter(opt_.scatter_lead);
+  if (scatter_.done()) {
+    if (scatter_.ready()) pibt_.set_scatter(&scatter_);
+    return false;
+  }
+  const uint64_t n = static_cast<uint64_t>(std::max(n_, 1));
+  const uint64_t max_work = left_ >= UINT64_MAX / n ? UINT64_MAX : left_ * n;
+  scatter_.step(deadline_, max_work);
+  units_ = std::max<uint64_t>(1, scatter_.work() / n);
+  if (scatter_.ready()) pibt_.set_scatter(&scatter_);
+  if (!scatter_probed_ && goal_ && scatter_.passes() == 0 && scatter_.planned() >= std::max(1, n_ / 8)) {
+    scatter_probed_ = true;
+    const uint64_t m = reroots_ - scatter_reroots0_;
+    const uint64_t passes = static_cast<uint64_t>(std::max(1, opt_.scatter_dive_passes));
+    const int need = static_cast<int>(m * n * passes / static_cast<uint64_t>(scatter_.planned()) * 5 / 4) + 2;
+    if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+  }
+  return true;
+}
+
+int Lacam::steps_ahead(const HNode* x) const
+{
+  int k = -1, depth = 0;
+  for (const HNode* h = goal_; h; h = h->parent, ++depth)
+    if (h == x) k = depth;
+  return k < 0 ? -1 : depth - 1 - k;
+}
+
+// Order: finish a running dive; after every newly published SUO pass, a guided dive from
+// the node SUO started at, while that node is still ahead on the best path (the agents'
+// vertices there are the scatter paths' starts, so every agent is guided from its first
+// step; from the root once they are past it); more SUO passes, as long as these dives
+// win; then (LacamOptions::dive) guided dives from the root.
+void Lacam::guide_step()
+{
+  ++expansions_;
+  if (dive_) {
+    dive_step();
+    return;
+  }
+  if (opt_.scatter && !scatter_stopped_) {
+    if (scatter_started_ && scatter_.passes() > passes_dived_ &&
+        (scatter_.passes() >= opt_.scatter_dive_passes || scatter_.done())) {
+      passes_dived_ = scatter_.passes();
+      if (scatter_.ready()) {  // from the root when the agents are past SUO's start already
+        start_dive(steps_ahead(scatter_root_) >= 0 ? scatter_root_ : root_);
+        guided_dive_ = true;
+        dive_step();
+        return;
+      }
+    }
+    if (scatter_step()) return;
+  }
+  if (opt_.dive) {
+    start_dive(root_);
+    dive_step();
+  }
+}
+
+void Lacam::start_dive(HNode* from)
+{
+  dive_ = from;
+  dive_len_ = 0;
+  int depth = 0;
+  for (const HNode* h = goal_; h && h != root_; h = h->parent) ++depth;
+  dive_limit_ = 2 * depth + 16;
+}
+
+// Continues the running dive by PIBT steps until it reaches the goals, fails, or the
+// deadline / budget ends the call; one step is one expansion's work.
+void Lacam::dive_step()
+{
+  uint64_t steps = 0;
+  const auto end = [&](bool won) {
+    // A guided dive that does not beat the best path: SUO does not pay here, its share of
+    // the budget goes back to LNS and LaCAM* (no more passes; PIBT keeps the guidance).
+    if (guided_dive_ && !won) scatter_stopped_ = true;
+    guided_dive_ = false;
+    dive_ = nullptr;
+    first_dive_done_ = true;
+    ++dives_;
+    dive_wins_ += won;
+    dive_failures_ = won ? 0 : dive_failures_ + 1;
+  };
+  while (dive_) {
+    if (dive_len_ >= dive_limit_) {
+      end(false);
+      break;
+    }
+    ++steps;
+    if (!pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_)) {
+      end(false);
+      break;
+    }
+    const int64_t g_goal = goal_->g;
+    dive_ = step_to(dive_, scratch_.data());
+    ++dive_len_;
+    if (dive_ == goal_) {
+      end(goal_->g < g_goal);
+      break;
+    }
+    if (steps >= left_ || Clock::now() >= deadline_) break;
+  }
+  units_ = std::max<uint64_t>(1, steps);
+}
+
+}  // namespace planner

@@ -1,0 +1,239 @@
+#include "planner/lacam/lns_refiner.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <queue>
+#include <stdexcept>
+
+namespace planner {
+
+int64_t LnsRefiner::agent_cost(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1)
+{
+  int64_t c = 0;
+  for (int t = t0; t < t1; ++t) c += !(path[t][i] == goals[i] && path[t + 1][i] == goals[i]);
+  return c;
+}
+
+// Space-time A* for agent i from (path[t0][i], t0) to (path[t1][i], t1) around the agents in
+// occ_; cost per step 1, but 0 for waiting on the goal. h = |d(v, goal) - d(end, goal)|, a
+// lower bound on d(v, end) from the goal's distance table (no table per window end).
+bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& goals, int t0, int t1,
+                        std::vector<Vertex>& out, Clock::time_point deadline)
+{
+  const size_t V = g_.size();
+  const Vertex goal = goals[i], end = path[t1][i];
+  const int32_t d_end = dist_.get(i, end);
+  // Flat window x |V| table of best g, valid where its stamp is this call's (no hashing, no
+  // clearing, no allocation once grown: the step is real-time work).
+  const size_t W = static_cast<size_t>(t1 - t0 + 1);
+  if (best_.size() < W * V) {
+    best_.assign(W * V, 0);
+    stamp_.assign(W * V, 0);
+  }
+  if (++epoch_ == 0) {  // wrapped: stale stamps could collide
+    std::fill(stamp_.begin(), stamp_.end(), 0);
+    epoch_ = 1;
+  }
+  nodes_.clear();
+  open_ = {};
+  auto h = [&](Vertex v) { return static_cast<int64_t>(std::abs(dist_.get(i, v) - d_end)); };
+  auto slot = [&](int t, Vertex v) { return static_cast<size_t>(t - t0) * V + static_cast<size_t>(v); };
+  const Vertex s = path[t0][i];
+  nodes_.push_back({s, t0, 0, -1});
+  best_[slot(t0, s)] = 0;
+  stamp_[slot(t0, s)] = epoch_;
+  open_.push({h(s), -t0, 0});
+  // Bound the work of one replan: a failing search would otherwise sweep |V| x window states.
+  const size_t limit = 32 * W + 1024;
+  size_t pops = 0;
+  bool found = false;
+  while (!open_.empty() && nodes_.size() < limit) {
+    if ((++pops & 255) == 0 && Clock::now() >= deadline) break;
+    auto [f, negt, idx] = open_.top();
+    open_.pop();
+    const AstarNode n = nodes_[idx];
+    if (best_[slot(n.t, n.v)] < n.g) continue;
+    if (n.t == t1) {
+      if (n.v != end) continue;
+      out.assign(W, -1);
+      for (int32_t k = idx; k >= 0; k = nodes_[k].parent) out[nodes_[k].t - t0] = nodes_[k].v;
+      found = true;
+      break;
+    }
+    if (t1 - n.t < h(n.v)) continue;  // cannot reach the end in time
+    const auto nb = g_.neighbors(n.v);
+    for (size_t m = 0; m <= nb.size(); ++m) {
+      const Vertex u = m < nb.size() ? nb[m] : n.v;
+      const size_t at = slot(n.t + 1, u);
+      if (occ_[at] >= 0) continue;  // vertex conflict
+      if (u != n.v) {
+        const int32_t j = occ_[slot(n.t, u)];
+        if (j >= 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
+      }
+      const int64_t g = n.g + !(n.v == goal && u == goal);
+      if (stamp_[at] == epoch_ && best_[at] <= g) continue;
+      stamp_[at] = epoch_;
+      best_[at] = g;
+      nodes_.push_back({u, n.t + 1, g, idx});
+      open_.push({g + h(u), -(n.t + 1), static_cast<int32_t>(nodes_.size() - 1)});
+    }
+  }
+  work_ += nodes_.size() + pops;
+  return found;
+}
+
+LnsNeighbourhood parse_lns_neighbourhood(const std::string& s)
+{
+  if (s == "random") return LnsNeighbourhood::random;
+  if (s == "blocking") return LnsNeighbourhood::blocking;
+  if (s == "intersection") return LnsNeighbourhood::intersection;
+  if (s == "adaptive") return LnsNeighbourhood::adaptive;
+  throw std::invalid_argument("unknown LNS neighbourhood '" + s + "' (random | blocking | intersection | adaptive)");
+}
+
+void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Config& goals,
+                               const std::vector<int64_t>& cost, int k, int t0, int t1, Rng& rng)
+{
+  const int n = static_cast<int>(goals.size());
+  const size_t V = g_.size();
+  auto in = [&](int j) { return std::find(set_.begin(), set_.end(), j) != set_.end(); };
+  std::vector<int> cand;
+  if (h == 1) {  // blocking chains, breadth-first from the seed
+    const size_t W = static_cast<size_t>(t1 - t0 + 1);
+    if (at_.size() < W * V) at_.assign(W * V, -1);
+    for (int t = t0; t <= t1; ++t)
+      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = i;
+    work_ += W * static_cast<size_t>(n);
+    for (size_t q = 0; q < set_.size() && static_cast<int>(set_.size()) < k; ++q) {
+      const int a = set_[q];
+      cand.clear();
+      for (int t = t0; t < t1; ++t) {
+        const Vertex v = path[t][a];
+        if (v == goals[a] || dist_.get(a, path[t + 1][a]) < dist_.get(a, v)) continue;  // progress
+        for (Vertex u : g_.neighbors(v)) {
+          if (dist_.get(a, u) >= dist_.get(a, v)) continue;
+          const int32_t j = at_[static_cast<size_t>(t + 1 - t0) * V + static_cast<size_t>(u)];
+          if (j >= 0 && j != a && !in(j) &&
+              std::find(cand.begin(), cand.end(), j) == cand.end())
+            cand.push_back(j);
+        }
+      }
+      work_ += static_cast<uint64_t>(t1 - t0);
+      rng.shuffle(cand.data(), static_cast<int>(cand.size()));
+      for (int j : cand)
+        if (static_cast<int>(set_.size()) < k) set_.push_back(j);
+    }
+    // at_ is rewritten before every use, but stale agents must not answer: clear what was set
+    for (int t = t0; t <= t1; ++t)
+      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = -1;
+  } else if (h == 2) {  // the agents crossing one intersection of the seed's path
+    const int a = set_[0];
+    std::vector<Vertex> cross;
+    for (int t = t0; t <= t1; ++t)
+      if (g_.neighbors(path[t][a]).size() >= 3) cross.push_back(path[t][a]);
+    if (cross.empty()) cross.push_back(path[t0 + static_cast<int>(rng.below(static_cast<uint32_t>(t1 - t0 + 1)))][a]);
+    const Vertex x = cross[rng.below(static_cast<uint32_t>(cross.size()))];
+    for (int i = 0; i < n; ++i) {
+      if (i == a) continue;
+      for (int t = t0; t <= t1; ++t)
+        if (path[t][i] == x) {
+          cand.push_back(i);
+          break;
+        }
+    }
+    work_ += static_cast<uint64_t>(t1 - t0 + 1) * static_cast<uint64_t>(n);
+    rng.shuffle(cand.data(), static_cast<int>(cand.size()));
+    for (int j : cand)
+      if (static_cast<int>(set_.size()) < k) set_.push_back(j);
+  }
+  (void)cost;
+  // Too few (or random): random others fill the set (MAPF-LNS does the same).
+  for (int tries = 0; static_cast<int>(set_.size()) < k && tries < 4 * k; ++tries) {
+    const int j = static_cast<int>(rng.below(static_cast<uint32_t>(n)));
+    if (!in(j)) set_.push_back(j);
+  }
+}
+
+bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng& rng, Clock::time_point deadline)
+{
+  const int n = static_cast<int>(goals.size());
+  const int T = static_cast<int>(path.size()) - 1;
+  work_ = static_cast<uint64_t>(T + 1) * static_cast<uint64_t>(n);  // the cost pass below
+  if (T < 1 || n == 0) return false;
+  // A delayed agent seeds the neighbourhood: only where someone waits or detours can the
+  // cost drop. One pass in time order (the configurations are stored by time step).
+  std::vector<int64_t> cost(n, 0);
+  for (int t = 0; t < T; ++t)
+    for (int i = 0; i < n; ++i) cost[i] += !(path[t][i] == goals[i] && path[t + 1][i] == goals[i]);
+  // The seed: a delayed agent, roulette by delay.
+  int64_t total_delay = 0;
+  for (int i = 0; i < n; ++i) total_delay += cost[i] - dist_.get(i, path[0][i]);
+  if (total_delay <= 0) return false;
+  // The time window [t0, t1]: the agents keep their positions at both ends.
+  const int t0 = T > window_ ? static_cast<int>(rng.below(static_cast<uint32_t>(T - window_ + 1))) : 0;
+  const int t1 = std::min(T, t0 + window_);
+  int h = static_cast<int>(nbh_);
+  if (nbh_ == LnsNeighbourhood::adaptive) {
+    const double r = rng.uniform() * (weight_[0] + weight_[1] + weight_[2]);
+    h = r < weight_[0] ? 0 : r < weight_[0] + weight_[1] ? 1 : 2;
+  }
+  last_h_ = h;
+  set_.clear();
+  int64_t r = static_cast<int64_t>(rng.uniform() * static_cast<double>(total_delay));
+  for (int i = 0; i < n; ++i) {
+    r -= cost[i] - dist_.get(i, path[0][i]);
+    if (r < 0 || i == n - 1) {
+      set_.push_back(i);
+      break;
+    }
+  }
+  neighbourhood(h, path, goals, cost, std::min(k, n), t0, t1, rng);
+  std::vector<int>& set = set_;
+
+  const size_t V = g_.size(), W = static_cast<size_t>(t1 - t0 + 1);
+  if (occ_.size() < W * V) occ_.assign(W * V, -1);
+  written_.clear();
+  std::vector<char> in_set(n, 0);
+  for (int i : set) in_set[i] = 1;
+  for (int t = t0; t <= t1; ++t)
+    for (int i = 0; i < n; ++i)
+      if (!in_set[i]) {
+        const size_t key = static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i]);
+        occ_[key] = i;
+        written_.push_back(key);
+      }
+
+  work_ += written_.size();
+  int64_t before = 0;
+  for (int i : set) before += agent_cost(path, goals, i, t0, t1);
+  rng.shuffle(set.data(), static_cast<int>(set.size()));
+  std::vector<std::vector<Vertex>> fresh(set.size());
+  int64_t after = 0;
+  bool ok = true;
+  for (size_t m = 0; m < set.size() && ok; ++m) {
+    const int i = set[m];
+    ok = replan(i, path, goals, t0, t1, fresh[m], deadline);
+    if (!ok) break;
+    for (int t = t0; t <= t1; ++t) {
+      const Vertex v = fresh[m][t - t0];
+      const size_t key = static_cast<size_t>(t - t0) * V + static_cast<size_t>(v);
+      occ_[key] = i;
+      written_.push_back(key);
+      if (t < t1) after += !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
+    }
+    if (after >= before) ok = false;  // cannot win any more
+  }
+  for (size_t key : written_) occ_[key] = -1;
+  written_.clear();
+  constexpr double kGamma = 0.01;  // MAPF-LNS's reaction factor
+  const bool won = ok && after < before;
+  if (nbh_ == LnsNeighbourhood::adaptive)
+    weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(set.size()) : 0.0) +
+                                    (1 - kGamma) * weight_[h]);
+  if (!won) return false;
+  for (size_t m = 0; m < set.size(); ++m)
+    for (int t = t0; t <= t1; ++t) path[t][set[m]] = fresh[m][t - t0];
+  return true;
+}
+
+}  // namespace planner

@@ -1,0 +1,202 @@
+#include "planner/lacam/pibt.hpp"
+
+#include <algorithm>
+
+namespace planner {
+
+Pibt::Pibt(const Graph& g, DistTable& d, bool swap)
+    : g_(g), d_(d), swap_(swap), stride_(g.max_degree() + 1), occ_now_(g.size(), -1), occ_next_(g.size(), -1),
+      key_(stride_), detour_(g)
+{
+}
+
+void Pibt::set_goals(const Config& goals)
+{
+  // Forget the marks of the previous generate() before the agent arrays change size.
+  for (int i = 0; i < n_; ++i) {
+    if (now_[i] >= 0) occ_now_[now_[i]] = -1;
+    if (next_[i] >= 0) occ_next_[next_[i]] = -1;
+  }
+  goals_ = goals;
+  if (pref_) pref_->set_goals(goals);
+  n_ = static_cast<int>(goals.size());
+  now_.assign(n_, -1);
+  next_.assign(n_, -1);
+  cand_.assign(static_cast<size_t>(n_) * stride_, -1);
+}
+
+bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* c, Vertex* to, Rng& rng)
+{
+  // Undo the previous call's reservations: O(N), no O(V) clearing.
+  for (int i = 0; i < n_; ++i) {
+    if (now_[i] >= 0 && occ_now_[now_[i]] == i) occ_now_[now_[i]] = -1;
+    if (next_[i] >= 0) occ_next_[next_[i]] = -1;
+  }
+  for (int i = 0; i < n_; ++i) {
+    now_[i] = from[i];
+    next_[i] = -1;
+    occ_now_[from[i]] = i;
+  }
+  // The candidates' distances, all agents at once (DistTable::prefetch).
+  for (int i = 0; i < n_; ++i) {
+    d_.prefetch(i, from[i]);
+    for (Vertex u : g_.neighbors(from[i])) d_.prefetch(i, u);
+  }
+  if (pref_) pref_->prepare(from, n_);
+  if (!immobile_.empty()) {  // immobile agents never move: their cells are fixed obstacles
+    std::vector<Vertex> blocked;
+    for (int i = 0; i < n_; ++i)
+      if (immobile_[i]) blocked.push_back(from[i]);
+    detour_.set_blocked(std::move(blocked));
+  }
+
+  // Agents fixed by the constraint chain; reject fixes that collide with each other.
+  for (; c && c->depth > 0; c = c->parent) {
+    const int32_t i = c->who;
+    const Vertex v = c->where;
+    if (occ_next_[v] >= 0) return false;                     // vertex conflict
+    const int32_t j = occ_now_[v];
+    if (j >= 0 && j != i && next_[j] == from[i]) return false;  // swap conflict
+    next_[i] = v;
+    occ_next_[v] = i;
+  }
+
+  for (int k = 0; k < n_; ++k) {
+    const int32_t i = order[k];
+    if (next_[i] < 0 && !plan(i, rng)) return false;
+  }
+  std::copy(next_.begin(), next_.end(), to);
+  return true;
+}
+
+bool Pibt::plan(int32_t i, Rng& rng)
+{
+  const Vertex v = now_[i];
+  if (immobile(i)) {
+    // Its one candidate is staying: it fails if v is reserved already (a pusher asking it
+    // to move, or a constraint fixing someone there); either way v stays its own.
+    const bool ok = occ_next_[v] < 0 || occ_next_[v] == i;
+    occ_next_[v] = i;
+    next_[i] = v;
+    return ok;
+  }
+  const auto nb = g_.neighbors(v);
+  const int K = static_cast<int>(nb.size());
+  Vertex* C = cand_.data() + static_cast<size_t>(i) * stride_;
+
+  // Candidates (neighbours + stay), sorted by score; insertion sort on <= 5 entries.
+  for (int k = 0; k < K; ++k) C[k] = nb[k];
+  C[K] = v;
+  for (int k = 0; k <= K; ++k)
+    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + rng.uniform();
+  if (scatter_ && scatter_->ready()) {
+    const Vertex s = scatter_->next(i, v);
+    for (int k = 0; k <= K; ++k)
+      if (C[k] == s) key_[k] = -1e30f;
+  }
+  for (int k = 1; k <= K; ++k) {
+    const Vertex u = C[k];
+    const float key = key_[k];
+    int j = k;
+    for (; j > 0 && key < key_[j - 1]; --j) C[j] = C[j - 1], key_[j] = key_[j - 1];
+    C[j] = u, key_[j] = key;
+  }
+
+  const int32_t partner = swap_ ? swap_partner(i) : -1;
+  if (partner >= 0) std::reverse(C, C + K + 1);
+
+  for (int k = 0; k <= K; ++k) {
+    const Vertex u = C[k];
+    if (occ_next_[u] >= 0) continue;               // vertex conflict
+    const int32_t j = occ_now_[u];
+    if (j >= 0 && next_[j] == v) continue;          // swap conflict
+    occ_next_[u] = i;
+    next_[i] = u;
+    // Priority inheritance: j must make room; on failure j stays at u and u is j's.
+    if (j >= 0 && j != i && next_[j] < 0 && !plan(j, rng)) continue;
+    // Swap: pull the partner into the vertex i is leaving.
+    if (k == 0 && partner >= 0 && next_[partner] < 0 && occ_next_[v] < 0) {
+      next_[partner] = v;
+      occ_next_[v] = partner;
+    }
+    return true;
+  }
+  occ_next_[v] = i;
+  next_[i] = v;
+  return false;
+}
+
+float Pibt::distance(int32_t i, Vertex u)
+{
+  if (!detour_.active() || detour_.get(goals_[i], now_[i]) >= DistTable::kInf) return static_cast<float>(d_.get(i, u));
+  return static_cast<float>(detour_.get(goals_[i], u));
+}
+
+bool Pibt::pull_impossible(Vertex u, Vertex v_pusher) const
+{
+  if (u == v_pusher) return true;
+  const int32_t a = occ_now_[u];
+  if (a >= 0 && immobile(a)) return true;  // a wall while it is immobile
+  return g_.degree(u) == 1 && a >= 0 && goals_[a] == u;  // parked on its goal in a dead end
+}
+
+int32_t Pibt::swap_partner(int32_t i) const
+{
+  const Vertex v = now_[i];
+  const Vertex best = cand_[static_cast<size_t>(i) * stride_];
+  if (best == v) return -1;  // i wants to stay
+
+  // i is blocked by j coming the other way (cases a and b of LaCAM*).
+  const int32_t j = occ_now_[best];
+  if (j >= 0 && next_[j] < 0 && !immobile(j) && swap_required(i, j, v, best) && swap_possible(best, v)) return j;
+
+  // i clears the way for a neighbour k behind it (case c).
+  for (Vertex u : g_.neighbors(v)) {
+    const int32_t k = occ_now_[u];
+    if (k < 0 || best == now_[k] || immobile(k)) continue;
+    if (swap_required(k, i, v, best) && swap_possible(best, v)) return k;
+  }
+  return -1;
+}
+
+// Simulates the pusher walking towards its goal through a corridor: the swap is required
+// when the corridor never widens enough to let the two pass.
+bool Pibt::swap_required(int32_t pusher, int32_t puller, Vertex v_pusher, Vertex v_puller) const
+{
+  Vertex tmp = -1;
+  while (d_.get(pusher, v_puller) < d_.get(pusher, v_pusher)) {
+    int n = g_.degree(v_puller);
+    for (Vertex u : g_.neighbors(v_puller)) {
+      if (pull_impossible(u, v_pusher)) --n;
+      else tmp = u;
+    }
+    if (n >= 2) return false;  // room to pass: no swap needed
+    if (n <= 0) break;
+    v_pusher = v_puller;
+    v_puller = tmp;
+  }
+  return d_.get(puller, v_pusher) < d_.get(puller, v_puller) &&
+         (d_.get(pusher, v_pusher) == 0 || d_.get(pusher, v_puller) < d_.get(pusher, v_pusher));
+}
+
+// Simulates the puller backing out: the swap is possible when it reaches a vertex with
+// two free ways before returning to where the pusher started.
+bool Pibt::swap_possible(Vertex v_pusher, Vertex v_puller) const
+{
+  const Vertex origin = v_pusher;
+  Vertex tmp = -1;
+  while (v_puller != origin) {
+    int n = g_.degree(v_puller);
+    for (Vertex u : g_.neighbors(v_puller)) {
+      if (pull_impossible(u, v_pusher)) --n;
+      else tmp = u;
+    }
+    if (n >= 2) return true;
+    if (n <= 0) return false;
+    v_pusher = v_puller;
+    v_puller = tmp;
+  }
+  return false;
+}
+
+}  // namespace planner

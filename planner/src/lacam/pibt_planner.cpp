@@ -1,0 +1,69 @@
+#include "planner/lacam/pibt_planner.hpp"
+
+#include "planner/lacam/immobile.hpp"
+
+namespace planner {
+
+PibtPlanner::PibtPlanner(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
+                         ActionPreference* pref, GoalTest test)
+    : dist_(g), pibt_(g, dist_, opt.swap), rng_(opt.seed), current_(starts), keep_priorities_(opt.keep_priorities)
+{
+  pibt_.set_preference(pref);
+  set_goals(goals, std::move(test));
+}
+
+void PibtPlanner::set_goals(const Config& goals, GoalTest test)
+{
+  goals_ = goals;
+  test_ = std::move(test);
+  dist_.set_goals(goals);
+  pibt_.set_goals(goals);
+  const int n = static_cast<int>(goals.size());
+  next_.assign(n, -1);
+  planned_ = false;
+  // Lifelong goal changes may keep the priorities: PIBT's memory of who waited longest.
+  if (keep_priorities_ && static_cast<int>(prio_.size()) == n) return;
+  prio_.assign(n, 0.0f);
+  prio_next_.assign(n, 0.0f);
+  order_.assign(n, 0);
+  init_priorities(current_.data(), n, dist_, prio_.data());
+  initial_order(prio_.data(), n, order_.data());
+}
+
+void PibtPlanner::set_immobile(int agent, bool immobile)
+{
+  check_immobile_agent(agent, current_.size());
+  if (immobile_.size() != current_.size()) immobile_.assign(current_.size(), 0);
+  immobile_[agent] = immobile;
+  pibt_.set_immobile(immobile_);
+  planned_ = false;  // a step planned before may move the agent
+}
+
+Status PibtPlanner::search(const Budget&)
+{
+  if (!planned_) {
+    // A failed PIBT call (possible only with conflicting preferences) leaves everyone in place.
+    if (!pibt_.generate(current_.data(), order_.data(), nullptr, next_.data(), rng_)) next_ = current_;
+    planned_ = true;
+    ++steps_planned_;
+  }
+  return at_goal() ? Status::Solved : Status::Searching;
+}
+
+void PibtPlanner::commit()
+{
+  if (!planned_) search(Budget{});
+  current_ = next_;
+  const int n = static_cast<int>(current_.size());
+  next_priorities(current_.data(), n, dist_, prio_.data(), prio_next_.data());
+  prio_.swap(prio_next_);
+  sort_by_priority(prio_.data(), n, order_.data());
+  planned_ = false;
+}
+
+bool PibtPlanner::at_goal() const
+{
+  return passes_goal_test(test_, current_, goals_);
+}
+
+}  // namespace planner

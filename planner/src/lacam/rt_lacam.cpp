@@ -1,0 +1,83 @@
+#include "planner/lacam/rt_lacam.hpp"
+
+namespace planner {
+
+RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
+                 GoalTest test)
+    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts), keep_priorities_(opt.keep_priorities), g_(g)
+{
+  set_goals(goals, std::move(test));
+}
+
+void RtLacam::set_goals(const Config& goals, GoalTest test)
+{
+  test_ = std::move(test);
+  if (immobile_.size() != goals.size()) immobile_.assign(goals.size(), 0);
+  restart(goals);
+}
+
+void RtLacam::set_immobile(int agent, bool immobile)
+{
+  check_immobile_agent(agent, immobile_.size());
+  if (immobile_[agent] == static_cast<uint8_t>(immobile)) return;
+  immobile_[agent] = immobile;
+  lacam_.set_immobile(immobile_);
+  const Config goals = lacam_.goals();
+  restart(goals);
+}
+
+void RtLacam::restart(const Config& goals)
+{
+  GoalTest test = relaxed_goal_test(g_, current_, goals, immobile_, test_);
+  // A new epoch may keep the agents' PIBT priorities (LacamOptions::keep_priorities).
+  const HNode* root = lacam_.root();
+  if (keep_priorities_ && root && goals.size() == current_.size()) {
+    carried_.assign(root->priorities, root->priorities + lacam_.num_agents());
+    carried_order_.assign(root->order, root->order + lacam_.num_agents());
+    lacam_.reset(current_, goals, std::move(test), carried_.data(), carried_order_.data());
+  } else {
+    lacam_.reset(current_, goals, std::move(test));
+  }
+  planned_ = promised_ = nullptr;
+}
+
+Status RtLacam::search(const Budget& b)
+{
+  const bool held = any_immobile(immobile_);  // a dry relaxed search is no failure
+  if (lacam_.status() != Status::Searching && !lacam_.refining())
+    return held && lacam_.status() == Status::NoSolution ? Status::Searching : lacam_.status();
+  planned_ = nullptr;
+  const Status s = lacam_.search(b);
+  return held && s == Status::NoSolution ? Status::Searching : s;
+}
+
+const HNode* RtLacam::planned()
+{
+  if (planned_) return planned_;
+  const HNode* target = lacam_.goal_node() ? lacam_.goal_node() : lacam_.top();
+  return planned_ = lacam_.next_toward(target);
+}
+
+const Config& RtLacam::next()
+{
+  const HNode* h = promised_ = planned();
+  next_.assign(h->C, h->C + lacam_.num_agents());
+  return next_;
+}
+
+void RtLacam::commit()
+{
+  const HNode* h = promised_ ? promised_ : planned();
+  promised_ = nullptr;
+  if (h == lacam_.root()) return;  // wait
+  lacam_.reroot(h);
+  planned_ = nullptr;
+  current_.assign(h->C, h->C + lacam_.num_agents());
+}
+
+bool RtLacam::at_goal() const
+{
+  return passes_goal_test(test_, current_, lacam_.goals());
+}
+
+}  // namespace planner

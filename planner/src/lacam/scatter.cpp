@@ -1,0 +1,297 @@
+#include "planner/lacam/scatter.hpp"
+
+#include <algorithm>
+#include <numeric>
+
+namespace planner {
+
+namespace {
+// Heap order: fewer collisions first, then smaller f, then deeper (closer to the goal), all
+// in one integer (Node::key): one comparison instead of three, the same order.
+template <class N>
+bool worse(const N& a, const N& b)
+{
+  return a.key > b.key;
+}
+}  // namespace
+
+uint64_t Scatter::key(int64_t coll, int32_t f, int32_t g) const
+{
+  const uint64_t c = std::min<uint64_t>(static_cast<uint64_t>(coll), coll_max_);
+  return (c << (2 * len_bits_)) | (static_cast<uint64_t>(f) << len_bits_) | (len_max_ - static_cast<uint64_t>(g));
+}
+
+void Scatter::clear()
+{
+  n_ = 0;
+  done_ = true;
+  in_astar_ = false;
+  paths_.clear();
+  published_.clear();
+  next_.clear();
+  body_.clear();
+  last_.clear();
+  passes_ = 0;
+  collisions_ = published_collisions_ = 0;
+}
+
+void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_passes)
+{
+  clear();
+  max_passes_ = max_passes;
+  bucket_ = bucket_next_;
+  n_ = static_cast<int>(starts.size());
+  margin_ = margin;
+  rng_ = Rng(seed);
+  starts_ = starts;
+  paths_.assign(n_, {});
+  body_.assign(g_.size(), {});
+  last_.assign(g_.size(), {});
+  parent_.assign(g_.size(), -2);
+  // f, g <= distance + margin < |V| + margin + 1: len_bits_ bits each, the rest for collisions.
+  len_bits_ = 1;
+  while ((uint64_t{1} << len_bits_) <= g_.size() + static_cast<uint64_t>(margin) + 1) ++len_bits_;
+  len_max_ = (uint64_t{1} << len_bits_) - 1;
+  coll_max_ = (uint64_t{1} << (64 - 2 * len_bits_)) - 1;
+  order_.resize(n_);
+  std::iota(order_.begin(), order_.end(), 0);
+  rng_.shuffle(order_.data(), n_);
+  pos_ = 0;
+  pass_start_collisions_ = 0;
+  done_ = n_ == 0;
+}
+
+int32_t Scatter::collision_cost(Vertex u, Vertex w, int32_t t) const
+{
+  int32_t c = 0;
+  const auto& bw = body_[w];
+  const auto& bu = body_[u];
+  if (static_cast<size_t>(t + 1) < bw.size()) c += static_cast<int32_t>(bw[t + 1].size());  // vertex
+  if (static_cast<size_t>(t + 1) < bu.size() && static_cast<size_t>(t) < bw.size())         // swap
+    for (int32_t j : bu[t + 1])
+      for (int32_t k : bw[t])
+        c += j == k;
+  for (int32_t arrived : last_[w]) c += t + 1 > arrived;  // on somebody's goal after they arrived
+  return c;
+}
+
+// The collisions of agent i's path with everybody else's (i not enrolled): pairwise and
+// symmetric, so enroll adds and withdraw subtracts the same amount.
+void Scatter::enroll(int i)
+{
+  const auto& p = paths_[i];
+  if (p.empty()) return;
+  const int32_t T = static_cast<int32_t>(p.size()) - 1;
+  int64_t c = 0;
+  for (int32_t t = 0; t < T; ++t) c += collision_cost(p[t], p[t + 1], t);
+  const auto& bg = body_[p.back()];
+  for (size_t t = T + 1; t < bg.size(); ++t) c += static_cast<int64_t>(bg[t].size());
+  collisions_ += c;
+  for (int32_t t = 0; t <= T; ++t) {
+    auto& b = body_[p[t]];
+    if (b.size() <= static_cast<size_t>(t)) b.resize(t + 1);
+    b[t].push_back(i);
+  }
+  last_[p.back()].push_back(T);
+  work_ += 2 * (T + 1);
+}
+
+void Scatter::withdraw(int i)
+{
+  const auto& p = paths_[i];
+  if (p.empty()) return;
+  const int32_t T = static_cast<int32_t>(p.size()) - 1;
+  for (int32_t t = 0; t <= T; ++t) {
+    auto& b = body_[p[t]][t];
+    b.erase(std::find(b.begin(), b.end(), i));
+  }
+  auto& l = last_[p.back()];
+  l.erase(std::find(l.begin(), l.end(), T));
+  int64_t c = 0;
+  for (int32_t t = 0; t < T; ++t) c += collision_cost(p[t], p[t + 1], t);
+  const auto& bg = body_[p.back()];
+  for (size_t t = T + 1; t < bg.size(); ++t) c += static_cast<int64_t>(bg[t].size());
+  collisions_ -= c;
+  work_ += 2 * (T + 1);
+}
+
+// Open list. Heap: std::push_heap / pop_heap on the key. Bucket queue: one bucket per
+// (collisions, f) level, levels are popped in increasing order (along an edge neither
+// collisions nor f -- consistent heuristic -- decrease, so nothing is ever pushed below the
+// level being popped); inside the level the deepest node first: the bucket is sorted by
+// key once when it is reached, and every child pushed into it is one deeper than the node
+// just popped, the deepest there, so a push to the back keeps it sorted. The same order
+// as the heap up to ties between equal keys.
+size_t Scatter::level(const Node& x) const
+{
+  const uint64_t coll = x.key >> (2 * len_bits_);
+  const int32_t f = static_cast<int32_t>((x.key >> len_bits_) & len_max_);
+  const int64_t l = static_cast<int64_t>(coll) * (margin_ + 1) + (f - f0_);
+  return static_cast<size_t>(std::max<int64_t>(l, 0));
+}
+
+void Scatter::push(const Node& x)
+{
+  if (!bucket_) {
+    open_.push_back(x);
+    std::push_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+    return;
+  }
+  // Below the level being popped only with an inconsistent distance (a lower bound past
+  // the BFS's deadline): then into the current level, in its order.
+  const size_t l = std::max(std::min(level(x), kMaxLevels - 1), cur_);
+  if (l >= buckets_.size()) buckets_.resize(l + 1);
+  auto& b = buckets_[l];
+  if (l == cur_ && level_sorted_ && !b.empty() && !worse(b.back(), x))
+    b.insert(std::upper_bound(b.begin(), b.end(), x, [](const Node& a, const Node& c) { return worse(a, c); }), x);
+  else
+    b.push_back(x);
+  top_ = std::max(top_, l + 1);
+}
+
+bool Scatter::open_empty()
+{
+  if (!bucket_) return open_.empty();
+  while (cur_ < top_ && buckets_[cur_].empty()) {
+    ++cur_;
+    level_sorted_ = false;
+  }
+  return cur_ >= top_;
+}
+
+Scatter::Node Scatter::pop()  // after !open_empty()
+{
+  if (!bucket_) {
+    std::pop_heap(open_.begin(), open_.end(), [](const Node& a, const Node& b) { return worse(a, b); });
+    const Node x = open_.back();
+    open_.pop_back();
+    return x;
+  }
+  auto& b = buckets_[cur_];
+  if (!level_sorted_) {
+    std::sort(b.begin(), b.end(), [](const Node& x, const Node& y) { return worse(x, y); });
+    level_sorted_ = true;
+  }
+  const Node x = b.back();
+  b.pop_back();
+  return x;
+}
+
+void Scatter::begin_agent()
+{
+  const int i = order_[pos_];
+  withdraw(i);
+  const Vertex s = starts_[i];
+  cost_ub_ = dist_.get(i, s) + margin_;
+  open_.clear();
+  for (size_t b = 0; b < top_; ++b) buckets_[b].clear();
+  cur_ = top_ = 0;
+  level_sorted_ = false;
+  f0_ = dist_.get(i, s);
+  push(Node{key(0, f0_, 0), s, -1});
+  in_astar_ = true;
+}
+
+bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
+{
+  const int i = order_[pos_];
+  const Vertex s = starts_[i];
+  uint64_t pops = 0;
+  bool solved = false;
+  Vertex goal = -1;
+  while (!open_empty()) {
+    if ((++pops & 63) == 0 && (work_ >= max_work || Clock::now() >= deadline)) return false;
+    const Node x = pop();
+    work_ += 4;
+    if (parent_[x.v] != -2) continue;
+    parent_[x.v] = x.parent;
+    closed_.push_back(x.v);
+    if (dist_.get(i, x.v) == 0) {
+      solved = true;
+      goal = x.v;
+      break;
+    }
+    const int64_t coll = static_cast<int64_t>(x.key >> (2 * len_bits_));
+    const int32_t g = static_cast<int32_t>(len_max_ - (x.key & len_max_));
+    for (Vertex u : g_.neighbors(x.v)) {
+      if (u == s || parent_[u] != -2) continue;
+      const int32_t d = dist_.get(i, u);
+      if (g + 1 + d > cost_ub_) continue;
+      push(Node{key(coll + collision_cost(x.v, u, g), g + 1 + d, g + 1), u, x.v});
+    }
+  }
+  auto& p = paths_[i];
+  if (solved) {
+    p.clear();
+    for (Vertex v = goal; v != -1; v = parent_[v]) p.push_back(v);
+    std::reverse(p.begin(), p.end());
+  } else if (p.empty()) {
+    // Closing vertices by collision count can cut every route within the margin; a
+    // shortest path (down the distance table) keeps every agent guided.
+    p.push_back(s);
+    for (Vertex v = s; dist_.get(i, v) > 0 && dist_.get(i, v) < DistTable::kInf;) {
+      for (Vertex u : g_.neighbors(v))
+        if (dist_.get(i, u) < dist_.get(i, v)) {
+          v = u;
+          break;
+        }
+      p.push_back(v);
+    }
+  }
+  for (Vertex v : closed_) parent_[v] = -2;
+  closed_.clear();
+  open_.clear();
+  for (size_t b = 0; b < top_; ++b) buckets_[b].clear();
+  cur_ = top_ = 0;
+  level_sorted_ = false;
+  enroll(i);
+  in_astar_ = false;
+  return true;
+}
+
+void Scatter::end_pass()
+{
+  ++passes_;
+  if (passes_ == 1 || collisions_ <= published_collisions_) {
+    published_ = paths_;
+    published_collisions_ = collisions_;
+    next_.assign(n_, {});
+    for (int i = 0; i < n_; ++i) {
+      const auto& p = published_[i];
+      auto& nx = next_[i];
+      for (size_t t = 0; t + 1 < p.size(); ++t) nx.emplace_back(p[t], p[t + 1]);
+      std::sort(nx.begin(), nx.end());
+      work_ += p.size();
+    }
+  }
+  // lacam3: at least two passes, then on while the collision count drops.
+  if (collisions_ == 0 || (max_passes_ > 0 && passes_ >= max_passes_) || (passes_ >= 2 && collisions_ >= pass_start_collisions_)) {
+    done_ = true;
+    return;
+  }
+  pass_start_collisions_ = collisions_;
+  pos_ = 0;
+  rng_.shuffle(order_.data(), n_);
+}
+
+bool Scatter::step(Clock::time_point deadline, uint64_t max_work)
+{
+  work_ = 0;
+  while (!done_) {
+    if (!in_astar_) begin_agent();
+    if (!run_astar(deadline, max_work)) break;  // paused inside the A*
+    if (++pos_ == n_) end_pass();
+    if (work_ >= max_work || Clock::now() >= deadline) break;
+  }
+  return done_;
+}
+
+Vertex Scatter::next(int i, Vertex v) const
+{
+  if (next_.empty()) return -1;
+  const auto& nx = next_[i];
+  auto it = std::lower_bound(nx.begin(), nx.end(), std::make_pair(v, Vertex{-1}));
+  return it != nx.end() && it->first == v ? it->second : -1;
+}
+
+}  // namespace planner

@@ -1,0 +1,231 @@
+// Immobile agents (planner/immobile.hpp): a stuck agent is never moved, the others route
+// around it, and clearing the mark restores completeness.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "planner/dist_table.hpp"
+#include "planner/lacam/immobile.hpp"
+#include "planner/lacam/pibt.hpp"
+#include "planner/lacam/priority.hpp"
+#include "planner/lacam/rt_lacam.hpp"
+#include "planner/solver.hpp"
+#include "planner/validator.hpp"
+#include "test_util.hpp"
+
+using namespace planner;
+
+namespace {
+
+// Steps the planner (search, next, commit) until `done` or `max_steps`; every configuration
+// is validated; with `fixed` >= 0, that agent must stay on `where` in every one.
+struct Drive {
+  std::vector<Config> plan;
+  std::string error;
+};
+
+template <class Done>
+Drive drive(RealtimePlanner& p, const Graph& g, int max_steps, int fixed, Vertex where, Done done)
+{
+  Drive d;
+  d.plan.push_back(p.current());
+  for (int s = 0; s < max_steps && !done(); ++s) {
+    p.search(Budget::expansion_count(20));
+    const Config next = p.next();
+    p.commit();
+    const std::string e = Validator::check_transition(g, d.plan.back(), next);
+    if (!e.empty() && d.error.empty()) d.error = "step " + std::to_string(s) + ": " + e;
+    if (fixed >= 0 && next[fixed] != where && d.error.empty()) d.error = "step " + std::to_string(s) + ": immobile agent moved";
+    d.plan.push_back(next);
+  }
+  return d;
+}
+
+// A two-lane corridor; agent 0 (X) is stuck in the top lane where A and B want to pass.
+struct Corridor {
+  Graph g = test::grid({"........", "........"});
+  Config starts = test::at(g, {{3, 0}, {0, 0}, {7, 0}, {0, 1}, {7, 1}});
+  Config goals = test::at(g, {{5, 1}, {7, 0}, {0, 0}, {7, 1}, {0, 1}});
+};
+
+}  // namespace
+
+TEST(Immobile, OthersPassAroundAnImmobileAgentInATwoLaneCorridorThenAllFinish)
+{
+  Corridor c;
+  for (bool refine : {false, true})
+    for (uint64_t seed = 0; seed < 5; ++seed) {
+      SCOPED_TRACE("refine " + std::to_string(refine) + " seed " + std::to_string(seed));
+      LacamOptions o;
+      o.seed = seed;
+      o.refine = refine;
+      auto p = make_planner(Solver::RtLacam, c.g, c.starts, c.goals, o);
+      p->set_immobile(0, true);
+      // The others reach their goals around X, which never moves.
+      auto others_home = [&] {
+        for (size_t i = 1; i < c.goals.size(); ++i)
+          if (p->current()[i] != c.goals[i]) return false;
+        return true;
+      };
+      Drive d = drive(*p, c.g, 500, 0, c.starts[0], others_home);
+      EXPECT_EQ(d.error, "");
+      EXPECT_TRUE(others_home());
+      EXPECT_FALSE(p->at_goal());  // the real goal test still needs X on its goal
+      EXPECT_FALSE(p->exhausted());
+      // Staying there: more steps keep everybody put (the relaxed goal is reached).
+      Drive rest = drive(*p, c.g, 10, 0, c.starts[0], [] { return false; });
+      EXPECT_EQ(rest.error, "");
+      EXPECT_EQ(rest.plan.back(), d.plan.back());
+      // X frees: completeness again, all reach their goals.
+      p->set_immobile(0, false);
+      Drive after = drive(*p, c.g, 500, -1, -1, [&] { return p->at_goal(); });
+      EXPECT_EQ(after.error, "");
+      EXPECT_TRUE(p->at_goal());
+      EXPECT_EQ(p->current(), c.goals);
+    }
+}
+
+TEST(Immobile, NaiveAndPibtNeverMoveTheImmobileAgent)
+{
+  Corridor c;
+  for (Solver s : {Solver::Naive, Solver::Pibt}) {
+    SCOPED_TRACE(to_string(s));
+    auto p = make_planner(s, c.g, c.starts, c.goals);
+    p->set_immobile(0, true);
+    Drive d = drive(*p, c.g, 200, 0, c.starts[0], [] { return false; });
+    EXPECT_EQ(d.error, "");
+    p->set_immobile(0, false);
+    bool moved = false;
+    drive(*p, c.g, 200, -1, -1, [&] { return moved = moved || p->current()[0] != c.starts[0]; });
+    EXPECT_TRUE(moved);  // once mobile it heads for its goal
+  }
+}
+
+TEST(Immobile, PibtNeverPushesOrPullsAnImmobileAgent)
+{
+  // Random crowded instances on a 5x4 grid: in every generated successor the immobile
+  // agents stay and the step is valid (no vertex or swap conflict).
+  Graph g = test::grid({".....", ".....", ".....", "....."});
+  DistTable dist(g);
+  Rng rng(7);
+  int generated = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const int n = 4 + static_cast<int>(rng.next() % 12);
+    std::vector<Vertex> cells(g.size());
+    for (int v = 0; v < g.size(); ++v) cells[v] = v;
+    rng.shuffle(cells.data(), g.size());
+    Config from(cells.begin(), cells.begin() + n);
+    rng.shuffle(cells.data(), g.size());
+    Config goals(cells.begin(), cells.begin() + n);
+    std::vector<uint8_t> immobile(n, 0);
+    for (int i = 0; i < n; ++i) immobile[i] = rng.next() % 3 == 0;
+    dist.set_goals(goals);
+    for (bool swap : {false, true}) {
+      Pibt pibt(g, dist, swap);
+      pibt.set_goals(goals);
+      pibt.set_immobile(immobile);
+      std::vector<float> prio(n);
+      std::vector<int32_t> order(n);
+      init_priorities(from.data(), n, dist, prio.data());
+      initial_order(prio.data(), n, order.data());
+      Config to(n);
+      if (!pibt.generate(from.data(), order.data(), nullptr, to.data(), rng)) continue;
+      ++generated;
+      EXPECT_EQ(Validator::check_transition(g, from, to), "") << "trial " << trial;
+      for (int i = 0; i < n; ++i) {
+        if (immobile[i]) {
+          EXPECT_EQ(to[i], from[i]) << "trial " << trial << " agent " << i;
+        }
+      }
+    }
+  }
+  EXPECT_GT(generated, 500);
+}
+
+TEST(Immobile, ARelaxedGoalThatCannotBeReachedIsNoFailure)
+{
+  // X (agent 0) stuck in a one-lane corridor; A and B behind it must swap in a two-cell
+  // dead end: impossible. The search runs dry, the planner waits and claims no failure.
+  // Once X is free, the 2x3 block beyond it lets A and B swap.
+  Graph g = test::grid({".....", "@@..."});
+  Config starts = test::at(g, {{2, 0}, {0, 0}, {1, 0}});
+  Config goals = test::at(g, {{4, 1}, {1, 0}, {0, 0}});
+  RtLacam rt(g, starts, goals);
+  rt.set_immobile(0, true);
+  Status s = Status::Searching;
+  for (int k = 0; k < 100; ++k) s = rt.search(Budget::expansion_count(100));
+  EXPECT_EQ(s, Status::Searching);
+  EXPECT_FALSE(rt.exhausted());
+  EXPECT_EQ(rt.next(), starts);
+  EXPECT_LT(rt.explored(), 10u);  // bounded by what is reachable around the obstacle
+  // Free again: X leaves, A and B swap, all finish.
+  rt.set_immobile(0, false);
+  Drive d = drive(rt, g, 200, -1, -1, [&] { return rt.at_goal(); });
+  EXPECT_EQ(d.error, "");
+  EXPECT_TRUE(rt.at_goal());
+}
+
+TEST(Immobile, RelaxedGoalTestSkipsAgentsCutOffOrOnTheObstacle)
+{
+  Graph g = test::grid({"....."});
+  // X at 2; A at 0 -> 4 (cut off), B at 4 -> 3 (reachable), C at 3 -> 2 (X's cell).
+  Config cur = test::at(g, {{2, 0}, {0, 0}, {4, 0}, {3, 0}});
+  Config goals = test::at(g, {{0, 0}, {4, 0}, {3, 0}, {2, 0}});
+  GoalTest t = relaxed_goal_test(g, cur, goals, {1, 0, 0, 0});
+  ASSERT_TRUE(t);
+  Config c = test::at(g, {{2, 0}, {1, 0}, {3, 0}, {4, 0}});
+  EXPECT_TRUE(t(c.data()));   // only B must be on its goal
+  Config d = test::at(g, {{2, 0}, {1, 0}, {4, 0}, {3, 0}});
+  EXPECT_FALSE(t(d.data()));
+  EXPECT_FALSE(relaxed_goal_test(g, cur, goals, {0, 0, 0, 0}));  // none immobile: default test
+}
+
+TEST(Immobile, AnImmobileAgentOnItsGoalIsNotMovedByRefinement)
+{
+  // X sits on its goal in the corridor's top lane, the others' shortest routes run through
+  // it: LaCAM* refinement (LNS would replan X to step aside) must leave it in place.
+  Corridor c;
+  c.goals[0] = c.starts[0];
+  for (uint64_t seed = 0; seed < 5; ++seed) {
+    LacamOptions o;
+    o.seed = seed;
+    o.refine = true;
+    RtLacam rt(c.g, c.starts, c.goals, o);
+    rt.set_immobile(0, true);
+    for (int k = 0; k < 50; ++k) rt.search(Budget::expansion_count(200));  // refine a lot first
+    Drive d = drive(rt, c.g, 300, 0, c.starts[0], [&] { return rt.at_goal(); });
+    EXPECT_EQ(d.error, "") << "seed " << seed;
+    EXPECT_TRUE(rt.at_goal()) << "seed " << seed;  // X is on its goal: the real goal test passes
+  }
+}
+
+TEST(Immobile, DetourTableGoesAroundBlockedVertices)
+{
+  Graph g = test::grid({".....", "....."});
+  DetourTable dt(g);
+  EXPECT_FALSE(dt.active());
+  dt.set_blocked({g.at(2, 0)});
+  EXPECT_TRUE(dt.active());
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(0, 0)), 6);  // down, along the bottom lane, up
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(2, 0)), DistTable::kInf);  // the blocked vertex
+  dt.set_blocked({g.at(2, 0), g.at(2, 1)});        // the corridor is cut
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(0, 0)), DistTable::kInf);
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(3, 1)), 2);
+  dt.set_blocked({});
+  EXPECT_FALSE(dt.active());
+}
+
+TEST(Immobile, AnAgentOutOfRangeIsAClearError)
+{
+  Corridor c;
+  for (Solver s : {Solver::RtLacam, Solver::Naive, Solver::Pibt}) {
+    auto p = make_planner(s, c.g, c.starts, c.goals);
+    try {
+      p->set_immobile(5, true);
+      ADD_FAILURE() << to_string(s) << ": no error";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_STREQ(e.what(), "set_immobile: agent 5 out of range (0..4)");
+    }
+    EXPECT_THROW(p->set_immobile(-1, true), std::invalid_argument);
+  }
+}

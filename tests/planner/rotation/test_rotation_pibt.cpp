@@ -1,0 +1,209 @@
+// The rotation-native planner (pibt-rot): exact (cell, heading) distances against a brute
+// force search, a lone robot's shortest rotation path, and LoRR-valid joint actions over
+// lifelong runs with several seeds.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "planner/rng.hpp"
+#include "planner/rotation/rotation_dist.hpp"
+#include "planner/rotation/rotation_pibt.hpp"
+#include "planner/validator.hpp"
+#include "grid.hpp"
+
+using planner::Config;
+using planner::Graph;
+using planner::RotationDist;
+using planner::RotationPibt;
+using planner::Vertex;
+
+namespace {
+
+using test::random_grid;
+
+// Brute force: forward BFS over (cell, heading) from (v, o) with the MAPF_T moves, until a
+// state on `goal`; 0xFFFF when none is reachable.
+uint16_t brute(const Graph& g, Vertex v, int o, Vertex goal)
+{
+  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
+  std::vector<int> d(static_cast<size_t>(g.size()) * 4, -1);
+  std::deque<int> q{v * 4 + o};
+  d[static_cast<size_t>(v * 4 + o)] = 0;
+  while (!q.empty()) {
+    const int s = q.front();
+    q.pop_front();
+    const Vertex u = s / 4;
+    const int h = s % 4;
+    if (u == goal) return static_cast<uint16_t>(d[static_cast<size_t>(s)]);
+    const Vertex f = g.at(g.cell_x(u) + dx[h], g.cell_y(u) + dy[h]);
+    for (int n : {f >= 0 ? f * 4 + h : -1, u * 4 + (h + 1) % 4, u * 4 + (h + 3) % 4})
+      if (n >= 0 && d[static_cast<size_t>(n)] < 0) {
+        d[static_cast<size_t>(n)] = d[static_cast<size_t>(s)] + 1;
+        q.push_back(n);
+      }
+  }
+  return RotationDist::kInf;
+}
+
+// One MAPF_T step as LoRR applies it; "" when `next` and `heads` are its result.
+std::string check_actions(const RotationPibt& p, const Config& cur, const std::vector<int>& heads, const Config& next,
+                          const std::vector<int>& next_heads)
+{
+  const std::string& a = p.actions();
+  for (size_t i = 0; i < cur.size(); ++i) {
+    const int o = heads[i];
+    Vertex v = cur[i];
+    int h = o;
+    if (a[i] == 'F') v = p.dist().ahead(cur[i], o);
+    else if (a[i] == 'R') h = (o + 1) % 4;
+    else if (a[i] == 'C') h = (o + 3) % 4;
+    else if (a[i] != 'W') return "unknown action";
+    if (v < 0) return "agent " + std::to_string(i) + " forward into a wall";
+    if (v != next[i] || h != next_heads[i]) return "agent " + std::to_string(i) + " action " + a[i] + " mismatch";
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(RotationDist, EqualsBruteForceOverCellHeadingStates)
+{
+  for (uint64_t seed = 0; seed < 4; ++seed) {
+    const Graph g = random_grid(7, 6, 25, seed);
+    RotationDist dist(g);
+    for (Vertex goal = 0; goal < g.size(); goal += 3) {
+      RotationDist::Table* t = dist.table(goal);
+      // Query in a scattered order: the lazy BFS must be exact whatever it was grown for.
+      for (Vertex v = g.size() - 1; v >= 0; --v)
+        for (int o = 0; o < 4; ++o) ASSERT_EQ(dist.get(t, v, o), brute(g, v, o, goal)) << "seed " << seed << " goal " << goal << " v " << v << " o " << o;
+    }
+  }
+}
+
+TEST(RotationDist, TurnsCostStepsAnyHeadingOnTheGoalAndWallsAreUnreachable)
+{
+  // From (0,1) facing east to (2,0): east then north costs F F C F = 4 steps; north then
+  // east costs C F R F F = 5.
+  const Graph g = test::grid({"...", "..."});
+  RotationDist dist(g);
+  RotationDist::Table* t = dist.table(g.at(2, 0));
+  EXPECT_EQ(dist.get(t, g.at(0, 1), 0), 4);
+  EXPECT_EQ(dist.get(t, g.at(0, 1), 2), 5);  // facing west: R F R F F (a half turn first costs 6)
+  EXPECT_EQ(dist.get(t, g.at(2, 0), 1), 0);  // on the goal in any heading
+  EXPECT_EQ(dist.get(t, g.at(1, 0), 2), 3);  // half turn, then forward
+  // Unreachable: a walled-off cell.
+  const Graph h = test::grid({".@."});
+  RotationDist d2(h);
+  EXPECT_EQ(d2.get(d2.table(h.at(2, 0)), h.at(0, 0), 0), RotationDist::kInf);
+}
+
+TEST(RotationDist, UnpinnedTablesAreDroppedBeyondTheCap)
+{
+  const Graph g = random_grid(6, 6, 0, 1);
+  RotationDist dist(g, 2);
+  RotationDist::Table* keep = dist.table(0);
+  dist.pin(keep);
+  for (Vertex goal = 1; goal < 6; ++goal) dist.table(goal);
+  dist.trim();
+  EXPECT_EQ(dist.num_tables(), 2u);
+  EXPECT_EQ(dist.get(dist.table(0), 0, 0), 0);  // the pinned one survived
+  EXPECT_EQ(keep, dist.table(0));
+}
+
+TEST(RotationDist, PrefetchGrowsQueuedTablesToCompletionAndPinsThem)
+{
+  const Graph g = random_grid(8, 8, 20, 3);
+  RotationDist dist(g, 1);
+  dist.prefetch({0, g.size() - 1});
+  EXPECT_EQ(dist.pending(), 2u);
+  EXPECT_TRUE(dist.precompute(std::chrono::steady_clock::now()));  // deadline passed: work remains
+  EXPECT_FALSE(dist.precompute(std::chrono::steady_clock::time_point::max()));
+  EXPECT_EQ(dist.pending(), 0u);
+  dist.trim();
+  EXPECT_EQ(dist.num_tables(), 2u);  // over the cap of 1, but pinned by the queue
+  RotationDist::Table* t = dist.table(g.size() - 1);
+  EXPECT_TRUE(t->done());
+  for (Vertex v = 0; v < g.size(); ++v)
+    for (int o = 0; o < 4; ++o) ASSERT_EQ(t->dist[static_cast<size_t>(v) * 4 + o], brute(g, v, o, g.size() - 1));
+  dist.prefetch({});  // unpinned: the cap applies again
+  dist.trim();
+  EXPECT_EQ(dist.num_tables(), 1u);
+}
+
+TEST(RotationPibt, LoneRobotReachesItsGoalInTheRotationShortestNumberOfSteps)
+{
+  for (uint64_t seed = 0; seed < 4; ++seed) {
+    const Graph g = random_grid(9, 7, 20, seed + 10);
+    planner::Rng rng(seed);
+    for (int trial = 0; trial < 5; ++trial) {
+      const Vertex s = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
+      const Vertex goal = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
+      const uint16_t want = brute(g, s, 0, goal);  // robots start facing east
+      if (want == RotationDist::kInf) continue;
+      RotationPibt p(g, {s}, {goal}, seed);
+      int steps = 0;
+      while (!p.at_goal() && steps < 200) {
+        p.search(planner::Budget{});
+        p.commit();
+        ++steps;
+      }
+      EXPECT_EQ(steps, want) << "seed " << seed << " from " << s << " to " << goal;
+    }
+  }
+}
+
+TEST(RotationPibt, EveryLifelongStepIsAValidLorrJointActionAndRobotsArrive)
+{
+  // 25 robots on a 12 x 10 grid with 15 % obstacles (dense: a quarter of the free cells),
+  // new random goals on arrival, 300 steps, several seeds.
+  for (uint64_t seed = 0; seed < 6; ++seed) {
+    const Graph g = random_grid(12, 10, 15, seed + 100);
+    std::vector<int> comp_id = g.components();
+    planner::Rng rng(seed);
+    std::vector<Vertex> free_cells;
+    for (Vertex v = 0; v < g.size(); ++v) free_cells.push_back(v);
+    rng.shuffle(free_cells.data(), static_cast<int>(free_cells.size()));
+    const int n = 25;
+    Config starts(free_cells.begin(), free_cells.begin() + n), goals(static_cast<size_t>(n));
+    auto new_goal = [&](int i, Vertex from) {  // a reachable cell other than `from`
+      for (;;) {
+        const Vertex v = static_cast<Vertex>(rng.below(static_cast<uint32_t>(g.size())));
+        if (v != from && comp_id[v] == comp_id[from]) return goals[i] = v;
+      }
+    };
+    for (int i = 0; i < n; ++i) new_goal(i, starts[i]);
+    RotationPibt p(g, starts, goals, seed);
+    p.set_back_last(seed % 2 == 1);  // both rankings of a robot asked to vacate its cell
+    long arrivals = 0, forwards = 0, turns = 0;
+    for (int t = 1; t <= 300; ++t) {
+      const Config cur = p.current();
+      const std::vector<int> heads = p.headings();
+      p.search(planner::Budget{});
+      const Config next = p.next();
+      ASSERT_EQ(planner::Validator::check_transition(g, cur, next), "") << "seed " << seed << " step " << t;
+      const std::string acts = p.actions();
+      p.commit();
+      ASSERT_EQ(check_actions(p, cur, heads, p.current(), p.headings()), "") << "seed " << seed << " step " << t;
+      ASSERT_EQ(p.current(), next);
+      for (char a : acts) forwards += a == 'F', turns += a == 'R' || a == 'C';
+      bool changed = false;
+      for (int i = 0; i < n; ++i)
+        if (p.current()[i] == goals[i]) ++arrivals, new_goal(i, goals[i]), changed = true;
+      if (changed) p.set_goals(goals);
+    }
+    EXPECT_GT(arrivals, 50) << "seed " << seed;  // measured 100-200
+    EXPECT_GT(forwards, 0);
+    EXPECT_GT(turns, 0);
+  }
+}
+
+TEST(RotationPibt, NeedsAGridAndDistinctStarts)
+{
+  const Graph line = Graph::from_edges(2, {{0, 1}});
+  EXPECT_THROW(RotationPibt(line, {0}, {1}), std::invalid_argument);
+  const Graph g = test::grid({"..."});
+  EXPECT_THROW(RotationPibt(g, {0, 0}, {1, 2}), std::invalid_argument);
+}
