@@ -40,8 +40,8 @@ int main(int argc, char** argv)
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
-  app.add_option("--solver", solver, solver_names() + " (cspibt: pibt ordered by --policy)")
-      ->check(CLI::IsMember(solver_list()))
+  app.add_option("--solver", solver, solver_names(false, true) + " (cspibt: pibt ordered by --policy)")
+      ->check(CLI::IsMember(solver_list(false, true)))
       ->capture_default_str();
   app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions,
@@ -150,7 +150,11 @@ int main(int argc, char** argv)
       // Construction (distance tables, the root node) counts as planning time, as it
       // does inside run_full_horizon for LaCAM.
       const auto t0 = Clock::now();
-      std::unique_ptr<RealtimePlanner> p = make_planner(parse_solver(solver), g, ins.starts, ins.goals, lopt, pref.get());
+      SolverOptions sopt;
+      sopt.seed = seed;
+      sopt.lacam = lopt;
+      sopt.pref = pref.get();
+      std::unique_ptr<RealtimePlanner> p = make_planner(parse_solver(solver), g, ins.starts, ins.goals, sopt);
       const double setup_ms = ms_since(t0);
       r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
       r.total_planning_ms += setup_ms;

@@ -18,7 +18,7 @@
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_instance.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 #include "tasks/task_pool.hpp"
 
 using namespace tasks;
@@ -76,12 +76,8 @@ int main(int argc, char** argv)
   app.add_flag("--reset-priorities", reset_priorities,
                "start PIBT priorities again from distance/N at every goal change (default: keep them)");
   app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
-  std::vector<std::string> solvers = planner::solver_list(true);
-  solvers.push_back(tasks::kRotationSolver);
-  solvers.push_back(tasks::kEpibtSolver);
-  solvers.push_back(tasks::kWpplSolver);
-  app.add_option("--solver", solver, planner::solver_names(true) + " | pibt-rot | epibt | wppl (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with multi-action operations; wppl: windowed LNS over pibt-rot rollouts; the last three rotation only)")
-      ->check(CLI::IsMember(solvers))
+  app.add_option("--solver", solver, planner::solver_names(true) + " (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with multi-action operations; wppl: windowed LNS over pibt-rot rollouts; the last three rotation only)")
+      ->check(CLI::IsMember(planner::solver_list(true)))
       ->capture_default_str();
   app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions (wppl: LNS iterations) per step (deterministic); 0 = none");
@@ -186,18 +182,19 @@ int main(int argc, char** argv)
     // The policy is told the goals by the planner (ActionPreference::set_goals).
     policy::Model model;
     std::unique_ptr<policy::PolicyPreference> pref;
-    if (tasks::is_rotation_native(solver) && action_model != "rotation")
+    const planner::Solver kind = planner::parse_solver(solver);
+    if (planner::plans_rotation(kind) && action_model != "rotation")
       throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: it needs --action-model rotation");
-    if (!tasks::is_rotation_native(solver) && planner::needs_policy(planner::parse_solver(solver)) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
+    if (planner::needs_policy(kind) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     if (!policy_file.empty()) {
       model = policy::load_weights(policy_file);
       pref = std::make_unique<policy::PolicyPreference>(g, model, planner::Config{});
     }
 
     LifelongOptions opt;
-    opt.pref = pref.get();
-    opt.keep_priorities = !reset_priorities;
-    opt.refine = refine;
+    opt.solver.pref = pref.get();
+    opt.solver.lacam.keep_priorities = !reset_priorities;
+    opt.solver.lacam.refine = refine;
     opt.prefetch = prefetch;
     opt.max_dist_tables = max_dist_tables;
     opt.bound_queries = bound_queries;
@@ -207,14 +204,14 @@ int main(int argc, char** argv)
     opt.action_model = parse_action_model(action_model);
     opt.rotation_window = rotation_window;
     opt.heading_ties = !no_heading_ties;
-    opt.rot_back_last = rot_back_last;
-    if (!tasks::is_rotation_native(solver)) {
+    opt.solver.back_last = rot_back_last;
+    if (!planner::plans_rotation(kind)) {
       if (app.count("--guidance") && guidance != "none") throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot, epibt or wppl)");
       guidance = "none";
     }
     // wppl: arrows cost 5 % on MR23-I-04 and gain 1 % on I-03 (docs/rotation_lorr.md
     // "Where it stands"): unguided unless asked.
-    if (solver == tasks::kWpplSolver && !app.count("--guidance")) guidance = "none";
+    if (solver == "wppl" && !app.count("--guidance")) guidance = "none";
     if (guidance != "none") {
       if (guidance == "arrows") {
         int along = 0, against = 0, turn = 0;
@@ -222,16 +219,16 @@ int main(int argc, char** argv)
         if (std::sscanf(guidance_costs.c_str(), "%d,%d,%d%c", &along, &against, &turn, &end) != 3)
           throw planner::InputError("--guidance-costs '" + guidance_costs + "': expected ALONG,AGAINST,TURN");
         try {
-          opt.guidance = planner::arrow_guidance(g, along, against, turn);
+          opt.solver.guidance = planner::arrow_guidance(g, along, against, turn);
         } catch (const std::invalid_argument& e) {
           throw planner::InputError(std::string("--guidance-costs: ") + e.what());
         }
       } else {
-        opt.guidance = planner::load_guidance(g, guidance);
+        opt.solver.guidance = planner::load_guidance(g, guidance);
       }
     }
     ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
-    if (traffic_flow == "on" && solver != tasks::kEpibtSolver) {
+    if (traffic_flow == "on" && solver != "epibt") {
       if (app.count("--traffic-flow")) throw planner::InputError("--traffic-flow on needs --solver epibt");
       traffic_flow = "off";  // the default applies to epibt only
     }
@@ -249,8 +246,8 @@ int main(int argc, char** argv)
         tf_active = false;
       }
     }
-    opt.epibt = ep;
-    opt.wppl = wppl;
+    opt.solver.epibt = ep;
+    opt.solver.wppl = wppl;
     opt.heading_cost = heading_cost == "ties" ? tasks::HeadingCost::Ties : tasks::HeadingCost::Turns;
     opt.record_actions = !out_file.empty();
     opt.budget = planner::Budget::time_ms(budget_ms);

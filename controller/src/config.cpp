@@ -249,7 +249,8 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node p = root["planner"];
   r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine"});
-  const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
+  // The cell solvers: the rotation ones (pibt-rot, epibt, wppl) need AGV headings in SUMO.
+  const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true, /*cell_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
   r.file(p, "planner", "policy", c.planner.policy, false);
   if (planner::needs_policy(planner::parse_solver(c.planner.solver)) && c.planner.policy.empty())

@@ -13,12 +13,13 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref, planner::GoalTest test)
 {
-  planner::LacamOptions opt;
-  opt.swap = p.swap;
+  planner::SolverOptions opt;
   opt.seed = p.seed;
-  opt.keep_priorities = p.keep_priorities;
-  opt.refine = p.refine;
-  return planner::make_planner(planner::parse_solver(p.solver), g, starts, goals, opt, pref, std::move(test));
+  opt.lacam.swap = p.swap;
+  opt.lacam.keep_priorities = p.keep_priorities;
+  opt.lacam.refine = p.refine;
+  opt.pref = pref;
+  return planner::make_planner(planner::parse_solver(p.solver), g, starts, goals, opt, std::move(test));
 }
 
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r)

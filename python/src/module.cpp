@@ -87,7 +87,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
     pref = std::make_unique<policy::PolicyPreference>(g, model, Config{});
   }
   LifelongOptions opt;
-  opt.pref = pref.get();
+  opt.solver.pref = pref.get();
   opt.steps = steps;
   opt.budget = Budget::time_ms(budget_ms);
   if (budget_expansions > 0) opt.budget.expansions = budget_expansions;
@@ -188,13 +188,14 @@ PYBIND11_MODULE(_rtlacam, m)
             if (v < 0 || v >= g.size()) throw std::invalid_argument("start vertex out of range");
           for (Vertex v : goals)
             if (v < 0 || v >= g.size()) throw std::invalid_argument("goal vertex out of range");
-          LacamOptions opt;
+          SolverOptions opt;
           opt.seed = seed;
-          return make_planner(parse_solver(solver), g, starts, goals, opt, pref);
+          opt.pref = pref;
+          return make_planner(parse_solver(solver), g, starts, goals, opt);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
         py::arg("policy") = nullptr, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
-        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference)");
+        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan rotation actions on a grid, every robot facing east at the start)");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
@@ -204,10 +205,13 @@ PYBIND11_MODULE(_rtlacam, m)
           ropt.timeout_ms = timeout_ms;
           ropt.max_steps = max_steps;
           const Solver s = parse_solver(solver);
-          LacamOptions lopt;
-          lopt.seed = seed;
+          SolverOptions sopt;
+          sopt.seed = seed;
+          sopt.lacam.seed = seed;  // run_full_horizon (lacam) reads it there
+          sopt.pref = pref;
+          const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;
-          if (is_realtime(s)) p = make_planner(s, g, ins.starts, ins.goals, lopt, pref);
+          if (is_realtime(s)) p = make_planner(s, g, ins.starts, ins.goals, sopt);
           RunResult r;
           {
             py::gil_scoped_release unlocked;

@@ -13,7 +13,7 @@ def test_version_matches_the_apps():
 
 
 def test_solvers_come_from_the_planner_factory():
-    assert rtlacam.SOLVERS == ["pibt", "lacam", "rtlacam", "naive", "cspibt"]
+    assert rtlacam.SOLVERS == ["pibt", "lacam", "rtlacam", "naive", "cspibt", "pibt-rot", "epibt", "wppl"]
 
 
 def test_load_map_and_scen(grid, scen):
@@ -61,6 +61,22 @@ def test_search_next_commit_reaches_the_goals_with_valid_moves(grid, scen, solve
     assert p.at_goal and v.ok
     assert p.current == ins.goals
     assert v.sum_of_costs >= ins.soc_lower_bound(grid)
+
+
+@pytest.mark.parametrize("solver", ["pibt-rot", "epibt", "wppl"])
+def test_rotation_solvers_come_from_the_same_factory(grid, scen, solver):
+    # Rotation actions: a turn keeps the cell, so the validator sees waits and moves only.
+    ins = rtlacam.load_scen(scen, grid, 10)
+    p = rtlacam.make_planner(solver, grid, ins.starts, ins.goals, seed=1)
+    assert p.name == solver
+    v = rtlacam.Validator(grid, ins.starts, ins.goals)
+    for _ in range(2000):
+        if p.at_goal:
+            break
+        p.search(expansions=5)
+        assert v.step(p.next()), v.error
+        p.commit()
+    assert p.at_goal and v.ok
 
 
 def test_set_goals_starts_a_new_search_from_where_the_agents_are(grid, scen):

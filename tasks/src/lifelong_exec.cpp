@@ -5,7 +5,7 @@
 
 #include "planner/validator.hpp"
 #include "tasks/lifelong_goal.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 
 namespace tasks {
 
@@ -16,15 +16,18 @@ LifelongExecResult run_lifelong_exec(const planner::Graph& g, const planner::Con
                                      const std::string& solver, uint64_t seed, const LifelongOptions& opt,
                                      const executor::DelaySpec& delays, const executor::ExecOptions& exec)
 {
-  if (is_rotation_native(solver))  // its steps are LoRR actions, not cell moves an executor can delay
+  const planner::Solver kind = planner::parse_solver(solver);
+  if (planner::plans_rotation(kind))  // its steps are LoRR actions, not cell moves an executor can delay
     throw std::invalid_argument("solver " + solver + " has its own rotation actions: no --executor");
   LifelongExecResult out;
   LifelongResult& r = out.life;
   const auto wall0 = Clock::now();
   auto t0 = Clock::now();
   tasks.start(starts);
-  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, opt.pref,
-                        opt.keep_priorities, opt.refine);
+  planner::SolverOptions so = opt.solver;
+  so.seed = seed;
+  so.max_dist_tables = 2 * starts.size() + 256;  // as run_lifelong's
+  auto p = planner::make_planner(kind, g, starts, tasks.goals(), so, lifelong_goal_test(tasks, starts));
   r.setup_ms = ms_since(t0);
   r.epochs = 1;
   executor::GraphExecution ex(*p, delays, exec);

@@ -6,17 +6,14 @@
 #include <memory>
 #include <stdexcept>
 
-#include "planner/rotation/epibt.hpp"
-#include "planner/rotation/rotation_pibt.hpp"
-#include "planner/rotation/rotation_planner.hpp"
 #include "planner/lacam/rt_lacam.hpp"
+#include "planner/rotation/rotation_planner.hpp"
+#include "planner/solver.hpp"
 #include "planner/validator.hpp"
-#include "planner/rotation/wppl.hpp"
 #include "tasks/cost_estimate.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/rotation_executor.hpp"
-#include "tasks/solver.hpp"
 
 namespace tasks {
 
@@ -83,7 +80,8 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   r.starts = starts;
   const bool rotation = opt.action_model == ActionModel::Rotation;
   // pibt-rot plans the robots' actions itself: no cell plan, no RotationExecutor.
-  const bool native = is_rotation_native(solver);
+  const planner::Solver kind = planner::parse_solver(solver);
+  const bool native = planner::plans_rotation(kind);
   if (native && !rotation)
     throw std::invalid_argument("solver " + solver + " plans rotation actions: it needs --action-model rotation");
   const bool prefetch = opt.prefetch && !native;  // the prefetch grows cell tables, which pibt-rot does not read
@@ -97,23 +95,21 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   tasks.start(starts);
   // Rotation: PIBT breaks distance ties by the turns a move needs (unless a policy orders moves).
   std::unique_ptr<HeadingPreference> heading;
-  planner::ActionPreference* pref = opt.pref;
+  planner::ActionPreference* pref = opt.solver.pref;
   if (rotation && !native && !pref && opt.heading_ties) {
     heading = std::make_unique<HeadingPreference>(g, starts, opt.heading_cost);
     heading->share_dist_cache(cache);
     pref = heading.get();
   }
-  auto p = make_planner(solver, g, starts, tasks.goals(), lifelong_goal_test(tasks, starts), seed, pref, opt.keep_priorities, opt.refine);
+  planner::SolverOptions so = opt.solver;
+  so.seed = seed;
+  so.pref = pref;
+  // A lifelong run visits thousands of goal cells: keep the tables in use plus a few hundred
+  // recent ones, not one per cell ever visited ((cell, heading) tables are 2x a cell table).
+  so.max_dist_tables = native ? starts.size() + 256 : 2 * starts.size() + 256;
+  auto p = planner::make_planner(kind, g, starts, tasks.goals(), so, lifelong_goal_test(tasks, starts));
   p->share_dist_cache(cache);
-  auto* rot = dynamic_cast<planner::RotationPlanner*>(p.get());  // pibt-rot, epibt, wppl
-  if (rot) rot->set_back_last(opt.rot_back_last);
-  if (rot && !opt.guidance.uniform()) rot->set_guidance(opt.guidance);
-  if (auto* ep = dynamic_cast<planner::Epibt*>(p.get())) {
-    planner::EpibtOptions o = opt.epibt;
-    o.seed = seed;
-    ep->set_options(o);
-  }
-  if (auto* w = dynamic_cast<planner::Wppl*>(p.get())) w->set_options(opt.wppl);
+  auto* rot = p->rotation();  // pibt-rot, epibt, wppl: their actions, headings and (cell, heading) tables
   if (prefetch) {
     // Preprocessing (LoRR allows it before the first step): the first goals' tables reach
     // the agents, the next goals' reach the first. Later wants are met in the steps' spare time.
@@ -159,8 +155,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
     if (bounded && rot) rot->set_deadline(d);  // pibt-rot's (cell, heading) tables likewise
   };
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
-  const auto* rt = dynamic_cast<const planner::RtLacam*>(p.get());
-  const bool may_skip = opt.skip_late_search && bounded && rt;
+  const bool may_skip = opt.skip_late_search && bounded && kind == planner::Solver::RtLacam;
   // How far (ms) the step's last table growth runs past its deadline (a BFS chunk, a page
   // fault): the step ends that much early.
   CostEstimate overrun;
@@ -236,7 +231,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
           // The call's costliest expansion where the search tells it (RT-LaCAM), else the mean:
           // expansions that revisit a known configuration are cheap, new nodes are not.
           if (const uint64_t de = p->expansions() - e0; de > 0)
-            later.add(rt ? rt->max_expansion_ms() : (c - c1) / static_cast<double>(de));
+            later.add(p->max_expansion_ms() >= 0 ? p->max_expansion_ms() : (c - c1) / static_cast<double>(de));
         }
       }
       next = p->next();

@@ -8,7 +8,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 cmake --install "$build" --prefix "$tmp/prefix" >"$tmp/install.log"
 for f in lib/cmake/rtlacam/rtlacam-config.cmake lib/cmake/rtlacam/rtlacam-config-version.cmake \
-         include/planner/lacam/rt_lacam.hpp include/tasks/solver.hpp bin/rtlacam-bench bin/rtlacam-lifelong; do
+         include/planner/lacam/rt_lacam.hpp include/tasks/lifelong_runner.hpp bin/rtlacam-bench bin/rtlacam-lifelong; do
   [[ -e "$tmp/prefix/$f" ]] || { echo "test_install: $f not installed" >&2; exit 1; }
 done
 "$tmp/prefix/bin/rtlacam-bench" --version | grep -q '^rtlacam-bench [0-9]' \

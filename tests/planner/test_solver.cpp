@@ -29,13 +29,16 @@ struct TowardGoal : ActionPreference {
 
 TEST(Solver, NamesRoundTrip)
 {
-  EXPECT_EQ(solver_names(), "pibt | lacam | rtlacam | naive | cspibt");
-  EXPECT_EQ(solver_names(true), "pibt | rtlacam | naive | cspibt");
+  EXPECT_EQ(solver_names(), "pibt | lacam | rtlacam | naive | cspibt | pibt-rot | epibt | wppl");
+  EXPECT_EQ(solver_names(true), "pibt | rtlacam | naive | cspibt | pibt-rot | epibt | wppl");
+  EXPECT_EQ(solver_names(true, true), "pibt | rtlacam | naive | cspibt");
   for (const std::string& n : solver_list()) EXPECT_EQ(to_string(parse_solver(n)), n);
   EXPECT_EQ(solver_list(true).size(), solver_list().size() - 1);
   EXPECT_TRUE(needs_policy(Solver::CsPibt));
   EXPECT_FALSE(needs_policy(Solver::RtLacam));
   EXPECT_FALSE(is_realtime(Solver::Lacam));
+  for (const char* n : {"pibt-rot", "epibt", "wppl"}) EXPECT_TRUE(plans_rotation(parse_solver(n))) << n;
+  for (const std::string& n : solver_list(false, true)) EXPECT_FALSE(plans_rotation(parse_solver(n))) << n;
 }
 
 TEST(Solver, UnknownNameListsTheSolvers)
@@ -44,7 +47,7 @@ TEST(Solver, UnknownNameListsTheSolvers)
     parse_solver("magic");
     FAIL() << "no throw";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "unknown solver 'magic' (pibt | lacam | rtlacam | naive | cspibt)");
+    EXPECT_STREQ(e.what(), "unknown solver 'magic' (pibt | lacam | rtlacam | naive | cspibt | pibt-rot | epibt | wppl)");
   }
   EXPECT_THROW(parse_solver("RTLACAM"), std::invalid_argument);
 }
@@ -58,7 +61,9 @@ TEST(Solver, EveryRealtimeSolverReachesTheGoalsWithValidMoves)
     SCOPED_TRACE(name);
     const Solver s = parse_solver(name);
     TowardGoal pref(g);
-    auto p = make_planner(s, g, starts, goals, {}, needs_policy(s) ? &pref : nullptr);
+    SolverOptions opt;
+    opt.pref = needs_policy(s) ? &pref : nullptr;
+    auto p = make_planner(s, g, starts, goals, opt);
     EXPECT_EQ(p->name(), name == "cspibt" ? "pibt" : name);
     Validator v(g, starts, goals);
     for (int t = 0; t < 100 && !p->at_goal(); ++t) {
@@ -81,4 +86,30 @@ TEST(Solver, RefusesLacamAndCspibtWithoutAPolicy)
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "solver cspibt needs a policy");
   }
+}
+
+TEST(Solver, AppliesEveryRotationOptionAtConstruction)
+{
+  // The options reach the planner without a cast by the caller: epibt's seed and depth,
+  // wppl's window, the starting heading and the guidance.
+  const Graph g = test::grid({"....", "...."});
+  const Config starts{g.at(0, 0)}, goals{g.at(3, 1)};
+  SolverOptions opt;
+  opt.seed = 7;
+  opt.heading = 3;
+  opt.epibt.depth = 4;
+  opt.wppl.window = 9;
+  auto e = make_planner(Solver::Epibt, g, starts, goals, opt);
+  const auto& ep = dynamic_cast<const Epibt&>(*e);
+  EXPECT_EQ(ep.options().depth, 4);
+  EXPECT_EQ(ep.options().seed, 7u);
+  EXPECT_EQ(ep.headings(), std::vector<int>{3});
+  auto w = make_planner(Solver::Wppl, g, starts, goals, opt);
+  EXPECT_EQ(dynamic_cast<const Wppl&>(*w).options().window, 9);
+  EXPECT_EQ(dynamic_cast<const RotationPlanner&>(*w).headings(), std::vector<int>{3});
+  // A rotation planner's first step from heading 3 (north) toward a goal to the east and
+  // south: it must turn before it can move, so the cell stays.
+  auto r = make_planner(Solver::PibtRot, g, starts, goals, opt);
+  r->search(Budget::expansion_count(1));
+  EXPECT_EQ(r->next(), starts);
 }

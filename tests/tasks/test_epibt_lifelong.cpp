@@ -12,7 +12,7 @@
 #include "planner/validator.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 #include "tasks/task_pool.hpp"
 #include "tasks/assigner.hpp"
 #include "tasks_test_util.hpp"
@@ -49,8 +49,8 @@ TEST(EpibtLifelong, StepsAreValidLorrActionsAndEventsOnTheErrandsCells)
   for (const Variant& v : {Variant{"epibt", 0, 0}, Variant{"epibt+lns seed 1", 1, 3}, Variant{"epibt+lns seed 2", 2, 3}}) {
     RoundRobin rr(L.file);
     LifelongOptions opt = rotation_options(300);
-    opt.epibt.lns_rounds = v.lns;
-    const LifelongResult r = run_lifelong(g, L.starts, rr, kEpibtSolver, v.seed, opt);
+    opt.solver.epibt.lns_rounds = v.lns;
+    const LifelongResult r = run_lifelong(g, L.starts, rr, "epibt", v.seed, opt);
     EXPECT_EQ(r.planner_errors, 0) << v.name << ": " << r.first_error;
     errands[k++] = r.errands_finished;
     std::vector<Config> at(static_cast<size_t>(opt.steps) + 1, L.starts);
@@ -76,7 +76,7 @@ TEST(EpibtLifelong, StepsAreValidLorrActionsAndEventsOnTheErrandsCells)
   }
   // pibt-rot finishes ~2.4 errands/step here (docs/rotation_lorr.md), epibt ~2.8.
   RoundRobin rr(L.file);
-  const LifelongResult base = run_lifelong(g, L.starts, rr, kRotationSolver, 0, rotation_options(300));
+  const LifelongResult base = run_lifelong(g, L.starts, rr, "pibt-rot", 0, rotation_options(300));
   EXPECT_GT(errands[0], base.errands_finished) << "epibt " << errands[0] << " vs pibt-rot " << base.errands_finished;
   EXPECT_GT(errands[1], errands[0]);  // measured 903 and 912 with 3 LNS rounds vs 863 without
   EXPECT_GT(errands[2], errands[0]);
@@ -88,7 +88,7 @@ TEST(EpibtLifelong, PoolModeRunsClean)
 {
   const ttest::Lorr L("/2024/random.domain/RANDOM-01.json");
   TaskPool pool(L.file, L.g, L.p.pool_size(), make_assigner("greedy", 32));
-  const LifelongResult r = run_lifelong(L.g, L.starts, pool, kEpibtSolver, 0, rotation_options(200));
+  const LifelongResult r = run_lifelong(L.g, L.starts, pool, "epibt", 0, rotation_options(200));
   EXPECT_EQ(r.planner_errors, 0) << r.first_error;
   EXPECT_GT(r.tasks_finished, 0);
 }
@@ -99,7 +99,7 @@ TEST(EpibtLifelong, RefusedWithGrid4)
   RoundRobin rr(L.file);
   LifelongOptions opt = rotation_options(10);
   opt.action_model = ActionModel::Grid4;
-  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kEpibtSolver, 0, opt), std::invalid_argument);
+  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "epibt", 0, opt), std::invalid_argument);
   // The app: one line naming the option, exit code 2.
   const std::string e = test::temp_path("epibt.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +

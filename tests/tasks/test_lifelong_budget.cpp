@@ -113,7 +113,7 @@ TEST(Prefetch, StepsStayWithinATightTimeBudget)
   LifelongOptions opt;
   opt.steps = 200;
   opt.budget = planner::Budget::time_ms(5);
-  opt.refine = false;
+  opt.solver.lacam.refine = false;
   const LifelongResult r = run_lifelong(L.g, L.starts, rr, "rtlacam", 0, opt);
   EXPECT_EQ(r.planner_errors, 0) << r.first_error;
   EXPECT_GT(r.errands_finished, 300);
@@ -172,7 +172,7 @@ TEST(BoundedQueries, StepsStayWithinA1msBudgetOnCpuTime)
   LifelongOptions opt;
   opt.steps = 250;
   opt.budget = planner::Budget::time_ms(1);
-  opt.refine = false;  // an LNS step is one indivisible expansion (planner/lns_refiner)
+  opt.solver.lacam.refine = false;  // an LNS step is one indivisible expansion (planner/lns_refiner)
   // No prefetch: every new goal's table is first met by a query (set_goals' priorities,
   // PIBT), which is what is tested; prefetch only makes that rarer.
   opt.prefetch = false;
@@ -251,8 +251,8 @@ TEST(ExpansionCost, RotationStepsStayWithinA1msBudgetWhenExpansionsVaryInCost)
   opt.steps = 250;
   opt.budget = planner::Budget::time_ms(1);
   opt.action_model = ActionModel::Rotation;
-  opt.pref = &pref;
-  opt.refine = false;
+  opt.solver.pref = &pref;
+  opt.solver.lacam.refine = false;
   const LifelongResult r = run_lifelong(S.g, S.starts, rr, "rtlacam", 0, opt);
   EXPECT_EQ(r.planner_errors, 0) << r.first_error;
   EXPECT_GT(r.errands_finished, 50);

@@ -10,7 +10,7 @@
 #include "tasks/lorr_files.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 #include "tasks_test_util.hpp"
 
 using namespace tasks;
@@ -18,7 +18,7 @@ using namespace tasks;
 TEST(LifelongPolicy, CspibtNeedsAPolicy)
 {
   planner::Graph g = ttest::grid({"...."});
-  EXPECT_THROW(make_planner("cspibt", g, {0}, {3}, {}, 0), std::invalid_argument);
+  EXPECT_THROW(planner::make_planner(planner::Solver::CsPibt, g, {0}, {3}), std::invalid_argument);
 }
 
 TEST(LifelongPolicy, PolicyRunsAreValidAndFinishErrands)
@@ -34,7 +34,7 @@ TEST(LifelongPolicy, PolicyRunsAreValidAndFinishErrands)
     LifelongOptions opt;
     opt.steps = 150;
     opt.budget = planner::Budget{50.0, 20};
-    opt.pref = &pref;
+    opt.solver.pref = &pref;
     const LifelongResult r = run_lifelong(g, starts, rr, solver, 0, opt);
     EXPECT_EQ(r.planner_errors, 0) << solver << ": " << r.first_error;
     EXPECT_GT(r.errands_finished, 100) << solver;  // 100 agents, 150 steps

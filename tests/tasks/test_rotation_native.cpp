@@ -14,7 +14,7 @@
 #include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 #include "tasks/task_pool.hpp"
 #include "tasks/assigner.hpp"
 #include "tasks_test_util.hpp"
@@ -74,14 +74,14 @@ void expect_valid_lorr_runs(const std::string& solver, const LifelongOptions& op
 
 TEST(RotationNative, LifelongStepsAreValidLorrActionsOnSeveralSeeds)
 {
-  expect_valid_lorr_runs(kRotationSolver, rotation_options(300), 300);  // measured ~2.4 errands/step at 500 steps
+  expect_valid_lorr_runs("pibt-rot", rotation_options(300), 300);  // measured ~2.4 errands/step at 500 steps
 }
 
 TEST(RotationNative, WpplLifelongStepsAreValidLorrActionsOnSeveralSeeds)
 {
   LifelongOptions opt = rotation_options(300);
   opt.budget = planner::Budget::expansion_count(10);  // 10 LNS iterations per step: deterministic
-  expect_valid_lorr_runs(kWpplSolver, opt, 300);
+  expect_valid_lorr_runs("wppl", opt, 300);
 }
 
 TEST(RotationNative, GuidedAndDeadlineBoundedStepsAreValidLorrActions)
@@ -92,27 +92,27 @@ TEST(RotationNative, GuidedAndDeadlineBoundedStepsAreValidLorrActions)
   // replayed here.
   const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   const planner::Graph& g = L.g;
-  for (const std::string solver : {std::string(kRotationSolver), std::string(kEpibtSolver), std::string(kWpplSolver)})
+  for (const std::string solver : {std::string("pibt-rot"), std::string("epibt"), std::string("wppl")})
   for (double ms : {100.0, 0.05}) {
     SCOPED_TRACE(solver);
     std::string plain;
     {
       RoundRobin rr(L.file);
       LifelongOptions po = rotation_options(200);
-      if (solver == kWpplSolver) po.budget = planner::Budget::expansion_count(10);
+      if (solver == "wppl") po.budget = planner::Budget::expansion_count(10);
       plain = run_lifelong(g, L.starts, rr, solver, 0, po).actions[0];
     }
     RoundRobin rr(L.file);
     LifelongOptions opt = rotation_options(200);
     opt.budget = planner::Budget::time_ms(ms);
-    opt.guidance = planner::arrow_guidance(g, 2, 6, 2);
-    if (solver == kWpplSolver && ms == 100.0) opt.budget = planner::Budget::expansion_count(10);  // deterministic
+    opt.solver.guidance = planner::arrow_guidance(g, 2, 6, 2);
+    if (solver == "wppl" && ms == 100.0) opt.budget = planner::Budget::expansion_count(10);  // deterministic
     const LifelongResult r = run_lifelong(g, L.starts, rr, solver, 0, opt);
     EXPECT_EQ(r.planner_errors, 0) << r.first_error;
     // Measured ~2.7 errands/step at 500 steps. epibt cut by a 0.05 ms deadline leaves most
     // robots on their inherited operations (docs/rotation_lorr.md "Where it stands"): slower,
     // and how much depends on the machine (Release ~150+, ASan ~100 of 200 steps).
-    const long min_errands = solver == kEpibtSolver && ms < 1 ? 20 : 150;
+    const long min_errands = solver == "epibt" && ms < 1 ? 20 : 150;
     EXPECT_GT(r.errands_finished, min_errands) << ms << " ms";
     if (ms == 100.0) {
       EXPECT_NE(r.actions[0], plain) << "the guidance changes the plan";
@@ -135,7 +135,7 @@ TEST(RotationNative, PoolModeRunsClean)
 {
   const ttest::Lorr L("/2024/random.domain/RANDOM-01.json");
   TaskPool pool(L.file, L.g, L.p.pool_size(), make_assigner("greedy", 32));
-  const LifelongResult r = run_lifelong(L.g, L.starts, pool, kRotationSolver, 0, rotation_options(200));
+  const LifelongResult r = run_lifelong(L.g, L.starts, pool, "pibt-rot", 0, rotation_options(200));
   EXPECT_EQ(r.planner_errors, 0) << r.first_error;
   EXPECT_GT(r.tasks_finished, 0);
 }
@@ -146,9 +146,9 @@ TEST(RotationNative, RefusedWithGrid4)
   RoundRobin rr(L.file);
   LifelongOptions opt = rotation_options(10);
   opt.action_model = ActionModel::Grid4;
-  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kRotationSolver, 0, opt), std::invalid_argument);
-  EXPECT_THROW(run_lifelong_exec(L.g, L.starts, rr, kRotationSolver, 0, opt, {}, {}), std::invalid_argument);
-  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, kWpplSolver, 0, opt), std::invalid_argument);
+  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "pibt-rot", 0, opt), std::invalid_argument);
+  EXPECT_THROW(run_lifelong_exec(L.g, L.starts, rr, "pibt-rot", 0, opt, {}, {}), std::invalid_argument);
+  EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "wppl", 0, opt), std::invalid_argument);
   // The app: one line naming the option, exit code 2.
   const std::string e = test::temp_path("pibt-rot.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +

@@ -11,7 +11,7 @@
 #include "planner/validator.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 #include "tasks_test_util.hpp"
 #include "temp_path.hpp"
 
@@ -30,9 +30,9 @@ TEST(TrafficFlowLifelong, StepsAreValidLorrActionsAndItFinishesMoreErrands)
     opt.budget = planner::Budget::unlimited();  // no deadline: the run does not depend on timing
     opt.action_model = ActionModel::Rotation;
     opt.record_actions = true;
-    opt.guidance = planner::arrow_guidance(g, 1, 3, 1);  // the app's default for epibt
-    opt.epibt.tf.on = on == 1;
-    const LifelongResult r = run_lifelong(g, L.starts, rr, kEpibtSolver, 0, opt);
+    opt.solver.guidance = planner::arrow_guidance(g, 1, 3, 1);  // the app's default for epibt
+    opt.solver.epibt.tf.on = on == 1;
+    const LifelongResult r = run_lifelong(g, L.starts, rr, "epibt", 0, opt);
     EXPECT_EQ(r.planner_errors, 0) << r.first_error;
     errands[on] = r.errands_finished;
     std::vector<Config> at(static_cast<size_t>(opt.steps) + 1, L.starts);

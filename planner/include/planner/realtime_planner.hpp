@@ -21,6 +21,7 @@
 namespace planner {
 
 class DistCache;
+class RotationPlanner;
 
 // The goal test as every planner applies it to its current configuration.
 inline bool passes_goal_test(const GoalTest& test, const Config& current, const Config& goals)
@@ -60,6 +61,12 @@ class RealtimePlanner {
   virtual uint64_t expansions() const = 0;    // total over all iterations
   virtual size_t explored() const = 0;        // size of the current explored table
   virtual std::string name() const = 0;
+  // The costliest expansion of the last search() call in ms (thread CPU), where the planner
+  // measures it (RtLacam); -1: not measured (callers then use the mean).
+  virtual double max_expansion_ms() const { return -1; }
+  // The rotation solvers' own interface (actions, headings, (cell, heading) tables); nullptr
+  // for the cell solvers.
+  virtual RotationPlanner* rotation() { return nullptr; }
 
   // search + next: the paper's planning iteration.
   const Config& step(const Budget& b)

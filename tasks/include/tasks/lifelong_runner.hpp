@@ -36,13 +36,10 @@
 
 #include "planner/budget.hpp"
 #include "planner/dist_cache.hpp"
-#include "planner/rotation/epibt.hpp"
 #include "planner/graph.hpp"
-#include "planner/rotation/guidance.hpp"
 #include "planner/latency.hpp"
-#include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
-#include "planner/rotation/wppl.hpp"
+#include "planner/solver.hpp"
 #include "tasks/action_model.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/task_manager.hpp"
@@ -68,25 +65,31 @@ struct StepRecord {      // what one step did (for tests and progress output)
   long epoch = 0;        // epoch in which the step was planned
 };
 
+inline planner::SolverOptions lifelong_solver_defaults()
+{
+  planner::SolverOptions o;
+  o.lacam.refine = true;
+  o.lacam.keep_priorities = true;
+  return o;
+}
+
 struct LifelongOptions {
   long steps = 1000;
   planner::Budget budget = planner::Budget::time_ms(100);
   std::function<void(const StepRecord&)> on_step;  // optional, after every step
-  planner::ActionPreference* pref = nullptr;       // optional move order (learned policy)
-  bool keep_priorities = true;                     // see planner::LacamOptions
+  // The solver's options (planner/solver.hpp), given to the factory at construction. The
+  // runner sets seed (run_lifelong's), max_dist_tables (the lifelong cap) and, under rotation
+  // without a policy in solver.pref, the heading preference. Lifelong defaults: RT-LaCAM*
+  // refinement on (lacam.refine), PIBT priorities kept across epochs (lacam.keep_priorities).
+  planner::SolverOptions solver = lifelong_solver_defaults();
   ActionModel action_model = ActionModel::Grid4;
   int rotation_window = 8;     // rotation: plan steps the planner may run ahead of the slowest robot
   bool heading_ties = true;    // rotation: HeadingPreference orders PIBT's moves (else plain PIBT)
   HeadingCost heading_cost = HeadingCost::Turns;  // rotation: how (heading_preference.hpp)
   bool record_actions = false; // keep every robot's action letters (LoRR actualPaths)
-  bool refine = true;                              // RT-LaCAM*: see planner::LacamOptions
   bool prefetch = true;          // grow the tables of upcoming goals in spare step time
   double precompute_share = 0.5;   // of a step's budget at most, first, while prefetched tables are incomplete
   size_t max_dist_tables = 0;      // shared cache cap; 0: 2 x agents + 256
-  bool rot_back_last = true;       // pibt-rot: RotationPibt::set_back_last
-  planner::Guidance guidance;      // pibt-rot: distances in these costs (planner/guidance.hpp); default: none
-  planner::Epibt::Options epibt;   // epibt: operation depth, revisits, priorities (planner/epibt.hpp)
-  planner::WpplOptions wppl;       // wppl: window, neighbourhood, ...
   // Distance queries past the step's deadline answer lower bounds instead of growing tables
   // (planner/dist_cache.hpp); false: every query exact, however long its BFS (as before).
   // Only with a positive, finite time budget (expansion-only budgets stay deterministic).
@@ -139,7 +142,8 @@ struct LifelongResult {
   long searches_skipped = 0;         // steps with no room for an expansion (skip_late_search)
 };
 
-// Starts the tasks at `starts`, builds `solver` (see make_planner) and runs.
+// Starts the tasks at `starts`, builds `solver` (planner::make_planner, any name of
+// planner::solver_list(true); the rotation solvers need the rotation action model) and runs.
 LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& starts, TaskManager& tasks,
                             const std::string& solver, uint64_t seed, const LifelongOptions& opt);
 

@@ -8,7 +8,7 @@
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 
 int main(int argc, char** argv)
 {
@@ -17,7 +17,9 @@ int main(int argc, char** argv)
   const planner::Instance ins = planner::load_scen(argv[2], g, std::stoi(argv[3]));
   const policy::Model model = policy::load_weights(argv[4]);
   policy::PolicyPreference pref(g, model, ins.goals);
-  auto p = tasks::make_planner("rtlacam", g, ins.starts, ins.goals, {}, 0, &pref);
+  planner::SolverOptions opt;
+  opt.pref = &pref;
+  auto p = planner::make_planner(planner::Solver::RtLacam, g, ins.starts, ins.goals, opt);
   planner::Validator v(g, ins.starts, ins.goals);
   for (int t = 0; t < 10000 && !p->at_goal(); ++t) {
     p->search(planner::Budget::expansion_count(100));

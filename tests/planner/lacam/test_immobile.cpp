@@ -56,9 +56,9 @@ TEST(Immobile, OthersPassAroundAnImmobileAgentInATwoLaneCorridorThenAllFinish)
   for (bool refine : {false, true})
     for (uint64_t seed = 0; seed < 5; ++seed) {
       SCOPED_TRACE("refine " + std::to_string(refine) + " seed " + std::to_string(seed));
-      LacamOptions o;
+      SolverOptions o;
       o.seed = seed;
-      o.refine = refine;
+      o.lacam.refine = refine;
       auto p = make_planner(Solver::RtLacam, c.g, c.starts, c.goals, o);
       p->set_immobile(0, true);
       // The others reach their goals around X, which never moves.

@@ -3,7 +3,7 @@
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_instance.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/solver.hpp"
+#include "planner/solver.hpp"
 
 namespace ggo {
 
@@ -27,9 +27,9 @@ Evaluation evaluate(const Problem& pr, const planner::Guidance& gd, long steps, 
   opt.steps = steps > 0 ? steps : pr.steps;
   opt.action_model = tasks::ActionModel::Rotation;
   opt.budget = planner::Budget::time_ms(1000);
-  opt.guidance = gd;
-  opt.epibt = ep;
-  const tasks::LifelongResult r = tasks::run_lifelong(pr.g, pr.starts, tm, tasks::kEpibtSolver, seed, opt);
+  opt.solver.guidance = gd;
+  opt.solver.epibt = ep;
+  const tasks::LifelongResult r = tasks::run_lifelong(pr.g, pr.starts, tm, "epibt", seed, opt);
   Evaluation e;
   e.throughput = static_cast<double>(r.errands_finished) / static_cast<double>(opt.steps);
   e.planner_errors = r.planner_errors;

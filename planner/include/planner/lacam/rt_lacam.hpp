@@ -46,7 +46,7 @@ class RtLacam : public RealtimePlanner {
   // Never while an agent is immobile: the relaxed search may run dry, the immobility ends.
   bool exhausted() const override { return lacam_.status() == Status::NoSolution && !any_immobile(immobile_); }
   uint64_t expansions() const override { return lacam_.expansions(); }
-  double max_expansion_ms() const { return lacam_.max_expansion_ms(); }  // Lacam::max_expansion_ms
+  double max_expansion_ms() const override { return lacam_.max_expansion_ms(); }  // Lacam::max_expansion_ms
   size_t explored() const override { return lacam_.explored(); }
   std::string name() const override { return "rtlacam"; }
 

@@ -17,6 +17,7 @@ namespace planner {
 
 class RotationPlanner : public RealtimePlanner {
  public:
+  RotationPlanner* rotation() override { return this; }
   virtual const std::vector<int>& headings() const = 0;  // per robot, 0 east .. 3 north
   virtual const std::string& actions() const = 0;        // the planned step, one of "FRCW" per robot (after search())
   virtual uint16_t h(int agent) const = 0;               // steps from its state to its goal

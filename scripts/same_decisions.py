@@ -1,0 +1,105 @@
+#!/usr/bin/env python3
+"""Same decisions before and after a refactor: deterministic rtlacam-lifelong runs
+(--budget-expansions, a budget no step reaches) of every solver with two builds, LoRR logs
+compared byte for byte once the timing fields are taken out.
+
+    scripts/same_decisions.py BEFORE/apps/rtlacam-lifelong AFTER/apps/rtlacam-lifelong [--steps 150]
+
+Prints one line per run (identical / DIFFERENT: the first differing key) and exits 1 on any
+difference. The LoRR instances come from ../shared/benchmarks/lorr (see its README).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+LORR = os.path.join(HERE, "..", "..", "shared", "benchmarks", "lorr", "2023")
+RANDOM = os.path.join(LORR, "random.domain", "MR23-I-03.json")
+WAREHOUSE = os.path.join(LORR, "warehouse.domain", "MR23-I-06.json")
+
+# (name, problem, extra arguments): every solver, both action models, both task modes.
+RUNS = [
+    ("rtlacam grid4", RANDOM, ["--solver", "rtlacam"]),
+    ("rtlacam grid4 no-refine", RANDOM, ["--solver", "rtlacam", "--no-refine"]),
+    ("naive grid4", RANDOM, ["--solver", "naive"]),
+    ("pibt grid4", RANDOM, ["--solver", "pibt"]),
+    ("rtlacam grid4 pool", RANDOM, ["--solver", "rtlacam", "--mode", "pool"]),
+    ("rtlacam rotation", RANDOM, ["--solver", "rtlacam", "--action-model", "rotation"]),
+    ("pibt-rot rotation", RANDOM, ["--solver", "pibt-rot", "--action-model", "rotation"]),
+    ("epibt rotation", RANDOM, ["--solver", "epibt", "--action-model", "rotation"]),
+    ("epibt rotation no-tf", RANDOM, ["--solver", "epibt", "--action-model", "rotation", "--traffic-flow", "off"]),
+    ("wppl rotation", RANDOM, ["--solver", "wppl", "--action-model", "rotation"]),
+    ("rtlacam warehouse 300", WAREHOUSE, ["--solver", "rtlacam", "--agents", "300"]),
+    ("epibt warehouse 300", WAREHOUSE, ["--solver", "epibt", "--action-model", "rotation", "--agents", "300"]),
+]
+
+# Keys whose values are times (or counts of steps over a time budget): they differ run to run.
+def timing(key):
+    k = key.lower()
+    return (k.endswith("ms") or "stats" in k or k in ("plannertimes", "stepsoverbudget", "stepsoverbudgetcpu",
+            "msperexpansion", "msperfirstexpansion", "maxmb"))
+
+def strip(x):
+    if isinstance(x, dict):
+        return {k: strip(v) for k, v in x.items() if not timing(k) and k != "problem"}
+    if isinstance(x, list):
+        return [strip(v) for v in x]
+    return x
+
+def first_diff(a, b, path=""):
+    if type(a) != type(b):
+        return path or "."
+    if isinstance(a, dict):
+        for k in sorted(set(a) | set(b)):
+            if k not in a or k not in b:
+                return f"{path}.{k} (missing on one side)"
+            d = first_diff(a[k], b[k], f"{path}.{k}")
+            if d:
+                return d
+        return None
+    if isinstance(a, list):
+        if len(a) != len(b):
+            return f"{path} (length {len(a)} vs {len(b)})"
+        for i, (u, v) in enumerate(zip(a, b)):
+            d = first_diff(u, v, f"{path}[{i}]")
+            if d:
+                return d
+        return None
+    return None if a == b else f"{path}: {a!r} vs {b!r}"
+
+def run(binary, problem, extra, steps, out):
+    cmd = [binary, "--problem", problem, "--steps", str(steps), "--budget-ms", "1e9", "--budget-expansions", "20",
+           "--out", out, "--quiet"] + extra
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    if p.returncode != 0:
+        sys.exit(f"same_decisions: {' '.join(cmd)}: exit {p.returncode}: {p.stderr.strip()}")
+    with open(out) as f:
+        return json.load(f)
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("before")
+    ap.add_argument("after")
+    ap.add_argument("--steps", type=int, default=150)
+    a = ap.parse_args()
+    for f in (RANDOM, WAREHOUSE):
+        if not os.path.exists(f):
+            sys.exit(f"same_decisions: {f}: not found (../shared/benchmarks/lorr)")
+    bad = 0
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, problem, extra in RUNS:
+            x = strip(run(a.before, problem, extra, a.steps, os.path.join(tmp, "a.json")))
+            y = strip(run(a.after, problem, extra, a.steps, os.path.join(tmp, "b.json")))
+            same = json.dumps(x, sort_keys=True) == json.dumps(y, sort_keys=True)
+            errands = y.get("numErrandFinished")
+            print(f"{name:28s} {a.steps} steps, {errands} errands: " +
+                  ("identical" if same else "DIFFERENT at " + str(first_diff(x, y))))
+            bad += not same
+    print(f"same_decisions: {len(RUNS) - bad}/{len(RUNS)} identical (timing fields aside)")
+    return 1 if bad else 0
+
+if __name__ == "__main__":
+    sys.exit(main())
