@@ -16,7 +16,7 @@
 #include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
-#include "tasks/rotation_executor.hpp"
+#include "executor/rotation_execution.hpp"
 
 using namespace planner;
 
@@ -206,7 +206,7 @@ int main(int argc, char** argv)
     }
     j["action_model"] = action_model;
     if (action_model == "rotation") {
-      const tasks::RotationRun rr = tasks::run_with_rotation(g, r.plan);
+      const executor::RotationRun rr = executor::run_with_rotation(g, r.plan);
       j["rotation_makespan"] = rr.makespan;
       j["rotation_soc"] = rr.soc;
       j["rotation_turns"] = rr.turns;

@@ -20,25 +20,30 @@ GraphExecution::GraphExecution(planner::RealtimePlanner& p, const DelaySpec& d, 
 
 bool GraphExecution::finished() const { return p_.at_goal() && idle(); }
 
-void GraphExecution::top_up()
+bool GraphExecution::can_accept() const
 {
+  if (o_.mode == "lockstep") return pending_.empty();  // one configuration at a time, all together
+  return adg_->steps() - adg_->min_progress() < o_.window;
+}
+
+void GraphExecution::push(const planner::Config& next)
+{
+  ++st_.commits;
   if (o_.mode == "lockstep") {
-    // One configuration at a time, executed by all together.
-    if (!pending_.empty() || p_.at_goal()) return;
-    const planner::Config next = p_.next();
-    if (next == p_.current()) return;
-    p_.commit();
     pending_ = next;
     lock_done_ = 0;
-    ++st_.commits;
     return;
   }
-  while (adg_->steps() - adg_->min_progress() < o_.window && !p_.at_goal()) {
+  adg_->append(next);
+}
+
+void GraphExecution::top_up()
+{
+  while (can_accept() && !p_.at_goal()) {
     const planner::Config next = p_.next();
     if (next == p_.current()) break;  // nothing found beyond the root yet: search on
     p_.commit();
-    adg_->append(next);
-    ++st_.commits;
+    push(next);
   }
 }
 
@@ -46,6 +51,11 @@ void GraphExecution::tick(const planner::Budget& b)
 {
   p_.search(b);
   top_up();
+  step();
+}
+
+void GraphExecution::step()
+{
   delays_.tick(st_.ticks);
   if (o_.mode == "lockstep")
     tick_lockstep();

@@ -15,16 +15,6 @@ std::string to_string(ActionModel m) { return m == ActionModel::Rotation ? "rota
 
 std::string lorr_name(ActionModel m) { return m == ActionModel::Rotation ? "MAPF_T" : "MAPF"; }
 
-int heading_of_move(const planner::Graph& g, planner::Vertex u, planner::Vertex v)
-{
-  const int dx = g.cell_x(v) - g.cell_x(u), dy = g.cell_y(v) - g.cell_y(u);
-  if (dx == 1 && dy == 0) return 0;
-  if (dx == 0 && dy == 1) return 1;
-  if (dx == -1 && dy == 0) return 2;
-  if (dx == 0 && dy == -1) return 3;
-  throw std::invalid_argument("not a 4-neighbour move: " + std::to_string(u) + " -> " + std::to_string(v));
-}
-
 char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v)
 {
   if (u == v) return 'W';
@@ -35,15 +25,12 @@ char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v)
 std::string check_rotation_step(const planner::Graph& g, const planner::Config& pos, const std::vector<int>& heading,
                                 const std::string& actions, const planner::Config& next)
 {
-  constexpr int kDx[4] = {1, 0, -1, 0}, kDy[4] = {0, 1, 0, -1};
   if (actions.size() != pos.size() || next.size() != pos.size() || heading.size() != pos.size())
     return "rotation step: sizes of positions, headings, actions differ";
   for (size_t i = 0; i < pos.size(); ++i) {
     const char a = actions[i];
-    planner::Vertex want = pos[i];
+    const planner::Vertex want = planner::result_state(g, {pos[i], heading[i]}, a).v;
     if (a == 'F') {
-      const int o = heading[i];
-      want = g.at(g.cell_x(pos[i]) + kDx[o], g.cell_y(pos[i]) + kDy[o]);
       if (want < 0) return "agent " + std::to_string(i) + " moves forward into a wall at vertex " + std::to_string(pos[i]);
     } else if (a != 'R' && a != 'C' && a != 'W') {
       return "agent " + std::to_string(i) + ": unknown action '" + std::string(1, a) + "'";
@@ -54,7 +41,5 @@ std::string check_rotation_step(const planner::Graph& g, const planner::Config& 
   }
   return "";
 }
-
-char turn_toward(int h, int d) { return ((d - h + 4) % 4) == 3 ? 'C' : 'R'; }
 
 }  // namespace tasks

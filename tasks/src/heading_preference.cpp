@@ -6,13 +6,7 @@
 
 namespace tasks {
 
-namespace {
-int quarter_turns(int from, int to)
-{
-  const int t = (to - from + 4) % 4;
-  return t == 3 ? 1 : t;
-}
-}  // namespace
+using planner::quarter_turns;
 
 HeadingPreference::HeadingPreference(const planner::Graph& g, const planner::Config& starts, HeadingCost cost)
     : g_(g), dist_(g), cost_(cost), at_(starts), heading_(starts.size(), 0)

@@ -235,7 +235,7 @@ TEST(ExpansionCost, RotationStepsStayWithinA1msBudgetWhenExpansionsVaryInCost)
   // The search checks its deadline between expansions and an expansion cannot stop
   // halfway, so the runner must start one only if it fits. Here every expansion costs
   // 0.05-0.65 ms of CPU (CostlyPreference) on top of PIBT itself, under the rotation model
-  // (RotationExecutor window, epoch starts at the plan frontier). Stopping one *average*
+  // (RotationExecution window, epoch starts at the plan frontier). Stopping one *average*
   // expansion early (the runner before tasks/cost_estimate.hpp, commit 5600d8f) overran the
   // 1 ms budget whenever an expansion cost more than average: measured CPU p99 1.20-1.23
   // ms, max 1.22-1.32 ms (fails). With each expansion charged its bound (mean + 4 mean

@@ -1,4 +1,4 @@
-// The rotation action model (LoRR MAPF_T): RotationExecutor turns committed cell moves into
+// The rotation action model (LoRR MAPF_T): RotationExecution turns committed cell moves into
 // F/R/C/W actions (a step per quarter turn, plan order per cell), and a lifelong run with it
 // stays validator-clean; the actions replay to the robots' real cells and every event
 // happens on its errand's cell. Also the LoRR log of such a run (lorr_log).
@@ -13,61 +13,71 @@
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks/roundrobin.hpp"
-#include "tasks/rotation_executor.hpp"
+#include "executor/rotation_execution.hpp"
 #include "tasks/task_pool.hpp"
 #include "cli_run.hpp"
 #include "tasks_test_util.hpp"
 
 using namespace tasks;
+using executor::RotationExecution;
+using executor::RotationRun;
+using executor::run_with_rotation;
 using planner::Config;
 
 namespace {
 
-std::string run_until_idle(RotationExecutor& ex, int max_steps, int agent)
+// One tick, and the LoRR letters it executed.
+const std::string& step(RotationExecution& ex)
+{
+  ex.step();
+  return ex.actions();
+}
+
+std::string run_until_idle(RotationExecution& ex, int max_steps, int agent)
 {
   std::string acts;
-  for (int s = 0; s < max_steps; ++s) acts += ex.step()[static_cast<size_t>(agent)];
+  for (int s = 0; s < max_steps; ++s) acts += step(ex)[static_cast<size_t>(agent)];
   return acts;
 }
 
 }  // namespace
 
-TEST(RotationExecutor, TurnsCostAStepAndRobotsStartFacingEast)
+TEST(RotationExecution, TurnsCostAStepAndRobotsStartFacingEast)
 {
   const auto g = ttest::grid({"...", "..."});
-  RotationExecutor ex(g, {g.at(0, 0)}, 8);
+  RotationExecution ex(g, {g.at(0, 0)}, 8);
   ex.push({g.at(1, 0)});  // east: straight ahead
   ex.push({g.at(1, 1)});  // south: one clockwise turn first
   ex.push({g.at(0, 1)});  // west: one more clockwise turn
   EXPECT_EQ(run_until_idle(ex, 6, 0), "FRFRFW");
   EXPECT_EQ(ex.positions()[0], g.at(0, 1));
   EXPECT_EQ(ex.headings()[0], 2);
-  RotationExecutor back(g, {g.at(1, 0)}, 8);
+  RotationExecution back(g, {g.at(1, 0)}, 8);
   back.push({g.at(0, 0)});  // behind it: a half turn (two steps), then forward
   EXPECT_EQ(run_until_idle(back, 4, 0), "RRFW");
-  RotationExecutor up(g, {g.at(0, 1)}, 8);
+  RotationExecution up(g, {g.at(0, 1)}, 8);
   up.push({g.at(0, 0)});  // north: counter-clockwise
   EXPECT_EQ(run_until_idle(up, 2, 0), "CF");
 }
 
-TEST(RotationExecutor, FollowersMoveTogetherAndWaitForTheCellsEarlierVisitor)
+TEST(RotationExecution, FollowersMoveTogetherAndWaitForTheCellsEarlierVisitor)
 {
   const auto g = ttest::grid({"....", "...."});
   // A (0,0) and B (1,0) both go east: B leaves the cell A enters in the same step.
-  RotationExecutor ex(g, {g.at(0, 0), g.at(1, 0)}, 8);
+  RotationExecution ex(g, {g.at(0, 0), g.at(1, 0)}, 8);
   ex.push({g.at(1, 0), g.at(2, 0)});
-  EXPECT_EQ(ex.step(), "FF");
+  EXPECT_EQ(step(ex), "FF");
   // Now B turns south first (a step) while A wants B's cell: A waits for B to leave.
   ex.push({g.at(2, 0), g.at(2, 1)});
-  EXPECT_EQ(ex.step(), "WR");
-  EXPECT_EQ(ex.step(), "FF");
+  EXPECT_EQ(step(ex), "WR");
+  EXPECT_EQ(step(ex), "FF");
   EXPECT_EQ(ex.positions(), (Config{g.at(2, 0), g.at(2, 1)}));
 }
 
-TEST(RotationExecutor, WindowBoundsHowFarThePlanRunsAhead)
+TEST(RotationExecution, WindowBoundsHowFarThePlanRunsAhead)
 {
   const auto g = ttest::grid({"....."});
-  RotationExecutor ex(g, {g.at(4, 0)}, 2);  // must turn around: two steps before its first move
+  RotationExecution ex(g, {g.at(4, 0)}, 2);  // must turn around: two steps before its first move
   EXPECT_TRUE(ex.can_accept());
   ex.push({g.at(3, 0)});
   ex.push({g.at(2, 0)});
@@ -78,7 +88,7 @@ TEST(RotationExecutor, WindowBoundsHowFarThePlanRunsAhead)
   EXPECT_TRUE(ex.can_accept());
 }
 
-TEST(RotationExecutor, RandomValidPlansExecuteWithoutConflictsInPlanOrder)
+TEST(RotationExecution, RandomValidPlansExecuteWithoutConflictsInPlanOrder)
 {
   // Random cell-space plans (random valid steps of 12 robots on a 6x6 grid), executed with
   // turns: every executed step passes the validator, each robot visits the plan's cells in
@@ -88,7 +98,7 @@ TEST(RotationExecutor, RandomValidPlansExecuteWithoutConflictsInPlanOrder)
   Config c;
   for (int v = 0; v < g.size() && c.size() < 12; v += 3) c.push_back(v);
   for (int trial = 0; trial < 20; ++trial) {
-    RotationExecutor ex(g, c, 4);
+    RotationExecution ex(g, c, 4);
     std::vector<std::vector<planner::Vertex>> plan_cells(c.size()), done_cells(c.size());
     for (size_t i = 0; i < c.size(); ++i) plan_cells[i].push_back(c[i]), done_cells[i].push_back(c[i]);
     Config cur = c;

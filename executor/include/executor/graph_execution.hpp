@@ -21,6 +21,7 @@
 
 #include "executor/adg.hpp"
 #include "executor/delay_model.hpp"
+#include "executor/execution.hpp"
 #include "planner/budget.hpp"
 #include "planner/realtime_planner.hpp"
 
@@ -43,22 +44,29 @@ struct ExecStats {
   long long lockstep_waits = 0;   // lockstep: agent-ticks a ready mover waited for others
 };
 
-class GraphExecution {
+class GraphExecution : public Execution {
  public:
   GraphExecution(planner::RealtimePlanner& p, const DelaySpec& d, const ExecOptions& o);
 
-  // One tick: the planner searches once with `b`, commits to keep the window full (never a
-  // wait: that has no action), delays are drawn, released actions start, moves progress.
+  // The Execution seam. can_accept: lockstep, when the last configuration is executed;
+  // adg, while fewer than `window` are ahead of the slowest agent. push: a configuration
+  // the planner committed (lockstep: the next one all execute together; adg: appended to
+  // the Adg). step: delays are drawn, released actions start, moves progress.
+  bool can_accept() const override;
+  void push(const planner::Config& next) override;
+  void step() override;
+  // One tick with the planner: it searches once with `b`, commits to keep the window full
+  // (never a wait: that has no action), then step().
   void tick(const planner::Budget& b);
   // Every committed configuration executed and the planner stands on its goals.
   bool finished() const;
-  const planner::Config& positions() const { return pos_; }
+  const planner::Config& positions() const override { return pos_; }
   const ExecStats& stats() const { return st_; }
   const Adg& adg() const { return *adg_; }
   const DelayModel& delays() const { return delays_; }
   // New goals (lifelong): only where the committed window is fully executed, so the
   // planner's current configuration is where the agents really are.
-  bool idle() const { return adg_->done() && pending_.empty(); }
+  bool idle() const override { return adg_->done() && pending_.empty(); }
 
  private:
   void top_up();

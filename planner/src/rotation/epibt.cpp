@@ -118,10 +118,8 @@ bool Epibt::walk(int i, int op, Vertex* cells, int32_t* edges, int* end_heading)
       // An undirected edge: its lower cell, and the axis (0: x, 1: y).
       e = (o == 0 || o == 1 ? v : u) * 2 + (o & 1);
       v = u;
-    } else if (a[d] == 'R') {
-      o = (o + 1) % 4;
-    } else if (a[d] == 'C') {
-      o = (o + 3) % 4;
+    } else {
+      o = heading_after(o, a[d]);
     }
     cells[d] = v;
     edges[d] = e;
@@ -212,7 +210,7 @@ void Epibt::candidates(int i)
       for (int d = 0; d < D; ++d) {
         if (a[d] == 'F') cost += unit * dist_.forward_cost(v, hd), v = cells[d];
         else if (a[d] == 'W') cost += unit * wait_cost_;
-        else cost += unit * dist_.turn_cost(), hd = (hd + (a[d] == 'R' ? 1 : 3)) % 4;
+        else cost += unit * dist_.turn_cost(), hd = heading_after(hd, a[d]);
         if (!on_goal && cells[d] == goal) {
           first = d + 1;
           break;
@@ -346,8 +344,7 @@ void Epibt::commit()
   for (int i = 0; i < n; ++i) {
     if (tf_ && action_[i] == 'F') tf_->advance(i, current_[i], heading_[i]);
     current_[i] = next_[i];
-    if (action_[i] == 'R') heading_[i] = (heading_[i] + 1) % 4;
-    else if (action_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;
+    heading_[i] = heading_after(heading_[i], action_[i]);
     // The tail of the operation (still jointly conflict-free), or wait (no inheritance).
     set_op(i, opt_.inherit ? ops_[static_cast<size_t>(op_[i])].next : wait_);
     // Priority::Age: PIBT's dynamic priority (+1 per step off the goal; a dead end first).

@@ -48,13 +48,11 @@ bool useful(const std::string& a)
 // operations with one signature occupy the same cells at the same times.
 std::vector<int> signature(const std::string& a)
 {
-  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
   int x = 0, y = 0, o = 0;
   std::vector<int> s;
   for (char c : a) {
-    if (c == 'F') x += dx[o], y += dy[o];
-    else if (c == 'R') o = (o + 1) % 4;
-    else if (c == 'C') o = (o + 3) % 4;
+    if (c == 'F') x += kHeadingDx[o], y += kHeadingDy[o];
+    o = heading_after(o, c);
     s.push_back(x), s.push_back(y);
   }
   s.push_back(o);

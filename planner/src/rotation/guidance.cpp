@@ -6,14 +6,12 @@
 #include <stdexcept>
 
 #include "planner/error.hpp"
+#include "planner/heading.hpp"
 
 namespace planner {
 
 namespace {
-constexpr int kDx[4] = {1, 0, -1, 0};
-constexpr int kDy[4] = {0, 1, 0, -1};
-
-Vertex ahead(const Graph& g, Vertex v, int o) { return g.at(g.cell_x(v) + kDx[o], g.cell_y(v) + kDy[o]); }
+Vertex ahead(const Graph& g, Vertex v, int o) { return cell_ahead(g, v, o); }
 
 // Strongly connected components of the cells over the arcs of cost <= cheap (Kosaraju,
 // iterative: maps have 10^5 cells, too deep for recursion).
@@ -22,7 +20,7 @@ std::vector<int32_t> cheap_components(const Graph& g, const Guidance& gd, uint16
   const Vertex n = g.size();
   auto arc = [&](Vertex v, int o, bool reverse) -> Vertex {
     // reverse: the arc into v from the cell behind it, facing o
-    const Vertex u = ahead(g, v, reverse ? (o + 2) % 4 : o);
+    const Vertex u = ahead(g, v, reverse ? reversed(o) : o);
     if (u < 0) return -1;
     return gd.forward_cost(reverse ? u : v, o) <= cheap ? u : -1;
   };

@@ -8,17 +8,12 @@
 
 namespace planner {
 
-namespace {
-constexpr int kDx[4] = {1, 0, -1, 0};
-constexpr int kDy[4] = {0, 1, 0, -1};
-}  // namespace
-
 RotationDist::RotationDist(const Graph& g, size_t max_tables) : g_(g), max_tables_(max_tables)
 {
   if (!g.is_grid()) throw std::invalid_argument("rotation distances need a grid graph");
   ahead_.assign(static_cast<size_t>(g.size()) * 4, -1);
   for (Vertex v = 0; v < g.size(); ++v)
-    for (int o = 0; o < 4; ++o) ahead_[static_cast<size_t>(v) * 4 + o] = g.at(g.cell_x(v) + kDx[o], g.cell_y(v) + kDy[o]);
+    for (int o = 0; o < 4; ++o) ahead_[static_cast<size_t>(v) * 4 + o] = cell_ahead(g, v, o);
 }
 
 void RotationDist::set_guidance(Guidance gd)
@@ -96,7 +91,7 @@ uint16_t RotationDist::lower_bound(const Table* t, Vertex v, int o) const
   if (dy != 0) need[k++] = dy > 0 ? 1 : 3;
   int turns = 0;
   if (k > 0) {
-    auto rot = [o](int d) { return std::min((d - o + 4) % 4, (o - d + 4) % 4); };
+    auto rot = [o](int d) { return quarter_turns(o, d); };
     turns = k == 1 ? rot(need[0]) : std::min(rot(need[0]), rot(need[1])) + 1;
   }
   const uint32_t h = static_cast<uint32_t>(std::abs(dx) + std::abs(dy)) * min_forward_ + static_cast<uint32_t>(turns) * guid_.turn;
@@ -121,9 +116,9 @@ void RotationDist::grow_bfs(Table* t, int32_t state, size_t pops) const
     const uint16_t nd = d >= kFar - 1 ? kFar : static_cast<uint16_t>(d + 1);
     // Predecessors: turned clockwise from o - 1, counter-clockwise from o + 1, or moved
     // forward (heading o) from the cell behind v.
-    const int32_t pred[3] = {v * 4 + (o + 3) % 4, v * 4 + (o + 1) % 4,
-                             ahead_[static_cast<size_t>(v) * 4 + (o + 2) % 4] >= 0
-                                 ? ahead_[static_cast<size_t>(v) * 4 + (o + 2) % 4] * 4 + o
+    const int32_t pred[3] = {v * 4 + turned_ccw(o), v * 4 + turned_cw(o),
+                             ahead_[static_cast<size_t>(v) * 4 + reversed(o)] >= 0
+                                 ? ahead_[static_cast<size_t>(v) * 4 + reversed(o)] * 4 + o
                                  : -1};
     for (int32_t p : pred)
       if (p >= 0 && dist[static_cast<size_t>(p)] == kInf) {
@@ -159,9 +154,9 @@ void RotationDist::grow_dijkstra(Table* t, int32_t state, size_t pops) const
     --pops;
     const Vertex v = s / 4;
     const int o = s % 4;
-    const Vertex behind = ahead_[static_cast<size_t>(v) * 4 + (o + 2) % 4];
+    const Vertex behind = ahead_[static_cast<size_t>(v) * 4 + reversed(o)];
     // Predecessors as in the BFS, each with its action's cost.
-    const int32_t pred[3] = {v * 4 + (o + 3) % 4, v * 4 + (o + 1) % 4, behind >= 0 ? behind * 4 + o : -1};
+    const int32_t pred[3] = {v * 4 + turned_ccw(o), v * 4 + turned_cw(o), behind >= 0 ? behind * 4 + o : -1};
     const uint32_t cost[3] = {guid_.turn, guid_.turn, behind >= 0 ? guid_.forward_cost(behind, o) : 0u};
     for (int k = 0; k < 3; ++k) {
       const int32_t p = pred[k];

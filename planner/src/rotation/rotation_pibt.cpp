@@ -93,7 +93,7 @@ Status RotationPibt::search(const Budget&)
     const int o = heading_[i];
     int d = 0;
     while (dist_.ahead(v, d) != c) ++d;
-    action_[i] = d == o ? 'F' : (d - o + 4) % 4 == 3 ? 'C' : 'R';
+    action_[i] = d == o ? 'F' : turn_toward(o, d);
   }
   next_ = current_;
   for (int i = 0; i < n; ++i) {
@@ -123,7 +123,7 @@ bool RotationPibt::pibt(int i, int asker)
   for (int d = 0; d < 4; ++d) {
     const Vertex c = dist_.ahead(v, d);
     if (c < 0) continue;
-    const uint32_t turns = (d - o + 4) % 4 == 2 ? 2 : d == o ? 0 : 1;
+    const uint32_t turns = static_cast<uint32_t>(quarter_turns(o, d));
     // In the distances' costs (guidance.hpp; 1 per action without guidance).
     uint32_t cost = turns * dist_.turn_cost() + dist_.forward_cost(v, d) + dist_.get(t, c, d);
     if (asker >= 0 && back_last_ && turns == 2) cost += 1u << 16;  // asked to vacate: the cell behind last
@@ -183,8 +183,7 @@ void RotationPibt::commit()
   for (int i = 0; i < n; ++i) {
     current_[i] = next_[i];
     occ_now_[current_[i]] = i;
-    if (action_[i] == 'R') heading_[i] = (heading_[i] + 1) % 4;
-    else if (action_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;
+    heading_[i] = heading_after(heading_[i], action_[i]);
     // PIBT's dynamic priority: +1 per step away from the goal, its tie part on it.
     prio_[i] = current_[i] != goals_[i] ? prio_[i] + 1.0 : prio_[i] - static_cast<double>(static_cast<long>(prio_[i]));
     // A robot in a dead end blocks its only way out: it goes first (the start kit's boost).

@@ -23,7 +23,7 @@ uint32_t TrafficFlow::forward(Vertex v, int o) const
 {
   const Vertex u = dist_.ahead(v, o);
   if (u < 0) return kInf;
-  const double congestion = opt_.contraflow * flow_[static_cast<size_t>(u) * 4 + static_cast<size_t>((o + 2) % 4)] +
+  const double congestion = opt_.contraflow * flow_[static_cast<size_t>(u) * 4 + static_cast<size_t>(reversed(o))] +
                             opt_.vertex * load_[static_cast<size_t>(u)];
   return kScale * dist_.forward_cost(v, o) + static_cast<uint32_t>(std::lround(kScale * congestion));
 }
@@ -97,9 +97,9 @@ void TrafficFlow::plan(int agent, Vertex v0, int o0, Vertex goal)
     if (d > t[static_cast<size_t>(s)]) continue;
     const Vertex u = s / 4;
     const int o = s % 4;
-    relax(u * 4 + (o + 1) % 4, uint64_t{d} + turn_cost);  // (u, o + 1) turns counter-clockwise into (u, o)
-    relax(u * 4 + (o + 3) % 4, uint64_t{d} + turn_cost);  // (u, o - 1) turns clockwise
-    const Vertex v = dist_.ahead(u, (o + 2) % 4);  // (v, o) moves forward into u
+    relax(u * 4 + turned_cw(o), uint64_t{d} + turn_cost);  // (u, o + 1) turns counter-clockwise into (u, o)
+    relax(u * 4 + turned_ccw(o), uint64_t{d} + turn_cost);  // (u, o - 1) turns clockwise
+    const Vertex v = dist_.ahead(u, reversed(o));  // (v, o) moves forward into u
     if (v >= 0) relax(v * 4 + o, uint64_t{d} + forward(v, o));
   }
   // The guide path: down the table from (v0, o0), forward first on ties.
@@ -114,10 +114,10 @@ void TrafficFlow::plan(int agent, Vertex v0, int o0, Vertex goal)
         f + t[static_cast<size_t>(u) * 4 + static_cast<size_t>(o)] == here) {
       p.push_back(v * 4 + o);
       v = u;
-    } else if (turn_cost + t[static_cast<size_t>(v) * 4 + static_cast<size_t>((o + 1) % 4)] == here) {
-      o = (o + 1) % 4;
+    } else if (turn_cost + t[static_cast<size_t>(v) * 4 + static_cast<size_t>(turned_cw(o))] == here) {
+      o = turned_cw(o);
     } else {
-      o = (o + 3) % 4;
+      o = turned_ccw(o);
     }
   }
   head_[static_cast<size_t>(agent)] = 0;

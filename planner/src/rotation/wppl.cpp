@@ -11,8 +11,8 @@ namespace {
 char action_between(const RotState& s, const RotState& t)
 {
   if (t.v != s.v) return 'F';
-  if (t.o == (s.o + 1) % 4) return 'R';
-  if (t.o == (s.o + 3) % 4) return 'C';
+  if (t.o == turned_cw(s.o)) return 'R';
+  if (t.o == turned_ccw(s.o)) return 'C';
   return 'W';
 }
 
@@ -122,9 +122,9 @@ void Wppl::neighbourhood(std::vector<int>& nb)
       }
     scanned = s.v;
     if (s.v == goal) break;
-    RotState best{s.v, (s.o + 1) % 4};
+    RotState best{s.v, turned_cw(s.o)};
     uint32_t best_h = d.get(t, best.v, best.o);
-    const RotState ccw{s.v, (s.o + 3) % 4};
+    const RotState ccw{s.v, turned_ccw(s.o)};
     if (const uint32_t hc = d.get(t, ccw.v, ccw.o); hc < best_h) best = ccw, best_h = hc;
     const Vertex u = d.ahead(s.v, s.o);
     if (u >= 0)

@@ -6,7 +6,7 @@
 //               clockwise), C (turn counter-clockwise), W (wait); each takes one step and
 //               a turn keeps the robot on its cell. All robots start facing east.
 //
-// Headings are LoRR's: 0 east, 1 south, 2 west, 3 north (clockwise = +1). PlanViz's
+// Headings are LoRR's (planner/heading.hpp: the geometry, once). PlanViz's
 // "MAPF" letters are its own (U = row + 1, D = row - 1, L = column - 1, R = column + 1):
 // we write what PlanViz replays.
 #include <string>
@@ -14,6 +14,7 @@
 
 #include "planner/config.hpp"
 #include "planner/graph.hpp"
+#include "planner/heading.hpp"
 
 namespace tasks {
 
@@ -25,10 +26,9 @@ std::string to_string(ActionModel m);
 // The `actionModel` value of a LoRR log: "MAPF" (grid4) or "MAPF_T" (rotation).
 std::string lorr_name(ActionModel m);
 
-constexpr char kHeadingLetter[4] = {'E', 'S', 'W', 'N'};
-
-// Heading of the move u -> v between 4-neighbours on a grid graph (0..3 as above).
-int heading_of_move(const planner::Graph& g, planner::Vertex u, planner::Vertex v);
+using planner::heading_of_move;
+using planner::kHeadingLetter;
+using planner::turn_toward;
 // PlanViz "MAPF" letter of a grid4 move (W when u == v).
 char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v);
 // One executed MAPF_T step, checked as LoRR's ActionModelWithRotate applies it: robot i
@@ -37,9 +37,5 @@ char grid4_letter(const planner::Graph& g, planner::Vertex u, planner::Vertex v)
 // problem. Vertex and swap conflicts are the Validator's (check_transition).
 std::string check_rotation_step(const planner::Graph& g, const planner::Config& pos, const std::vector<int>& heading,
                                 const std::string& actions, const planner::Config& next);
-
-// The turn that brings heading h nearer to d (h != d): 'R' (clockwise) or 'C'. A half turn
-// goes clockwise.
-char turn_toward(int h, int d);
 
 }  // namespace tasks

@@ -1,5 +1,7 @@
 #pragma once
-// The lifelong executor on the plain MAPF graph. Each step:
+// The lifelong run on the plain MAPF graph: its options, its step record and its result;
+// run_lifelong runs a LifelongRun (lifelong_run.hpp: the phases, StepBudget) to the end.
+// Each step:
 //
 //   search(budget); next()        -- plan (timed: plannerTimes)
 //   check the move (Validator)    -- any violation counts in numPlannerErrors
@@ -12,8 +14,8 @@
 // that PIBT and the naive variant fall into.
 //
 // Rotation (LoRR MAPF_T): the planner still plans cell moves; each step it commits one
-// configuration when the RotationExecutor's window has room, and the executor turns the
-// committed moves into F/R/C/W actions (see rotation_executor.hpp). Errands complete on the
+// configuration when the RotationExecution's window has room, and the executor turns the
+// committed moves into F/R/C/W actions (see executor/rotation_execution.hpp). Errands complete on the
 // robots' real cells; the new goals go to the planner at its plan frontier.
 //
 // Budget: the set_goals that starts an epoch is planning work for the next step; it is

@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "planner/graph.hpp"
+#include "planner/heading.hpp"
 #include "planner/rotation/guidance.hpp"
 
 namespace planner {

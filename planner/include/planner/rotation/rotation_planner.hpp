@@ -2,7 +2,7 @@
 // RotationPlanner: a real-time planner that plans LoRR rotation actions (MAPF_T) itself,
 // one F / R / C / W per robot per step, on RotationDist's (cell, heading) tables:
 // RotationPibt (`pibt-rot`) and Wppl (`wppl`). The lifelong runner executes its actions
-// directly (no cell plan, no RotationExecutor), checks them (tasks::check_rotation_step),
+// directly (no cell plan, no RotationExecution), checks them (tasks::check_rotation_step),
 // and prefetches the goals to come into its tables through this interface.
 #include <chrono>
 #include <cstdint>

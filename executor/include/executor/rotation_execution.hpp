@@ -1,5 +1,6 @@
 #pragma once
-// RotationExecutor: runs a cell-space plan on robots with a heading (LoRR's MAPF_T).
+// RotationExecution: runs a cell-space plan on robots with a heading (LoRR's MAPF_T); an
+// Execution (execution.hpp). Geometry: planner/heading.hpp.
 //
 // Why plan in cell space and adapt (and not plan over (cell, heading) states): RT-LaCAM's
 // reroot reverses one tree edge, so the old root must be reachable in one step from the
@@ -28,24 +29,27 @@
 #include <string>
 #include <vector>
 
+#include "executor/execution.hpp"
 #include "planner/config.hpp"
 #include "planner/graph.hpp"
 
-namespace tasks {
+namespace executor {
 
-class RotationExecutor {
+class RotationExecution : public Execution {
  public:
   // All robots face east (heading 0), as in LoRR. `window` >= 1.
-  RotationExecutor(const planner::Graph& g, const planner::Config& starts, int window);
+  RotationExecution(const planner::Graph& g, const planner::Config& starts, int window);
 
-  bool can_accept() const { return frontier_ - min_progress_ < window_; }
+  bool can_accept() const override { return frontier_ - min_progress_ < window_; }
   // The planner's next committed configuration: a valid cell-space step from frontier().
-  void push(const planner::Config& next);
-  // One timestep. Returns one LoRR letter per robot: F, R, C or W.
-  const std::string& step();
+  void push(const planner::Config& next) override;
+  // One timestep; actions() then holds one LoRR letter per robot: F, R, C or W.
+  void step() override;
+  bool idle() const override { return min_progress_ == frontier_; }
 
-  const planner::Config& positions() const { return pos_; }
-  const std::vector<int>& headings() const { return heading_; }
+  const planner::Config& positions() const override { return pos_; }
+  const std::vector<int>& headings() const override { return heading_; }
+  const std::string& actions() const override { return actions_; }
   const planner::Config& frontier_config() const { return plan_.back(); }
   long frontier() const { return frontier_; }      // K: index of the last pushed configuration
   long progress(int i) const { return progress_[i]; }
@@ -80,4 +84,4 @@ struct RotationRun {
 };
 RotationRun run_with_rotation(const planner::Graph& g, const std::vector<planner::Config>& plan);
 
-}  // namespace tasks
+}  // namespace executor

@@ -1,14 +1,17 @@
-#include "tasks/rotation_executor.hpp"
+#include "executor/rotation_execution.hpp"
 
 #include <algorithm>
 #include <stdexcept>
 
+#include "planner/heading.hpp"
 #include "planner/validator.hpp"
-#include "tasks/action_model.hpp"
 
-namespace tasks {
+namespace executor {
 
-RotationExecutor::RotationExecutor(const planner::Graph& g, const planner::Config& starts, int window)
+using planner::heading_of_move;
+using planner::turn_toward;
+
+RotationExecution::RotationExecution(const planner::Graph& g, const planner::Config& starts, int window)
     : g_(g), window_(window), pos_(starts), heading_(starts.size(), 0), progress_(starts.size(), 0),
       visits_(static_cast<size_t>(g.size()))
 {
@@ -18,7 +21,7 @@ RotationExecutor::RotationExecutor(const planner::Graph& g, const planner::Confi
   for (int i = 0; i < static_cast<int>(starts.size()); ++i) visits_[starts[i]].push_back({i, 0});
 }
 
-void RotationExecutor::push(const planner::Config& next)
+void RotationExecution::push(const planner::Config& next)
 {
   const planner::Config& last = plan_.back();
   ++frontier_;
@@ -27,7 +30,7 @@ void RotationExecutor::push(const planner::Config& next)
   plan_.push_back(next);
 }
 
-bool RotationExecutor::moves(int i)
+bool RotationExecution::moves(int i)
 {
   enum { Unknown = 0, Visiting, Yes, No };
   if (!want_[i]) return false;
@@ -47,7 +50,7 @@ bool RotationExecutor::moves(int i)
   return ok;
 }
 
-const std::string& RotationExecutor::step()
+void RotationExecution::step()
 {
   const int n = static_cast<int>(pos_.size());
   actions_.assign(static_cast<size_t>(n), 'W');
@@ -73,22 +76,20 @@ const std::string& RotationExecutor::step()
     actions_[i] = 'F';
   }
   for (int i = 0; i < n; ++i) {
-    if (actions_[i] == 'R') heading_[i] = (heading_[i] + 1) % 4;
-    else if (actions_[i] == 'C') heading_[i] = (heading_[i] + 3) % 4;
+    heading_[i] = planner::heading_after(heading_[i], actions_[i]);
   }
   min_progress_ = n > 0 ? *std::min_element(progress_.begin(), progress_.end()) : frontier_;
   while (base_ < min_progress_) {
     plan_.erase(plan_.begin());
     ++base_;
   }
-  return actions_;
 }
 
 RotationRun run_with_rotation(const planner::Graph& g, const std::vector<planner::Config>& plan)
 {
   RotationRun out;
   if (plan.empty()) return out;
-  RotationExecutor ex(g, plan.front(), static_cast<int>(std::max<size_t>(plan.size(), 1)));
+  RotationExecution ex(g, plan.front(), static_cast<int>(std::max<size_t>(plan.size(), 1)));
   for (size_t k = 1; k < plan.size(); ++k) ex.push(plan[k]);
   std::vector<long> last(plan.front().size(), 0);
   // Every robot needs at most 3 steps per plan step (two turns and a move) once the ones
@@ -96,7 +97,8 @@ RotationRun run_with_rotation(const planner::Graph& g, const std::vector<planner
   const long limit = 3 * static_cast<long>(plan.size()) * static_cast<long>(plan.front().size()) + 3;
   for (long t = 1; ex.positions() != plan.back() && t <= limit; ++t) {
     const planner::Config before = ex.positions();
-    const std::string& act = ex.step();
+    ex.step();
+    const std::string& act = ex.actions();
     const std::string err = planner::Validator::check_transition(g, before, ex.positions());
     if (!err.empty() && out.error.empty()) out.error = "step " + std::to_string(t) + ": " + err;
     for (size_t i = 0; i < act.size(); ++i) {
@@ -110,4 +112,4 @@ RotationRun run_with_rotation(const planner::Graph& g, const std::vector<planner
   return out;
 }
 
-}  // namespace tasks
+}  // namespace executor
