@@ -79,7 +79,15 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
     prefetch_rotation();
     rot_->precompute(Clock::time_point::max());
   }
-  if (rotation_ && !native_) exec_ = std::make_unique<executor::RotationExecution>(g, starts, opt.rotation_window);
+  if (opt.graph_execution) {
+    if (rotation_ || native_)  // its steps are LoRR actions, not cell moves an executor can delay
+      throw std::invalid_argument("solver " + solver + " with the rotation model has its own executor: no graph execution");
+    auto ge = std::make_unique<executor::GraphExecution>(*p_, opt.delays, opt.exec);
+    graph_ = ge.get();
+    exec_ = std::move(ge);
+  } else if (rotation_ && !native_) {
+    exec_ = std::make_unique<executor::RotationExecution>(g, starts, opt.rotation_window);
+  }
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
   may_skip_ = opt.skip_late_search && sb_.bounded && kind_ == planner::Solver::RtLacam;
   r_.setup_ms = ms_since(t0);
@@ -171,7 +179,7 @@ void LifelongRun::open(Step& s)
   s.end = s.b.deadline_from(s.t0);
   bound_queries(s.end);
   s.reserve = sb_.reserve();
-  s.plan_now = !exec_ || exec_->can_accept();
+  s.plan_now = !exec_ || graph_ || exec_->can_accept();  // graph_: search on while the window is full
   if (!s.plan_now) ++r_.window_full;
   // No room left for one expansion (the epoch start took it): no search this step. Only
   // when a step without an epoch start has room for one, and at most kMaxSkips in a row:
@@ -201,7 +209,7 @@ void LifelongRun::precompute_first(Step& s)
 void LifelongRun::plan(Step& s)
 {
   if (!s.search_now) {
-    if (s.plan_now) s.next = p_->next();
+    if (s.plan_now && !graph_) s.next = p_->next();
     return;
   }
   planner::Budget& b = s.b;
@@ -239,7 +247,7 @@ void LifelongRun::plan(Step& s)
         sb_.later.add(p_->max_expansion_ms() >= 0 ? p_->max_expansion_ms() : (c - c1) / static_cast<double>(de));
     }
   }
-  s.next = p_->next();
+  if (!graph_) s.next = p_->next();  // graph_: commit() takes as many as its window has room for
 }
 
 void LifelongRun::spare(Step& s)
@@ -271,6 +279,17 @@ void LifelongRun::commit(Step& s)
 {
   if (!s.plan_now) return;
   const long t = s.rec.t;
+  if (graph_) {  // fill the window; a wait has no action (nothing found beyond the root yet)
+    while (graph_->can_accept() && !p_->at_goal()) {
+      const planner::Config next = p_->next();
+      if (next == p_->current()) break;
+      const std::string err = planner::Validator::check_transition(g_, p_->current(), next);
+      if (!err.empty()) error(t, ": " + err);
+      p_->commit();
+      graph_->push(next);
+    }
+    return;
+  }
   const std::string err = planner::Validator::check_transition(g_, p_->current(), s.next);
   if (!err.empty()) error(t, ": " + err);
   if (letters_ && !rotation_)
@@ -288,13 +307,15 @@ void LifelongRun::commit(Step& s)
 const planner::Config& LifelongRun::execute(Step& s)
 {
   if (!exec_) return p_->current();
-  if (s.plan_now) exec_->push(p_->current());
+  if (s.plan_now && !graph_) exec_->push(p_->current());
   const planner::Config before = exec_->positions();
   exec_->step();
   // The executed step is checked like a planned one: cells, adjacency, vertex and swap conflicts.
   const std::string err = planner::Validator::check_transition(g_, before, exec_->positions());
   if (!err.empty()) error(s.rec.t, " (executed): " + err);
-  if (letters_) {
+  if (letters_ && graph_) {  // what the agents executed this step (several commits may run at once)
+    for (size_t i = 0; i < before.size(); ++i) r_.actions[i] += grid4_letter(g_, before[i], exec_->positions()[i]);
+  } else if (letters_) {
     const std::string& act = exec_->actions();
     for (size_t i = 0; i < act.size(); ++i) r_.actions[i] += act[i];
   }
@@ -316,7 +337,10 @@ void LifelongRun::complete(Step& s, const planner::Config& real)
   // robot does. Its epoch's goal test then holds and RT-LaCAM would only wait; a new epoch at
   // the frontier (that agent no longer pending) keeps the others' plans going. The robot
   // still completes the errand when it physically gets there.
-  const bool replan = !ev.empty() || (exec_ && s.plan_now && p_->at_goal() && has_pending(tasks_, p_->current()));
+  const bool replan =
+      !ev.empty() || (exec_ && !graph_ && s.plan_now && p_->at_goal() && has_pending(tasks_, p_->current()));
+  if (!ev.empty()) last_completion_ = s.rec.t;
+  max_gap_ = std::max(max_gap_, s.rec.t - last_completion_);
   // The epoch start is the next step's planning (StepBudget::epoch_start_ms; at 1 ms on
   // WAREHOUSE, none: the next step's precompute grows what it missed).
   bound_queries(planner::Budget::time_ms(sb_.epoch_start_ms()).deadline_from(t0));

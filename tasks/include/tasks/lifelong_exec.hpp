@@ -4,7 +4,8 @@
 // delays -- lockstep (all wait for the slowest) or the action dependency graph (each agent
 // on its own). Errands complete where the agents really are (the executed positions); on
 // completions the planner gets new goals at its committed configuration, which the agents
-// reach once the committed window is executed. A delayed agent stays put.
+// reach once the committed window is executed. A delayed agent stays put. It is a
+// LifelongRun (lifelong_run.hpp) with LifelongOptions::graph_execution: the one lifelong loop.
 #include "executor/delay_model.hpp"
 #include "executor/graph_execution.hpp"
 #include "tasks/lifelong_runner.hpp"

@@ -15,7 +15,9 @@
 //   plan      search (one expansion alone, then as many as fit) and next()
 //   spare     time left: grow prefetched tables up to the deadline
 //   commit    check the planned step (Validator; rotation actions), commit it
-//   execute   the Execution (rotation: RotationExecution) runs what was committed; the
+//   execute   the Execution runs what was committed (rotation: RotationExecution, one
+//             configuration a step, waits included, while its window has room; grid4 under
+//             delays: GraphExecution, whose window commit fills, waits dropped); the
 //             executed step is checked like a planned one
 //   complete  errands done on the robots' real cells; new goals start a new epoch
 //             (set_goals, timed as the next step's planning), upcoming goals prefetched
@@ -50,6 +52,9 @@ class LifelongRun {
   LifelongResult finish();   // the run's result (call once, after the last step)
 
   const planner::RealtimePlanner& planner() const { return *p_; }
+  long long max_gap() const { return max_gap_; }  // longest run of steps without a completion
+  // GraphExecution's counters (LifelongOptions::graph_execution), else all 0.
+  executor::ExecStats exec_stats() const { return graph_ ? graph_->stats() : executor::ExecStats{}; }
 
  private:
   struct Step {  // what the phases of one step share
@@ -91,6 +96,8 @@ class LifelongRun {
   std::unique_ptr<planner::RealtimePlanner> p_;
   planner::RotationPlanner* rot_ = nullptr;
   std::unique_ptr<executor::Execution> exec_;
+  executor::GraphExecution* graph_ = nullptr;  // exec_, when it fills its window (graph_execution)
+  long long last_completion_ = 0, max_gap_ = 0;
   StepBudget sb_;
   int skipped_ = 0;  // searches skipped in a row
   long t_ = 0;

@@ -38,6 +38,8 @@
 
 #include "planner/budget.hpp"
 #include "planner/dist_cache.hpp"
+#include "executor/delay_model.hpp"
+#include "executor/graph_execution.hpp"
 #include "planner/graph.hpp"
 #include "planner/latency.hpp"
 #include "planner/realtime_planner.hpp"
@@ -106,6 +108,12 @@ struct LifelongOptions {
   // reliably better p99 (docs/rotation_lorr.md "Budget at 1 ms"); false: every step makes
   // at least one.
   bool skip_late_search = false;
+  // grid4 under delays (executor/graph_execution.hpp; run_lifelong_exec): the planner
+  // searches every step and fills the execution's window with its commits (never a wait);
+  // errands complete where the agents really are. Off: every commit is executed at once.
+  bool graph_execution = false;
+  executor::ExecOptions exec;
+  executor::DelaySpec delays;
 };
 
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers
