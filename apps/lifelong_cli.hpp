@@ -1,0 +1,239 @@
+#pragma once
+// Command-line binders of the lifelong apps: a group of options, bound to a CLI11 app
+// (bind), checked and turned into the library's options (apply) with one-line
+// planner::InputError messages, and described in the run's JSON (describe).
+//   SolverCli  --solver, --seed, --policy and every solver's options (planner/solver.hpp)
+//   ExecCli    --executor and the delay model (executor/; grid4 only)
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "executor/delay_model.hpp"
+#include "executor/graph_execution.hpp"
+#include "planner/error.hpp"
+#include "planner/rotation/guidance.hpp"
+#include "planner/rotation/traffic_flow.hpp"
+#include "planner/solver.hpp"
+#include "policy/policy_preference.hpp"
+#include "policy/weights_file.hpp"
+#include "tasks/lifelong_runner.hpp"
+
+namespace cli {
+
+struct SolverCli {
+  std::string solver = "rtlacam", policy_file;
+  uint64_t seed = 0;
+  bool refine = true, reset_priorities = false, rot_back_last = true;
+  // Default arrows (pibt-rot, epibt): +8 to +20 % errands/step for pibt-rot on all five
+  // MR23 instances (5 seeds) and on RANDOM-01..05 (docs/rotation_lorr.md "Guidance graph").
+  std::string guidance = "arrows", guidance_costs = "1,3,1";
+  planner::Epibt::Options ep;
+  std::string ep_priority = "distance";
+  // Online traffic-flow guide paths for epibt (planner/traffic_flow.hpp; docs/rotation_lorr.md "Traffic flow").
+  // Default on for epibt (rotation): +2 to +69 % errands/step on MR23, 5 seeds (docs/rotation_lorr.md "Traffic flow").
+  std::string traffic_flow = "on", tf_weights = "1,0.1";
+  bool tf_active = true;
+  planner::WpplOptions wppl;
+  // The learned policy (loaded by apply; it must outlive the run).
+  policy::Model model;
+  std::unique_ptr<policy::PolicyPreference> pref;
+
+  void bind(CLI::App& app)
+  {
+    app.add_flag("--refine,!--no-refine", refine,
+                 "rtlacam: LaCAM* refinement after each epoch's first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
+        ->capture_default_str();
+    app.add_flag("--reset-priorities", reset_priorities,
+                 "start PIBT priorities again from distance/N at every goal change (default: keep them)");
+    app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
+    app.add_option("--solver", solver,
+                   planner::solver_names(true) +
+                       " (cspibt: pibt ordered by --policy; pibt-rot: PIBT over (cell, heading); epibt: PIBT with "
+                       "multi-action operations; wppl: windowed LNS over pibt-rot rollouts; the last three rotation only)")
+        ->check(CLI::IsMember(planner::solver_list(true)))
+        ->capture_default_str();
+    app.add_option("--seed", seed, "random seed")->capture_default_str();
+    app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
+                 "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
+        ->capture_default_str();
+    app.add_option("--guidance", guidance,
+                   "pibt-rot, epibt, wppl: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | "
+                   "FILE (forward costs per cell and heading, planner/guidance.hpp); default arrows, wppl: none; other "
+                   "solvers: none")
+        ->capture_default_str();
+    app.add_option("--guidance-costs", guidance_costs, "--guidance arrows: ALONG,AGAINST,TURN costs (1..60)")
+        ->capture_default_str();
+    app.add_option("--epibt-depth", ep.depth, "epibt: actions per operation")->check(CLI::Range(3, 5))->capture_default_str();
+    app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit,
+                 "epibt: each step starts from the tails of the last step's operations")
+        ->capture_default_str();
+    app.add_flag("--epibt-wait-op", ep.wait_op,
+                 "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");
+    app.add_option("--epibt-lns", ep.lns_rounds,
+                   "epibt: LNS rounds after the pass (EPIBT+LNS; -1: until the step's deadline, timing-dependent); 0 = off")
+        ->check(CLI::Range(-1, 1000000))
+        ->capture_default_str();
+    app.add_flag("--epibt-lns-converge,!--no-epibt-lns-converge", ep.lns_converge,
+                 "epibt: LNS stops after a round that gained nothing")
+        ->capture_default_str();
+    app.add_option("--epibt-priority", ep_priority, "epibt: distance (nearest goal first, the paper's) | age (pibt-rot's)")
+        ->check(CLI::IsMember({"distance", "age"}))
+        ->capture_default_str();
+    app.add_option("--traffic-flow", traffic_flow,
+                   "epibt: off | on (congestion-aware guide path per robot, computed online; default on for epibt)")
+        ->check(CLI::IsMember({"off", "on"}))
+        ->capture_default_str();
+    app.add_option("--tf-weights", tf_weights, "--traffic-flow on: CONTRAFLOW,VERTEX weights (0..1000) of the congestion costs")
+        ->capture_default_str();
+    app.add_option("--tf-refresh", ep.tf.refresh, "--traffic-flow on: guide paths re-planned per step beyond goal changes")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_flag("--wppl-pareto,!--no-wppl-pareto", wppl.pareto,
+                 "wppl: accept LNS paths only if no robot of the neighbourhood is worse off")
+        ->capture_default_str();
+    app.add_flag("--wppl-ties,!--no-wppl-ties", wppl.accept_ties,
+                 "wppl: LNS also keeps new paths of equal windowed cost (sideways moves)")
+        ->capture_default_str();
+    app.add_flag("--wppl-tail,!--no-wppl-tail", wppl.reuse_tail,
+                 "wppl: start from the last window's refined tail when it beats the PIBT rollout")
+        ->capture_default_str();
+  }
+
+  // The solver's options for `agents` robots on `g`; loads the policy. Throws InputError.
+  void apply(const CLI::App& app, const planner::Graph& g, size_t agents, bool rotation, planner::SolverOptions& so)
+  {
+    const planner::Solver kind = planner::parse_solver(solver);
+    if (planner::plans_rotation(kind) && !rotation)
+      throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: it needs --action-model rotation");
+    if (planner::needs_policy(kind) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
+    // The policy is told the goals by the planner (ActionPreference::set_goals).
+    if (!policy_file.empty()) {
+      model = policy::load_weights(policy_file);
+      pref = std::make_unique<policy::PolicyPreference>(g, model, planner::Config{});
+    }
+    so.pref = pref.get();
+    so.lacam.keep_priorities = !reset_priorities;
+    so.lacam.refine = refine;
+    so.back_last = rot_back_last;
+    if (!planner::plans_rotation(kind)) {
+      if (app.count("--guidance") && guidance != "none")
+        throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot, epibt or wppl)");
+      guidance = "none";
+    }
+    // wppl: arrows cost 5 % on MR23-I-04 and gain 1 % on I-03 (docs/rotation_lorr.md
+    // "Where it stands"): unguided unless asked.
+    if (kind == planner::Solver::Wppl && !app.count("--guidance")) guidance = "none";
+    if (guidance != "none") {
+      if (guidance == "arrows") {
+        int along = 0, against = 0, turn = 0;
+        char end = 0;
+        if (std::sscanf(guidance_costs.c_str(), "%d,%d,%d%c", &along, &against, &turn, &end) != 3)
+          throw planner::InputError("--guidance-costs '" + guidance_costs + "': expected ALONG,AGAINST,TURN");
+        try {
+          so.guidance = planner::arrow_guidance(g, along, against, turn);
+        } catch (const std::invalid_argument& e) {
+          throw planner::InputError(std::string("--guidance-costs: ") + e.what());
+        }
+      } else {
+        so.guidance = planner::load_guidance(g, guidance);
+      }
+    }
+    ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
+    if (traffic_flow == "on" && kind != planner::Solver::Epibt) {
+      if (app.count("--traffic-flow")) throw planner::InputError("--traffic-flow on needs --solver epibt");
+      traffic_flow = "off";  // the default applies to epibt only
+    }
+    if (traffic_flow == "on") {
+      char end = 0;
+      if (std::sscanf(tf_weights.c_str(), "%lf,%lf%c", &ep.tf.contraflow, &ep.tf.vertex, &end) != 2 ||
+          !(ep.tf.contraflow >= 0) || !(ep.tf.vertex >= 0) || ep.tf.contraflow > 1000 || ep.tf.vertex > 1000)
+        throw planner::InputError("--tf-weights '" + tf_weights + "': expected CONTRAFLOW,VERTEX, each 0..1000");
+      ep.tf.on = true;
+      // Epibt keeps it off where the per-robot tables would not fit (TrafficFlowOptions::max_entries).
+      if (!planner::TrafficFlow::fits(agents, g.size(), ep.tf)) {
+        if (app.count("--traffic-flow"))
+          std::cerr << "--traffic-flow on: off for this run (" << agents << " robots x 4 x " << g.size()
+                    << " cells of guide tables > " << ep.tf.max_entries << " entries)\n";
+        tf_active = false;
+      }
+    }
+    so.epibt = ep;
+    so.wppl = wppl;
+  }
+
+  // The solver's fields of the run's JSON.
+  void describe(nlohmann::json& j) const
+  {
+    if (guidance != "none") j["guidance"] = guidance == "arrows" ? "arrows " + guidance_costs : guidance;
+    if (ep.tf.on)
+      j["trafficFlow"] = {{"active", tf_active}, {"contraflow", ep.tf.contraflow}, {"vertex", ep.tf.vertex}, {"refresh", ep.tf.refresh}};
+    if (pref) j["policy"] = policy_file;
+    j["keepPriorities"] = !reset_priorities;
+  }
+};
+
+struct ExecCli {
+  std::string mode;  // "" = none: every commit is executed at once
+  executor::ExecOptions exec;
+  executor::DelaySpec delays;
+  std::vector<std::string> slow, stuck;
+
+  void bind(CLI::App& app)
+  {
+    app.add_option("--executor", mode,
+                   "execute commits under delays: lockstep | adg | adg-follow (default: none, every commit is executed at once)")
+        ->check(CLI::IsMember({"lockstep", "adg", "adg-follow"}));
+    app.add_option("--window", exec.window, "adg: committed configurations ahead of the slowest agent (>= 1)")->capture_default_str();
+    app.add_option("--delay-kind", delays.kind, "none | bernoulli | poisson")->capture_default_str();
+    app.add_option("--delay-p", delays.p, "bernoulli: per agent per step probability that a stop starts");
+    app.add_option("--delay-rate", delays.rate, "poisson: stop events per agent per step");
+    app.add_option("--delay-min", delays.min_ticks, "shortest stop, steps")->capture_default_str();
+    app.add_option("--delay-max", delays.max_ticks, "longest stop, steps")->capture_default_str();
+    app.add_option("--delay-fraction", delays.fraction, "share of the agents that ever stop")->capture_default_str();
+    app.add_option("--delay-seed", delays.seed, "seed of the delays")->capture_default_str();
+    app.add_option("--slow", slow, "AGENT:FACTOR, a slowed agent (factor in (0, 1]); repeatable");
+    app.add_option("--stuck", stuck, "AGENT:AT:STEPS, an agent stopped from step AT for STEPS; repeatable");
+  }
+
+  // opt.graph_execution, opt.exec and opt.delays for a team of `agents`. Throws InputError.
+  void apply(int agents, tasks::LifelongOptions& opt)
+  {
+    if (!mode.empty() && opt.action_model != tasks::ActionModel::Grid4)
+      throw planner::InputError("--executor runs grid4 plans; --action-model rotation has its own executor");
+    if (mode.empty()) {
+      if (delays.kind != "none" || !slow.empty() || !stuck.empty())
+        throw planner::InputError("delay options need --executor lockstep|adg");
+      return;
+    }
+    exec.mode = mode;
+    for (const std::string& s : slow) {
+      executor::Slowdown d;
+      if (std::sscanf(s.c_str(), "%d:%lf", &d.agent, &d.factor) != 2) throw planner::InputError("--slow '" + s + "': expected AGENT:FACTOR");
+      delays.slow.push_back(d);
+    }
+    for (const std::string& s : stuck) {
+      executor::Stuck d;
+      if (std::sscanf(s.c_str(), "%d:%lld:%lld", &d.agent, &d.at, &d.ticks) != 3)
+        throw planner::InputError("--stuck '" + s + "': expected AGENT:AT:STEPS");
+      delays.stuck.push_back(d);
+    }
+    if (std::string e = executor::check(exec); !e.empty()) throw planner::InputError("--" + e);
+    if (std::string e = executor::check(delays, agents); !e.empty()) throw planner::InputError("--delay " + e);
+    opt.graph_execution = true;
+    opt.exec = exec;
+    opt.delays = delays;
+  }
+};
+
+}  // namespace cli
