@@ -39,6 +39,9 @@ struct RunResult {
   std::string validation_error;  // "" when every executed step is valid
   double total_planning_ms = 0;
   double max_iteration_ms = 0, p99_iteration_ms = 0;
+  // The same on the planning thread's CPU time (what a loaded machine's preemption does not
+  // inflate); full horizon: 0.
+  double max_iteration_cpu_ms = 0, p99_iteration_cpu_ms = 0;
   long long iterations = 0;
   long long soc = 0, makespan = 0;
   uint64_t expansions = 0;
