@@ -54,7 +54,8 @@ py::dict run_result(const RunResult& r)
   d["max_iteration_ms"] = r.max_iteration_ms;
   d["p99_iteration_ms"] = r.p99_iteration_ms;
   d["iterations"] = r.iterations;
-  d["soc"] = r.soc;
+  d["soc"] = r.soc;  // standard (last arrival), as the CLI
+  d["sum_of_loss"] = r.sum_of_loss;
   d["makespan"] = r.makespan;
   d["expansions"] = r.expansions;
   d["explored"] = r.explored;
@@ -224,7 +225,7 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("seed") = 0, py::arg("policy") = nullptr,
         "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict");
 
-  py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; the paper's sum of costs")
+  py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
       .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),
            py::arg("goals"), py::keep_alive<1, 2>())
       .def("step", &Validator::step, py::arg("next"), "checks current -> next and advances; False on a violation")
@@ -233,7 +234,8 @@ PYBIND11_MODULE(_rtlacam, m)
       .def_property_readonly("error", &Validator::error)
       .def_property_readonly("current", &Validator::current)
       .def_property_readonly("steps", &Validator::steps)
-      .def_property_readonly("sum_of_costs", &Validator::sum_of_costs);
+      .def_property_readonly("sum_of_costs", &Validator::sum_of_costs)
+      .def_property_readonly("sum_of_loss", &Validator::sum_of_loss);
   m.def("validate_plan", &validate_plan, py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("plan"),
         py::arg("require_goals") = true, "'' if the plan is valid, else the first violation");
 

@@ -57,6 +57,7 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
   r.p99_iteration_ms = Latency::of(std::move(times)).p99;
   r.p99_iteration_cpu_ms = Latency::of(std::move(cpu_times)).p99;
   r.soc = val.sum_of_costs();
+  r.sum_of_loss = val.sum_of_loss();
   r.makespan = val.steps();
   r.expansions = p.expansions();
   r.explored = p.explored();
@@ -102,6 +103,7 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
     }
   r.solved = true;
   r.soc = val.sum_of_costs();
+  r.sum_of_loss = val.sum_of_loss();
   r.makespan = val.steps();
   if (opt.record_plan) r.plan = std::move(path);
   return r;
