@@ -182,7 +182,7 @@ PYBIND11_MODULE(_rtlacam, m)
 
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
-           policy::PolicyPreference* pref) {
+           policy::PolicyPreference* pref, bool refine) {
           if (static_cast<int>(starts.size()) != static_cast<int>(goals.size()))
             throw std::invalid_argument("starts and goals differ in length");
           for (Vertex v : starts)
@@ -191,15 +191,17 @@ PYBIND11_MODULE(_rtlacam, m)
             if (v < 0 || v >= g.size()) throw std::invalid_argument("goal vertex out of range");
           LacamOptions opt;
           opt.seed = seed;
+          opt.refine = opt.scatter = refine;  // as rtlacam-bench: RT-LaCAM* unless refine=False
           return make_planner(parse_solver(solver), g, starts, goals, opt, pref);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
-        py::arg("policy") = nullptr, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
-        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference)");
+        py::arg("policy") = nullptr, py::arg("refine") = true, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
+        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference); refine=False: the paper's "
+        "RT-LaCAM (rtlacam-bench --no-refine), else RT-LaCAM* as the CLI");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
-           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref) {
+           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
@@ -207,6 +209,7 @@ PYBIND11_MODULE(_rtlacam, m)
           const Solver s = parse_solver(solver);
           LacamOptions lopt;
           lopt.seed = seed;
+          lopt.refine = lopt.scatter = refine;  // as rtlacam-bench (lacam: executes its first solution either way)
           std::unique_ptr<RealtimePlanner> p;
           if (is_realtime(s)) p = make_planner(s, g, ins.starts, ins.goals, lopt, pref);
           RunResult r;
@@ -222,7 +225,7 @@ PYBIND11_MODULE(_rtlacam, m)
         },
         py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
         py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
-        py::arg("seed") = 0, py::arg("policy") = nullptr,
+        py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true,
         "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict");
 
   py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
