@@ -215,7 +215,10 @@ Status Lacam::search(const Budget& b, bool until_solved)
     // with a reserve, while the costliest one so far fits.
     if (timed_) {
       if (refining_) {
-        if (!fits(expand_cost_.predict_ms(1))) break;
+        if (!fits(expand_cost_.predict_ms(1))) {
+          expand_cost_.forget();
+          break;
+        }
       } else if (!first) {
         if (reserving) {
           const double r = std::max(b.reserve_ms, max_unit_ms_);

@@ -63,7 +63,10 @@ bool Lacam::prepare_step()
   prepare_cost_.set_prior(2 * expand_cost_.rate());  // a node: h and its links' costs, O(N) each
   double c0 = timed_ ? thread_cpu_ms() : 0.0;
   while (prepare_next_ < all_.size()) {
-    if (timed_ && !fits(prepare_cost_.predict_ms(1))) return false;
+    if (timed_ && !fits(prepare_cost_.predict_ms(1))) {
+      prepare_cost_.forget();
+      return false;
+    }
     HNode* h = all_[prepare_next_++];
     h->h = heuristic(h->C);
     for (Neighbor* e = h->neighbors; e; e = e->next) cost(h, e);
@@ -111,19 +114,22 @@ Status Lacam::refine_expand()
   // SUO's first pass and its dive take every refinement iteration (they matter most), then
   // the guide gets a third of them (half without LNS); the rest as before.
   const bool urgent = opt_.scatter && !first_dive_done_;
-  if (guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns)) &&
-      (!timed_ || fits(guide_tail_.predict_ms(1) + expand_cost_.predict_ms(1)))) {
+  const bool guide_turn = guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns));
+  const bool guide_fits = !timed_ || fits(guide_tail_.predict_ms(1) + expand_cost_.predict_ms(1));
+  if (guide_turn && !guide_fits) guide_tail_.forget();
+  if (guide_turn && guide_fits) {
     // SUO and dives stop at their deadline, but past it by up to a pass's publication: they
-    // get the call's deadline less the largest such overshoot seen (decaying, step_cost.hpp).
+    // get the call's deadline less the largest such overshoot seen (decaying, step_cost.hpp),
+    // in CPU time (on a loaded machine the wall-clock overshoot is mostly preemption).
     const auto deadline = deadline_;
     guide_tail_.set_prior(expand_cost_.rate());  // a pass's publication: O(N) per agent's path
     if (timed_)
       deadline_ -= std::chrono::duration_cast<Clock::duration>(
           std::chrono::duration<double, std::milli>(guide_tail_.predict_ms(1)));
-    const auto guide_deadline = deadline_;
+    const double room0 = timed_ ? room_ms() : 0.0, c0 = timed_ ? thread_cpu_ms() : 0.0;
     guide_step();
     deadline_ = deadline;
-    if (timed_) guide_tail_.record(1, std::max(0.0, -std::chrono::duration<double, std::milli>(guide_deadline - Clock::now()).count()));
+    if (timed_) guide_tail_.record(1, std::max(0.0, thread_cpu_ms() - c0 - room0));
     last_step_ = Step::guide;
     return status_;
   }
@@ -147,6 +153,7 @@ Status Lacam::refine_expand()
       last_units_ = window * per_step;
       return status_;
     }
+    lns_cost_.forget();
     if (open_.empty()) {  // no window fits now: LNS again in a later call
       stalled_ = true;
       return status_;
@@ -222,7 +229,10 @@ bool Lacam::insert_step()
   insert_cost_.set_prior(expand_cost_.rate());
   double c0 = timed_ ? thread_cpu_ms() : 0.0;
   while (pending_next_ < pending_.size()) {
-    if (timed_ && !fits(insert_cost_.predict_ms(1))) return false;
+    if (timed_ && !fits(insert_cost_.predict_ms(1))) {
+      insert_cost_.forget();
+      return false;
+    }
     pending_prev_ = step_to(pending_prev_, pending_[pending_next_++].data());
     if (timed_) {
       const double c = thread_cpu_ms();

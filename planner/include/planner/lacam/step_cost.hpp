@@ -4,6 +4,9 @@
 // step that has a size, such as an LNS window, to fit). The rate (ms per unit) is learnt from
 // the steps measured so far as a decaying maximum: a step that proved dearer is believed at
 // once, a cheaper one lowers the rate slowly, so one lucky step does not let the next overrun.
+// A step that was not started because it did not fit calls forget(): the rate decays then too,
+// or one spike (a page fault, a preempted measurement) would keep a step out for good -- SUO
+// never finished a pass at 10 ms per iteration before this (warehouse-10-20-10-2-1 N = 400).
 #include <algorithm>
 
 namespace planner {
@@ -22,6 +25,7 @@ class StepCost {
     rate_ = r >= rate_ ? r : rate_ + kDecay * (r - rate_);
     ++samples_;
   }
+  void forget() { rate_ *= 1 - kDecay; }
   void set_prior(double ms_per_unit) { if (samples_ == 0) rate_ = ms_per_unit; }
   double rate() const { return rate_; }
   long samples() const { return samples_; }
