@@ -4,6 +4,9 @@
 # plus pibt and full-horizon lacam once per instance. One JSON line per run is appended to
 # <out>/results.jsonl; runs already there are skipped (an interrupted sweep resumes).
 # Then scripts/plot_fig2.py draws <out>/fig2.png and <out>/fig2.md.
+# rtlacam and naive run the paper's planner: rtlacam-bench --no-refine --no-reserve (RT-LaCAM
+# without LaCAM* refinement, expanding until the cutoff as the paper's loop). --star runs
+# RT-LaCAM* instead (rtlacam-bench's defaults) into out/fig2-star, for the second figure.
 #
 #   scripts/paper_fig2.sh                 # small default: 3 maps x 3 N x 2 scens, 5 s, ~5 min on 2 cores
 #   scripts/paper_fig2.sh --full          # the paper's setup: 4 maps, 25 scens, 60 s (days of CPU)
@@ -17,6 +20,9 @@ usage() {
 Usage: scripts/paper_fig2.sh [options]
 
   --full                 the paper's setup: 4 maps, more agent counts, 25 scens, 60 s timeout
+  --star                 RT-LaCAM* (rtlacam-bench's defaults: LaCAM* refinement, LNS, SUO, the budget
+                         kept) for rtlacam/naive instead of the paper's RT-LaCAM (default:
+                         --no-refine --no-reserve); default out dir out/fig2-star
   --out-dir DIR          output directory (default: out/fig2); results in DIR/results.jsonl
   --bench PATH           rtlacam-bench binary (default: build/apps/rtlacam-bench)
   --maps "M1 M2 ..."     map names (files data/movingai/<M>.map and <M>-random-<k>.scen)
@@ -49,7 +55,8 @@ EOF
 }
 
 FULL=0
-OUT_DIR="$ROOT/out/fig2"
+STAR=0
+OUT_DIR=""
 BENCH="$ROOT/build/apps/rtlacam-bench"
 MAPS=""
 AGENTS=""
@@ -70,6 +77,7 @@ need() { [[ $# -ge 2 && -n "$2" ]] || { echo "paper_fig2.sh: $1 needs a value" >
 while [[ $# -gt 0 ]]; do
   case "$1" in
     --full) FULL=1; shift ;;
+    --star) STAR=1; shift ;;
     --out-dir) need "$@"; OUT_DIR="$2"; shift 2 ;;
     --bench) need "$@"; BENCH="$2"; shift 2 ;;
     --maps) need "$@"; MAPS="$2"; shift 2 ;;
@@ -122,6 +130,10 @@ agents_for() {  # default agent counts per map
   fi
 }
 
+# The planner behind rtlacam / naive (part of each run's key, so the two never mix).
+if [[ $STAR == 1 ]]; then PLANNER=star; PLANNER_ARGS=""; : "${OUT_DIR:=$ROOT/out/fig2-star}"
+else PLANNER=paper; PLANNER_ARGS="--no-refine --no-reserve"; : "${OUT_DIR:=$ROOT/out/fig2}"; fi
+
 DATA="$ROOT/data/movingai"
 [[ -x "$BENCH" ]] || { echo "paper_fig2.sh: bench binary '$BENCH' not found or not executable (build it, or pass --bench)" >&2; exit 2; }
 for m in $MAPS; do
@@ -139,7 +151,7 @@ touch "$RESULTS"
 [[ -n "$CSV" ]] || : >"$ERRORS"   # crashes of earlier invocations are retried below (they are not in results)
 
 # ---- run list: one line "key map k N solver cutoff" per run -----------------------------
-# key identifies a run for resuming: map|scen|N|solver|cutoff|seed|swap|timeout
+# key identifies a run for resuming: map|scen|N|solver|cutoff|seed|swap|timeout[|paper or star]
 ALL="$OUT_DIR/.runs.all"
 TODO="$OUT_DIR/.runs.todo"
 : >"$ALL"
@@ -152,8 +164,10 @@ for m in $MAPS; do
           lacam|pibt) cs="-" ;;
           *) echo "paper_fig2.sh: unknown solver '$s'" >&2; exit 2 ;;
         esac
+        tag=""
+        [[ "$cs" != "-" ]] && tag="|$PLANNER"
         for c in $cs; do
-          echo "$m|$k|$n|$s|$c|s$SEED|swap$SWAP|t$TIMEOUT $m $k $n $s $c" >>"$ALL"
+          echo "$m|$k|$n|$s|$c|s$SEED|swap$SWAP|t$TIMEOUT$tag $m $k $n $s $c" >>"$ALL"
         done
       done
     done
@@ -161,12 +175,14 @@ for m in $MAPS; do
 done
 if [[ -n "$CSV" ]]; then  # the same runs for scripts/sweep.py (paths relative to the checkout)
   {
-    echo "key,map,scen,agents,solver,cutoff_ms,timeout_s,seed,no_swap,max_steps"
+    echo "key,map,scen,agents,solver,cutoff_ms,timeout_s,seed,no_swap,max_steps,no_refine,no_reserve"
     while read -r key m k n s c; do
       steps=$MAX_STEPS
       [[ "$s" == pibt ]] && steps=$PIBT_MAX_STEPS
+      paper=false
+      [[ "$c" != "-" && $PLANNER == paper ]] && paper=true
       [[ "$c" == "-" ]] && c=""
-      echo "${key//|/_},data/movingai/$m.map,data/movingai/$m-random-$k.scen,$n,$s,$c,$TIMEOUT,$SEED,$([[ $SWAP == 0 ]] && echo true || echo false),$steps"
+      echo "${key//|/_},data/movingai/$m.map,data/movingai/$m-random-$k.scen,$n,$s,$c,$TIMEOUT,$SEED,$([[ $SWAP == 0 ]] && echo true || echo false),$steps,$paper,$paper"
     done <"$ALL"
   } >"$CSV"
   rm -f "$ALL"
@@ -176,19 +192,25 @@ fi
 source "$(dirname "${BASH_SOURCE[0]}")/lib/sweep.sh"
 pending_runs "$ALL" "$RESULTS" "$TODO"
 
+if [[ $PLANNER == paper ]]; then
+  echo "fig2 sweep: rtlacam/naive = the paper's RT-LaCAM (rtlacam-bench $PLANNER_ARGS)"
+else
+  echo "fig2 sweep: rtlacam/naive = RT-LaCAM* (rtlacam-bench's defaults; --star)"
+fi
 echo "fig2 sweep: maps [$MAPS], scens 1..$SCENS, cutoffs [$CUTOFFS] ms, timeout ${TIMEOUT}s, swap=$SWAP, seed=$SEED"
 echo "fig2 sweep: $TOTAL runs, $SKIPPED already in $RESULTS, $PENDING to do with $JOBS parallel jobs"
 if [[ $DRY == 1 ]]; then cut -d' ' -f2- "$TODO"; exit 0; fi
 
 # ---- one run ----------------------------------------------------------------------------
 COUNTER="$OUT_DIR/.counter"
-export BENCH DATA RESULTS ERRORS COUNTER TOTAL TIMEOUT MAX_STEPS PIBT_MAX_STEPS SEED SWAP
+export BENCH DATA RESULTS ERRORS COUNTER TOTAL TIMEOUT MAX_STEPS PIBT_MAX_STEPS SEED SWAP PLANNER_ARGS
 
 run_one() {
   local key=$1 m=$2 k=$3 n=$4 s=$5 c=$6
   local args=(--map "$DATA/$m.map" --scen "$DATA/$m-random-$k.scen" -N "$n" --solver "$s"
               --timeout-s "$TIMEOUT" --seed "$SEED" --json)
-  [[ "$c" != "-" ]] && args+=(--cutoff-ms "$c")
+  # shellcheck disable=SC2206  # PLANNER_ARGS: words
+  [[ "$c" != "-" ]] && args+=(--cutoff-ms "$c" $PLANNER_ARGS)
   [[ "$SWAP" == 0 ]] && args+=(--no-swap)
   local steps=$MAX_STEPS
   [[ "$s" == pibt ]] && steps=$PIBT_MAX_STEPS

@@ -1,7 +1,10 @@
 #include "planner/plan_io.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
+
+#include "planner/error.hpp"
 
 namespace planner {
 namespace {
@@ -44,6 +47,40 @@ void write_plan(std::ostream& out, const Graph& g, const Config& starts, const C
     out << t << ':';
     config_line(out, g, plan[t]);
   }
+}
+
+std::vector<Config> read_plan(std::istream& in, const Graph& g, const std::string& source)
+{
+  std::vector<Config> plan;
+  std::string line;
+  int no = 0;
+  bool in_solution = false;
+  while (std::getline(in, line)) {
+    ++no;
+    if (!in_solution) {
+      in_solution = line.rfind("solution=", 0) == 0;
+      continue;
+    }
+    if (line.empty()) continue;
+    const size_t colon = line.find(':');
+    if (colon == std::string::npos) throw input_error(source, no, "expected 't:(x,y),...'");
+    Config c;
+    size_t p = colon + 1;
+    while ((p = line.find('(', p)) != std::string::npos) {
+      int x = 0, y = 0;
+      if (std::sscanf(line.c_str() + p, "(%d,%d)", &x, &y) != 2) throw input_error(source, no, "expected '(x,y)'");
+      const Vertex v = g.at(x, y);
+      if (v < 0) throw input_error(source, no, "cell (" + std::to_string(x) + "," + std::to_string(y) + ") is off the map");
+      c.push_back(v);
+      ++p;
+    }
+    const std::string t = line.substr(0, colon);
+    if (t.empty() || t.find_first_not_of("0123456789") != std::string::npos || std::to_string(plan.size()) != t)
+      throw input_error(source, no, "timestep '" + t + "', expected " + std::to_string(plan.size()));
+    plan.push_back(std::move(c));
+  }
+  if (!in_solution) throw input_error(source, 0, "no 'solution=' line");
+  return plan;
 }
 
 }  // namespace planner

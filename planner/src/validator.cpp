@@ -6,8 +6,10 @@ namespace planner {
 
 Validator::Validator(const Graph& g, const Config& starts, const Config& goals)
     : g_(g), current_(starts), goals_(goals), to_agent_(g.size()), from_agent_(g.size()), to_stamp_(g.size(), 0),
-      from_stamp_(g.size(), 0)
+      from_stamp_(g.size(), 0), last_off_(starts.size(), -1)
 {
+  for (size_t i = 0; i < starts.size() && i < goals.size(); ++i)
+    if (starts[i] != goals[i]) last_off_[i] = 0, ++soc_, ++off_now_;
 }
 
 // O(N) per step with epoch-stamped vertex arrays: executors check every step they run.
@@ -57,10 +59,19 @@ bool Validator::step(const Config& next)
     error_ = "step " + std::to_string(steps_) + " -> " + std::to_string(steps_ + 1) + ": " + e;
     return false;
   }
-  for (size_t i = 0; i < next.size(); ++i)
-    if (!(current_[i] == goals_[i] && next[i] == goals_[i])) ++soc_;
-  current_ = next;
   ++steps_;
+  if (last_off_.size() < next.size()) last_off_.resize(next.size(), -1);
+  off_now_ = 0;
+  for (size_t i = 0; i < next.size(); ++i) {
+    const bool on = i < goals_.size() && next[i] == goals_[i];
+    if (!(on && current_[i] == next[i])) ++loss_;
+    if (!on) {  // off its goal at steps_: charged every step up to here
+      soc_ += steps_ - last_off_[i];
+      last_off_[i] = steps_;
+      ++off_now_;
+    }
+  }
+  current_ = next;
   return true;
 }
 

@@ -54,7 +54,8 @@ py::dict run_result(const RunResult& r)
   d["max_iteration_ms"] = r.max_iteration_ms;
   d["p99_iteration_ms"] = r.p99_iteration_ms;
   d["iterations"] = r.iterations;
-  d["soc"] = r.soc;
+  d["soc"] = r.soc;  // standard (last arrival), as the CLI
+  d["sum_of_loss"] = r.sum_of_loss;
   d["makespan"] = r.makespan;
   d["expansions"] = r.expansions;
   d["explored"] = r.explored;
@@ -181,7 +182,7 @@ PYBIND11_MODULE(_rtlacam, m)
 
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
-           policy::PolicyPreference* pref) {
+           policy::PolicyPreference* pref, bool refine) {
           if (static_cast<int>(starts.size()) != static_cast<int>(goals.size()))
             throw std::invalid_argument("starts and goals differ in length");
           for (Vertex v : starts)
@@ -191,15 +192,18 @@ PYBIND11_MODULE(_rtlacam, m)
           SolverOptions opt;
           opt.seed = seed;
           opt.pref = pref;
+          opt.lacam.refine = opt.lacam.scatter = refine;  // as rtlacam-bench: RT-LaCAM* unless refine=False
           return make_planner(parse_solver(solver), g, starts, goals, opt);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
-        py::arg("policy") = nullptr, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
-        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan rotation actions on a grid, every robot facing east at the start)");
+        py::arg("policy") = nullptr, py::arg("refine") = true, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
+        "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan "
+        "rotation actions on a grid, every robot facing east at the start); refine=False: the paper's RT-LaCAM "
+        "(rtlacam-bench --no-refine), else RT-LaCAM* as the CLI");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
-           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref) {
+           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
@@ -208,6 +212,7 @@ PYBIND11_MODULE(_rtlacam, m)
           SolverOptions sopt;
           sopt.seed = seed;
           sopt.lacam.seed = seed;  // run_full_horizon (lacam) reads it there
+          sopt.lacam.refine = sopt.lacam.scatter = refine;  // as rtlacam-bench (lacam: executes its first solution either way)
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;
@@ -225,10 +230,10 @@ PYBIND11_MODULE(_rtlacam, m)
         },
         py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
         py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
-        py::arg("seed") = 0, py::arg("policy") = nullptr,
+        py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true,
         "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict");
 
-  py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; the paper's sum of costs")
+  py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
       .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),
            py::arg("goals"), py::keep_alive<1, 2>())
       .def("step", &Validator::step, py::arg("next"), "checks current -> next and advances; False on a violation")
@@ -237,7 +242,8 @@ PYBIND11_MODULE(_rtlacam, m)
       .def_property_readonly("error", &Validator::error)
       .def_property_readonly("current", &Validator::current)
       .def_property_readonly("steps", &Validator::steps)
-      .def_property_readonly("sum_of_costs", &Validator::sum_of_costs);
+      .def_property_readonly("sum_of_costs", &Validator::sum_of_costs)
+      .def_property_readonly("sum_of_loss", &Validator::sum_of_loss);
   m.def("validate_plan", &validate_plan, py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("plan"),
         py::arg("require_goals") = true, "'' if the plan is valid, else the first violation");
 

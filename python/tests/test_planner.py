@@ -177,3 +177,17 @@ def test_graph_outlives_its_python_name(scen):
     gc.collect()
     p.search(expansions=1000)
     assert p.at_goal or p.next() is not None
+
+
+def test_rtlacam_is_rt_lacam_star_as_on_the_cli_and_refine_false_is_the_papers_planner(grid, scen):
+    # The CLI's names: rtlacam-bench --solver rtlacam refines (RT-LaCAM*), --no-refine is the
+    # paper's RT-LaCAM, whose search is LaCAM's very own (same expansions, same explored set).
+    ins = rtlacam.load_scen(scen, grid, 30)
+    lacam = rtlacam.run("lacam", grid, ins, time_ms=None, expansions=20)
+    paper = rtlacam.run("rtlacam", grid, ins, time_ms=None, expansions=20, refine=False)
+    star = rtlacam.run("rtlacam", grid, ins, time_ms=None, expansions=20)
+    assert paper["solved"] and star["solved"] and paper["valid"] and star["valid"]
+    assert (paper["expansions"], paper["explored"]) == (lacam["expansions"], lacam["explored"])
+    assert star["expansions"] > lacam["expansions"]  # it went on refining after the first solution
+    # LaCAM*'s followed path never gets costlier in its own cost, the sum of loss
+    assert star["sum_of_loss"] <= paper["sum_of_loss"] <= paper["soc"]

@@ -6,9 +6,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
+#include "planner/plan_io.hpp"
 #include "address_cap.hpp"
 #include "temp_path.hpp"
 
@@ -139,4 +141,27 @@ TEST(Graph, AttachGridChecksTheLattice)
   EXPECT_THROW(a.attach_grid(2, 2, {0, 1, 2}), std::invalid_argument);  // (1,0)-(0,1) not neighbours
   EXPECT_THROW(b.attach_grid(2, 2, {0, 1, 1}), std::invalid_argument);  // shared cell
   EXPECT_THROW(c.attach_grid(2, 2, {0, 1}), std::invalid_argument);     // one cell per vertex
+}
+
+TEST(PlanIo, ReadsBackWhatItWritesAndNamesBadLines)
+{
+  const Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  const Instance ins = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 3);
+  std::vector<Config> plan = {ins.starts, ins.starts};
+  std::stringstream s;
+  write_plan(s, g, ins.starts, ins.goals, plan, PlanHeader{});
+  EXPECT_EQ(read_plan(s, g, "p.txt"), plan);
+  auto error_of = [&](const std::string& text) {
+    std::stringstream in(text);
+    try {
+      read_plan(in, g, "p.txt");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of("agents=1\n"), "p.txt: no 'solution=' line");
+  EXPECT_EQ(error_of("solution=\n1:(0,0),\n"), "p.txt:2: timestep '1', expected 0");
+  EXPECT_EQ(error_of("solution=\n0:(99,99),\n"), "p.txt:2: cell (99,99) is off the map");
+  EXPECT_EQ(error_of("solution=\n0 (1,1)\n"), "p.txt:2: expected 't:(x,y),...'");
 }

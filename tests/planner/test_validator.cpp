@@ -52,12 +52,36 @@ TEST_F(ValidatorTest, WholePlansAndCost)
   EXPECT_NE(validate_plan(g, {a, a}, t, {{a, a}}, false).find("vertex conflict"), std::string::npos);
 
   Validator v(g, {a, b}, {b, b});  // goals need not be distinct for cost accounting
-  ASSERT_TRUE(v.step({d, a}));     // both move: cost 2
+  EXPECT_EQ(v.sum_of_costs(), 0);  // no step yet
+  ASSERT_TRUE(v.step({d, a}));     // both move: loss 2
   ASSERT_TRUE(v.step({d, b}));     // agent 1 moves onto its goal: 1 + agent 0 waits off-goal: 1
   ASSERT_TRUE(v.step({d, b}));     // agent 1 stays on goal: free; agent 0 waits: 1
+  EXPECT_EQ(v.sum_of_loss(), 5);
+  // Standard: agent 1 last arrives at step 2 (cost 2); agent 0 is still off its goal after
+  // 3 steps (cost 3, the steps so far).
   EXPECT_EQ(v.sum_of_costs(), 5);
-  EXPECT_EQ(v.steps(), 3);
+  ASSERT_TRUE(v.step({d, b}));
+  EXPECT_EQ(v.sum_of_costs(), 6);
+  EXPECT_EQ(v.sum_of_loss(), 6);
+  EXPECT_EQ(v.steps(), 4);
   EXPECT_FALSE(v.step({b, b}));
   EXPECT_FALSE(v.ok());
-  EXPECT_NE(v.error().find("step 3 -> 4"), std::string::npos) << v.error();
+  EXPECT_NE(v.error().find("step 4 -> 5"), std::string::npos) << v.error();
+}
+
+TEST_F(ValidatorTest, StandardCostChargesAgentsThatParkOnTheirGoalAndLeaveAgain)
+{
+  // Agent 0 reaches its goal b at step 1, parks there for two steps, steps off to make room
+  // at step 4 and is back at step 5: standard cost 5 (last arrival), loss 3 (the two parked
+  // steps are free). Agent 1 starts on its goal d and never leaves: 0 either way.
+  Validator v(g, {a, d}, {b, d});
+  for (const Config& c : std::vector<Config>{{b, d}, {b, d}, {b, d}, {c, d}, {b, d}, {b, d}})
+    ASSERT_TRUE(v.step(c)) << v.error();
+  EXPECT_EQ(v.sum_of_costs(), 5);
+  EXPECT_EQ(v.sum_of_loss(), 3);
+  // Never leaving: both count the same (one move, then free waits).
+  Validator w(g, {a, d}, {b, d});
+  for (const Config& c : std::vector<Config>{{b, d}, {b, d}, {b, d}}) ASSERT_TRUE(w.step(c));
+  EXPECT_EQ(w.sum_of_costs(), 1);
+  EXPECT_EQ(w.sum_of_loss(), 1);
 }

@@ -3,6 +3,7 @@
 // visualisers read: key=value header lines, then "solution=" and one line per timestep
 // "t:(x,y),(x,y),..." with x = column, y = row on grid maps (display position otherwise,
 // or the vertex id as (v,0) when the graph has no positions).
+#include <istream>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -23,5 +24,10 @@ struct PlanHeader {
 
 void write_plan(std::ostream& out, const Graph& g, const Config& starts, const Config& goals,
                 const std::vector<Config>& plan, const PlanHeader& h);
+
+// The "solution=" section of a result file in that format (ours, lacam's, lacam3's) on a
+// grid graph: C^0 .. C^T. Throws InputError (one line: file, line, what) on a malformed
+// line or a cell off the map; `source` names the file in messages.
+std::vector<Config> read_plan(std::istream& in, const Graph& g, const std::string& source);
 
 }  // namespace planner

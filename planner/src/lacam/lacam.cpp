@@ -45,7 +45,11 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   orders_.reset();
   priorities_.reset();
   links_.reset();
-  refining_ = refine_capped_ = false;
+  refining_ = refine_capped_ = preparing_ = false;
+  prepare_next_ = 0;
+  pending_.clear();
+  pending_next_ = 0;
+  pending_prev_ = nullptr;
   refine_iterations_ = guide_iterations_ = 0;
   lns_failures_ = 0;
   debt_ = 0;
@@ -67,6 +71,11 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
     scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
     scatter_started_ = true;
   }
+  // PIBT's first call reads every agent's distance one BFS level past its start: a lazy BFS
+  // of that level for N tables (11 ms in the first iteration of warehouse-20-40-10-2-2,
+  // N = 1000). Here it is part of the reset (setup), not of an iteration's budget.
+  for (int i = 0; i < n_; ++i)
+    for (Vertex u : g_.neighbors(start[i])) dist_.get(i, u);
   root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities, priorities ? order : nullptr);
   scatter_root_ = root_;
   explored_.insert(root_);
@@ -137,6 +146,7 @@ Status Lacam::expand()
     return status_;
   }
   grow_lowlevel(H, L);
+  last_step_ = Step::expansion;
 
   if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
   const uint64_t hash = config_hash(scratch_.data(), n_);
@@ -176,13 +186,20 @@ void Lacam::grow_lowlevel(HNode* H, const Constraint* L)
 Status Lacam::search(const Budget& b, bool until_solved)
 {
   const auto t0 = Clock::now();
-  const auto deadline = deadline_ = b.deadline_from(t0);
+  const auto deadline = b.deadline_from(t0);
+  timed_ = deadline != Clock::time_point::max();
+  // The reroot after this call walks the tree while refining: its predicted cost stays free.
+  deadline_ = deadline;
+  if (timed_ && refining_ && !preparing_)
+    deadline_ -= std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double, std::milli>(rebase_cost_.predict_ms(1)));
   // With a reserve, the costliest expansion of this call so far counts too (on this thread's
   // CPU time, which preemption does not inflate; an LNS step: its cost over its units).
-  const bool reserving = b.reserve_ms > 0 && deadline != Clock::time_point::max();
-  double cpu_last = reserving ? thread_cpu_ms() : 0.0;
+  const bool reserving = b.reserve_ms > 0 && timed_;
+  double cpu_last = timed_ ? thread_cpu_ms() : 0.0;
   max_unit_ms_ = 0;
   uint64_t done = 0;
+  stalled_ = false;
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
   if (refining_ && !until_solved && debt_ > 0) {
@@ -191,27 +208,55 @@ Status Lacam::search(const Budget& b, bool until_solved)
     done = paid;
     if (done >= b.expansions) return status_;
   }
+  bool first = true;
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
+    // Refinement is never forced: not even one step starts unless it fits. Before the first
+    // solution one expansion always runs (progress), the next ones as the paper's loop or,
+    // with a reserve, while the costliest one so far fits.
+    if (timed_) {
+      if (refining_) {
+        if (!fits(expand_cost_.predict_ms(1))) {
+          expand_cost_.forget();
+          break;
+        }
+      } else if (!first) {
+        if (reserving) {
+          const double r = std::max(b.reserve_ms, max_unit_ms_);
+          if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >=
+              deadline)
+            break;
+        } else if (Clock::now() >= deadline) {
+          break;
+        }
+      }
+    }
+    first = false;
     units_ = 1;
     left_ = b.expansions - done;
+    last_step_ = Step::none;
     expand();
     done += units_;
+    if (timed_) {
+      const double c = thread_cpu_ms();
+      const double dc = c - cpu_last;
+      cpu_last = c;
+      if (last_step_ == Step::expansion) expand_cost_.record(1, dc);
+      else if (last_step_ == Step::lns) lns_cost_.record(last_units_, dc);
+      max_unit_ms_ = std::max(max_unit_ms_, dc / static_cast<double>(units_));
+    }
     if (done >= b.expansions) {
       if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
       break;
     }
-    if (reserving) {
-      const double c = thread_cpu_ms();
-      max_unit_ms_ = std::max(max_unit_ms_, (c - cpu_last) / static_cast<double>(units_));
-      cpu_last = c;
-      const double r = std::max(b.reserve_ms, max_unit_ms_);
-      if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >= deadline)
-        break;
-    } else if (Clock::now() >= deadline) {
-      break;
-    }
+    if (stalled_) break;
   }
   return status_;
+}
+
+double Lacam::room_ms() const
+{
+  if (deadline_ == Clock::time_point::max()) return 1e300;
+  return std::chrono::duration<double, std::milli>(deadline_ - Clock::now()).count();
 }
 
 std::vector<Config> Lacam::path(const HNode* to) const
@@ -239,7 +284,11 @@ void Lacam::reroot(const HNode* child)
   old->parent = c;
   c->parent = nullptr;
   root_ = c;
-  if (refining_) rebase(c, old, false);
+  if (refining_ && !preparing_) {  // timed: search() keeps the next one's cost free
+    const double c0 = thread_cpu_ms();
+    rebase(c, old, false);
+    rebase_cost_.record(1, thread_cpu_ms() - c0);
+  }
 }
 
 bool Lacam::check_tree(std::string* why) const

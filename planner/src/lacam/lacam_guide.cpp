@@ -151,7 +151,7 @@ void Lacam::dive_step()
       end(goal_->g < g_goal);
       break;
     }
-    if (steps >= left_ || Clock::now() >= deadline_) break;
+    if (steps >= left_ || (timed_ && !fits(expand_cost_.predict_ms(1)))) break;  // a step is one PIBT call
   }
   units_ = std::max<uint64_t>(1, steps);
 }

@@ -46,11 +46,39 @@ size_t Lacam::bytes_reserved() const
          all_.capacity() * sizeof(HNode*) + open_.capacity() * sizeof(HNode*) + explored_.bytes_reserved();
 }
 
+// g and h of every node cost O(nodes x N) (12.9 ms at the first solution of
+// warehouse-20-40-10-2-2 N = 1000): done by prepare_step() in the iterations' budgets, while
+// the agents follow the first solution.
 void Lacam::start_refining()
 {
-  for (HNode* h : all_) h->h = heuristic(h->C);
+  refining_ = preparing_ = true;
+  prepare_next_ = 0;
+  if (!timed_) prepare_step();  // no deadline: at once, in this expansion (deterministic runs)
+}
+
+// h of the next nodes and the costs of their links (cached on the links), while each fits;
+// then the walk that sets every g (O(nodes + links) with the costs known). True when done.
+bool Lacam::prepare_step()
+{
+  prepare_cost_.set_prior(2 * expand_cost_.rate());  // a node: h and its links' costs, O(N) each
+  double c0 = timed_ ? thread_cpu_ms() : 0.0;
+  while (prepare_next_ < all_.size()) {
+    if (timed_ && !fits(prepare_cost_.predict_ms(1))) {
+      prepare_cost_.forget();
+      return false;
+    }
+    HNode* h = all_[prepare_next_++];
+    h->h = heuristic(h->C);
+    for (Neighbor* e = h->neighbors; e; e = e->next) cost(h, e);
+    if (timed_) {
+      const double c = thread_cpu_ms();
+      prepare_cost_.record(1, c - c0);
+      c0 = c;
+    }
+  }
   rebase(root_, nullptr, true);
-  refining_ = true;
+  preparing_ = false;
+  return true;
 }
 
 void Lacam::push_if_promising(HNode* h)
@@ -66,6 +94,16 @@ Status Lacam::refine_expand()
     refine_capped_ = true;
     return status_;
   }
+  if (preparing_) {
+    if (!prepare_step()) stalled_ = true;  // the rest in the next calls
+    last_step_ = Step::prepare;
+    return status_;
+  }
+  if (pending_next_ < pending_.size()) {  // an improved LNS window, inserted node by node
+    if (!insert_step()) stalled_ = true;
+    last_step_ = Step::insert;
+    return status_;
+  }
   const bool all_goals = config_equal(goal_->C, goals_.data(), n_);
   const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals;
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
@@ -76,18 +114,50 @@ Status Lacam::refine_expand()
   // SUO's first pass and its dive take every refinement iteration (they matter most), then
   // the guide gets a third of them (half without LNS); the rest as before.
   const bool urgent = opt_.scatter && !first_dive_done_;
-  if (guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns))) {
+  const bool guide_turn = guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns));
+  const bool guide_fits = !timed_ || fits(guide_tail_.predict_ms(1) + expand_cost_.predict_ms(1));
+  if (guide_turn && !guide_fits) guide_tail_.forget();
+  if (guide_turn && guide_fits) {
+    // SUO and dives stop at their deadline, but past it by up to a pass's publication: they
+    // get the call's deadline less the largest such overshoot seen (decaying, step_cost.hpp),
+    // in CPU time (on a loaded machine the wall-clock overshoot is mostly preemption).
+    const auto deadline = deadline_;
+    guide_tail_.set_prior(expand_cost_.rate());  // a pass's publication: O(N) per agent's path
+    if (timed_)
+      deadline_ -= std::chrono::duration_cast<Clock::duration>(
+          std::chrono::duration<double, std::milli>(guide_tail_.predict_ms(1)));
+    const double room0 = timed_ ? room_ms() : 0.0, c0 = timed_ ? thread_cpu_ms() : 0.0;
     guide_step();
+    deadline_ = deadline;
+    if (timed_) guide_tail_.record(1, std::max(0.0, thread_cpu_ms() - c0 - room0));
+    last_step_ = Step::guide;
     return status_;
   }
   if (lns && (open_.empty() || (refine_iterations_++ & 1) == 0)) {
-    ++expansions_;
-    if (lns_step()) lns_failures_ = 0;
-    else ++lns_failures_;
-    // An expansion costs O(N) (one PIBT call); an LNS step O(T x N) and more: charge it in
-    // expansion-equivalents, so that a budget in expansions bounds the work too.
-    units_ = std::max<uint64_t>(1, lns_.work() / static_cast<uint64_t>(std::max(n_, 1)));
-    return status_;
+    // The window is cut to what fits: a step costs about (N + 16 k) per time step (copying
+    // and occupancy O(N), k A* searches); the rate is learnt (step_cost.hpp). Insertion
+    // of an improved window is resumable (insert_step).
+    const double per_step = static_cast<double>(n_) + 16.0 * opt_.lns_agents;
+    lns_cost_.set_prior(expand_cost_.rate() / std::max(n_, 1));
+    // Half the room: a step's cost varies about 2x at one size (A* successes, rewiring).
+    const double fit = timed_ ? lns_cost_.units_within(0.5 * room_ms()) / per_step : 1e300;
+    const int window = static_cast<int>(std::min<double>(opt_.lns_window, fit));
+    if (window >= kMinLnsWindow) {
+      ++expansions_;
+      if (lns_step(window)) lns_failures_ = 0;
+      else ++lns_failures_;
+      // An expansion costs O(N) (one PIBT call); an LNS step O(W x N) and more: charge it in
+      // expansion-equivalents, so that a budget in expansions bounds the work too.
+      units_ = std::max<uint64_t>(1, lns_.work() / static_cast<uint64_t>(std::max(n_, 1)));
+      last_step_ = Step::lns;
+      last_units_ = window * per_step;
+      return status_;
+    }
+    lns_cost_.forget();
+    if (open_.empty()) {  // no window fits now: LNS again in a later call
+      stalled_ = true;
+      return status_;
+    }
   }
   if (open_.empty()) {  // nothing cheaper is reachable by LaCAM*
     refining_ = false;
@@ -110,6 +180,7 @@ Status Lacam::refine_expand()
     return status_;
   }
   grow_lowlevel(H, L);
+  last_step_ = Step::expansion;
   if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
   const uint64_t hash = config_hash(scratch_.data(), n_);
   if (HNode* known = explored_.find(scratch_.data(), hash)) {
@@ -127,22 +198,52 @@ Status Lacam::refine_expand()
   return status_;
 }
 
-bool Lacam::lns_step()
+// Only the window's configurations are copied (the whole path was O(T x N) per step, 6-7 ms
+// at warehouse-20-40-10-2-2 N = 1000); the improved window is inserted from its first node,
+// and its last configuration is the path's own node there, which the rewiring then lowers.
+bool Lacam::lns_step(int window)
 {
-  std::vector<Config> p = path(goal_);
-  if (!lns_.step(p, goals_, opt_.lns_agents, rng_, deadline_)) return false;
-  insert_path(p);
+  path_nodes_.clear();
+  for (HNode* h = goal_; h; h = h->parent) path_nodes_.push_back(h);
+  std::reverse(path_nodes_.begin(), path_nodes_.end());
+  const int T = static_cast<int>(path_nodes_.size()) - 1;
+  if (T < 1) return false;
+  const int W = std::min(window, T);
+  const int t0 = T > W ? static_cast<int>(rng_.below(static_cast<uint32_t>(T - W + 1))) : 0;
+  window_.resize(static_cast<size_t>(W) + 1);
+  for (int t = 0; t <= W; ++t) window_[t].assign(path_nodes_[t0 + t]->C, path_nodes_[t0 + t]->C + n_);
+  lns_.set_window(W);
+  if (!lns_.step(window_, goals_, opt_.lns_agents, rng_, deadline_)) return false;
+  pending_.swap(window_);  // inserted by insert_step(), now or in the next calls
+  pending_next_ = 1;
+  pending_prev_ = path_nodes_[t0];
+  if (!timed_) insert_step();  // no deadline: at once, in this step (deterministic runs)
   return true;
 }
 
-// The configurations of a valid path from the root become nodes (new ones as children of
-// their predecessor) and links; each link is rewired like a revisit, so the goal's g drops
-// to the path's cost (or less).
-HNode* Lacam::insert_path(const std::vector<Config>& p)
+// A new node costs O(N) (hash, priorities, their order) and its rewiring more: a whole
+// window (40 nodes, 0.8-1.5 ms at N = 400) is too much for one step, so it goes in pieces.
+// Each piece leaves a valid chain of linked nodes; g(goal) drops when the last one links.
+bool Lacam::insert_step()
 {
-  HNode* prev = root_;
-  for (size_t t = 1; t < p.size(); ++t) prev = step_to(prev, p[t].data());
-  return prev;
+  insert_cost_.set_prior(expand_cost_.rate());
+  double c0 = timed_ ? thread_cpu_ms() : 0.0;
+  while (pending_next_ < pending_.size()) {
+    if (timed_ && !fits(insert_cost_.predict_ms(1))) {
+      insert_cost_.forget();
+      return false;
+    }
+    pending_prev_ = step_to(pending_prev_, pending_[pending_next_++].data());
+    if (timed_) {
+      const double c = thread_cpu_ms();
+      insert_cost_.record(1, c - c0);
+      c0 = c;
+    }
+  }
+  pending_.clear();
+  pending_next_ = 0;
+  pending_prev_ = nullptr;
+  return true;
 }
 
 // Label-correcting Dijkstra from a new link's two ends: a node whose g drops takes the
@@ -196,7 +297,7 @@ bool Lacam::check_costs(std::string* why) const
     if (why) *why = w;
     return false;
   };
-  if (!refining_) return fail("costs are kept only while refining");
+  if (!refining_ || preparing_) return fail("costs are kept only while refining");
   if (root_->g != 0) return fail("root g is " + std::to_string(root_->g));
   for (const HNode* s : all_) {
     int64_t sum = 0;

@@ -26,12 +26,10 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   // Flat window x |V| table of best g, valid where its stamp is this call's (no hashing, no
   // clearing, no allocation once grown: the step is real-time work).
   const size_t W = static_cast<size_t>(t1 - t0 + 1);
-  if (best_.size() < W * V) {
-    best_.assign(W * V, 0);
-    stamp_.assign(W * V, 0);
-  }
+  best_.ensure(W * V);
+  stamp_.ensure(W * V);
   if (++epoch_ == 0) {  // wrapped: stale stamps could collide
-    std::fill(stamp_.begin(), stamp_.end(), 0);
+    for (size_t k = 0; k < stamp_.size(); ++k) stamp_[k] = 0;
     epoch_ = 1;
   }
   nodes_.clear();
@@ -47,8 +45,12 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   const size_t limit = 32 * W + 1024;
   size_t pops = 0;
   bool found = false;
+  if (Clock::now() >= deadline) return false;
   while (!open_.empty() && nodes_.size() < limit) {
-    if ((++pops & 255) == 0 && Clock::now() >= deadline) break;
+    // Counted over the step's replans: one failing search of a short window has fewer pops
+    // than the check interval, and eight of them overran a 1 ms iteration by 0.5 ms.
+    if ((++clock_pops_ & 63) == 0 && Clock::now() >= deadline) break;
+    ++pops;
     auto [f, negt, idx] = open_.top();
     open_.pop();
     const AstarNode n = nodes_[idx];
@@ -65,10 +67,10 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
     for (size_t m = 0; m <= nb.size(); ++m) {
       const Vertex u = m < nb.size() ? nb[m] : n.v;
       const size_t at = slot(n.t + 1, u);
-      if (occ_[at] >= 0) continue;  // vertex conflict
+      if (occ_[at] != 0) continue;  // vertex conflict
       if (u != n.v) {
         const int32_t j = occ_[slot(n.t, u)];
-        if (j >= 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
+        if (j != 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
       }
       const int64_t g = n.g + !(n.v == goal && u == goal);
       if (stamp_[at] == epoch_ && best_[at] <= g) continue;
@@ -100,9 +102,9 @@ void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Con
   std::vector<int> cand;
   if (h == 1) {  // blocking chains, breadth-first from the seed
     const size_t W = static_cast<size_t>(t1 - t0 + 1);
-    if (at_.size() < W * V) at_.assign(W * V, -1);
+    at_.ensure(W * V);
     for (int t = t0; t <= t1; ++t)
-      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = i;
+      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = i + 1;
     work_ += W * static_cast<size_t>(n);
     for (size_t q = 0; q < set_.size() && static_cast<int>(set_.size()) < k; ++q) {
       const int a = set_[q];
@@ -112,7 +114,7 @@ void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Con
         if (v == goals[a] || dist_.get(a, path[t + 1][a]) < dist_.get(a, v)) continue;  // progress
         for (Vertex u : g_.neighbors(v)) {
           if (dist_.get(a, u) >= dist_.get(a, v)) continue;
-          const int32_t j = at_[static_cast<size_t>(t + 1 - t0) * V + static_cast<size_t>(u)];
+          const int32_t j = at_[static_cast<size_t>(t + 1 - t0) * V + static_cast<size_t>(u)] - 1;
           if (j >= 0 && j != a && !in(j) &&
               std::find(cand.begin(), cand.end(), j) == cand.end())
             cand.push_back(j);
@@ -125,7 +127,7 @@ void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Con
     }
     // at_ is rewritten before every use, but stale agents must not answer: clear what was set
     for (int t = t0; t <= t1; ++t)
-      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = -1;
+      for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = 0;
   } else if (h == 2) {  // the agents crossing one intersection of the seed's path
     const int a = set_[0];
     std::vector<Vertex> cross;
@@ -165,9 +167,14 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   std::vector<int64_t> cost(n, 0);
   for (int t = 0; t < T; ++t)
     for (int i = 0; i < n; ++i) cost[i] += !(path[t][i] == goals[i] && path[t + 1][i] == goals[i]);
-  // The seed: a delayed agent, roulette by delay.
+  // The seed: a delayed agent, roulette by delay over what the path's ends allow (a window of
+  // a longer path need not end at the goals).
+  std::vector<int64_t> delay(n, 0);
   int64_t total_delay = 0;
-  for (int i = 0; i < n; ++i) total_delay += cost[i] - dist_.get(i, path[0][i]);
+  for (int i = 0; i < n; ++i) {
+    delay[i] = std::max<int64_t>(0, cost[i] - std::abs(dist_.get(i, path[0][i]) - dist_.get(i, path[T][i])));
+    total_delay += delay[i];
+  }
   if (total_delay <= 0) return false;
   // The time window [t0, t1]: the agents keep their positions at both ends.
   const int t0 = T > window_ ? static_cast<int>(rng.below(static_cast<uint32_t>(T - window_ + 1))) : 0;
@@ -181,7 +188,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   set_.clear();
   int64_t r = static_cast<int64_t>(rng.uniform() * static_cast<double>(total_delay));
   for (int i = 0; i < n; ++i) {
-    r -= cost[i] - dist_.get(i, path[0][i]);
+    r -= delay[i];
     if (r < 0 || i == n - 1) {
       set_.push_back(i);
       break;
@@ -191,7 +198,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   std::vector<int>& set = set_;
 
   const size_t V = g_.size(), W = static_cast<size_t>(t1 - t0 + 1);
-  if (occ_.size() < W * V) occ_.assign(W * V, -1);
+  occ_.ensure(W * V);
   written_.clear();
   std::vector<char> in_set(n, 0);
   for (int i : set) in_set[i] = 1;
@@ -199,7 +206,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
     for (int i = 0; i < n; ++i)
       if (!in_set[i]) {
         const size_t key = static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i]);
-        occ_[key] = i;
+        occ_[key] = i + 1;
         written_.push_back(key);
       }
 
@@ -217,13 +224,13 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
     for (int t = t0; t <= t1; ++t) {
       const Vertex v = fresh[m][t - t0];
       const size_t key = static_cast<size_t>(t - t0) * V + static_cast<size_t>(v);
-      occ_[key] = i;
+      occ_[key] = i + 1;
       written_.push_back(key);
       if (t < t1) after += !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
     }
     if (after >= before) ok = false;  // cannot win any more
   }
-  for (size_t key : written_) occ_[key] = -1;
+  for (size_t key : written_) occ_[key] = 0;
   written_.clear();
   constexpr double kGamma = 0.01;  // MAPF-LNS's reaction factor
   const bool won = ok && after < before;

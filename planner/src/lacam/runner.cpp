@@ -12,7 +12,7 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
 {
   RunResult r;
   Validator val(g, starts, goals);
-  std::vector<double> times;
+  std::vector<double> times, cpu_times;
   if (opt.record_plan) r.plan.push_back(starts);
   while (true) {
     if (p.at_goal()) {
@@ -28,11 +28,15 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
       break;
     }
     const auto t0 = Clock::now();
+    const double c0 = thread_cpu_ms();
     p.search(opt.per_iteration);
     p.next();
     p.commit();
     const double dt = ms_since(t0);
+    const double dc = thread_cpu_ms() - c0;
     times.push_back(dt);
+    cpu_times.push_back(dc);
+    r.max_iteration_cpu_ms = std::max(r.max_iteration_cpu_ms, dc);
     r.total_planning_ms += dt;
     r.max_iteration_ms = std::max(r.max_iteration_ms, dt);
     ++r.iterations;
@@ -51,7 +55,9 @@ RunResult run_realtime(RealtimePlanner& p, const Graph& g, const Config& starts,
     }
   }
   r.p99_iteration_ms = Latency::of(std::move(times)).p99;
+  r.p99_iteration_cpu_ms = Latency::of(std::move(cpu_times)).p99;
   r.soc = val.sum_of_costs();
+  r.sum_of_loss = val.sum_of_loss();
   r.makespan = val.steps();
   r.expansions = p.expansions();
   r.explored = p.explored();
@@ -97,6 +103,7 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
     }
   r.solved = true;
   r.soc = val.sum_of_costs();
+  r.sum_of_loss = val.sum_of_loss();
   r.makespan = val.steps();
   if (opt.record_plan) r.plan = std::move(path);
   return r;

@@ -58,6 +58,7 @@
 #include "planner/lacam/pibt.hpp"
 #include "planner/rng.hpp"
 #include "planner/lacam/scatter.hpp"
+#include "planner/lacam/step_cost.hpp"
 #include "planner/search_types.hpp"
 
 namespace planner {
@@ -131,7 +132,13 @@ class Lacam {
 
   Status expand();                   // one LaCAM (or, once solved, LaCAM*) iteration
   // Expands until solved (with refine: until refinement ends), exhausted or out of budget
-  // (>= 1 expansion while there is anything to do). Against b.expansions an LNS step counts
+  // (>= 1 expansion while there is anything to do before the first solution).
+  // With a time budget, refinement keeps it: no refinement step starts unless its predicted
+  // cost (step_cost.hpp, thread CPU time) fits what is left of the call less the next
+  // reroot's; an LNS step's window is cut to fit, SUO, dives and the first solution's costing
+  // (g, h of every node) are resumable and stop at the call's end. With Budget::reserve_ms,
+  // LaCAM's expansions before the first solution are predicted the same way (after the
+  // first of each call, which is always made). Against b.expansions an LNS step counts
   // as its work (cells and A* states visited) / N expansions, a LaCAM(*) expansion as one;
   // what a step overruns is paid off by the next calls (they refine less or not at all).
   // `until_solved`: return at the first solution instead of refining on.
@@ -169,6 +176,11 @@ class Lacam {
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
   // CPU ms of the costliest expansion of the last search() with a reserve (Budget::reserve_ms).
   double max_expansion_ms() const { return max_unit_ms_; }
+  // Predicted CPU ms of one expansion, and ms per (time step x agent) of an LNS window
+  // (step_cost.hpp), for statistics and tests.
+  const StepCost& expansion_cost() const { return expand_cost_; }
+  const StepCost& lns_cost() const { return lns_cost_; }
+  bool preparing() const { return preparing_; }  // refining, but g and h not yet computed for all
   // expansions() and explored() when the current search found its first solution
   uint64_t expansions_at_solution() const { return solved_expansions_; }
   size_t explored_at_solution() const { return solved_explored_; }
@@ -187,13 +199,17 @@ class Lacam {
   void link(HNode* a, HNode* b);           // neighbour links both ways, no duplicates
   int32_t cost(HNode* from, Neighbor* e);  // lazily computed edge cost
   int32_t heuristic(const Vertex* C);
-  void start_refining();                   // at the first solution: g, h for all
+  void start_refining();                   // at the first solution: g, h for all (resumable)
+  bool prepare_step();                     // the next nodes' h and link costs; true when done
+  double room_ms() const;                  // wall ms left to the running call
+  bool fits(double ms) const { return room_ms() >= ms; }
   Status refine_expand();
   void rewrite(HNode* a, HNode* b);        // Dijkstra-style relaxation from a new link
   void rebase(HNode* new_root, HNode* old_root, bool explicit_costs);
   void push_if_promising(HNode* h);
   void grow_lowlevel(HNode* H, const Constraint* L);
-  bool lns_step();                          // one LnsRefiner step; inserts an improved path
+  bool lns_step(int window);                // one LnsRefiner step; an improved window goes to pending_
+  bool insert_step();                       // inserts pending_ while it fits; true when done
   void guide_step();                        // scatter work, else a dive step (lacam_guide.cpp)
   bool scatter_step();                      // false once SUO is done (or off)
   void dive_step();
@@ -201,7 +217,8 @@ class Lacam {
   int steps_ahead(const HNode* x) const;  // x's depth on the best path, -1 if not on it
   void start_scatter(int lead);
   HNode* step_to(HNode* from, const Vertex* C);  // known or new node after `from`, linked and rewired
-  HNode* insert_path(const std::vector<Config>& path);
+
+  static constexpr int kMinLnsWindow = 4;  // shorter windows rarely leave room to improve
 
   const Graph& g_;
   DistTable& dist_;
@@ -243,7 +260,23 @@ class Lacam {
   int lns_failures_ = 0;  // in a row; LNS alone gives up after many
   uint64_t units_ = 1;    // budget charged for the last expand(): an LNS step counts its work / N
   uint64_t debt_ = 0;     // expansions-budget units an LNS step overran, paid by the next search() calls
-  Clock::time_point deadline_ = Clock::time_point::max();  // of the running search() call
+  // Of the running search() call, less the next reroot's predicted cost while refining.
+  Clock::time_point deadline_ = Clock::time_point::max();
+  bool timed_ = false;            // the running call has a deadline
+  bool stalled_ = false;          // the last expand() found no step that fits
+  enum class Step { expansion, lns, guide, prepare, insert, none };
+  Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
+  double last_units_ = 0;         // its size in the model's units
+  StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
+  StepCost insert_cost_;          // one node of an improved LNS window
+  std::vector<Config> pending_;   // that window: configurations [pending_next_, end) still to insert
+  size_t pending_next_ = 0;
+  HNode* pending_prev_ = nullptr; // the node they continue from
+  StepCost guide_tail_;           // how far past its deadline a SUO / dive step ran (ms)
+  bool preparing_ = false;        // start_refining() still costing nodes
+  size_t prepare_next_ = 0;       // the next node to cost
+  std::vector<HNode*> path_nodes_;  // scratch: the best path's nodes (LNS)
+  std::vector<Config> window_;      // scratch: an LNS window's configurations
   uint64_t solved_expansions_ = 0;
   size_t solved_explored_ = 0;
   std::vector<HNode*> queue_;                    // scratch: rewrite / rebase

@@ -24,6 +24,7 @@
 #include "planner/config.hpp"
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
+#include "planner/lacam/lazy_table.hpp"
 #include "planner/rng.hpp"
 
 namespace planner {
@@ -51,7 +52,8 @@ class LnsRefiner {
              LnsNeighbourhood nbh = LnsNeighbourhood::random)
       : g_(g), dist_(dist), window_(window), nbh_(nbh) {}
 
-  // path[0] is fixed, path.back() must be the goals. Returns true when `path` was improved
+  // path[0] and path.back() are fixed (a caller may pass a window of a longer path; the
+  // delays that seed the neighbourhood are taken against its ends). Returns true when `path` was improved
   // (rewritten in place). Gives up (false) at `deadline`: a real-time caller's budget holds.
   bool step(std::vector<Config>& path, const Config& goals, int k, Rng& rng,
             Clock::time_point deadline = Clock::time_point::max());
@@ -59,6 +61,8 @@ class LnsRefiner {
   // Work of the last step, in visited cells and A* states (the cost pass over the path, the
   // occupancy table, the A* nodes and pops): a caller with a budget in expansions charges it.
   uint64_t work() const { return work_; }
+  void set_window(int window) { window_ = window; }
+  int window() const { return window_; }
   // Heuristic of the last step (0 random, 1 blocking, 2 intersection) and the weights.
   int last_heuristic() const { return last_h_; }
   const double* weights() const { return weight_; }
@@ -81,8 +85,9 @@ class LnsRefiner {
   LnsNeighbourhood nbh_;
   double weight_[3] = {1.0, 1.0, 1.0};  // adaptive: ALNS weights of the three heuristics
   std::vector<int> set_;
-  std::vector<int32_t> at_;             // blocking: agent at (t - t0, v) of the window, -1 none
-  std::vector<int32_t> occ_;      // ((t - t0) * |V| + v) -> agent there, -1 free
+  // Window x |V| tables, touched only where a step writes (lazy_table.hpp)
+  LazyTable<int32_t> at_;   // blocking: 1 + agent at (t - t0, v) of the window, 0 none
+  LazyTable<int32_t> occ_;  // ((t - t0) * |V| + v) -> 1 + agent there, 0 free
   std::vector<size_t> written_;   // occupied slots, to clear
   // replan()'s space-time A*, kept across calls (no allocation per step)
   struct AstarNode {
@@ -94,9 +99,10 @@ class LnsRefiner {
   using Item = std::tuple<int64_t, int, int32_t>;  // f, -t (deeper first), node
   std::vector<AstarNode> nodes_;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open_;
-  std::vector<int64_t> best_;     // (t - t0) * |V| + v -> best g, valid where stamp_ == epoch_
-  std::vector<uint32_t> stamp_;
+  LazyTable<int64_t> best_;  // (t - t0) * |V| + v -> best g, valid where stamp_ == epoch_
+  LazyTable<uint32_t> stamp_;
   uint32_t epoch_ = 0;
+  uint64_t clock_pops_ = 0;  // A* pops since construction: the deadline is read every 64
   uint64_t work_ = 0;
   int last_h_ = 0;
 };

@@ -39,8 +39,12 @@ struct RunResult {
   std::string validation_error;  // "" when every executed step is valid
   double total_planning_ms = 0;
   double max_iteration_ms = 0, p99_iteration_ms = 0;
+  // The same on the planning thread's CPU time (what a loaded machine's preemption does not
+  // inflate); full horizon: 0.
+  double max_iteration_cpu_ms = 0, p99_iteration_cpu_ms = 0;
   long long iterations = 0;
-  long long soc = 0, makespan = 0;
+  long long soc = 0, makespan = 0;  // soc: standard (Validator::sum_of_costs)
+  long long sum_of_loss = 0;
   uint64_t expansions = 0;
   size_t explored = 0;
   std::vector<Config> plan;      // C^0 .. C^T when recorded

@@ -1,0 +1,148 @@
+#!/usr/bin/env python3
+"""Like-for-like comparison of RT-LaCAM* with peer planners (lacam3, lacam), issue 22.
+
+Every planner runs on the same instances (map, scen, N) on this machine, one after the
+other, and every plan -- ours and theirs -- is checked by one checker, rtlacam-check (the
+project's Validator), which also computes the costs: the standard sum of costs (each agent
+charged up to its last arrival, as lacam3 reports it) and the sum of loss. Ratios are ours /
+peer's on the standard SOC, per cell, then their geometric mean and the count within 1.15x.
+
+Ours: rtlacam-bench --solver rtlacam at --cutoff-ms per iteration (RT-LaCAM*; --ours-args
+adds options, e.g. "--no-refine" for the paper's RT-LaCAM). Peers: `-m MAP -i SCEN -N N
+-t SECONDS -o FILE` (the CLI of Kei18's lacam and lacam3), each at --peer-time-s. Peers'
+binaries are given by path; they are not part of this repository.
+
+  scripts/peer_bench.py --lacam3 /work/peers/lacam3/build/main \\
+      --cells warehouse-10-20-10-2-1:100,400 random-32-32-20:100,200 --scens 1 2 --peer-time-s 10
+Stdlib only.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = [os.path.join(ROOT, "data", "movingai"), os.path.join(ROOT, "..", "shared", "benchmarks", "movingai")]
+
+
+def fail(msg):
+    sys.exit(f"peer_bench: {msg}")
+
+
+def find(name):
+    for d in DATA:
+        p = os.path.join(d, name)
+        if os.path.exists(p):
+            return p
+    fail(f"{name} not found in {' or '.join(DATA)}")
+
+
+def check(args, m, scen, n, plan):
+    out = subprocess.run([args.check, "--map", m, "--scen", scen, "-N", str(n), "--plan", plan],
+                         capture_output=True, text=True)
+    if out.returncode not in (0, 3):
+        fail(f"rtlacam-check on {plan}: {out.stderr.strip()}")
+    return json.loads(out.stdout)
+
+
+def run_ours(args, m, scen, n, plan):
+    cmd = [args.bench, "--map", m, "--scen", scen, "-N", str(n), "--solver", "rtlacam", "--cutoff-ms",
+           str(args.cutoff_ms), "--timeout-s", str(args.ours_timeout_s), "--json", "--progress-s", "0", "--out",
+           plan, *args.ours_args.split()]
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    if out.returncode not in (0, 4):
+        fail(f"{' '.join(cmd)} failed: {out.stderr.strip()}")
+    j = json.loads(out.stdout)
+    return j["solved"], j.get("p99_iteration_cpu_ms", 0.0), j.get("max_iteration_cpu_ms", 0.0)
+
+
+def run_peer(binary, args, m, scen, n, plan):
+    cmd = [binary, "-m", m, "-i", scen, "-N", str(n), "-t", str(args.peer_time_s), "-o", plan,
+           *args.peer_args.split()]
+    out = subprocess.run(cmd, capture_output=True, text=True, timeout=args.peer_time_s * 3 + 60)
+    if out.returncode != 0 or not os.path.exists(plan):
+        return False
+    with open(plan) as f:
+        return any(line.strip() == "solved=1" for line in f)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--lacam3", help="path to lacam3's binary (build/main)")
+    ap.add_argument("--lacam", help="path to lacam's binary (build/main)")
+    ap.add_argument("--cells", nargs="+", required=True, metavar="MAP:N,N",
+                    help="maps (MovingAI names without .map) and agent counts")
+    ap.add_argument("--scens", nargs="+", type=int, default=[1], help="scen numbers (-random-K.scen)")
+    ap.add_argument("--cutoff-ms", type=float, default=1.0, help="our per-iteration budget")
+    ap.add_argument("--ours-timeout-s", type=float, default=60, help="our cumulative planning time limit")
+    ap.add_argument("--ours-args", default="", help="more rtlacam-bench options (e.g. --no-refine)")
+    ap.add_argument("--peer-time-s", type=float, default=10, help="peers' time limit (-t)")
+    ap.add_argument("--peer-args", default="", help="more peer options (e.g. --no-star for lacam3)")
+    ap.add_argument("--bench", default=os.path.join(ROOT, "build", "apps", "rtlacam-bench"))
+    ap.add_argument("--check", default=os.path.join(ROOT, "build", "apps", "rtlacam-check"))
+    args = ap.parse_args()
+    peers = [(name, path) for name, path in (("lacam3", args.lacam3), ("lacam", args.lacam)) if path]
+    if not peers:
+        fail("give at least one peer binary (--lacam3 PATH or --lacam PATH)")
+    for name, path in peers + [("rtlacam-bench", args.bench), ("rtlacam-check", args.check)]:
+        if not os.access(path, os.X_OK):
+            fail(f"{name} binary {path} is not executable")
+    cells = []
+    for c in args.cells:
+        m, _, ns = c.partition(":")
+        try:
+            cells += [(m, int(n)) for n in ns.split(",")]
+        except ValueError:
+            fail(f"bad cell '{c}' (MAP:N,N,...)")
+
+    print(f"# ours: rtlacam-bench --solver rtlacam --cutoff-ms {args.cutoff_ms} {args.ours_args}".rstrip())
+    print(f"# peers at {args.peer_time_s} s {args.peer_args}".rstrip() + "; every plan checked by rtlacam-check;"
+          " SOC = standard (last arrival), loss = sum of loss")
+    head = f"{'map':24} {'N':>4} {'scen':>4} {'ours SOC':>9} {'loss':>8} {'p99cpu':>7}"
+    for name, _ in peers:
+        head += f" {name + ' SOC':>11} {'loss':>8} {'ratio':>6}"
+    print(head)
+    ratios = {name: [] for name, _ in peers}
+    with tempfile.TemporaryDirectory() as tmp:
+        for m_name, n in cells:
+            m = find(m_name + ".map")
+            for k in args.scens:
+                scen = find(f"{m_name}-random-{k}.scen")
+                plan = os.path.join(tmp, "ours.txt")
+                solved, p99, _ = run_ours(args, m, scen, n, plan)
+                ours = check(args, m, scen, n, plan) if solved else None
+                if ours and not ours["valid"]:
+                    fail(f"our plan on {m_name} N={n} scen {k} is invalid: {ours['error']}")
+                row = f"{m_name:24} {n:>4} {k:>4} "
+                row += f"{ours['soc']:>9} {ours['sum_of_loss']:>8} {p99:>7.3f}" if ours else f"{'unsolved':>9} {'-':>8} {'-':>7}"
+                for name, path in peers:
+                    pplan = os.path.join(tmp, name + ".txt")
+                    if os.path.exists(pplan):
+                        os.remove(pplan)
+                    theirs = check(args, m, scen, n, pplan) if run_peer(path, args, m, scen, n, pplan) else None
+                    if theirs and not theirs["valid"]:
+                        row += f" {'invalid':>11} {'-':>8} {'-':>6}"
+                        print(f"# {name} on {m_name} N={n} scen {k}: {theirs['error']}", file=sys.stderr)
+                        continue
+                    if not theirs:
+                        row += f" {'unsolved':>11} {'-':>8} {'-':>6}"
+                        continue
+                    r = ours["soc"] / theirs["soc"] if ours else float("inf")
+                    ratios[name].append(r)
+                    row += f" {theirs['soc']:>11} {theirs['sum_of_loss']:>8} {r:>6.3f}"
+                print(row, flush=True)
+    for name, rs in ratios.items():
+        finite = [r for r in rs if math.isfinite(r)]
+        if not rs:
+            print(f"# ours / {name}: no cell solved by both")
+            continue
+        gm = math.exp(sum(math.log(r) for r in finite) / len(finite)) if finite else float("inf")
+        print(f"# ours / {name} on standard SOC: {len(rs)} cells, geometric mean {gm:.3f}, "
+              f"range {min(rs):.3f}-{max(rs):.3f}, within 1.15x on {sum(r <= 1.15 for r in rs)}/{len(rs)}")
+
+
+if __name__ == "__main__":
+    main()
