@@ -97,8 +97,8 @@ void Commander::failed(int agent, const SumoError& e)
   if (!sumo_.running()) throw e;  // the connection is gone: that is the error
   const std::vector<std::string> ids = sumo_.vehicles();  // throws again if SUMO itself is gone
   if (std::find(ids.begin(), ids.end(), id) == ids.end())
-    throw ControlError("AGV " + id + " (agent " + std::to_string(agent) +
-                       ") is not in SUMO any more (removed behind the controller's back?)");
+    throw FleetError("AGV " + id + " (agent " + std::to_string(agent) +
+                     ") is not in SUMO any more (removed behind the controller's back?)");
   throw e;
 }
 
@@ -242,8 +242,8 @@ void Commander::verify(const std::vector<VehiclePose>& now, double tol)
     Agv& a = agv_[i];
     const VehiclePose& p = now[i];
     if (p.lane.empty())
-      throw ControlError("AGV " + a.id + " (agent " + std::to_string(i) +
-                         ") is not in SUMO any more (removed behind the controller's back?)");
+      throw FleetError("AGV " + a.id + " (agent " + std::to_string(i) +
+                       ") is not in SUMO any more (removed behind the controller's back?)");
     const double err = p.lane == a.pose.lane ? std::fabs(p.pos - a.pose.pos) : INFINITY;
     if (err <= tol) {
       if (err > stats_.max_error) stats_.max_error = err;

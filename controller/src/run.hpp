@@ -16,6 +16,7 @@
 #include "executor/adg.hpp"
 #include "executor/delay_model.hpp"
 #include "planner/instance.hpp"
+#include "planner/stop_signal.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "tasks/lifelong_runner.hpp"
@@ -47,7 +48,14 @@ class Run {
   // driving to, `immobile` AGVs kept in place.
   void stuck_step(executor::Adg& adg, Driver& drv);
   void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
-  bool out_of_ticks() const { return m_.ticks >= cfg_.run.max_ticks; }
+  // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
+  // search proved unsolvable (RT-LaCAM's DFS exhausted: waiting for max_ticks would change
+  // nothing): each ends the loop through its normal end, so finish() writes every output
+  // and closes SUMO.
+  bool out_of_ticks() const
+  {
+    return m_.ticks >= cfg_.run.max_ticks || planner::stop_signal() != 0 || (!tm_ && p_->exhausted());
+  }
 
   const Config& cfg_;
   Controller& c_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "planner/stop_signal.hpp"
 #include "planner/validator.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/solver.hpp"
@@ -31,6 +32,7 @@ LifelongExecResult run_lifelong_exec(const planner::Graph& g, const planner::Con
   long long last_completion = 0;
   double carry_ms = 0;
   for (long t = 1; t <= opt.steps; ++t) {
+    if (planner::stop_signal()) break;  // SIGINT / SIGTERM: end here, the caller writes the log
     StepRecord rec;
     rec.t = t;
     rec.epoch = r.epochs;

@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "planner/stop_signal.hpp"
 #include "planner/rotation/epibt.hpp"
 #include "planner/rotation/rotation_pibt.hpp"
 #include "planner/rotation/rotation_planner.hpp"
@@ -166,6 +167,7 @@ LifelongResult run_lifelong(const planner::Graph& g, const planner::Config& star
   CostEstimate overrun;
   int skipped = 0;  // searches skipped in a row
   for (long t = 1; t <= opt.steps; ++t) {
+    if (planner::stop_signal()) break;  // SIGINT / SIGTERM: end here, the caller writes the log
     StepRecord rec;
     rec.t = t;
     rec.epoch = r.epochs;
