@@ -43,4 +43,9 @@ class CMakeBuild(build_ext):
         shutil.copy2(built[0], dest)
 
 
-setup(ext_modules=[CMakeExtension("rtlacam._rtlacam")], cmdclass={"build_ext": CMakeBuild})
+setup(
+    ext_modules=[CMakeExtension("rtlacam._rtlacam")],
+    cmdclass={"build_ext": CMakeBuild},
+    # setuptools' own staging, out of the way of a CMake tree in build/ (ignored by git)
+    options={"build": {"build_base": str(Path("build") / "pip-setuptools")}},
+)
