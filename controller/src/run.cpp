@@ -130,7 +130,6 @@ void Run::prepare()
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
   k_ = cfg_.steps_per_tick();
-  plan_step_.reserve(static_cast<size_t>(std::min<long long>(cfg_.run.max_ticks, 100000)) * k_);
 }
 
 std::vector<VehiclePose> Run::poses()

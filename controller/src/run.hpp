@@ -77,7 +77,8 @@ class Run {
   tasks::LifelongResult life_;
   planner::Budget budget_;
   int k_ = 1;
-  std::vector<double> plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
+  // Bounded however long the run (lifelong): exact up to 65536 samples, a reservoir beyond.
+  planner::LatencySample plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
   double plan_in_tick_ = 0, epoch_ms_ = 0;
   std::vector<VehiclePose> last_poses_;
   planner::Clock::time_point wall0_, loop0_, last_progress_;
