@@ -1,6 +1,7 @@
 #include "planner/stop_signal.hpp"
 
 #include <csignal>
+#include <initializer_list>
 
 namespace planner {
 
@@ -18,8 +19,10 @@ extern "C" void on_stop_signal(int sig)
 
 void install_stop_handlers()
 {
-  std::signal(SIGINT, on_stop_signal);
-  std::signal(SIGTERM, on_stop_signal);
+  // A signal ignored at start stays ignored (the Unix convention: nohup, `cmd &` in a
+  // script without job control): the caller asked for the run not to be stopped by it.
+  for (int sig : {SIGINT, SIGTERM})
+    if (std::signal(sig, on_stop_signal) == SIG_IGN) std::signal(sig, SIG_IGN);
 }
 
 int stop_signal() { return g_signal; }

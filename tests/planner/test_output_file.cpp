@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include <csignal>
+
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -93,4 +95,18 @@ TEST(StopSignal, HandlerRecordsTheFirstSignalOnly)
   struct sigaction sa {};
   sigaction(SIGTERM, nullptr, &sa);
   EXPECT_EQ(sa.sa_handler, SIG_DFL);
+}
+
+TEST(StopSignal, ASignalIgnoredAtStartStaysIgnored)
+{
+  std::signal(SIGINT, SIG_IGN);  // as nohup or `cmd &` in a script leave it
+  planner::reset_stop_signal();
+  planner::install_stop_handlers();
+  struct sigaction sa {};
+  sigaction(SIGINT, nullptr, &sa);
+  EXPECT_EQ(sa.sa_handler, SIG_IGN);
+  ::raise(SIGINT);
+  EXPECT_EQ(planner::stop_signal(), 0);
+  sigaction(SIGTERM, nullptr, &sa);
+  EXPECT_NE(sa.sa_handler, SIG_IGN);  // SIGTERM was not ignored: handled
 }

@@ -6,7 +6,8 @@
 // is reset to the default after the first).
 namespace planner {
 
-// Installs the handler for SIGINT and SIGTERM.
+// Installs the handler for SIGINT and SIGTERM, except for one ignored at start (nohup, a
+// background job of a script: it stays ignored).
 void install_stop_handlers();
 
 // 0, or the first stop signal received since install / reset.
