@@ -47,6 +47,19 @@ bool Commander::connected(const std::string& from, const std::string& to) const
   return false;
 }
 
+std::string Commander::net_problem() const
+{
+  for (const gridify::Aisle& a : map_.aisles)
+    for (const std::string& e : {a.ab, a.ba}) {
+      if (e.empty()) continue;
+      auto it = next_edges_.find(e);
+      if (it == next_edges_.end() || it->second.empty())
+        return "edge '" + e + "' has no SUMO connection onwards (a dead end without a turnaround: rebuild with " +
+               "netconvert --no-turnarounds.geometry false, gridify/README.md)";
+    }
+  return "";
+}
+
 const std::string& Commander::continuation(const std::string& edge) const
 {
   auto it = next_edges_.find(edge);

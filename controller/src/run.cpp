@@ -104,6 +104,8 @@ void Run::prepare()
   sumo_ = make_backend(cfg_.run);
   m_.backend = sumo_->name();
   cmd_ = std::make_unique<Commander>(c_.map_, *sumo_, cfg_.run.tick_s);
+  if (const std::string why = cmd_->net_problem(); !why.empty())
+    throw ConfigError(cfg_.path + ": sumo.net: " + cfg_.sumo.net + ": " + why);
   safety_ = std::make_unique<Safety>(c_.map_, cfg_.fleet.vtype.length);
   safety_->set_following(cfg_.run.executor == "adg-follow");
   planner::Config goals = ins_.goals;

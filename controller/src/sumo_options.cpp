@@ -1,8 +1,10 @@
 #include "controller/sumo_options.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <thread>
 
 #include "controller/sumo_error.hpp"
 #include "planner/output_file.hpp"
@@ -46,9 +48,19 @@ std::vector<SumoOutput> sumo_outputs(const Config& cfg, const std::string& dir)
   return v;
 }
 
-void check_sumo_outputs(const Config& cfg, const std::string& dir)
+void check_sumo_outputs(const Config& cfg, const std::string& dir, double wait_s)
 {
-  for (const SumoOutput& f : sumo_outputs(cfg, dir)) planner::check_xml_output(f.path, f.root);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const SumoOutput& f : sumo_outputs(cfg, dir))
+    for (;;) {
+      try {
+        planner::check_xml_output(f.path, f.root);
+        break;
+      } catch (const planner::OutputError&) {
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= wait_s) throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    }
 }
 
 std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,

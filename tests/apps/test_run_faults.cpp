@@ -253,6 +253,21 @@ TEST(BadInput, UnsolvableProvenEndsAtOnce)
   EXPECT_LE(std::stol(m.substr(at + 9)), 2) << m;  // proven within the first ticks, not after 100000
 }
 
+// A net SUMO cannot drive (a dead-end aisle without a turnaround: an AGV there would reach
+// its route's end and be removed) is bad input, found before SUMO starts (was exit 3).
+TEST(BadInput, ADeadEndNetIsBadInput)
+{
+  const std::string path = write_config("deadend.yaml",
+                                        "sumo:\n  net: @/tests/data/gridify/noturnarounds.net.xml\n"
+                                        "fleet: {count: 2}\nrun: {max_ticks: 50, progress_s: 0}\n");
+  const test::CliResult r = test::run_cli(RTLACAM_SUMO_BIN, path + " --out " + test::temp_dir("deadend"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(path + ": sumo.net: " + kSrc + "/tests/data/gridify/noturnarounds.net.xml: edge '"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("' has no SUMO connection onwards (a dead end without a turnaround"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+}
+
 // A goal on a component gridify dropped: the error says gridify dropped it.
 TEST(BadInput, GoalOnADroppedComponentNamesTheDrop)
 {

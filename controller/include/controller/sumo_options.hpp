@@ -27,8 +27,10 @@ struct SumoOutput {
 std::vector<SumoOutput> sumo_outputs(const Config& cfg, const std::string& dir);
 
 // After SUMO closed: every output complete (planner::check_xml_output). Throws
-// planner::OutputError naming the first file that is not.
-void check_sumo_outputs(const Config& cfg, const std::string& dir);
+// planner::OutputError naming the first file that is not. A SUMO behind TraCI (a child or
+// an external one) writes its outputs after it acknowledged the close, in its own process:
+// an incomplete file is looked at again for up to `wait_s` seconds.
+void check_sumo_outputs(const Config& cfg, const std::string& dir, double wait_s = 0);
 
 std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,
                                    bool ignore_route_errors);
