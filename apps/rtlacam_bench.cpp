@@ -8,6 +8,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "planner/output_file.hpp"
 #include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
@@ -43,10 +44,14 @@ int main(int argc, char** argv)
   app.add_option("--solver", solver, solver_names(false, true) + " (cspibt: pibt ordered by --policy)")
       ->check(CLI::IsMember(solver_list(false, true)))
       ->capture_default_str();
-  app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")->capture_default_str();
+  app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")
+      ->check(cli::finite_range(0, 3.6e6))
+      ->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions,
                  "planning budget per iteration in LaCAM expansions (deterministic); 0 = none");
-  app.add_option("--timeout-s", timeout_s, "limit on the cumulative planning time")->capture_default_str();
+  app.add_option("--timeout-s", timeout_s, "limit on the cumulative planning time")
+      ->check(cli::finite_range(0, 1e7))
+      ->capture_default_str();
   app.add_option("--max-steps", max_steps, "limit on executed steps (iterative solvers)")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
@@ -82,6 +87,7 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_option("--anytime-ms", anytime_ms,
                  "solver lacam with refine: keep refining until this much planning time in all (refine-after-solve)")
+      ->check(cli::finite_range(0, 1e10))
       ->capture_default_str();
   app.add_option("--out", out_file, "write the executed plan here (LaCAM result format)");
   app.add_flag("--json", compact, "print the result as one compact JSON line");
@@ -228,8 +234,6 @@ int main(int argc, char** argv)
     std::cout << (compact ? j.dump() : j.dump(2)) << std::endl;
 
     if (!out_file.empty()) {
-      std::ofstream out(out_file);
-      if (!out) throw input_error(out_file, 0, "cannot write file");
       PlanHeader h;
       h.map_file = map_file;
       h.solver = solver;
@@ -240,7 +244,7 @@ int main(int argc, char** argv)
       h.comp_time_ms = r.total_planning_ms;
       h.extra = {{"cutoff_ms", std::to_string(cutoff_ms)}, {"seed", std::to_string(seed)},
                  {"sum_of_loss", std::to_string(r.sum_of_loss)}};
-      write_plan(out, g, ins.starts, ins.goals, r.plan, h);
+      write_file(out_file, [&](std::ostream& out) { write_plan(out, g, ins.starts, ins.goals, r.plan, h); });
     }
     if (!r.validation_error.empty()) {
       std::cerr << "rtlacam-bench: invalid plan: " << r.validation_error << std::endl;

@@ -10,6 +10,8 @@
 #include "cli.hpp"
 #include "lifelong_cli.hpp"
 #include "planner/error.hpp"
+#include "planner/output_file.hpp"
+#include "planner/stop_signal.hpp"
 #include "tasks/lifelong_exec.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
@@ -63,7 +65,9 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_option("--max-dist-tables", max_dist_tables,
                  "distance tables kept (LRU; tables in use are kept beyond it); 0 = 2 x agents + 256");
-  app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")->capture_default_str();
+  app.add_option("--budget-ms", budget_ms, "planning budget per step (wall clock)")
+      ->check(cli::finite_range(0, 3.6e6))
+      ->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions, "also limit LaCAM expansions (wppl: LNS iterations) per step (deterministic); 0 = none");
   app.add_option("--action-model", action_model, "grid4 (4-connected moves) | rotation (LoRR MAPF_T: heading, a step per quarter turn)")
       ->check(CLI::IsMember({"grid4", "rotation"}))
@@ -82,6 +86,7 @@ int main(int argc, char** argv)
   xc.bind(app);
   cli::add_version(app, "rtlacam-lifelong");
   RTLACAM_PARSE(app, argc, argv);
+  planner::install_stop_handlers();  // SIGINT / SIGTERM: stop stepping, write the log, exit 130 / 143
 
   try {
     const LorrInstance in = load_lorr_instance(problem_file, agents, "--agents ");
@@ -152,10 +157,10 @@ int main(int argc, char** argv)
                        {"delayAgentTicks", xr.exec.delay_ticks},
                        {"maxTicksWithoutErrand", xr.max_gap}};
     add_task_fields(j, *tm);
+    const int sig = planner::stop_signal();
+    if (sig) j["interrupted"] = planner::signal_name(sig);
     if (!out_file.empty()) {
-      std::ofstream out(out_file);
-      if (!out) throw planner::input_error(out_file, 0, "cannot write file");
-      out << j.dump() << "\n";
+      planner::write_file(out_file, j.dump() + "\n");
     }
     for (const char* k : {"events", "plannerTimes", "start", "actualPaths", "plannerPaths", "tasks", "actualSchedule",
                           "plannerSchedule", "errors"})
@@ -163,14 +168,19 @@ int main(int argc, char** argv)
     std::cout << j.dump(2) << std::endl;
     if (r.planner_errors > 0) {
       std::cerr << "rtlacam-lifelong: invalid move: " << r.first_error << std::endl;
-      return 3;
+      return cli::kInvalidPlan;
     }
-    return 0;
+    if (sig) {
+      std::cerr << "rtlacam-lifelong: stopped by " << planner::signal_name(sig) << " after " << r.steps << " steps"
+                << (out_file.empty() ? std::string() : "; log complete in " + out_file) << std::endl;
+      return cli::signal_exit(sig);
+    }
+    return cli::kOk;
   } catch (const planner::InputError& e) {
     std::cerr << "rtlacam-lifelong: " << e.what() << std::endl;
-    return 2;
+    return cli::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "rtlacam-lifelong: error: " << e.what() << std::endl;
-    return 1;
+    return cli::kRuntimeError;
   }
 }

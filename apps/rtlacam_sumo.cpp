@@ -1,8 +1,10 @@
 // rtlacam-sumo: a SUMO warehouse run in which RT-LaCAM drives every AGV cell by cell.
 // Exit codes (apps/cli.hpp): 0 every AGV reached its goal (lifelong: run.max_ticks ran
-// clean); 2 bad config or command line; 3 an invalid MAPF step; 4 a one-shot run where
-// run.max_ticks ended first; 1 any other error (SUMO failure, a position check) --
-// metrics.json is written in every case but the config error.
+// clean); 2 bad config, net or command line; 3 an invalid MAPF step or AGVs in conflict
+// (overlap, SUMO collision); 4 a one-shot run where run.max_ticks ended first, or an
+// instance proven unsolvable; 1 any other error (SUMO failure, an AGV vanished, a file
+// that could not be written); 130 / 143 SIGINT / SIGTERM -- metrics.json is written in
+// every case but bad input.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -11,6 +13,7 @@
 #include "controller/controller.hpp"
 #include "planner/error.hpp"
 #include "planner/solver.hpp"
+#include "planner/stop_signal.hpp"
 
 using namespace controller;
 
@@ -34,6 +37,7 @@ int main(int argc, char** argv)
   app.add_option("--out", out, "override output.dir");
   cli::add_version(app, "rtlacam-sumo");
   RTLACAM_PARSE(app, argc, argv);
+  planner::install_stop_handlers();  // SIGINT / SIGTERM end the run through its normal end
 
   try {
     Config cfg = load_config(path);
@@ -61,7 +65,8 @@ int main(int argc, char** argv)
                   cfg.output.dir.c_str(), cfg.tasks.log.c_str());
     else
       std::printf("%s: %d AGVs, %s via %s: %s after %lld ticks (makespan %lld, soc %lld, lb %lld)\n", path.c_str(),
-                  m.agents, m.solver.c_str(), m.backend.c_str(), m.solved ? "all at goal" : "NOT solved", m.ticks,
+                  m.agents, m.solver.c_str(), m.backend.c_str(),
+                  m.solved ? "all at goal" : m.unsolvable ? "unsolvable (the search proved no solution)" : "NOT solved", m.ticks,
                   m.makespan, m.soc, m.soc_lb);
     // Microseconds: once the goal is found the planner only follows its path, so most SUMO
     // steps cost well under a millisecond and "0.000 ms" would read as "not running".
@@ -78,6 +83,14 @@ int main(int argc, char** argv)
       std::cerr << "error: " << m.error << '\n';
       return m.violations > 0 ? cli::kInvalidPlan : cli::kRuntimeError;
     }
+    if (m.signal) {
+      std::cerr << "rtlacam-sumo: stopped by " << planner::signal_name(m.signal) << " after " << m.ticks
+                << " ticks; outputs complete in " << cfg.output.dir << '\n';
+      return cli::signal_exit(m.signal);
+    }
+    if (m.unsolvable)
+      std::cerr << "rtlacam-sumo: unsolvable: the search proved that no plan brings every AGV to its goal (stopped after "
+                << m.ticks << " ticks)\n";
     return m.solved || cfg.tasks.lifelong() ? cli::kOk : cli::kUnsolved;
   } catch (const ConfigError& e) {
     std::cerr << "error: " << e.what() << '\n';

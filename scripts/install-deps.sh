@@ -10,6 +10,7 @@ PKGS=(
   sumo sumo-tools
   python3 python3-matplotlib
   pybind11-dev python3-dev python3-pytest
+  python3-pip python3-venv python3-setuptools python3-wheel
   parallel
 )
 missing=()

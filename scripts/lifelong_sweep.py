@@ -3,7 +3,7 @@
 (problem, solver, budget), keeps each JSON log, writes a Markdown table (with the
 published LoRR best beside ours) and a PNG.
 
-    scripts/lifelong_sweep.py --bin build-tasks/apps/rtlacam-lifelong \
+    scripts/lifelong_sweep.py --bin build/apps/rtlacam-lifelong \
         --problems ../shared/benchmarks/lorr/2023/random.domain/MR23-I-0{4,3,5,7,8}.json \
         --solvers pibt naive rtlacam --budget-ms 1 10 100 --out-dir out/lifelong/2023
 
@@ -45,7 +45,7 @@ def run(args, problem, solver, budget, extra):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin", default="build-tasks/apps/rtlacam-lifelong")
+    ap.add_argument("--bin", default="build/apps/rtlacam-lifelong")
     ap.add_argument("--problems", nargs="+", required=True)
     ap.add_argument("--solvers", nargs="+", default=["pibt", "naive", "rtlacam"])
     ap.add_argument("--budget-ms", nargs="+", type=float, default=[100.0])

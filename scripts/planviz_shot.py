@@ -25,6 +25,9 @@ ap.add_argument("--plan", required=True)
 ap.add_argument("--after-s", type=float, default=8, help="seconds of playing before the screenshot")
 ap.add_argument("-o", "--out", required=True)
 args = ap.parse_args()
+# PlanViz reads relative to its script/ folder (the chdir below): make ours absolute first.
+for k in ("planviz", "map", "plan", "out"):
+    setattr(args, k, os.path.abspath(getattr(args, k)))
 
 sys.path.insert(0, os.path.join(args.planviz, "script"))
 os.chdir(os.path.join(args.planviz, "script"))

@@ -8,6 +8,7 @@ Several logs are drawn on one figure (e.g. the three solvers on one instance).
 """
 import argparse
 import json
+import sys
 
 import matplotlib
 
@@ -26,6 +27,8 @@ def main():
     for path in args.logs:
         with open(path) as f:
             j = json.load(f)
+        if "events" not in j:  # the summary rtlacam-lifelong prints on stdout leaves them out
+            sys.exit(f"plot_lifelong.py: {path} has no 'events': pass the log of --out (or rtlacam-sumo's lifelong.json)")
         T = j["makespan"]
         per_step = [0] * (T + 1)
         for e in j["events"]:

@@ -47,6 +47,19 @@ bool Commander::connected(const std::string& from, const std::string& to) const
   return false;
 }
 
+std::string Commander::net_problem() const
+{
+  for (const gridify::Aisle& a : map_.aisles)
+    for (const std::string& e : {a.ab, a.ba}) {
+      if (e.empty()) continue;
+      auto it = next_edges_.find(e);
+      if (it == next_edges_.end() || it->second.empty())
+        return "edge '" + e + "' has no SUMO connection onwards (a dead end without a turnaround: rebuild with " +
+               "netconvert --no-turnarounds.geometry false, gridify/README.md)";
+    }
+  return "";
+}
+
 const std::string& Commander::continuation(const std::string& edge) const
 {
   auto it = next_edges_.find(edge);
@@ -97,8 +110,8 @@ void Commander::failed(int agent, const SumoError& e)
   if (!sumo_.running()) throw e;  // the connection is gone: that is the error
   const std::vector<std::string> ids = sumo_.vehicles();  // throws again if SUMO itself is gone
   if (std::find(ids.begin(), ids.end(), id) == ids.end())
-    throw ControlError("AGV " + id + " (agent " + std::to_string(agent) +
-                       ") is not in SUMO any more (removed behind the controller's back?)");
+    throw FleetError("AGV " + id + " (agent " + std::to_string(agent) +
+                     ") is not in SUMO any more (removed behind the controller's back?)");
   throw e;
 }
 
@@ -242,8 +255,8 @@ void Commander::verify(const std::vector<VehiclePose>& now, double tol)
     Agv& a = agv_[i];
     const VehiclePose& p = now[i];
     if (p.lane.empty())
-      throw ControlError("AGV " + a.id + " (agent " + std::to_string(i) +
-                         ") is not in SUMO any more (removed behind the controller's back?)");
+      throw FleetError("AGV " + a.id + " (agent " + std::to_string(i) +
+                       ") is not in SUMO any more (removed behind the controller's back?)");
     const double err = p.lane == a.pose.lane ? std::fabs(p.pos - a.pose.pos) : INFINITY;
     if (err <= tol) {
       if (err > stats_.max_error) stats_.max_error = err;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -172,6 +173,57 @@ class Reader {
 
 }  // namespace
 
+// What to use instead of a SUMO option the controller sets (sumo_options.cpp), or null.
+static const char* controlled_sumo_option(const std::string& opt)
+{
+  static const std::pair<const char*, const char*> kControlled[] = {
+      {"-n", "use sumo.net"},
+      {"--net-file", "use sumo.net"},
+      {"-a", "use sumo.additional"},
+      {"--additional-files", "use sumo.additional"},
+      {"-c", "the controller builds the SUMO options from this YAML"},
+      {"--configuration-file", "the controller builds the SUMO options from this YAML"},
+      {"--step-length", "use sumo.step_length"},
+      {"-b", "the run starts at 0"},
+      {"--begin", "the run starts at 0"},
+      {"-e", "use run.max_ticks"},
+      {"--end", "use run.max_ticks"},
+      {"--time-to-teleport", "AGVs must never be teleported (it stays -1)"},
+      {"--collision.action", "collisions are reported, never resolved by SUMO (it stays warn)"},
+      {"--collision.mingap-factor", "collisions are physical overlaps (it stays 0)"},
+      {"--remote-port", "use run.port"},
+      {"--fcd-output", "use sumo.outputs.fcd (written to output.dir)"},
+      {"--tripinfo-output", "use sumo.outputs.tripinfo (written to output.dir)"},
+      {"--summary-output", "use sumo.outputs.summary (written to output.dir)"},
+      {"--collision-output", "use sumo.outputs.collision (written to output.dir)"},
+  };
+  for (const auto& [name, use] : kControlled)
+    if (opt == name) return use;
+  return nullptr;
+}
+
+// yaml-cpp keeps both entries of a repeated key and lookups find the first, so a typo'd
+// second "tick_s:" would be ignored without a word: every mapping is checked up front.
+static void check_duplicate_keys(const Reader& r, const YAML::Node& n, const std::string& key)
+{
+  if (n.IsSequence()) {
+    for (size_t i = 0; i < n.size(); ++i) check_duplicate_keys(r, n[i], key + "[" + std::to_string(i) + "]");
+    return;
+  }
+  if (!n.IsMap()) return;
+  std::map<std::string, int> seen;  // key -> line (1-based)
+  for (const auto& kv : n) {
+    if (!kv.first.IsScalar()) continue;  // Reader::keys names complex keys
+    const std::string k = kv.first.Scalar();
+    const std::string path = key.empty() ? k : key + "." + k;
+    const auto [it, fresh] = seen.emplace(k, kv.first.Mark().line + 1);
+    if (!fresh)
+      r.fail(path, "duplicate key (line " + std::to_string(kv.first.Mark().line + 1) + "; first on line " +
+                       std::to_string(it->second) + ")");
+    check_duplicate_keys(r, kv.second, path);
+  }
+}
+
 int Config::steps_per_tick() const { return static_cast<int>(std::lround(run.tick_s / sumo.step_length)); }
 
 Config parse_config(const std::string& yaml, const std::string& name, const std::string& base_dir)
@@ -184,6 +236,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("", "not valid YAML: line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   if (!root.IsMap()) r.fail("", "expected a mapping with sections sumo, grid, fleet, planner, tasks, run, output");
+  check_duplicate_keys(r, root, "");
   r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "delays", "output"});
 
   Config c;
@@ -201,6 +254,11 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     for (size_t i = 0; i < a.size(); ++i) {
       if (!a[i].IsScalar()) r.fail("sumo.extra_args[" + std::to_string(i) + "]", "expected a string");
       c.sumo.extra_args.push_back(a[i].Scalar());
+      // Options the controller sets itself: SUMO takes the last occurrence, so these would
+      // silently change the run (or not apply, like --end) -- refused with the key to use.
+      const std::string opt = c.sumo.extra_args.back().substr(0, c.sumo.extra_args.back().find('='));
+      if (const char* use = controlled_sumo_option(opt))
+        r.fail("sumo.extra_args[" + std::to_string(i) + "]", "'" + opt + "' is set by the controller: " + use);
     }
   }
   const YAML::Node o = s["outputs"];
@@ -334,9 +392,15 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   // (stuck_replan.hpp); measured to give vertex conflicts in the cut plan with following.
   if (c.run.executor != "adg" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
     r.fail("run.replan_on_stuck", "only with run.executor: adg");
+  // Upper bounds: a tick of 1e300 s overflowed the steps per tick (a crash in lockstep, an
+  // idle run under adg); an hour per MAPF step and 10000 SUMO steps per tick are far past
+  // any warehouse.
+  if (c.run.tick_s > 3600) r.fail("run.tick_s", "must be <= 3600 s, got " + Reader::fmt(c.run.tick_s));
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
+  if (k > 10000)
+    r.fail("run.tick_s", "at most 10000 SUMO steps per tick (run.tick_s / sumo.step_length = " + Reader::fmt(k) + ")");
 
   // Delays: seconds -> ticks (rounded up), then executor::check for the ranges.
   const YAML::Node d = root["delays"];

@@ -13,6 +13,18 @@ namespace {
   throw ConfigError(cfg.path + ": " + key + ": " + what);
 }
 
+// " (gridify dropped it: <kind> <id>: <reason>)" when `name` (a junction, edge or station
+// id) went with something gridify dropped, else "": the cause, not just "not found".
+std::string dropped_note(const gridify::CellMap& map, const std::string& name)
+{
+  for (const gridify::Dropped& d : map.dropped) {
+    bool hit = d.id == name;
+    for (const std::string& m : d.members) hit = hit || m == name;
+    if (hit) return " (gridify dropped it: " + d.kind + " " + d.id + ": " + d.reason + ")";
+  }
+  return "";
+}
+
 }  // namespace
 
 planner::Vertex resolve_cell(const Config& cfg, const gridify::CellMap& map, const CellRef& c)
@@ -21,7 +33,9 @@ planner::Vertex resolve_cell(const Config& cfg, const gridify::CellMap& map, con
   if (!c.lane.empty()) {
     double off = 0;
     const planner::Vertex v = map.locate(c.lane, c.pos, &off);
-    if (v < 0) fail(cfg, c.key, "lane '" + c.lane + "' is not a lane of a kept aisle of the graph");
+    if (v < 0)
+      fail(cfg, c.key, "lane '" + c.lane + "' is not a lane of a kept aisle of the graph" +
+                           dropped_note(map, c.lane.substr(0, c.lane.rfind('_'))));
     if (off > map.cell_length)
       fail(cfg, c.key, "pos " + std::to_string(c.pos) + " is " + std::to_string(off) + " m from the nearest cell of lane '" +
                            c.lane + "' (off the lane?)");
@@ -36,7 +50,7 @@ planner::Vertex resolve_cell(const Config& cfg, const gridify::CellMap& map, con
     if (s.id == c.name) return s.cell;
   planner::Vertex v = map.junction_cell(c.name);
   if (v >= 0) return v;
-  fail(cfg, c.key, "'" + c.name + "' is neither a cell id, a station nor a junction of the graph");
+  fail(cfg, c.key, "'" + c.name + "' is neither a cell id, a station nor a junction of the graph" + dropped_note(map, c.name));
 }
 
 namespace {

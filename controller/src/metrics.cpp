@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "planner/stop_signal.hpp"
+
 namespace controller {
 
 static nlohmann::json latency_json(const Latency& l)
@@ -34,6 +36,8 @@ nlohmann::json Metrics::to_json() const
   j["solver"] = solver;
   j["policy"] = policy;
   j["error"] = error;
+  j["interrupted"] = signal ? planner::signal_name(signal) : "";
+  j["unsolvable"] = unsolvable;
   j["mode"] = mode;
   if (mode == "lifelong")
     j["lifelong"] = {{"assignment", assignment},

@@ -11,6 +11,7 @@
 #include "controller/sumo_options.hpp"
 #include "gridify/gridifier.hpp"
 #include "planner/error.hpp"
+#include "planner/output_file.hpp"
 #include "planner/plan_io.hpp"
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_goal.hpp"
@@ -39,10 +40,10 @@ void check_events(SumoBackend& sumo, double t)
   std::snprintf(when, sizeof when, "t=%.3f s: ", t);
   std::vector<std::string> ids = sumo.arrived();
   if (!ids.empty())
-    throw ControlError(when + std::string("AGV(s) left the network: ") + join_ids(ids) +
+    throw FleetError(when + std::string("AGV(s) left the network: ") + join_ids(ids) +
                        " (arrived at a route end or removed behind the controller's back)");
   ids = sumo.teleported();
-  if (!ids.empty()) throw ControlError(when + std::string("SUMO teleported AGV(s): ") + join_ids(ids));
+  if (!ids.empty()) throw FleetError(when + std::string("SUMO teleported AGV(s): ") + join_ids(ids));
   ids = sumo.colliding();
   if (!ids.empty()) throw ControlError(when + std::string("SUMO reports colliding AGV(s): ") + join_ids(ids));
 }
@@ -103,6 +104,8 @@ void Run::prepare()
   sumo_ = make_backend(cfg_.run);
   m_.backend = sumo_->name();
   cmd_ = std::make_unique<Commander>(c_.map_, *sumo_, cfg_.run.tick_s);
+  if (const std::string why = cmd_->net_problem(); !why.empty())
+    throw ConfigError(cfg_.path + ": sumo.net: " + cfg_.sumo.net + ": " + why);
   safety_ = std::make_unique<Safety>(c_.map_, cfg_.fleet.vtype.length);
   safety_->set_following(cfg_.run.executor == "adg-follow");
   planner::Config goals = ins_.goals;
@@ -129,7 +132,6 @@ void Run::prepare()
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
   k_ = cfg_.steps_per_tick();
-  plan_step_.reserve(static_cast<size_t>(std::min<long long>(cfg_.run.max_ticks, 100000)) * k_);
 }
 
 std::vector<VehiclePose> Run::poses()
@@ -159,8 +161,8 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
   last_poses_ = poses();
   for (size_t i = 0; i < last_poses_.size(); ++i)
     if (last_poses_[i].lane.empty())
-      throw ControlError("AGV " + cmd_->ids()[i] + " (agent " + std::to_string(i) +
-                         ") is not in SUMO any more (removed behind the controller's back?)");
+      throw FleetError("AGV " + cmd_->ids()[i] + " (agent " + std::to_string(i) +
+                       ") is not in SUMO any more (removed behind the controller's back?)");
   safety_->check(last_poses_, allowed, cmd_->ids(), sumo_->time(), exclusive, groups);
   exec_step_.push_back(ms_since(t0));
 }
@@ -174,7 +176,7 @@ void Run::start_sumo()
   sumo_->step();
   check_events(*sumo_, sumo_->time());
   const std::vector<std::string> waiting = sumo_->pending();
-  if (!waiting.empty()) throw ControlError("SUMO could not insert AGV(s) on their start cells: " + join_ids(waiting));
+  if (!waiting.empty()) throw FleetError("SUMO could not insert AGV(s) on their start cells: " + join_ids(waiting));
   cmd_->verify(ins_.starts, c_.tolerance);
 }
 
@@ -241,9 +243,15 @@ Metrics Run::execute()
     ++m_.violations;
   } catch (const SumoError& e) {
     m_.error = e.what();
+  } catch (const FleetError& e) {
+    m_.error = e.what();
+  } catch (const planner::OutputError& e) {
+    m_.error = e.what();
   } catch (const std::exception& e) {
     m_.error = std::string("controller: ") + e.what();
   }
+  if (!m_.solved) m_.signal = planner::stop_signal();
+  m_.unsolvable = !m_.solved && !tm_ && p_ && p_->exhausted();
   finish();
   return m_;
 }

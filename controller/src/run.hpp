@@ -16,6 +16,7 @@
 #include "executor/adg.hpp"
 #include "executor/delay_model.hpp"
 #include "planner/instance.hpp"
+#include "planner/stop_signal.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "tasks/lifelong_runner.hpp"
@@ -47,7 +48,14 @@ class Run {
   // driving to, `immobile` AGVs kept in place.
   void stuck_step(executor::Adg& adg, Driver& drv);
   void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
-  bool out_of_ticks() const { return m_.ticks >= cfg_.run.max_ticks; }
+  // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
+  // search proved unsolvable (RT-LaCAM's DFS exhausted: waiting for max_ticks would change
+  // nothing): each ends the loop through its normal end, so finish() writes every output
+  // and closes SUMO.
+  bool out_of_ticks() const
+  {
+    return m_.ticks >= cfg_.run.max_ticks || planner::stop_signal() != 0 || (!tm_ && p_->exhausted());
+  }
 
   const Config& cfg_;
   Controller& c_;
@@ -69,7 +77,8 @@ class Run {
   tasks::LifelongResult life_;
   planner::Budget budget_;
   int k_ = 1;
-  std::vector<double> plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
+  // Bounded however long the run (lifelong): exact up to 65536 samples, a reservoir beyond.
+  planner::LatencySample plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
   double plan_in_tick_ = 0, epoch_ms_ = 0;
   std::vector<VehiclePose> last_poses_;
   planner::Clock::time_point wall0_, loop0_, last_progress_;

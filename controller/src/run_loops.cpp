@@ -1,8 +1,10 @@
 // The two tick loops of Run (run.hpp): lockstep (scheme S) and adg (executor/ + Driver),
 // and the final phase writing the outputs.
-#include <fstream>
+#include <functional>
 
 #include "controller/sumo_error.hpp"
+#include "controller/sumo_options.hpp"
+#include "planner/output_file.hpp"
 #include "planner/plan_io.hpp"
 #include "run.hpp"
 #include "tasks/lifelong_log.hpp"
@@ -161,7 +163,18 @@ void Run::finish()
     }
   }
   m_.loop_s = ms_since(loop0_) / 1000;
-  sumo_->close();  // flushes SUMO's output files
+  const bool sumo_ran = sumo_->running();  // false: never started, or died (the error says so)
+  sumo_->close();                           // flushes SUMO's output files
+  // Every output is attempted; the first that failed is reported once all are written.
+  std::string write_error;
+  auto checked = [&](const std::function<void()>& write) {
+    try {
+      write();
+    } catch (const planner::OutputError& e) {
+      if (write_error.empty()) write_error = e.what();
+    }
+  };
+  if (sumo_ran) checked([&] { check_sumo_outputs(cfg_, dir_, cfg_.run.backend == "traci" || cfg_.run.gui ? 10.0 : 0.0); });
 
   m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
@@ -202,9 +215,9 @@ void Run::finish()
     j["taskCount"] = static_cast<long long>(cfg_.tasks.random_tasks ? cfg_.tasks.count : cfg_.tasks.list.size());
     j["executor"] = cfg_.run.executor;
     if (!m_.error.empty()) j["error"] = m_.error;
-    std::ofstream(dir_ + "/" + cfg_.tasks.log) << j.dump(2) << '\n';
+    checked([&] { planner::write_file(dir_ + "/" + cfg_.tasks.log, j.dump(2) + '\n'); });
   }
-  std::ofstream(dir_ + "/metrics.json") << m_.to_json().dump(2) << '\n';
+  checked([&] { planner::write_file(dir_ + "/metrics.json", m_.to_json().dump(2) + '\n'); });
   if (cfg_.output.plan) {
     planner::PlanHeader h;
     h.map_file = cfg_.sumo.net;
@@ -216,9 +229,13 @@ void Run::finish()
     h.comp_time_ms = m_.planner_ms_per_step.mean * m_.planner_ms_per_step.count;
     h.extra = {{"backend", m_.backend}, {"ticks", std::to_string(m_.ticks)}, {"error", m_.error},
                {"executor", cfg_.run.executor}};
-    std::ofstream out(dir_ + "/plan.txt");
-    planner::write_plan(out, g, ins_.starts, tm_ ? tm_->goals() : ins_.goals, c_.plan_, h);
+    checked([&] {
+      planner::write_file(dir_ + "/plan.txt", [&](std::ostream& out) {
+        planner::write_plan(out, g, ins_.starts, tm_ ? tm_->goals() : ins_.goals, c_.plan_, h);
+      });
+    });
   }
+  if (!write_error.empty()) throw planner::OutputError(write_error);
 }
 
 }  // namespace controller

@@ -1,10 +1,13 @@
 #include "controller/sumo_options.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <thread>
 
 #include "controller/sumo_error.hpp"
+#include "planner/output_file.hpp"
 
 namespace controller {
 
@@ -23,15 +26,41 @@ std::string write_vtype_file(const Config& cfg, const std::string& dir, double m
   const double vmax = cfg.run.executor != "lockstep" ? 1.01 * t.max_speed : 1.01 * max_spacing / cfg.run.tick_s;
   const double emergency = std::max(2 * vmax / cfg.sumo.step_length, t.decel);
   const std::string path = dir + "/agv.add.xml";
-  std::ofstream out(path);
-  if (!out) throw SumoError("cannot write " + path);
-  out << "<additional>\n"
-      << "    <vType id=\"agv\" length=\"" << num(t.length) << "\" width=\"" << num(t.width) << "\" minGap=\""
-      << num(t.min_gap) << "\" accel=\"" << num(t.accel) << "\" decel=\"" << num(t.decel) << "\" emergencyDecel=\""
-      << num(emergency) << "\" maxSpeed=\"" << num(vmax)
-      << "\" speedFactor=\"1\" speedDev=\"0\" sigma=\"0\" guiShape=\"truck\"/>\n"
-      << "</additional>\n";
+  planner::write_file(path, [&](std::ostream& out) {
+    out << "<additional>\n"
+        << "    <vType id=\"agv\" length=\"" << num(t.length) << "\" width=\"" << num(t.width) << "\" minGap=\""
+        << num(t.min_gap) << "\" accel=\"" << num(t.accel) << "\" decel=\"" << num(t.decel) << "\" emergencyDecel=\""
+        << num(emergency) << "\" maxSpeed=\"" << num(vmax)
+        << "\" speedFactor=\"1\" speedDev=\"0\" sigma=\"0\" guiShape=\"truck\"/>\n"
+        << "</additional>\n";
+  });
   return path;
+}
+
+std::vector<SumoOutput> sumo_outputs(const Config& cfg, const std::string& dir)
+{
+  const SumoOutputs& o = cfg.sumo.outputs;
+  std::vector<SumoOutput> v;
+  if (o.fcd) v.push_back({dir + "/fcd.xml", "fcd-export"});
+  if (o.tripinfo) v.push_back({dir + "/tripinfo.xml", "tripinfos"});
+  if (o.summary) v.push_back({dir + "/summary.xml", "summary"});
+  if (o.collision) v.push_back({dir + "/collision.xml", "collisions"});
+  return v;
+}
+
+void check_sumo_outputs(const Config& cfg, const std::string& dir, double wait_s)
+{
+  const auto t0 = std::chrono::steady_clock::now();
+  for (const SumoOutput& f : sumo_outputs(cfg, dir))
+    for (;;) {
+      try {
+        planner::check_xml_output(f.path, f.root);
+        break;
+      } catch (const planner::OutputError&) {
+        if (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() >= wait_s) throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    }
 }
 
 std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,
@@ -54,14 +83,16 @@ std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, co
                              "--no-step-log",
                              "true"};
   if (ignore_route_errors) a.push_back("--ignore-route-errors");
-  const SumoOutputs& o = cfg.sumo.outputs;
-  if (o.fcd) {
-    a.insert(a.end(), {"--fcd-output", dir + "/fcd.xml", "--fcd-output.attributes", "x,y,angle,speed,lane,pos"});
+  for (const SumoOutput& f : sumo_outputs(cfg, dir)) {
+    if (f.root == "fcd-export")
+      a.insert(a.end(), {"--fcd-output", f.path, "--fcd-output.attributes", "x,y,angle,speed,lane,pos"});
+    else if (f.root == "tripinfos")
+      a.insert(a.end(), {"--tripinfo-output", f.path, "--tripinfo-output.write-unfinished", "true"});
+    else if (f.root == "summary")
+      a.insert(a.end(), {"--summary-output", f.path});
+    else
+      a.insert(a.end(), {"--collision-output", f.path});
   }
-  if (o.tripinfo)
-    a.insert(a.end(), {"--tripinfo-output", dir + "/tripinfo.xml", "--tripinfo-output.write-unfinished", "true"});
-  if (o.summary) a.insert(a.end(), {"--summary-output", dir + "/summary.xml"});
-  if (o.collision) a.insert(a.end(), {"--collision-output", dir + "/collision.xml"});
   if (cfg.run.gui)
     a.insert(a.end(), {"--start", "true", "--quit-on-end", "true", "--delay", num(cfg.run.gui_delay_ms),
                        "--window-size", "1280,800", "--window-pos", "0,0"});

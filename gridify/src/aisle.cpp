@@ -35,7 +35,7 @@ std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vecto
       std::string why = "one-way aisle: no opposite edge from '" + e.to + "' to '" + e.from +
                         "' (every move must be reversible)";
       if (!drop_one_way) throw planner::input_error(net.path, e.line, "edge '" + e.id + "': " + why + " (use --drop-one-way)");
-      dropped.push_back({"one-way edge", e.id, why, {{centre(net, e.from), centre(net, e.to)}}});
+      dropped.push_back({"one-way edge", e.id, why, {{centre(net, e.from), centre(net, e.to)}}, {}});
       continue;
     }
     const NetEdge& o = net.edges[back->second];

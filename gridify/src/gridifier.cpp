@@ -201,7 +201,8 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       m.dropped.push_back({"link", id,
                            "no SUMO connection lets a vehicle at junction '" + j + "' enter '" + (end ? a.ba : a.ab) +
                                "' or leave '" + (end ? a.ab : a.ba) + "' there",
-                           {{p, q}}});
+                           {{p, q}},
+                           {}});
     }
   }
 
@@ -232,6 +233,7 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       if (c != keep) {
         const NetJunction &ja = *net.junction(a.a), &jb = *net.junction(a.b);
         parts[c].segments.push_back({{ja.x, ja.y}, {jb.x, jb.y}});
+        parts[c].members.insert(parts[c].members.end(), {a.ab, a.ba});
       }
     }
     for (int v = 0; v < n0; ++v)  // dropped junctions as points (zero-length segments)
@@ -241,6 +243,7 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       if (c == keep) continue;
       parts[c].kind = "component";
       parts[c].id = name(c);
+      parts[c].members.insert(parts[c].members.end(), comp_junctions[c].begin(), comp_junctions[c].end());
       parts[c].reason = std::to_string(comp_size[c]) + " cell(s) not connected to the largest component (" +
                         std::to_string(comp_size[keep]) + " cells)";
       m.dropped.push_back(std::move(parts[c]));

@@ -4,6 +4,7 @@
 
 #include "gridify/movingai_map.hpp"
 #include "planner/error.hpp"
+#include "planner/output_file.hpp"
 
 namespace gridify {
 
@@ -67,10 +68,7 @@ nlohmann::json to_json(const CellMap& m)
 
 void write_json(const CellMap& m, const std::string& path)
 {
-  std::ofstream out(path);
-  if (!out) throw planner::input_error(path, 0, "cannot write file");
-  out << to_json(m).dump(1) << '\n';
-  if (!out) throw planner::input_error(path, 0, "write failed");
+  planner::write_file(path, to_json(m).dump(1) + '\n');
 }
 
 }  // namespace gridify

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "planner/error.hpp"
+#include "planner/output_file.hpp"
 
 namespace gridify {
 
@@ -73,11 +74,10 @@ void write_movingai_map(const CellMap& m, const std::string& path)
   if (L.width == 0) throw planner::InputError(m.net_path + ": cannot write a MovingAI map: " + why);
   std::vector<std::string> rows(L.height, std::string(L.width, '@'));
   for (const GridCoord& g : L.coord) rows[g.row][g.col] = '.';
-  std::ofstream out(path);
-  if (!out) throw planner::input_error(path, 0, "cannot write file");
-  out << "type octile\nheight " << L.height << "\nwidth " << L.width << "\nmap\n";
-  for (const std::string& r : rows) out << r << '\n';
-  if (!out) throw planner::input_error(path, 0, "write failed");
+  planner::write_file(path, [&](std::ostream& out) {
+    out << "type octile\nheight " << L.height << "\nwidth " << L.width << "\nmap\n";
+    for (const std::string& r : rows) out << r << '\n';
+  });
 }
 
 }  // namespace gridify

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "planner/error.hpp"
+#include "planner/output_file.hpp"
 
 namespace gridify {
 
@@ -152,10 +153,7 @@ std::string to_svg(const CellMap& m, const SvgOptions& opt)
 
 void write_svg(const CellMap& m, const std::string& path, const SvgOptions& opt)
 {
-  std::ofstream out(path);
-  if (!out) throw planner::input_error(path, 0, "cannot write file");
-  out << to_svg(m, opt);
-  if (!out) throw planner::input_error(path, 0, "write failed");
+  planner::write_file(path, to_svg(m, opt));
 }
 
 }  // namespace gridify

@@ -37,4 +37,39 @@ Latency Latency::of(std::vector<double> ms)
   return l;
 }
 
+void LatencySample::commit(double ms)
+{
+  const long long n = count_ - 1;  // samples committed before this one
+  sum_ += ms;
+  if (n == 0 || ms > max_) max_ = ms;
+  if (kept_.size() < cap_) {
+    kept_.push_back(ms);
+    return;
+  }
+  rng_ ^= rng_ << 13;  // xorshift64: deterministic, no <random> state to carry
+  rng_ ^= rng_ >> 7;
+  rng_ ^= rng_ << 17;
+  const uint64_t j = rng_ % static_cast<uint64_t>(n + 1);
+  if (j < cap_) kept_[j] = ms;
+}
+
+void LatencySample::push_back(double ms)
+{
+  if (count_ > 0) commit(last_);
+  last_ = ms;
+  ++count_;
+}
+
+Latency Latency::of_sample(const LatencySample& s)
+{
+  if (s.count_ == 0) return Latency{};
+  LatencySample c = s;
+  c.commit(c.last_);
+  Latency l = of(c.kept_);
+  l.count = c.count_;
+  l.mean = c.sum_ / static_cast<double>(c.count_);
+  l.max = c.max_;
+  return l;
+}
+
 }  // namespace planner

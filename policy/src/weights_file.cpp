@@ -5,6 +5,7 @@
 
 #include "policy/actions.hpp"
 #include "policy/binary_reader.hpp"
+#include "planner/output_file.hpp"
 
 namespace policy {
 namespace {
@@ -67,22 +68,21 @@ Model load_weights(const std::string& path)
 
 void save_weights(const Model& m, const std::string& path)
 {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw planner::input_error(path, 0, "cannot write file");
-  auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), sizeof v); };
-  out.write(kWeightsMagic, 8);
-  u32(kWeightsVersion);
-  u32(static_cast<uint32_t>(m.spec.radius));
-  u32(kChannels);
-  u32(kNumActions);
-  u32(static_cast<uint32_t>(m.layers.size()));
-  for (const Dense& d : m.layers) {
-    u32(static_cast<uint32_t>(d.w.rows()));
-    u32(static_cast<uint32_t>(d.w.cols()));
-    out.write(reinterpret_cast<const char*>(d.w.data()), static_cast<std::streamsize>(d.w.size() * sizeof(float)));
-    out.write(reinterpret_cast<const char*>(d.b.data()), static_cast<std::streamsize>(d.b.size() * sizeof(float)));
-  }
-  if (!out) throw planner::input_error(path, 0, "write failed");
+  planner::write_file(path, [&](std::ostream& out) {
+    auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char*>(&v), sizeof v); };
+    out.write(kWeightsMagic, 8);
+    u32(kWeightsVersion);
+    u32(static_cast<uint32_t>(m.spec.radius));
+    u32(kChannels);
+    u32(kNumActions);
+    u32(static_cast<uint32_t>(m.layers.size()));
+    for (const Dense& d : m.layers) {
+      u32(static_cast<uint32_t>(d.w.rows()));
+      u32(static_cast<uint32_t>(d.w.cols()));
+      out.write(reinterpret_cast<const char*>(d.w.data()), static_cast<std::streamsize>(d.w.size() * sizeof(float)));
+      out.write(reinterpret_cast<const char*>(d.b.data()), static_cast<std::streamsize>(d.b.size() * sizeof(float)));
+    }
+  });
 }
 
 }  // namespace policy

@@ -158,11 +158,15 @@ TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
 
 TEST(ControllerScenario, HugeWarehouseThousandAgvsCompleteExactly)
 {
-  // The benchmark scenario as a test (~8 s): 1000 AGVs, 4680 cells, ~410 ticks.
+  // The benchmark scenario as a test: 1000 AGVs, 4680 cells, ~410 ticks, every AGV exact on
+  // its goal. One SUMO step per tick (step_length = tick_s: scheme S is exact at any whole
+  // k, SchemeS.PositionsExactOverManyTicks covers k = 8) cuts SUMO's share 8x: 53 s -> 10.5 s
+  // under a load of 8-10 (2026-11-26); the same 40 expansions per tick as 5 x 8 steps.
   Config cfg = scenario("huge_warehouse.yaml", "huge");
   cfg.sumo.outputs = {false, false, true, true};
+  cfg.sumo.step_length = cfg.run.tick_s;
   cfg.planner.budget_ms = 0;  // deterministic
-  cfg.planner.expansions = 5;
+  cfg.planner.expansions = 40;
   cfg.planner.refine = true;  // the default: RT-LaCAM* (LNS charged against the expansions budget)
   Controller c(cfg);
   const Metrics m = c.run();
@@ -297,7 +301,7 @@ TEST(ControllerFault, AgvRemovedOverTraciIsCaught)
   const Metrics m = c.run();
   EXPECT_NE(m.error.find("agv7"), std::string::npos) << m.error;
   EXPECT_NE(m.error.find("removed behind the controller's back"), std::string::npos) << m.error;
-  EXPECT_EQ(m.violations, 1);
+  EXPECT_EQ(m.violations, 0);  // a vanished AGV is a runtime fault (exit 1), not a plan violation
   EXPECT_EQ(m.ticks, 4);
 }
 
@@ -340,7 +344,7 @@ TEST(ControllerFault, AgvMissingAtVerificationIsNamed)
     try {
       cmd.verify(at, 1e-6);
       ADD_FAILURE() << "no error";
-    } catch (const ControlError& e) {
+    } catch (const FleetError& e) {
       EXPECT_NE(std::string(e.what()).find("AGV agv2 (agent 2)"), std::string::npos) << e.what();
     }
     sumo->close();

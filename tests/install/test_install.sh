@@ -15,7 +15,12 @@ done
   || { echo "test_install: installed rtlacam-bench --version is wrong" >&2; exit 1; }
 # The Python package, when the bindings were built: importable from the prefix.
 if [[ -d "$build/python/rtlacam" ]]; then
-  v=$(PYTHONPATH="$tmp/prefix/lib/python3/dist-packages" /usr/bin/python3 -c "import rtlacam; print(rtlacam.__version__)") \
+  # A temporary prefix is on no python's path: the install must say where it put the
+  # package and which PYTHONPATH to set (a prefix python3 searches needs none).
+  pydir=$(sed -n 's/.*rtlacam: Python package in \(.*\), which .* does not search: export PYTHONPATH=.*/\1/p' "$tmp/install.log")
+  [[ -n "$pydir" && "$pydir" == "$tmp/prefix/lib/python3."*/site-packages ]] \
+    || { echo "test_install: no 'export PYTHONPATH=' hint for the Python package" >&2; cat "$tmp/install.log" >&2; exit 1; }
+  v=$(PYTHONPATH="$pydir" /usr/bin/python3 -c "import rtlacam; print(rtlacam.__version__)") \
     || { echo "test_install: the installed rtlacam Python package does not import" >&2; exit 1; }
   [[ "$v" == "$("$tmp/prefix/bin/rtlacam-bench" --version | cut -d' ' -f2)" ]] \
     || { echo "test_install: Python package version $v differs from the apps'" >&2; exit 1; }

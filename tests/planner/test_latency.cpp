@@ -38,3 +38,37 @@ TEST(Latency, SmallAndEmptySamples)
   EXPECT_DOUBLE_EQ(planner::nearest_rank({3, 1, 2}, 0.34), 2);
   EXPECT_DOUBLE_EQ(planner::nearest_rank({}, 0.5), 0);
 }
+
+// LatencySample: the controller's per-step times over a run of any length.
+TEST(LatencySample, ExactUpToItsCapLikeAVector)
+{
+  planner::LatencySample s(1000);
+  std::vector<double> v;
+  for (int i = 0; i < 1000; ++i) {
+    const double x = (i * 7919) % 1000 / 10.0;
+    s.push_back(x);
+    v.push_back(x);
+  }
+  s.back() += 5;  // the controller adds to the last step (adg: the executor's share)
+  v.back() += 5;
+  const planner::Latency a = planner::Latency::of(s), b = planner::Latency::of(v);
+  EXPECT_EQ(a.count, b.count);
+  EXPECT_DOUBLE_EQ(a.mean, b.mean);
+  EXPECT_EQ(a.p50, b.p50);
+  EXPECT_EQ(a.p99, b.p99);
+  EXPECT_EQ(a.max, b.max);
+}
+
+TEST(LatencySample, BoundedBeyondItsCapWithExactCountMeanMax)
+{
+  planner::LatencySample s(4096);
+  const long long n = 2000000;
+  for (long long i = 0; i < n; ++i) s.push_back(static_cast<double>(i % 1000));  // uniform 0..999
+  s.push_back(5000);  // one outlier: max stays exact
+  const planner::Latency l = planner::Latency::of(s);
+  EXPECT_EQ(l.count, n + 1);
+  EXPECT_NEAR(l.mean, 499.5, 0.01);
+  EXPECT_EQ(l.max, 5000);
+  EXPECT_NEAR(l.p50, 500, 30);  // a 4096-sample reservoir: within ~2 % of the range
+  EXPECT_NEAR(l.p99, 990, 10);
+}

@@ -6,8 +6,11 @@
 // (--out.params, reusable with --init), the CMA-ES mean (--out.mean.params) and a log of
 // every evaluation (--log).
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -17,6 +20,7 @@
 #include "ggo/fitness.hpp"
 #include "ggo/lane_guidance.hpp"
 #include "planner/error.hpp"
+#include "planner/output_file.hpp"
 
 namespace {
 
@@ -45,9 +49,10 @@ Eigen::VectorXd load_params(const std::string& path, int n)
 
 void save_params(const std::string& path, const Eigen::VectorXd& p, const std::string& header)
 {
-  std::ofstream out(path);
-  out << "# " << header << "\n";
-  for (int i = 0; i < p.size(); ++i) out << p[i] << '\n';
+  planner::write_file(path, [&](std::ostream& out) {
+    out << "# " << header << "\n";
+    for (int i = 0; i < p.size(); ++i) out << p[i] << '\n';
+  });
 }
 
 }  // namespace
@@ -94,8 +99,14 @@ int main(int argc, char** argv)
     const ggo::LaneGuidance lanes(g, unit);
     planner::Epibt::Options ep;
     ep.lns_rounds = lns;
+    // The READMEs' out/ggo/... paths: make their folders (as rtlacam-sumo makes output.dir).
+    for (const std::string& f : {log_file, out_file}) {
+      const std::filesystem::path parent = std::filesystem::path(f).parent_path();
+      std::error_code ec;
+      if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+    }
     std::ofstream log(log_file);
-    if (!log) throw planner::input_error(log_file, 0, "cannot write log");
+    if (!log) throw planner::OutputError("cannot write '" + log_file + "': " + std::strerror(errno));
     log << "# " << cmd.str() << "\ngen\tcand\tfitness\tthroughputs\tsigma\tsecs\n";
     const auto t0 = std::chrono::steady_clock::now();
     auto secs = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
@@ -175,6 +186,8 @@ int main(int argc, char** argv)
       log << "# final\n# " << note.str();
       write_best(note.str());
     }
+    log.flush();  // the log is written as it goes; a full disk shows here at the latest
+    if (!log) throw planner::OutputError("cannot write '" + log_file + "'");
   } catch (const planner::InputError& e) {
     std::cerr << "rtlacam-ggo: " << e.what() << std::endl;
     return cli::kBadInput;

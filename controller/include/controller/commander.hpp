@@ -76,6 +76,10 @@ class Commander {
   // True if some turn the planner may use has no SUMO connection (SUMO then needs
   // --ignore-route-errors for the route that jumps it).
   bool needs_ignore_route_errors() const { return missing_turns_; }
+  // "" or why the net cannot be driven: an aisle edge with no SUMO connection onwards (a
+  // dead end without a turnaround): every route ends with one more edge, or SUMO removes
+  // the AGV at the route's end. Checked before SUMO starts: a bad net is bad input.
+  std::string net_problem() const;
 
  private:
   struct Agv {

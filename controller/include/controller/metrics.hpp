@@ -16,7 +16,9 @@ using Latency = planner::Latency;
 struct Metrics {
   std::string config, net, backend, solver, error;  // error: "" when the run was clean
   std::string policy;           // planner.policy weights file, "" = none
-  bool solved = false;          // every AGV on its goal (one-shot)
+  int signal = 0;               // SIGINT / SIGTERM ended the run early (outputs still complete)
+  bool solved = false;
+  bool unsolvable = false;      // one-shot: the search proved no solution exists (the run ended then)          // every AGV on its goal (one-shot)
   int agents = 0, cells = 0;
   long long ticks = 0;          // executed ticks (MAPF steps)
   long long makespan = 0, soc = 0, soc_lb = 0;

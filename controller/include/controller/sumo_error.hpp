@@ -12,9 +12,17 @@ struct SumoError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// A violation of the executed plan (position drift beyond re-sync, an AGV that vanished,
-// a SUMO collision/teleport/arrival, an invalid MAPF step): the run stops with this message.
+// A violation of the executed plan (an invalid MAPF step, AGVs overlapping, a SUMO
+// collision, position drift beyond re-sync): the run stops with this message, counted
+// in metrics.json:violations; rtlacam-sumo exits 3.
 struct ControlError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// An AGV that vanished or moved on its own (removed behind the controller's back, arrived
+// at a route end, teleported by SUMO): a runtime fault, not a plan violation -- the run
+// stops with this message, no violation counted; rtlacam-sumo exits 1.
+struct FleetError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 

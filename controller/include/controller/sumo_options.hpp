@@ -19,6 +19,19 @@ namespace controller {
 // Returns the file's path.
 std::string write_vtype_file(const Config& cfg, const std::string& dir, double max_spacing);
 
+// SUMO's output files of the config (sumo.outputs) in `dir`: path and XML root element
+// (SUMO writes the root's closing tag only at its close, so a complete file ends with it).
+struct SumoOutput {
+  std::string path, root;
+};
+std::vector<SumoOutput> sumo_outputs(const Config& cfg, const std::string& dir);
+
+// After SUMO closed: every output complete (planner::check_xml_output). Throws
+// planner::OutputError naming the first file that is not. A SUMO behind TraCI (a child or
+// an external one) writes its outputs after it acknowledged the close, in its own process:
+// an incomplete file is looked at again for up to `wait_s` seconds.
+void check_sumo_outputs(const Config& cfg, const std::string& dir, double wait_s = 0);
+
 std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, const std::string& vtype_file,
                                    bool ignore_route_errors);
 

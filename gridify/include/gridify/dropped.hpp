@@ -16,6 +16,9 @@ struct Dropped {
   std::string reason;  // one line
   // Display geometry (junction centre to junction centre) so the SVG can show it.
   std::vector<std::pair<planner::Point, planner::Point>> segments;
+  // Every junction and edge id it took with it (a component; `id` shows only a few), so a
+  // config naming one of them can say that gridify dropped it.
+  std::vector<std::string> members;
 };
 
 }  // namespace gridify

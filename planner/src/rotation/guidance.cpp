@@ -7,6 +7,7 @@
 
 #include "planner/error.hpp"
 #include "planner/heading.hpp"
+#include "planner/output_file.hpp"
 
 namespace planner {
 
@@ -190,17 +191,16 @@ Guidance load_guidance(const Graph& g, const std::string& path)
 
 void save_guidance(const Graph& g, const Guidance& gd, const std::string& path, const std::string& header)
 {
-  std::ofstream out(path);
-  if (!out) throw input_error(path, 0, "cannot write guidance file");
-  std::istringstream hs(header);
-  for (std::string l; std::getline(hs, l);) out << "# " << l << '\n';
-  out << "# rotation guidance: X Y forward cost facing east south west north\nturn " << gd.turn << "\n";
-  for (Vertex v = 0; v < g.size(); ++v) {
-    out << g.cell_x(v) << ' ' << g.cell_y(v);
-    for (int o = 0; o < 4; ++o) out << ' ' << gd.forward_cost(v, o);
-    out << '\n';
-  }
-  if (!out) throw input_error(path, 0, "write failed");
+  write_file(path, [&](std::ostream& out) {
+    std::istringstream hs(header);
+    for (std::string l; std::getline(hs, l);) out << "# " << l << '\n';
+    out << "# rotation guidance: X Y forward cost facing east south west north\nturn " << gd.turn << "\n";
+    for (Vertex v = 0; v < g.size(); ++v) {
+      out << g.cell_x(v) << ' ' << g.cell_y(v);
+      for (int o = 0; o < 4; ++o) out << ' ' << gd.forward_cost(v, o);
+      out << '\n';
+    }
+  });
 }
 
 }  // namespace planner

@@ -33,6 +33,7 @@
 #include "planner/dist_cache.hpp"
 #include "planner/graph.hpp"
 #include "planner/solver.hpp"
+#include "planner/stop_signal.hpp"
 #include "tasks/heading_preference.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/step_budget.hpp"
@@ -47,7 +48,9 @@ class LifelongRun {
   LifelongRun(const planner::Graph& g, const planner::Config& starts, TaskManager& tasks, const std::string& solver,
               uint64_t seed, const LifelongOptions& opt);
 
-  bool done() const { return t_ >= opt_.steps; }
+  // The last step ran, or SIGINT / SIGTERM asked to stop (planner/stop_signal.hpp): the
+  // caller then writes what the run has, complete.
+  bool done() const { return t_ >= opt_.steps || planner::stop_signal(); }
   const StepRecord& step();  // one step, all phases
   LifelongResult finish();   // the run's result (call once, after the last step)
 
