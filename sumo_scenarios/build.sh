@@ -7,7 +7,7 @@ set -e
 cd "$(dirname "$0")"
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 python3 make_warehouse.py
-for s in small large huge bottleneck; do
+for s in small large huge bottleneck tree; do  # tree.nod/edg.xml: hand-written (issue 21: dead-end aisles only)
   netconvert -n $s.nod.xml -e $s.edg.xml -o $s.net.xml \
     --no-internal-links --no-turnarounds.geometry false \
     --default.junctions.radius 0 --junctions.corner-detail 0 --offset.disable-normalization

@@ -90,6 +90,8 @@ nlohmann::json Metrics::to_json() const
                    {"chained", chained},
                    {"followed", followed},
                    {"safety_checks", safety_checks},
+                   {"overshoot_m", overshoot_m},
+                   {"end_stop_steps", end_stop_steps},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   j["max_position_error_m"] = commands.max_error;

@@ -1,6 +1,7 @@
 #include "run.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -150,6 +151,7 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
   const double ms = ms_since(t0);
   plan_step_.push_back(ms);
   plan_in_tick_ += ms;
+  if (c_.on_step) c_.on_step(*sumo_, last_poses_);
   sumo_->request_poses();
   t0 = Clock::now();
   sumo_->step();
@@ -223,6 +225,36 @@ void Run::progress_line(const planner::Config& executed)
   }
 }
 
+void Run::stop_all()
+{
+  if (!sumo_ || !sumo_->running() || !cmd_) return;
+  try {
+    if (m_.error.empty()) m_.sim_s = sumo_->time();  // the run's time, without the stop
+    const bool physical = cfg_.run.executor != "lockstep";
+    const double dt = cfg_.sumo.step_length, decel = cfg_.fleet.vtype.decel;
+    const std::vector<std::string> present = sumo_->vehicles();  // an AGV may be gone (the error)
+    std::vector<std::string> ids;
+    for (const std::string& id : cmd_->ids())
+      if (std::find(present.begin(), present.end(), id) != present.end()) ids.push_back(id);
+    // Braking from max_speed takes max_speed / (decel dt) steps; more if someone else sped one up.
+    const int limit = static_cast<int>(std::ceil(1.5 * cfg_.fleet.vtype.max_speed / (decel * dt))) + 8;
+    for (int s = 0; s <= limit; ++s) {
+      bool moving = false;
+      for (const std::string& id : ids) {
+        const double v = sumo_->pose(id).speed;
+        if (v <= 0) continue;
+        moving = true;
+        sumo_->set_speed(id, physical ? std::max(0.0, v - decel * dt) : 0.0);
+      }
+      if (!moving) break;
+      sumo_->step();
+      ++m_.end_stop_steps;
+    }
+  } catch (const std::exception&) {
+    // SUMO is gone or refuses: nothing more can be commanded; the run's error stays.
+  }
+}
+
 Metrics Run::execute()
 {
   wall0_ = Clock::now();
@@ -244,6 +276,7 @@ Metrics Run::execute()
   } catch (const std::exception& e) {
     m_.error = std::string("controller: ") + e.what();
   }
+  stop_all();
   finish();
   return m_;
 }

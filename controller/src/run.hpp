@@ -34,6 +34,11 @@ class Run {
   void loop_lockstep();
   void loop_adg();
   void finish();
+  // Every end of a run (goals, tick limit, error, abort): each AGV in SUMO is brought to
+  // rest before the controller detaches -- at its vType's decel (adg executors), or at once
+  // (lockstep: scheme S stops every AGV in one step) -- so a SUMO that outlives the
+  // controller has no AGV driving on.
+  void stop_all();
 
   // One SUMO step: a planner slice first (timed), then SUMO, its events, and Safety with
   // the cells each AGV may occupy now.

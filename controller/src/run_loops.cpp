@@ -143,6 +143,7 @@ void Run::loop_adg()
     m_.dependency_waits = drv.stats().dependency_waits;
     m_.chained = drv.stats().chained;
     m_.followed = drv.stats().followed;
+    m_.overshoot_m = drv.stats().overshoot;
     const planner::Config now = executed();
     if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
     progress_line(now);
@@ -150,11 +151,12 @@ void Run::loop_adg()
   m_.dependency_waits = drv.stats().dependency_waits;
   m_.chained = drv.stats().chained;
   m_.followed = drv.stats().followed;
+  m_.overshoot_m = drv.stats().overshoot;
 }
 
 void Run::finish()
 {
-  if (m_.error.empty()) {
+  if (m_.error.empty() && m_.sim_s == 0) {
     try {
       m_.sim_s = sumo_->time();
     } catch (const SumoError&) {

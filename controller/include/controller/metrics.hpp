@@ -46,6 +46,8 @@ struct Metrics {
   long long stuck_events = 0;       // adg: AGVs found stuck (then made immobile)
   std::vector<double> goal_s;       // adg, one-shot: sim time each AGV reached its goal for good (-1: not)
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
+  double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
+  long long end_stop_steps = 0;     // SUMO steps the stop at the run's end took (all AGVs at rest after)
 
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;
