@@ -331,8 +331,8 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "stuck_after_s", c.run.stuck_after_s, 0, true);
   // Not yet with adg-follow: the replan's cut plan assumes the strict hand-over order
   // (stuck_replan.hpp); measured to give vertex conflicts in the cut plan with following.
-  if (c.run.executor != "adg" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
-    r.fail("run.replan_on_stuck", "only with run.executor: adg");
+  if (c.run.executor == "lockstep" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
+    r.fail("run.replan_on_stuck", "only with run.executor: adg or adg-follow");
   const double k = c.run.tick_s / c.sumo.step_length;
   if (std::fabs(k - std::round(k)) > 1e-9 || std::round(k) < 1)
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");

@@ -42,6 +42,12 @@ nlohmann::json Metrics::to_json() const
                      {"throughput", throughput()},
                      {"errandThroughput", errand_throughput()},
                      {"epochs", epochs}};
+  if (mode == "lifelong") {
+    j["lifelong"]["throughputBound"] = throughput_bound();
+    j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
+  }
+  j["bound_ticks"] = bound_ticks;
+  if (mode != "lifelong") j["makespan_over_bound"] = makespan_over_bound();
   j["solved"] = solved;
   j["agents"] = agents;
   j["cells"] = cells;

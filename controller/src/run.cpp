@@ -125,7 +125,7 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor == "adg" && cfg_.run.replan_on_stuck)
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck)
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};

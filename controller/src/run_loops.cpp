@@ -2,6 +2,7 @@
 // and the final phase writing the outputs.
 #include <fstream>
 
+#include "controller/bound.hpp"
 #include "controller/sumo_error.hpp"
 #include "planner/plan_io.hpp"
 #include "run.hpp"
@@ -177,6 +178,17 @@ void Run::finish()
   m_.safety_checks = safety_->checks();
   m_.wall_s = ms_since(wall0_) / 1000;
   if (m_.sim_s == 0) m_.sim_s = m_.ticks * cfg_.run.tick_s;
+
+  // The physical bound: each AGV alone on its planned path (bound.hpp).
+  std::vector<double> alone;
+  if (cfg_.run.executor == "lockstep") {
+    alone = alone_moves(c_.plan_);
+  } else {
+    const Kinematics k{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
+    alone = alone_s(c_.map_, c_.plan_, k);
+    for (double& t : alone) t /= cfg_.run.tick_s;
+  }
+  for (double t : alone) m_.bound_ticks = tm_ ? m_.bound_ticks + t / alone.size() : std::max(m_.bound_ticks, t);
 
   const planner::Graph& g = c_.map_.graph;
   if (tm_) {

@@ -48,6 +48,11 @@ struct Metrics {
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
   long long end_stop_steps = 0;     // SUMO steps the stop at the run's end took (all AGVs at rest after)
+  // The physical bound (bound.hpp), in ticks: one-shot, the slowest AGV alone on its path;
+  // lifelong, the mean over the AGVs (throughput bound = tasks / that mean).
+  double bound_ticks = 0;
+  double makespan_over_bound() const { return bound_ticks > 0 ? makespan / bound_ticks : 0.0; }
+  double throughput_bound() const { return bound_ticks > 0 ? tasks_finished / bound_ticks : 0.0; }
 
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;
