@@ -9,6 +9,7 @@
 #include "closed_loop_util.hpp"
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "controller/bound.hpp"
 #include "temp_path.hpp"
 
 using namespace controller;
@@ -102,4 +103,77 @@ TEST(ClosedLoop, ShippedSmallWarehouseAbsorbsOutsideStops)
     Config cfg = agv_config(std::string("small_") + ex, ex);
     run_with_outside_stops(cfg, 10, 4);
   }
+}
+
+namespace {
+
+// SUMO's fcd of a run that ended: every AGV still in SUMO at rest in the last timestep, and
+// (physical executors) nobody braked harder than the vType on the way there.
+void expect_all_at_rest(const Config& cfg, const Metrics& m, bool physical)
+{
+  const ctest_util::Kinematics k = ctest_util::fcd_kinematics(cfg.output.dir + "/fcd.xml", cfg.sumo.step_length);
+  ASSERT_FALSE(k.last_speed.empty());
+  for (const auto& [id, v] : k.last_speed) EXPECT_EQ(v, 0) << id << " still moving when the controller detached";
+  if (physical) EXPECT_LE(k.max_decel, cfg.fleet.vtype.decel + 1e-4);
+  EXPECT_GT(m.end_stop_steps, 0);  // there was something to stop
+}
+
+}  // namespace
+
+TEST(FailSafe, TickLimitBrakesEveryAgvToRestAtItsDecel)
+{
+  Config cfg = agv_config("end_limit", "adg-follow");
+  cfg.run.max_ticks = 12;  // mid-drive
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_FALSE(m.solved);
+  expect_all_at_rest(cfg, m, true);
+}
+
+TEST(FailSafe, ErrorOverTraciBrakesTheOthersToRestBeforeDetaching)
+{
+  Config cfg = agv_config("end_error", "adg");
+  cfg.run.backend = "traci";
+  Controller c(cfg);
+  c.on_tick = [](long long tick, SumoBackend& sumo) {
+    if (tick == 8) sumo.remove("agv3");  // an AGV vanishes: the run ends with an error
+  };
+  const Metrics m = c.run();
+  EXPECT_NE(m.error.find("agv3"), std::string::npos) << m.error;
+  expect_all_at_rest(cfg, m, true);
+}
+
+TEST(FailSafe, CleanLockstepRunEndsAtRest)
+{
+  Config cfg = agv_config("end_lockstep", "lockstep");
+  cfg.run.replan_on_stuck = false;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  expect_all_at_rest(cfg, m, false);  // scheme S stops in one step, as every lockstep wait does
+}
+
+TEST(PhysicalBound, ReportedAndNeverAboveTheMakespan)
+{
+  for (const char* ex : {"lockstep", "adg-follow"}) {
+    Config cfg = agv_config(std::string("bound_") + ex, ex);
+    cfg.run.replan_on_stuck = false;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ASSERT_TRUE(m.solved) << ex;
+    EXPECT_GT(m.bound_ticks, 5) << ex;
+    EXPECT_LE(m.bound_ticks, m.makespan) << ex;  // nobody beats driving alone
+    EXPECT_NEAR(m.makespan_over_bound(), m.makespan / m.bound_ticks, 1e-12);
+  }
+}
+
+TEST(PhysicalBound, TrapezoidAndTriangle)
+{
+  const Kinematics k{0.5, 1.0, 1.0, 0.125};
+  // 10 m: 1 s up to 1 m/s... accel 0.5: 2 s / 1 m up, 1 s / 0.5 m down, 8.5 m at 1 m/s.
+  EXPECT_NEAR(rest_to_rest_s(10, k), 2 + 1 + 8.5, 1e-12);
+  // 0.75 m never reaches 1 m/s: peak sqrt(2 * 0.75 * 0.5 / 1.5) = 0.7071 m/s.
+  EXPECT_NEAR(rest_to_rest_s(0.75, k), std::sqrt(0.5) / 0.5 + std::sqrt(0.5), 1e-12);
 }
