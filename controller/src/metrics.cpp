@@ -72,6 +72,7 @@ nlohmann::json Metrics::to_json() const
                        {"control", p.control_ms}};
   j["controller_to_sumo_ratio"] = p.ratio;
   j["planner_ms_per_step"] = latency_json(planner_ms_per_step);
+  j["planner_cpu_ms_per_step"] = latency_json(planner_cpu_ms_per_step);
   j["planner_ms_per_tick"] = latency_json(planner_ms_per_tick);
   j["sumo_ms_per_step"] = latency_json(sumo_ms_per_step);
   j["control_ms_per_tick"] = latency_json(control_ms_per_tick);

@@ -76,6 +76,10 @@ class Run {
   int k_ = 1;
   std::vector<double> plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
   double plan_in_tick_ = 0, epoch_ms_ = 0;
+  // Planner work on this thread's CPU per SUMO step (search, commits, epoch starts, replans):
+  // what planner.budget_ms bounds, told apart from time the thread was preempted.
+  std::vector<double> plan_cpu_step_;
+  double plan_cpu_pending_ = 0;  // planner CPU ms spent since the last step's slice
   std::vector<VehiclePose> last_poses_;
   planner::Clock::time_point wall0_, loop0_, last_progress_;
 };

@@ -31,8 +31,10 @@ void Run::loop_lockstep()
 
     auto t0 = Clock::now();
     if (next.empty()) {
+      const double c0 = planner::thread_cpu_ms();
       next = p_->next();
       p_->commit();
+      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       ++m_.commits;
     }
     bool held = false;
@@ -101,6 +103,7 @@ void Run::loop_adg()
     double ctl = 0;
     for (int s = 0; s < k_; ++s) {
       auto t0 = Clock::now();
+      const double c0 = planner::thread_cpu_ms();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
       // plan is honoured, so the window only bounds how far the plan runs ahead. With
       // run.drain D < W the planner searches on until fewer than D are left, then refills.
@@ -118,6 +121,7 @@ void Run::loop_adg()
         c_.plan_.push_back(next);
         ++m_.commits;
       }
+      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       const double commit_ms = ms_since(t0);
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
@@ -132,7 +136,9 @@ void Run::loop_adg()
       }
       t0 = Clock::now();
       drv.after_step(last_poses_);
-      stuck_step(adg, drv);  // stuck AGVs: replan around them (stuck_replan.hpp)
+      const double c1 = planner::thread_cpu_ms();
+      stuck_step(adg, drv);
+      plan_cpu_pending_ += planner::thread_cpu_ms() - c1;  // a replan is planner work  // stuck AGVs: replan around them (stuck_replan.hpp)
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }
@@ -168,6 +174,7 @@ void Run::finish()
 
   m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
+  m_.planner_cpu_ms_per_step = Latency::of(plan_cpu_step_);
   m_.planner_ms_per_tick = Latency::of(plan_tick_);
   m_.sumo_ms_per_step = Latency::of(sumo_step_);
   m_.control_ms_per_tick = Latency::of(control_);

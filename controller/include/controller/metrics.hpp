@@ -25,6 +25,7 @@ struct Metrics {
   double tick_s = 0, step_length = 0, sim_s = 0, wall_s = 0, budget_ms = 0;
   double loop_s = 0;            // wall time of the tick loop (start-up and insertion excluded)
   Latency planner_ms_per_step;  // one search(budget) call per SUMO step
+  Latency planner_cpu_ms_per_step;  // thread CPU of all planner work per SUMO step (commits, epochs, replans too)
   Latency planner_ms_per_tick;  // sum over the steps of a tick
   Latency sumo_ms_per_step;     // SUMO's own step (inside the back end)
   Latency control_ms_per_tick;  // commands + verification
