@@ -20,6 +20,7 @@ double left_to_drive(const std::vector<double>& dist, double done)
 double stop_speed(double room, double decel, double dt)
 {
   if (room <= 0) return 0;
+  if (!(room < 1e9)) return INFINITY;  // nothing ahead to stop for
   // From speed v in ((n-1) decel dt, n decel dt] braking takes n steps and covers
   // dt (n v - decel dt n (n-1) / 2); from n decel dt that is b n (n+1) / 2, b = decel dt^2.
   const double b = decel * dt * dt;
@@ -94,11 +95,12 @@ void Driver::before_step()
       const executor::Action& a = adg_.action(id);
       if (cmd_.needs_rest(i, a.from, a.to)) break;
       if (cmd_.changes_lane(i, a.from, a.to) && g.lane != cmd_.pose(i).lane) break;
-      // Following: only if the new leader's back does not pull the stopping point back
-      // (braking is planned for it; a leader chained toward its cell may not be there yet).
+      // Following: the new leader's back may pull the stopping point back (a leader chained
+      // toward the cell may not be there yet) -- only as far as braking from the AGV's
+      // speed still stops short of it.
       if (p_.follow) {
-        const double end = left_to_drive(g.dist, g.done);
-        if (end + gap(a) < std::min(end, room(i)) - 2e-6) break;
+        const double to = std::min(room(i), left_to_drive(g.dist, g.done) + gap(a));
+        if (stop_speed(to - 1e-9, p_.decel, p_.dt) < g.v - p_.decel * p_.dt) break;
       }
       if (p_.follow)
         adg_.start_chained_following(id);

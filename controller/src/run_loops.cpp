@@ -103,7 +103,6 @@ void Run::loop_adg()
     double ctl = 0;
     for (int s = 0; s < k_; ++s) {
       auto t0 = Clock::now();
-      const double c0 = planner::thread_cpu_ms();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
       // plan is honoured, so the window only bounds how far the plan runs ahead. With
       // run.drain D < W the planner searches on until fewer than D are left, then refills.
@@ -112,16 +111,18 @@ void Run::loop_adg()
       const int drain = cfg_.run.drain > 0 ? cfg_.run.drain : cfg_.run.window;
       const bool refill = adg.steps() - progress() < drain;
       while (refill && adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
+        const double c0 = planner::thread_cpu_ms();
         const planner::Config next = p_->next();
-        if (next == p_->current()) break;  // the search has nothing beyond the root yet
-        p_->commit();
+        const bool none = next == p_->current();  // the search has nothing beyond the root yet
+        if (!none) p_->commit();
+        plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+        if (none) break;
         if (!val_->step(next))
           throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
         adg.append(next);
         c_.plan_.push_back(next);
         ++m_.commits;
       }
-      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       const double commit_ms = ms_since(t0);
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
