@@ -23,7 +23,8 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
   std::vector<uint8_t> blocks(n_, 0);
   for (int j = 0; j < n_; ++j) {
     const int id = adg.next_action(j);
-    if (id < 0 || adg.action(id).state != executor::State::Pending || adg.action(id).handover < 0) continue;
+    // (adg-follow: also a running move that follows an owner still leaving its cell)
+    if (id < 0 || adg.action(id).handover < 0) continue;
     const executor::Action& h = adg.action(adg.action(id).handover);
     if (h.state != executor::State::Done) blocks[h.agent] = 1;
   }
@@ -32,7 +33,9 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     const bool moved = poses[i].lane != last_[i].lane || std::abs(poses[i].pos - last_[i].pos) > 1e-9;
     last_[i] = poses[i];
     const int id = adg.next_action(i);
-    const bool may_go = id >= 0 && (adg.action(id).state == executor::State::Running || adg.released(id));
+    // Running with its cell handed over (adg-follow: not just following a leader that is still
+    // leaving it -- that one waits on the leader, which is watched itself), or released.
+    const bool may_go = id >= 0 && (adg.may_finish(id) || adg.released(id));
     stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
     if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
     if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9 && blocks[i]) target_[i] = 1;
