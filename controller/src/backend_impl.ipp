@@ -74,8 +74,8 @@ class ApiBackend : public SumoBackend {
   }
   VehiclePose pose(const std::string& id) override
   {
-    return call("Vehicle.getLaneID/getLanePosition", [&] {
-      return VehiclePose{api::Vehicle::getLaneID(id), api::Vehicle::getLanePosition(id)};
+    return call("Vehicle.getLaneID/getLanePosition/getSpeed", [&] {
+      return VehiclePose{api::Vehicle::getLaneID(id), api::Vehicle::getLanePosition(id), api::Vehicle::getSpeed(id)};
     });
   }
   void remove(const std::string& id) override

@@ -191,9 +191,10 @@ bool Commander::needs_rest(int i, planner::Vertex u, planner::Vertex v) const
   return true;  // reversal inside an aisle
 }
 
-void Commander::drive(int i, double speed)
+void Commander::drive(int i, double speed, bool resend)
 {
   try {
+    if (resend) agv_[i].speed = -1;
     set_speed(agv_[i], speed);
   } catch (const SumoError& e) {
     failed(i, e);

@@ -390,8 +390,8 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "stuck_after_s", c.run.stuck_after_s, 0, true);
   // Not yet with adg-follow: the replan's cut plan assumes the strict hand-over order
   // (stuck_replan.hpp); measured to give vertex conflicts in the cut plan with following.
-  if (c.run.executor != "adg" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
-    r.fail("run.replan_on_stuck", "only with run.executor: adg");
+  if (c.run.executor == "lockstep" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
+    r.fail("run.replan_on_stuck", "only with run.executor: adg or adg-follow");
   // Upper bounds: a tick of 1e300 s overflowed the steps per tick (a crash in lockstep, an
   // idle run under adg); an hour per MAPF step and 10000 SUMO steps per tick are far past
   // any warehouse.

@@ -17,6 +17,19 @@ double left_to_drive(const std::vector<double>& dist, double done)
 }
 }  // namespace
 
+double stop_speed(double room, double decel, double dt)
+{
+  if (room <= 0) return 0;
+  if (!(room < 1e9)) return INFINITY;  // nothing ahead to stop for
+  // From speed v in ((n-1) decel dt, n decel dt] braking takes n steps and covers
+  // dt (n v - decel dt n (n-1) / 2); from n decel dt that is b n (n+1) / 2, b = decel dt^2.
+  const double b = decel * dt * dt;
+  long n = std::max(1L, static_cast<long>(std::ceil((std::sqrt(1 + 8 * room / b) - 1) / 2)));
+  while (n > 1 && b * (n - 1) * n / 2 >= room) --n;  // rounding at the boundaries
+  while (b * n * (n + 1) / 2 < room) ++n;
+  return (room / dt + decel * dt * n * (n - 1) / 2) / n;
+}
+
 Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
     : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents())
 {
@@ -28,8 +41,13 @@ void Driver::begin(int id)
   const executor::Action& a = adg_.action(id);
   Agv& g = agv_[a.agent];
   g.run.push_back(id);
+  const gridify::SumoPose from = cmd_.pose(a.agent);
   g.dist.push_back(cmd_.begin_move(a.agent, a.from, a.to));
   g.target.push_back(cmd_.pose(a.agent));
+  // A turn in place flips the lane first: that move starts on its target lane.
+  const gridify::SumoPose& to = g.target.back();
+  const bool turned = from.lane != to.lane && cmd_.needs_rest(a.agent, a.from, a.to);
+  g.from.push_back(turned ? gridify::SumoPose{to.lane, to.pos - g.dist.back()} : from);
   st_.followed += a.handover >= 0 && adg_.action(a.handover).state != executor::State::Done &&
                   !(a.group >= 0 && adg_.action(a.handover).group == a.group);
 }
@@ -77,6 +95,13 @@ void Driver::before_step()
       const executor::Action& a = adg_.action(id);
       if (cmd_.needs_rest(i, a.from, a.to)) break;
       if (cmd_.changes_lane(i, a.from, a.to) && g.lane != cmd_.pose(i).lane) break;
+      // Following: the new leader's back may pull the stopping point back (a leader chained
+      // toward the cell may not be there yet) -- only as far as braking from the AGV's
+      // speed still stops short of it.
+      if (p_.follow) {
+        const double to = std::min(room(i), left_to_drive(g.dist, g.done) + gap(a));
+        if (stop_speed(to - 1e-9, p_.decel, p_.dt) < g.v - p_.decel * p_.dt) break;
+      }
       if (p_.follow)
         adg_.start_chained_following(id);
       else
@@ -103,12 +128,9 @@ void Driver::before_step()
           factor = std::min(factor, delays_.factor(j));
         }
       if (p_.follow) rem = std::min(rem, room(i));
-      if (held) {
-        v = std::max(0.0, g.v - p_.decel * p_.dt);
-      } else if (rem > 1e-12) {
-        const double vmax = p_.max_speed * factor;
-        v = std::min({vmax, g.v + p_.accel * p_.dt, std::sqrt(2 * p_.decel * rem)});
-      }
+      // Land a nanometre short: SUMO moves a front exactly at a lane's end onto the next
+      // edge of its route, which would leave the junction cell's pose.
+      if (!held) v = std::min(p_.max_speed * factor, stop_speed(rem - 1e-9, p_.decel, p_.dt));
     }
     speed[i] = v;
     rem_[i] = rem;
@@ -128,14 +150,18 @@ void Driver::before_step()
   }
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
-    const double rem = rem_[i];
-    double v = speed[i];
-    // Land on the cell, a nanometre short: SUMO moves a front exactly at a lane's end
-    // onto the next edge of its route, which would leave the junction cell's pose.
-    if (rem > 1e-12 && v * p_.dt >= rem - 1e-9) v = std::max(0.0, rem - 1e-9) / p_.dt;
-    if (rem <= 1e-12) v = 0;
-    g.v = v;
-    cmd_.drive(i, v);
+    // Feasible from the speed SUMO reports: at most accel / decel in one step. The law
+    // above keeps the stopping point reachable, so the lower bound never pushes an AGV
+    // past it (overshoot counts it if it ever did).
+    const double lo = std::max(0.0, g.v - p_.decel * p_.dt), hi = g.v + p_.accel * p_.dt;
+    double v = std::clamp(speed[i], lo, std::max(lo, hi));
+    if (rem_[i] > 1e-12 && v * p_.dt > rem_[i] - 1e-9) v = std::max(lo, (rem_[i] - 1e-9) / p_.dt);
+    if (rem_[i] <= 1e-12) v = lo;
+    st_.overshoot = std::max(st_.overshoot, v * p_.dt - std::max(0.0, rem_[i]));
+    // SUMO keeps a speed until it is set again; if it drove something else than our last
+    // command, somebody else set it: set ours again.
+    cmd_.drive(i, v, std::fabs(g.cmd - g.v) > 1e-9);
+    g.cmd = v;
   }
 }
 
@@ -150,23 +176,42 @@ double Driver::ahead(int agent, int action) const
   return -INFINITY;  // not running: cannot happen for a started hand-over
 }
 
+double Driver::gap(const executor::Action& a) const
+{
+  if (a.handover < 0) return INFINITY;
+  const executor::Action& h = adg_.action(a.handover);
+  if (h.state == executor::State::Done || (a.group >= 0 && h.group == a.group)) return INFINITY;
+  // The previous occupant of a.to is leaving it: keep the front `margin` behind its back
+  // (measured as if its path went straight on through a.to: exact for a train, and at a
+  // junction conservative), and short of a.to until it has arrived (ADG order).
+  const double back = ahead(h.agent, a.handover) - p_.length;
+  return std::min(back - p_.margin, -1e-6);
+}
+
 double Driver::room(int i) const
 {
   const Agv& g = agv_[i];
   double room = INFINITY, end = -g.done;  // end: distance from the front to the end of run[k]
   for (size_t k = 0; k < g.run.size(); ++k) {
     end += g.dist[k];
-    const executor::Action& a = adg_.action(g.run[k]);
-    if (a.handover < 0) continue;
-    const executor::Action& h = adg_.action(a.handover);
-    if (h.state == executor::State::Done || (a.group >= 0 && h.group == a.group)) continue;
-    // The previous occupant of a.to is leaving it: keep the front `margin` behind its back
-    // (measured as if its path went straight on through a.to: exact for a train, and at a
-    // junction conservative), and short of a.to until it has arrived (ADG order).
-    const double back = ahead(h.agent, a.handover) - p_.length;
-    room = std::min(room, end + std::min(back - p_.margin, -1e-6));
+    room = std::min(room, end + gap(adg_.action(g.run[k])));
   }
   return room;
+}
+
+double Driver::progress(int i, const VehiclePose& p) const
+{
+  const Agv& g = agv_[i];
+  constexpr double tol = 1e-6;
+  double before = 0;  // path distance from the start of run[0] to the start of run[k]
+  for (size_t k = 0; k < g.run.size(); ++k) {
+    const gridify::SumoPose &t = g.target[k], &f = g.from[k];
+    if (p.lane == t.lane && p.pos <= t.pos + tol && p.pos >= t.pos - g.dist[k] - tol)
+      return before + g.dist[k] - (t.pos - p.pos);
+    if (p.lane == f.lane && p.pos >= f.pos - tol && p.pos <= f.pos + g.dist[k] + tol) return before + p.pos - f.pos;
+    before += g.dist[k];
+  }
+  return NAN;
 }
 
 void Driver::after_step(const std::vector<VehiclePose>& poses)
@@ -174,22 +219,25 @@ void Driver::after_step(const std::vector<VehiclePose>& poses)
   for (int i = 0; i < adg_.num_agents(); ++i) {
     Agv& g = agv_[i];
     g.lane = poses[i].lane;
+    g.v = poses[i].speed;
     if (g.run.empty()) {
-      ++g.rest_steps;
+      g.rest_steps = g.v > 0 ? 0 : g.rest_steps + 1;
       continue;
     }
-    g.done += g.v * p_.dt;
-    // SUMO's position is the truth where it is on the target lane (no drift accumulates).
-    if (poses[i].lane == g.target.front().lane) g.done = g.dist.front() - (g.target.front().pos - poses[i].pos);
+    // Progress as SUMO reports it, never the speed we asked for. Off every lane of its
+    // moves (cannot happen while SUMO follows its route): no progress; Safety reports it.
+    const double at = progress(i, poses[i]);
+    if (!std::isnan(at)) g.done = std::max(0.0, at);
     while (!g.run.empty() && g.done >= g.dist.front() - 2e-9) {
       g.done = std::max(0.0, g.done - g.dist.front());
       const int id = g.run.front();
       g.run.erase(g.run.begin());
       g.dist.erase(g.dist.begin());
       g.target.erase(g.target.begin());
+      g.from.erase(g.from.begin());
       adg_.finish(id);
       if (g.run.empty()) {
-        // Arrived and (the speed profile ensures) at rest: the front must be on the cell.
+        // The last target reached: the front must be on the cell.
         const gridify::SumoPose& want = cmd_.pose(i);
         const double err = poses[i].lane == want.lane ? std::fabs(poses[i].pos - want.pos) : INFINITY;
         if (err > 1e-6)

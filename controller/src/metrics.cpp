@@ -46,6 +46,12 @@ nlohmann::json Metrics::to_json() const
                      {"throughput", throughput()},
                      {"errandThroughput", errand_throughput()},
                      {"epochs", epochs}};
+  if (mode == "lifelong") {
+    j["lifelong"]["throughputBound"] = throughput_bound();
+    j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
+  }
+  j["bound_ticks"] = bound_ticks;
+  if (mode != "lifelong") j["makespan_over_bound"] = makespan_over_bound();
   j["solved"] = solved;
   j["agents"] = agents;
   j["cells"] = cells;
@@ -70,6 +76,7 @@ nlohmann::json Metrics::to_json() const
                        {"control", p.control_ms}};
   j["controller_to_sumo_ratio"] = p.ratio;
   j["planner_ms_per_step"] = latency_json(planner_ms_per_step);
+  j["planner_cpu_ms_per_step"] = latency_json(planner_cpu_ms_per_step);
   j["planner_ms_per_tick"] = latency_json(planner_ms_per_tick);
   j["sumo_ms_per_step"] = latency_json(sumo_ms_per_step);
   j["control_ms_per_tick"] = latency_json(control_ms_per_tick);
@@ -94,6 +101,8 @@ nlohmann::json Metrics::to_json() const
                    {"chained", chained},
                    {"followed", followed},
                    {"safety_checks", safety_checks},
+                   {"overshoot_m", overshoot_m},
+                   {"end_stop_steps", end_stop_steps},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   j["max_position_error_m"] = commands.max_error;

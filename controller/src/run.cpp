@@ -1,6 +1,7 @@
 #include "run.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -127,10 +128,13 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor == "adg" && cfg_.run.replan_on_stuck)
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck)
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
+  // With a time budget the search starts an expansion only if its costliest one so far
+  // still ends by the deadline (an expansion cannot stop halfway): p99 near the budget.
+  if (cfg_.planner.budget_ms > 0) budget_.reserve_ms = 1e-3;
   k_ = cfg_.steps_per_tick();
 }
 
@@ -148,10 +152,17 @@ std::vector<VehiclePose> Run::poses()
 void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive, const std::vector<int>& groups)
 {
   auto t0 = Clock::now();
-  p_->search(budget_);
+  const double c0 = planner::thread_cpu_ms();
+  // The step's budget covers its commits (and an epoch start or replan) too.
+  planner::Budget b = budget_;
+  if (cfg_.planner.budget_ms > 0) b.ms = std::max(0.0, b.ms - plan_cpu_pending_);
+  p_->search(b);
+  plan_cpu_step_.push_back(planner::thread_cpu_ms() - c0 + plan_cpu_pending_);
+  plan_cpu_pending_ = 0;
   const double ms = ms_since(t0);
   plan_step_.push_back(ms);
   plan_in_tick_ += ms;
+  if (c_.on_step) c_.on_step(*sumo_, last_poses_);
   sumo_->request_poses();
   t0 = Clock::now();
   sumo_->step();
@@ -190,9 +201,11 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   auto t0 = Clock::now();
   const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
   if (!ev.empty()) {
+    const double c0 = planner::thread_cpu_ms();
     p_->set_goals(tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
     p_->search(budget_);
+    plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
     ++life_.epochs;
     life_.events.insert(life_.events.end(), ev.begin(), ev.end());
     epoch_ms_ = ms_since(t0);
@@ -225,6 +238,36 @@ void Run::progress_line(const planner::Config& executed)
   }
 }
 
+void Run::stop_all()
+{
+  if (!sumo_ || !sumo_->running() || !cmd_) return;
+  try {
+    if (m_.error.empty()) m_.sim_s = sumo_->time();  // the run's time, without the stop
+    const bool physical = cfg_.run.executor != "lockstep";
+    const double dt = cfg_.sumo.step_length, decel = cfg_.fleet.vtype.decel;
+    const std::vector<std::string> present = sumo_->vehicles();  // an AGV may be gone (the error)
+    std::vector<std::string> ids;
+    for (const std::string& id : cmd_->ids())
+      if (std::find(present.begin(), present.end(), id) != present.end()) ids.push_back(id);
+    // Braking from max_speed takes max_speed / (decel dt) steps; more if someone else sped one up.
+    const int limit = static_cast<int>(std::ceil(1.5 * cfg_.fleet.vtype.max_speed / (decel * dt))) + 8;
+    for (int s = 0; s <= limit; ++s) {
+      bool moving = false;
+      for (const std::string& id : ids) {
+        const double v = sumo_->pose(id).speed;
+        if (v <= 0) continue;
+        moving = true;
+        sumo_->set_speed(id, physical ? std::max(0.0, v - decel * dt) : 0.0);
+      }
+      if (!moving) break;
+      sumo_->step();
+      ++m_.end_stop_steps;
+    }
+  } catch (const std::exception&) {
+    // SUMO is gone or refuses: nothing more can be commanded; the run's error stays.
+  }
+}
+
 Metrics Run::execute()
 {
   wall0_ = Clock::now();
@@ -252,6 +295,7 @@ Metrics Run::execute()
   }
   if (!m_.solved) m_.signal = planner::stop_signal();
   m_.unsolvable = !m_.solved && !tm_ && p_ && p_->exhausted();
+  stop_all();  // every run end, a signal's included: all AGVs braked to rest before detaching
   finish();
   return m_;
 }

@@ -35,6 +35,11 @@ class Run {
   void loop_lockstep();
   void loop_adg();
   void finish();
+  // Every end of a run (goals, tick limit, error, abort): each AGV in SUMO is brought to
+  // rest before the controller detaches -- at its vType's decel (adg executors), or at once
+  // (lockstep: scheme S stops every AGV in one step) -- so a SUMO that outlives the
+  // controller has no AGV driving on.
+  void stop_all();
 
   // One SUMO step: a planner slice first (timed), then SUMO, its events, and Safety with
   // the cells each AGV may occupy now.
@@ -80,6 +85,10 @@ class Run {
   // Bounded however long the run (lifelong): exact up to 65536 samples, a reservoir beyond.
   planner::LatencySample plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
   double plan_in_tick_ = 0, epoch_ms_ = 0;
+  // Planner work on this thread's CPU per SUMO step (search, commits, epoch starts, replans):
+  // what planner.budget_ms bounds, told apart from time the thread was preempted.
+  std::vector<double> plan_cpu_step_;
+  double plan_cpu_pending_ = 0;  // planner CPU ms spent since the last step's slice
   std::vector<VehiclePose> last_poses_;
   planner::Clock::time_point wall0_, loop0_, last_progress_;
 };

@@ -2,6 +2,7 @@
 // and the final phase writing the outputs.
 #include <functional>
 
+#include "controller/bound.hpp"
 #include "controller/sumo_error.hpp"
 #include "controller/sumo_options.hpp"
 #include "planner/output_file.hpp"
@@ -32,8 +33,10 @@ void Run::loop_lockstep()
 
     auto t0 = Clock::now();
     if (next.empty()) {
+      const double c0 = planner::thread_cpu_ms();
       next = p_->next();
       p_->commit();
+      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       ++m_.commits;
     }
     bool held = false;
@@ -110,9 +113,12 @@ void Run::loop_adg()
       const int drain = cfg_.run.drain > 0 ? cfg_.run.drain : cfg_.run.window;
       const bool refill = adg.steps() - progress() < drain;
       while (refill && adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
+        const double c0 = planner::thread_cpu_ms();
         const planner::Config next = p_->next();
-        if (next == p_->current()) break;  // the search has nothing beyond the root yet
-        p_->commit();
+        const bool none = next == p_->current();  // the search has nothing beyond the root yet
+        if (!none) p_->commit();
+        plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+        if (none) break;
         if (!val_->step(next))
           throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
         adg.append(next);
@@ -133,7 +139,9 @@ void Run::loop_adg()
       }
       t0 = Clock::now();
       drv.after_step(last_poses_);
-      stuck_step(adg, drv);  // stuck AGVs: replan around them (stuck_replan.hpp)
+      const double c1 = planner::thread_cpu_ms();
+      stuck_step(adg, drv);
+      plan_cpu_pending_ += planner::thread_cpu_ms() - c1;  // a replan is planner work  // stuck AGVs: replan around them (stuck_replan.hpp)
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }
@@ -145,6 +153,7 @@ void Run::loop_adg()
     m_.dependency_waits = drv.stats().dependency_waits;
     m_.chained = drv.stats().chained;
     m_.followed = drv.stats().followed;
+    m_.overshoot_m = drv.stats().overshoot;
     const planner::Config now = executed();
     if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
     progress_line(now);
@@ -152,11 +161,12 @@ void Run::loop_adg()
   m_.dependency_waits = drv.stats().dependency_waits;
   m_.chained = drv.stats().chained;
   m_.followed = drv.stats().followed;
+  m_.overshoot_m = drv.stats().overshoot;
 }
 
 void Run::finish()
 {
-  if (m_.error.empty()) {
+  if (m_.error.empty() && m_.sim_s == 0) {
     try {
       m_.sim_s = sumo_->time();
     } catch (const SumoError&) {
@@ -178,6 +188,7 @@ void Run::finish()
 
   m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
+  m_.planner_cpu_ms_per_step = Latency::of(plan_cpu_step_);
   m_.planner_ms_per_tick = Latency::of(plan_tick_);
   m_.sumo_ms_per_step = Latency::of(sumo_step_);
   m_.control_ms_per_tick = Latency::of(control_);
@@ -188,6 +199,17 @@ void Run::finish()
   m_.safety_checks = safety_->checks();
   m_.wall_s = ms_since(wall0_) / 1000;
   if (m_.sim_s == 0) m_.sim_s = m_.ticks * cfg_.run.tick_s;
+
+  // The physical bound: each AGV alone on its planned path (bound.hpp).
+  std::vector<double> alone;
+  if (cfg_.run.executor == "lockstep") {
+    alone = alone_moves(c_.plan_);
+  } else {
+    const Kinematics k{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
+    alone = alone_s(c_.map_, c_.plan_, k);
+    for (double& t : alone) t /= cfg_.run.tick_s;
+  }
+  for (double t : alone) m_.bound_ticks = tm_ ? m_.bound_ticks + t / alone.size() : std::max(m_.bound_ticks, t);
 
   const planner::Graph& g = c_.map_.graph;
   if (tm_) {

@@ -23,7 +23,8 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
   std::vector<uint8_t> blocks(n_, 0);
   for (int j = 0; j < n_; ++j) {
     const int id = adg.next_action(j);
-    if (id < 0 || adg.action(id).state != executor::State::Pending || adg.action(id).handover < 0) continue;
+    // (adg-follow: also a running move that follows an owner still leaving its cell)
+    if (id < 0 || adg.action(id).handover < 0) continue;
     const executor::Action& h = adg.action(adg.action(id).handover);
     if (h.state != executor::State::Done) blocks[h.agent] = 1;
   }
@@ -32,7 +33,9 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     const bool moved = poses[i].lane != last_[i].lane || std::abs(poses[i].pos - last_[i].pos) > 1e-9;
     last_[i] = poses[i];
     const int id = adg.next_action(i);
-    const bool may_go = id >= 0 && (adg.action(id).state == executor::State::Running || adg.released(id));
+    // Running with its cell handed over (adg-follow: not just following a leader that is still
+    // leaving it -- that one waits on the leader, which is watched itself), or released.
+    const bool may_go = id >= 0 && (adg.may_finish(id) || adg.released(id));
     stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
     if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
     if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9 && blocks[i]) target_[i] = 1;
@@ -99,17 +102,42 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   c_.plan_.resize(base + static_cast<size_t>(last) + 1);
   if (c_.plan_.back() != at) throw ControlError("replan: the executed configuration is not where the ADG says");
 
-  // The moves in progress (stuck_replan.hpp): step k moves every AGV along its k-th
-  // running move; the planner starts where they end.
+  // The moves in progress (stuck_replan.hpp), as steps: an AGV's k-th running move comes
+  // after its (k-1)-th, and never before the move that hands its target over (the same step
+  // is a train; a rotation group is one step). Under adg-follow a follower may run its
+  // 2nd move into a cell whose occupant runs its 3rd move out of it: by index alone the
+  // follower would arrive a step early (a vertex conflict in the cut plan).
   std::vector<std::vector<int>> mid(n);  // per agent: its running actions (old ADG)
-  std::vector<planner::Config> steps;    // at -> ... -> from, one running move per step
   for (int i = 0; i < n; ++i) mid[i] = StuckWatch::running(adg, i);
-  planner::Config from = at;
-  for (size_t k = 0;; ++k) {
-    bool any = false;
+  std::vector<std::vector<int>> level(n);
+  auto level_of = [&](int id) {  // of a running action, 0 if done / not running
+    const int j = adg.action(id).agent;
+    for (size_t k = 0; k < mid[j].size(); ++k)
+      if (mid[j][k] == id) return level[j].empty() ? 0 : level[j][k];
+    return 0;
+  };
+  for (int i = 0; i < n; ++i) level[i].assign(mid[i].size(), 1);
+  for (bool changed = true; changed;) {  // longest paths in a DAG (+ groups): terminates
+    changed = false;
     for (int i = 0; i < n; ++i)
-      if (k < mid[i].size()) from[i] = adg.action(mid[i][k]).to, any = true;
-    if (!any) break;
+      for (size_t k = 0; k < mid[i].size(); ++k) {
+        const executor::Action& a = adg.action(mid[i][k]);
+        int l = k ? level[i][k - 1] + 1 : 1;
+        if (a.handover >= 0) l = std::max(l, level_of(a.handover));
+        if (a.group >= 0)
+          for (int m : adg.group_of(mid[i][k])) l = std::max(l, level_of(m));
+        if (l > level[i][k]) level[i][k] = l, changed = true;
+      }
+  }
+  int levels = 0;
+  for (int i = 0; i < n; ++i)
+    if (!level[i].empty()) levels = std::max(levels, level[i].back());
+  std::vector<planner::Config> steps;  // at -> ... -> from
+  planner::Config from = at;
+  for (int t = 1; t <= levels; ++t) {
+    for (int i = 0; i < n; ++i)
+      for (size_t k = 0; k < mid[i].size(); ++k)
+        if (level[i][k] == t) from[i] = adg.action(mid[i][k]).to;
     steps.push_back(from);
     c_.plan_.push_back(from);
   }

@@ -83,7 +83,7 @@ class TraciBackend : public ApiBackend {
       if (dt_ <= 0) dt_ = api::Simulation::getDeltaT();
       const double t = api::Simulation::getTime() + dt_;
       api::Junction::subscribeContext(anchor_, libsumo::CMD_GET_VEHICLE_VARIABLE, 1e9,
-                                      {libsumo::VAR_LANE_ID, libsumo::VAR_LANEPOSITION}, t - dt_ / 2, t + dt_ / 2);
+                                      {libsumo::VAR_LANE_ID, libsumo::VAR_LANEPOSITION, libsumo::VAR_SPEED}, t - dt_ / 2, t + dt_ / 2);
     });
     requested_ = true;
   }
@@ -98,10 +98,12 @@ class TraciBackend : public ApiBackend {
       auto it = all.find(ids[i]);
       if (it == all.end()) continue;  // not in the network: empty lane
       const libsumo::TraCIResults& r = it->second;
-      auto lane = r.find(libsumo::VAR_LANE_ID), pos = r.find(libsumo::VAR_LANEPOSITION);
-      if (lane == r.end() || pos == r.end()) throw SumoError("SUMO context subscription: no lane/position for " + ids[i]);
+      auto lane = r.find(libsumo::VAR_LANE_ID), pos = r.find(libsumo::VAR_LANEPOSITION), v = r.find(libsumo::VAR_SPEED);
+      if (lane == r.end() || pos == r.end() || v == r.end())
+        throw SumoError("SUMO context subscription: no lane/position/speed for " + ids[i]);
       out[i].lane = static_cast<const libsumo::TraCIString&>(*lane->second).value;
       out[i].pos = static_cast<const libsumo::TraCIDouble&>(*pos->second).value;
+      out[i].speed = static_cast<const libsumo::TraCIDouble&>(*v->second).value;
     }
     return out;
   }

@@ -58,7 +58,9 @@ class Commander {
   {
     return map_.pose_entering(u, v).lane != agv_[agent].pose.lane;
   }
-  void drive(int agent, double speed);
+  // Sets the speed for the next step. SUMO keeps a speed until it is set again, and another
+  // TraCI client may have changed it: `resend` sets it even if it equals the last command.
+  void drive(int agent, double speed, bool resend = false);
   // SUMO ids in agent order.
   const std::vector<std::string>& ids() const { return ids_; }
 

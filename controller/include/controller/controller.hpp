@@ -51,6 +51,10 @@ class Controller {
   // Called at the start of every tick, before the commands: lets tests (or tools) act on
   // SUMO from outside, e.g. remove an AGV behind the controller's back.
   std::function<void(long long tick, SumoBackend& sumo)> on_tick;
+  // Called before every SUMO step, after the controller's commands, with the poses read
+  // after the previous step (empty before the first): a second client acting on the AGVs
+  // in the same step -- tests inject outside stops with it.
+  std::function<void(SumoBackend& sumo, const std::vector<VehiclePose>& poses)> on_step;
   // Metres an AGV may be off its cell after a tick before it is re-synced.
   double tolerance = 1e-6;
 

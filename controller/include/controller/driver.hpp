@@ -30,6 +30,13 @@
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is
 //           checked against SUMO to 1e-6 m).
+// Closed loop: after every step each AGV's progress along its running moves and its speed
+// are read from SUMO (lane, position, speed), never taken from the speed commanded: an AGV
+// held by anyone else (another TraCI client, a person in the aisle) makes no progress, its
+// moves stay running and the ADG waits for it. Every command is feasible for the vType:
+// within [v - decel dt, v + accel dt] of the speed SUMO reports and <= max_speed, and the
+// stopping point is kept reachable by braking at `decel` in whole SUMO steps
+// (stop_speed()), so no AGV brakes harder than its vType allows.
 //
 // Why adg-follow is collision-free: (1) ADG order -- an action into v completes only after
 // v's previous occupant has arrived elsewhere, and (executor/adg.hpp) the previous occupants
@@ -70,7 +77,13 @@ struct DriveStats {
   long long chained = 0;           // moves started while driving (no stop in between)
   long long followed = 0;          // moves started while the cell's previous occupant was still leaving it
   double max_error = 0;            // |SUMO front - target| at arrivals, m
+  double overshoot = 0;            // most a command ever drove past a stopping point, m (0: never)
 };
+
+// The highest speed for the next step from which braking at `decel` in whole steps of `dt`
+// (v, v - decel dt, ..., 0; each step covers speed x dt) stops within `room` metres, and
+// lands exactly on it when taken every step.
+double stop_speed(double room, double decel, double dt);
 
 class Driver {
  public:
@@ -78,7 +91,7 @@ class Driver {
 
   // Before a SUMO step: start released moves, set every AGV's speed for the step.
   void before_step();
-  // After it: advance each AGV by the distance driven, finish the moves it completed.
+  // After it: each AGV's progress and speed as SUMO reports them; finish the moves it completed.
   void after_step(const std::vector<VehiclePose>& poses);
   // Cells agent i may occupy now: where it stands for the ADG plus its running moves' targets.
   std::vector<std::vector<planner::Vertex>> allowed() const;
@@ -95,6 +108,7 @@ class Driver {
     g.run = ids;
     g.dist.resize(ids.size());
     g.target.resize(ids.size());
+    g.from.resize(ids.size());
   }
   // Agent i's executor state in one line (where it is for the ADG, its running moves with
   // group and hand-over): appended to a Safety error.
@@ -106,8 +120,10 @@ class Driver {
     std::vector<int> run;       // running actions, oldest first (chained: as many as are released)
     std::vector<double> dist;   // their distances
     std::vector<gridify::SumoPose> target;  // their target poses
-    double done = 0;            // distance covered in run[0]
-    double v = 0;               // speed for the current step
+    std::vector<gridify::SumoPose> from;    // the poses they start from
+    double done = 0;            // distance covered in run[0] (from SUMO's pose)
+    double v = 0;               // speed SUMO reported after the last step
+    double cmd = 0;             // speed commanded for the last step
     int rest_steps = 0;         // steps at rest since the last arrival
     std::string lane;           // SUMO lane of the front after the last step
   };
@@ -116,6 +132,12 @@ class Driver {
   double ahead(int agent, int action) const;
   // Follow mode: how far agent i's front may still go (its leaders' backs minus margin).
   double room(int i) const;
+  // How far past the start of action a's target cell the front may go: its leader's back
+  // minus margin, short of the cell while the leader has not arrived; INFINITY without one.
+  double gap(const executor::Action& a) const;
+  // Where SUMO's pose puts agent i's front along its running moves (distance from the
+  // start of run[0]); NaN if it is on none of their lanes.
+  double progress(int i, const VehiclePose& p) const;
 
   Commander& cmd_;
   executor::Adg& adg_;

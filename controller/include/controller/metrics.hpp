@@ -27,6 +27,7 @@ struct Metrics {
   double tick_s = 0, step_length = 0, sim_s = 0, wall_s = 0, budget_ms = 0;
   double loop_s = 0;            // wall time of the tick loop (start-up and insertion excluded)
   Latency planner_ms_per_step;  // one search(budget) call per SUMO step
+  Latency planner_cpu_ms_per_step;  // thread CPU of all planner work per SUMO step (commits, epochs, replans too)
   Latency planner_ms_per_tick;  // sum over the steps of a tick
   Latency sumo_ms_per_step;     // SUMO's own step (inside the back end)
   Latency control_ms_per_tick;  // commands + verification
@@ -48,6 +49,13 @@ struct Metrics {
   long long stuck_events = 0;       // adg: AGVs found stuck (then made immobile)
   std::vector<double> goal_s;       // adg, one-shot: sim time each AGV reached its goal for good (-1: not)
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
+  double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
+  long long end_stop_steps = 0;     // SUMO steps the stop at the run's end took (all AGVs at rest after)
+  // The physical bound (bound.hpp), in ticks: one-shot, the slowest AGV alone on its path;
+  // lifelong, the mean over the AGVs (throughput bound = tasks / that mean).
+  double bound_ticks = 0;
+  double makespan_over_bound() const { return bound_ticks > 0 ? makespan / bound_ticks : 0.0; }
+  double throughput_bound() const { return bound_ticks > 0 ? tasks_finished / bound_ticks : 0.0; }
 
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;

@@ -13,6 +13,7 @@ namespace controller {
 struct VehiclePose {
   std::string lane;  // "" if the vehicle is not (or no longer) in the network
   double pos = 0;    // lane position of the front
+  double speed = 0;  // m/s driven in the last step (the closed loop starts from it)
 };
 
 class SumoBackend {

@@ -1,0 +1,32 @@
+#pragma once
+// The physical bound of a run (issue 21): every AGV alone on the path it was planned, with
+// its vType's kinematics. It separates what physics forces from what the executor and the
+// congestion cost: makespan / bound (one-shot), throughput / bound (lifelong).
+//
+// An AGV drives each stretch between two rests as one trapezoid (accel up, max_speed,
+// decel down to rest on the last cell); it rests where its path reverses (a turn in place:
+// one SUMO step at rest, as the Driver needs) and at the path's end. Moves are measured
+// between the cells' centres. Waits are dropped: alone, nobody waits. For lockstep (scheme
+// S: one cell per tick, stops in one step) the bound is the longest path in moves.
+#include <vector>
+
+#include "gridify/cell_map.hpp"
+#include "planner/config.hpp"
+
+namespace controller {
+
+struct Kinematics {
+  double accel = 0.5, decel = 1.0, max_speed = 1.0;
+  double dt = 0.125;  // SUMO step: a turn in place rests one step
+};
+
+// Seconds from rest to rest over `metres`.
+double rest_to_rest_s(double metres, const Kinematics& k);
+
+// Per agent, seconds to drive its path in `plan` (consecutive configurations) alone.
+std::vector<double> alone_s(const gridify::CellMap& map, const std::vector<planner::Config>& plan, const Kinematics& k);
+
+// Per agent, the moves of its path in `plan` (one tick each in lockstep).
+std::vector<double> alone_moves(const std::vector<planner::Config>& plan);
+
+}  // namespace controller
