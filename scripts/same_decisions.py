@@ -77,7 +77,7 @@ def first_diff(a, b, path=""):
     return None if a == b else f"{path}: {a!r} vs {b!r}"
 
 def run(binary, problem, extra, steps, out):
-    cmd = [binary, "--problem", problem, "--steps", str(steps), "--budget-ms", "1e9", "--budget-expansions", "20",
+    cmd = [binary, "--problem", problem, "--steps", str(steps), "--budget-ms", "1e6", "--budget-expansions", "20",
            "--out", out, "--quiet"] + extra
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
