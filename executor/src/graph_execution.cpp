@@ -37,11 +37,12 @@ void GraphExecution::push(const planner::Config& next)
   adg_->append(next);
 }
 
-void GraphExecution::top_up()
+void GraphExecution::top_up(const CommitHook& on_commit)
 {
   while (can_accept() && !p_.at_goal()) {
     const planner::Config next = p_.next();
     if (next == p_.current()) break;  // nothing found beyond the root yet: search on
+    if (on_commit) on_commit(p_.current(), next);
     p_.commit();
     push(next);
   }

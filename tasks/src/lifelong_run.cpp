@@ -279,15 +279,11 @@ void LifelongRun::commit(Step& s)
 {
   if (!s.plan_now) return;
   const long t = s.rec.t;
-  if (graph_) {  // fill the window; a wait has no action (nothing found beyond the root yet)
-    while (graph_->can_accept() && !p_->at_goal()) {
-      const planner::Config next = p_->next();
-      if (next == p_->current()) break;
-      const std::string err = planner::Validator::check_transition(g_, p_->current(), next);
+  if (graph_) {  // fill the window, each committed step checked
+    graph_->top_up([&](const planner::Config& from, const planner::Config& to) {
+      const std::string err = planner::Validator::check_transition(g_, from, to);
       if (!err.empty()) error(t, ": " + err);
-      p_->commit();
-      graph_->push(next);
-    }
+    });
     return;
   }
   const std::string err = planner::Validator::check_transition(g_, p_->current(), s.next);

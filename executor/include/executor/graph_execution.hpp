@@ -16,6 +16,7 @@
 // In both a stopped agent stays put. positions() after each tick is the executed
 // configuration: an agent counts as on its source cell until it has arrived, so the
 // sequence of positions is itself a MAPF plan (tests validate it).
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -56,8 +57,13 @@ class GraphExecution : public Execution {
   void push(const planner::Config& next) override;
   void step() override;
   // One tick with the planner: it searches once with `b`, commits to keep the window full
-  // (never a wait: that has no action), then step().
+  // (top_up), then step().
   void tick(const planner::Budget& b);
+  // The planner commits to keep the window full, never a wait (that has no action; nothing
+  // found beyond the root yet: search on). `on_commit(from, to)`, if given, sees each step
+  // before it is committed (a caller's validator).
+  using CommitHook = std::function<void(const planner::Config& from, const planner::Config& to)>;
+  void top_up(const CommitHook& on_commit = {});
   // Every committed configuration executed and the planner stands on its goals.
   bool finished() const;
   const planner::Config& positions() const override { return pos_; }
@@ -69,7 +75,6 @@ class GraphExecution : public Execution {
   bool idle() const override { return adg_->done() && pending_.empty(); }
 
  private:
-  void top_up();
   void tick_adg();
   void tick_lockstep();
 
