@@ -6,14 +6,15 @@
 
 namespace executor {
 
-Adg::Adg(const planner::Config& start)
-    : tail_(start), at_(start), queue_(start.size()), head_(start.size(), 0)
+Adg::Adg(const planner::Config& start, int compact_min)
+    : tail_(start), at_(start), queue_(start.size()), head_(start.size(), 0), compact_min_(compact_min)
 {
 }
 
 int Adg::append(const planner::Config& next)
 {
   if (next.size() != tail_.size()) throw std::invalid_argument("Adg::append: configuration of the wrong size");
+  compact();
   const int n = num_agents();
   planner::Vertex max_v = 0;
   for (int i = 0; i < n; ++i) max_v = std::max({max_v, tail_[i], next[i]});
@@ -34,28 +35,28 @@ int Adg::append(const planner::Config& next)
     actions_.push_back(a);
   }
   const int last = num_actions();
-  for (int id = first; id < last; ++id) last_leave_[actions_[id].from] = id;
+  for (int id = first; id < last; ++id) last_leave_[act(id).from] = id;
   for (int id = first; id < last; ++id) {
-    Action& a = actions_[id];
+    Action& a = act(id);
     const int h = last_leave_[a.to];
-    if (h >= 0 && actions_[h].agent != a.agent) a.handover = h;
+    if (h >= 0 && act(h).agent != a.agent) a.handover = h;
   }
 
   // Rotation cycles within this step: following same-step hand-overs from an action
   // returns to it. Each action has at most one hand-over, so walking finds each cycle.
   for (int id = first; id < last; ++id) {
-    if (actions_[id].group >= 0) continue;
+    if (act(id).group >= 0) continue;
     std::vector<int> path;
     int x = id;
-    while (x >= first && actions_[x].group < 0 && std::find(path.begin(), path.end(), x) == path.end()) {
+    while (x >= first && act(x).group < 0 && std::find(path.begin(), path.end(), x) == path.end()) {
       path.push_back(x);
-      x = actions_[x].handover;
+      x = act(x).handover;
     }
-    if (x < first || actions_[x].group >= 0) continue;
+    if (x < first || act(x).group >= 0) continue;  // (x < first: also -1, a dropped leave)
     auto it = std::find(path.begin(), path.end(), x);
-    const int g = static_cast<int>(groups_.size());
+    const int g = group_base_ + static_cast<int>(groups_.size());
     groups_.emplace_back(it, path.end());
-    for (int m : groups_.back()) actions_[m].group = g;
+    for (int m : groups_.back()) act(m).group = g;
   }
   tail_ = next;
   ++steps_;
@@ -70,62 +71,62 @@ int Adg::next_action(int agent) const
 
 bool Adg::prev_done(int id) const
 {
-  const int p = actions_[id].prev;
+  const int p = act(id).prev;
   if (p < 0) return true;
-  if (actions_[p].group < 0) return dep_done(p);
-  for (int m : groups_[actions_[p].group])
-    if (actions_[m].state != State::Done) return false;
+  if (act(p).group < 0) return dep_done(p);
+  for (int m : group(act(p).group))
+    if (act(m).state != State::Done) return false;
   return true;
 }
 
 bool Adg::outside_deps_done(int id) const
 {
-  const Action& a = actions_[id];
+  const Action& a = act(id);
   if (!prev_done(id)) return false;
-  if (a.handover >= 0 && !(a.group >= 0 && actions_[a.handover].group == a.group) && !dep_done(a.handover)) return false;
+  if (a.handover >= 0 && !(a.group >= 0 && act(a.handover).group == a.group) && !dep_done(a.handover)) return false;
   return true;
 }
 
 bool Adg::released(int id) const
 {
-  const Action& a = actions_[id];
+  const Action& a = act(id);
   if (a.state != State::Pending) return false;
   if (a.group < 0) return outside_deps_done(id);
-  for (int m : groups_[a.group])
-    if (actions_[m].state != State::Pending || !outside_deps_done(m)) return false;
+  for (int m : group(a.group))
+    if (act(m).state != State::Pending || !outside_deps_done(m)) return false;
   return true;
 }
 
 bool Adg::outside_deps_started(int id) const
 {
-  const Action& a = actions_[id];
+  const Action& a = act(id);
   if (!prev_done(id)) return false;
-  if (a.handover >= 0 && !(a.group >= 0 && actions_[a.handover].group == a.group) &&
-      actions_[a.handover].state == State::Pending)
+  if (a.handover >= 0 && !(a.group >= 0 && act(a.handover).group == a.group) &&
+      act(a.handover).state == State::Pending)
     return false;
   return true;
 }
 
 bool Adg::released_following(int id) const
 {
-  const Action& a = actions_[id];
+  const Action& a = act(id);
   if (a.state != State::Pending) return false;
   if (a.group < 0) return outside_deps_started(id);
-  for (int m : groups_[a.group])
-    if (actions_[m].state != State::Pending || !outside_deps_started(m)) return false;
+  for (int m : group(a.group))
+    if (act(m).state != State::Pending || !outside_deps_started(m)) return false;
   return true;
 }
 
 bool Adg::may_finish(int id) const
 {
-  const Action& a = actions_[id];
+  const Action& a = act(id);
   return a.state == State::Running &&
-         (a.handover < 0 || (a.group >= 0 && actions_[a.handover].group == a.group) || dep_done(a.handover));
+         (a.handover < 0 || (a.group >= 0 && act(a.handover).group == a.group) || dep_done(a.handover));
 }
 
 void Adg::run_group(int id)
 {
-  for (int m : group_of(id)) actions_[m].state = State::Running;
+  for (int m : group_of(id)) act(m).state = State::Running;
 }
 
 void Adg::start_following(int id)
@@ -137,15 +138,15 @@ void Adg::start_following(int id)
 
 bool Adg::group_done(int g) const
 {
-  for (int m : groups_[g])
-    if (actions_[m].state != State::Done) return false;
+  for (int m : group(g))
+    if (act(m).state != State::Done) return false;
   return true;
 }
 
 std::vector<int> Adg::group_of(int id) const
 {
-  const int g = actions_[id].group;
-  return g < 0 ? std::vector<int>{id} : groups_[g];
+  const int g = act(id).group;
+  return g < 0 ? std::vector<int>{id} : group(g);
 }
 
 void Adg::start(int id)
@@ -156,13 +157,13 @@ void Adg::start(int id)
 
 void Adg::resume(int id)
 {
-  if (actions_[id].state != State::Pending) throw std::logic_error("Adg::resume: action " + std::to_string(id) + " is not pending");
+  if (act(id).state != State::Pending) throw std::logic_error("Adg::resume: action " + std::to_string(id) + " is not pending");
   run_group(id);
 }
 
 void Adg::finish(int id)
 {
-  Action& a = actions_[id];
+  Action& a = act(id);
   if (a.state != State::Running) throw std::logic_error("Adg::finish: action " + std::to_string(id) + " is not running");
   a.state = State::Done;
   at_[a.agent] = a.to;
@@ -178,15 +179,15 @@ int Adg::chain_candidate(int agent) const
 
 bool Adg::chainable(int id) const
 {
-  const Action& a = actions_[id];
-  return a.state == State::Pending && a.group < 0 && a.prev >= 0 && actions_[a.prev].state == State::Running &&
-         actions_[a.prev].group < 0 && dep_done(a.handover);
+  const Action& a = act(id);
+  return a.state == State::Pending && a.group < 0 && a.prev >= 0 && act(a.prev).state == State::Running &&
+         act(a.prev).group < 0 && dep_done(a.handover);
 }
 
 void Adg::start_chained(int id)
 {
   if (!chainable(id)) throw std::logic_error("Adg::start_chained: action " + std::to_string(id) + " is not chainable");
-  actions_[id].state = State::Running;
+  act(id).state = State::Running;
 }
 
 int Adg::undone(int agent, size_t k) const
@@ -197,22 +198,22 @@ int Adg::undone(int agent, size_t k) const
 
 bool Adg::chainable_following(int id) const
 {
-  const Action& a = actions_[id];
-  return a.state == State::Pending && a.group < 0 && a.prev >= 0 && actions_[a.prev].state == State::Running &&
-         actions_[a.prev].group < 0 && (a.handover < 0 || actions_[a.handover].state != State::Pending);
+  const Action& a = act(id);
+  return a.state == State::Pending && a.group < 0 && a.prev >= 0 && act(a.prev).state == State::Running &&
+         act(a.prev).group < 0 && (a.handover < 0 || act(a.handover).state != State::Pending);
 }
 
 void Adg::start_chained_following(int id)
 {
   if (!chainable_following(id))
     throw std::logic_error("Adg::start_chained_following: action " + std::to_string(id) + " is not chainable");
-  actions_[id].state = State::Running;
+  act(id).state = State::Running;
 }
 
 long long Adg::progress(int agent) const
 {
   const int id = next_action(agent);
-  return id < 0 ? steps_ : actions_[id].step;
+  return id < 0 ? steps_ : act(id).step;
 }
 
 long long Adg::min_progress() const
@@ -220,6 +221,40 @@ long long Adg::min_progress() const
   long long p = steps_;
   for (int i = 0; i < num_agents(); ++i) p = std::min(p, progress(i));
   return p;
+}
+
+void Adg::compact()
+{
+  // First undone action of any agent; everything before it is done.
+  int k = num_actions();
+  for (int i = 0; i < num_agents(); ++i) {
+    const int id = next_action(i);
+    if (id >= 0) k = std::min(k, id);
+  }
+  // Back to the start of its plan step: rotation groups live within one step.
+  while (k > base_ && k < num_actions() && act(k - 1).step == act(k).step) --k;
+  const int drop = k - base_;
+  if (drop < compact_min_ || drop < stored_actions() / 2) return;
+  for (Action& a : actions_) {
+    if (a.prev >= 0 && a.prev < k) a.prev = -1;
+    if (a.handover >= 0 && a.handover < k) a.handover = -1;
+  }
+  for (int& l : last_leave_)
+    if (l >= 0 && l < k) l = -1;
+  // Groups are made in id order: drop those whose members all went.
+  size_t g = 0;
+  while (g < groups_.size() && groups_[g].front() < k) ++g;
+  groups_.erase(groups_.begin(), groups_.begin() + static_cast<std::ptrdiff_t>(g));
+  group_base_ += static_cast<int>(g);
+  for (size_t i = 0; i < queue_.size(); ++i) {
+    auto& q = queue_[i];
+    const auto cut = std::lower_bound(q.begin(), q.end(), k);
+    head_[i] -= static_cast<size_t>(cut - q.begin());
+    q.erase(q.begin(), cut);
+  }
+  actions_.erase(actions_.begin(), actions_.begin() + drop);
+  actions_.shrink_to_fit();
+  base_ = k;
 }
 
 }  // namespace executor

@@ -1,6 +1,8 @@
 // Adg: type-1 / type-2 edges, rotation groups, release order.
 #include <gtest/gtest.h>
 
+#include <random>
+
 #include "executor/adg.hpp"
 #include "grid.hpp"
 
@@ -160,4 +162,71 @@ TEST(Adg, ChainingNeedsTheHandOverNotTheOwnPreviousMove)
   adg.finish(second);
   EXPECT_TRUE(adg.done());
   EXPECT_EQ(adg.at(0), 2);
+}
+
+TEST(Adg, DroppingTheDonePrefixKeepsEveryDecisionAndBoundsMemory)
+{
+  // Ring A: 6 cells, 6 agents (every shift is a rotation group); ring B: 10 cells, 4 agents
+  // moving forward at random (following). Two ADGs, one dropping its done prefix as soon as
+  // 8 actions qualify, one never: the same random execution must see the same answers.
+  std::mt19937 rng(7);
+  planner::Config c = {0, 1, 2, 3, 4, 5, 6, 8, 11, 13};
+  Adg small(c, 8), whole(c, 1 << 30);
+  auto next_step = [&] {
+    planner::Config n = c;
+    if (rng() % 3 == 0)
+      for (int i = 0; i < 6; ++i) n[i] = (c[i] + 1) % 6;
+    std::vector<bool> go(10, false);
+    for (int i = 6; i < 10; ++i) go[i] = rng() % 2;
+    for (bool changed = true; changed;) {  // a move into a cell whose occupant stays is cancelled
+      changed = false;
+      for (int i = 6; i < 10; ++i) {
+        const int to = 6 + (c[i] - 6 + 1) % 10;
+        for (int j = 6; j < 10; ++j)
+          if (go[i] && j != i && c[j] == to && !go[j]) go[i] = false, changed = true;
+      }
+    }
+    for (int i = 6; i < 10; ++i)
+      if (go[i]) n[i] = 6 + (c[i] - 6 + 1) % 10;
+    c = n;
+    return n;
+  };
+  for (int round = 0; round < 6000; ++round) {
+    if (small.steps() - small.min_progress() < 3) {
+      const planner::Config n = next_step();
+      ASSERT_EQ(small.append(n), whole.append(n));
+    }
+    for (int i = 0; i < 10; ++i) {
+      const int id = small.next_action(i);
+      ASSERT_EQ(id, whole.next_action(i));
+      ASSERT_EQ(small.progress(i), whole.progress(i));
+      ASSERT_EQ(small.at(i), whole.at(i));
+      ASSERT_EQ(small.chain_candidate(i), whole.chain_candidate(i));
+      if (id < 0) continue;
+      ASSERT_EQ(small.released(id), whole.released(id));
+      ASSERT_EQ(small.released_following(id), whole.released_following(id));
+      ASSERT_EQ(small.may_finish(id), whole.may_finish(id));
+      ASSERT_EQ(small.group_of(id), whole.group_of(id));
+      const int cc = small.chain_candidate(i);
+      if (cc >= 0) {
+        ASSERT_EQ(small.chainable_following(cc), whole.chainable_following(cc));
+      }
+      const uint32_t r = rng() % 4;
+      if (small.action(id).state == State::Running) {
+        if (r != 0 && small.may_finish(id)) {  // a rotation's members arrive one by one
+          small.finish(id);
+          whole.finish(id);
+        }
+      } else if (r != 0 && small.released_following(id)) {
+        small.start_following(id);
+        whole.start_following(id);
+      }
+    }
+  }
+  EXPECT_EQ(small.num_actions(), whole.num_actions());
+  EXPECT_EQ(small.actions_done(), whole.actions_done());
+  EXPECT_GT(small.num_actions(), 5000);
+  EXPECT_GT(small.first_action(), small.num_actions() - 200);  // dropped all but the recent
+  EXPECT_LT(small.stored_actions(), 200);
+  EXPECT_EQ(whole.stored_actions(), whole.num_actions());
 }

@@ -30,6 +30,13 @@
 //
 // append() only needs the plan to be valid (vertex/swap-free, moves along edges): the
 // committed window may run ahead of execution by any amount, the ADG honours it.
+//
+// Bounded memory over lifelong runs: append() drops the done prefix once it holds at least
+// kCompactMin actions and half of those stored -- whole plan steps only, so no rotation group
+// is split. Action and group ids stay global (num_actions() counts every action ever
+// appended); a reference to a dropped action (prev, handover, the cell's last leave) becomes
+// -1, which every query already reads as "done", so decisions do not change (tested).
+// action(id) is valid for id >= first_action(); last_done() is -1 once its action is dropped.
 #include <cstdint>
 #include <vector>
 
@@ -51,7 +58,8 @@ struct Action {
 
 class Adg {
  public:
-  explicit Adg(const planner::Config& start);
+  // compact_min: the done prefix dropped at least this large (tests use small values).
+  explicit Adg(const planner::Config& start, int compact_min = kCompactMin);
 
   // Appends the step tail() -> next (a valid MAPF step). Returns the number of actions added.
   int append(const planner::Config& next);
@@ -59,8 +67,11 @@ class Adg {
   int num_agents() const { return static_cast<int>(tail_.size()); }
   long long steps() const { return steps_; }              // configurations appended
   const planner::Config& tail() const { return tail_; }   // last appended configuration
-  const Action& action(int id) const { return actions_[id]; }
-  int num_actions() const { return static_cast<int>(actions_.size()); }
+  const Action& action(int id) const { return actions_[id - base_]; }
+  int num_actions() const { return base_ + static_cast<int>(actions_.size()); }
+  int first_action() const { return base_; }  // ids below were done and dropped
+  int stored_actions() const { return static_cast<int>(actions_.size()); }
+  static constexpr int kCompactMin = 1 << 15;
 
   // The agent's first action not done (running or pending), -1 if none.
   int next_action(int agent) const;
@@ -122,14 +133,20 @@ class Adg {
   // the rotation, until every member has arrived).
   bool prev_done(int id) const;
   bool outside_deps_started(int id) const;
-  bool dep_done(int dep) const { return dep < 0 || actions_[dep].state == State::Done; }
+  bool dep_done(int dep) const { return dep < 0 || act(dep).state == State::Done; }
+  Action& act(int id) { return actions_[id - base_]; }
+  const Action& act(int id) const { return actions_[id - base_]; }
+  const std::vector<int>& group(int g) const { return groups_[g - group_base_]; }
+  void compact();  // drops the done prefix (see the header comment)
 
   planner::Config tail_, at_;
   std::vector<Action> actions_;
   std::vector<std::vector<int>> queue_;  // per agent: action ids in order
   std::vector<size_t> head_;             // per agent: index of its first undone action in queue_
   std::vector<int> last_leave_;          // per cell: last action that left it
-  std::vector<std::vector<int>> groups_;
+  std::vector<std::vector<int>> groups_;  // group g at groups_[g - group_base_]
+  int base_ = 0, group_base_ = 0;         // global ids of actions_[0] and groups_[0]
+  int compact_min_;
   long long steps_ = 0, done_count_ = 0;
 };
 
