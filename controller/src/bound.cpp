@@ -16,32 +16,49 @@ double rest_to_rest_s(double L, const Kinematics& k)
 
 std::vector<double> alone_s(const gridify::CellMap& map, const std::vector<planner::Config>& plan, const Kinematics& k)
 {
-  if (plan.empty()) return {};
-  std::vector<double> out(plan.front().size(), 0.0);
-  for (size_t i = 0; i < out.size(); ++i) {
-    std::vector<planner::Vertex> path{plan.front()[i]};
-    for (const planner::Config& c : plan)
-      if (c[i] != path.back()) path.push_back(c[i]);
-    double stretch = 0, t = 0;
-    for (size_t s = 1; s < path.size(); ++s) {
-      const gridify::Cell &u = map.cells[path[s - 1]], &v = map.cells[path[s]];
-      if (s >= 2 && path[s] == path[s - 2]) {  // reverses: rest, turn in place (one step)
-        t += rest_to_rest_s(stretch, k) + k.dt;
-        stretch = 0;
-      }
-      stretch += std::hypot(v.x - u.x, v.y - u.y);
-    }
-    out[i] = t + rest_to_rest_s(stretch, k);
-  }
-  return out;
+  AloneBound b(&map, k);
+  for (const planner::Config& c : plan) b.add(c);
+  return b.result();
 }
 
 std::vector<double> alone_moves(const std::vector<planner::Config>& plan)
 {
-  if (plan.empty()) return {};
-  std::vector<double> out(plan.front().size(), 0.0);
-  for (size_t s = 1; s < plan.size(); ++s)
-    for (size_t i = 0; i < out.size(); ++i) out[i] += plan[s][i] != plan[s - 1][i];
+  AloneBound b(nullptr, {});
+  for (const planner::Config& c : plan) b.add(c);
+  return b.result();
+}
+
+void AloneBound::add(const planner::Config& c)
+{
+  if (last_.empty()) {
+    last_ = before_ = c;
+    stretch_.assign(c.size(), 0.0);
+    t_.assign(c.size(), 0.0);
+    return;
+  }
+  for (size_t i = 0; i < c.size(); ++i) {
+    const planner::Vertex v = c[i];
+    if (v == last_[i]) continue;
+    if (!map_) {
+      t_[i] += 1;
+    } else {
+      if (v == before_[i] && before_[i] != last_[i]) {  // reverses: rest, turn in place (one step)
+        t_[i] += rest_to_rest_s(stretch_[i], k_) + k_.dt;
+        stretch_[i] = 0;
+      }
+      const gridify::Cell &a = map_->cells[last_[i]], &b = map_->cells[v];
+      stretch_[i] += std::hypot(b.x - a.x, b.y - a.y);
+    }
+    before_[i] = last_[i];
+    last_[i] = v;
+  }
+}
+
+std::vector<double> AloneBound::result() const
+{
+  std::vector<double> out = t_;
+  if (map_)
+    for (size_t i = 0; i < out.size(); ++i) out[i] += rest_to_rest_s(stretch_[i], k_);
   return out;
 }
 

@@ -272,7 +272,13 @@ Metrics Run::execute()
 {
   wall0_ = Clock::now();
   prepare();  // ConfigError propagates: nothing started yet
-  c_.plan_ = {ins_.starts};
+  c_.plan_.start(ins_.starts);
+  // The physical bound (bound.hpp): lockstep moves a cell per tick; the others drive.
+  const Kinematics kin{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
+  alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kin);
+  if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
+    c_.plan_.bound(static_cast<size_t>(cfg_.output.plan_keep), [this](const planner::Config& c) { alone_->add(c); },
+                   &c_.map_.graph, cfg_.output.plan ? dir_ + "/.plan.txt.part" : "");
   loop0_ = last_progress_ = Clock::now();
   try {
     start_sumo();

@@ -7,7 +7,9 @@
 //   finish()         metrics.json, the lifelong log, plan.txt
 // step() is the one SUMO step both loops share: planner slice, SUMO, event and safety checks.
 #include <memory>
+#include <optional>
 
+#include "controller/bound.hpp"
 #include "controller/commander.hpp"
 #include "controller/controller.hpp"
 #include "controller/driver.hpp"
@@ -90,6 +92,9 @@ class Run {
   std::vector<double> plan_cpu_step_;
   double plan_cpu_pending_ = 0;  // planner CPU ms spent since the last step's slice
   std::vector<VehiclePose> last_poses_;
+  // The physical bound over the executed plan's configurations that left memory (all of
+  // them at the end): bound.hpp.
+  std::optional<AloneBound> alone_;
   planner::Clock::time_point wall0_, loop0_, last_progress_;
 };
 

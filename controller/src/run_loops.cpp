@@ -66,6 +66,7 @@ void Run::loop_lockstep()
     cur = to;
     if (!held) next.clear();
     c_.plan_.push_back(cur);
+    c_.plan_.settle(c_.plan_.size() - 1);  // lockstep: executed as committed
     m_.ticks += ticks;
     m_.makespan = val_->steps();  // executed steps only (a tick cut short by an error is not)
     m_.soc = val_->sum_of_costs();
@@ -125,6 +126,8 @@ void Run::loop_adg()
         c_.plan_.push_back(next);
         ++m_.commits;
       }
+      // Steps every AGV has finished are final: no replan rewrites them.
+      c_.plan_.settle(c_.plan_.size() - 1 - static_cast<size_t>(adg.steps()) + static_cast<size_t>(adg.min_progress()));
       const double commit_ms = ms_since(t0);
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
@@ -201,14 +204,11 @@ void Run::finish()
   if (m_.sim_s == 0) m_.sim_s = m_.ticks * cfg_.run.tick_s;
 
   // The physical bound: each AGV alone on its planned path (bound.hpp).
-  std::vector<double> alone;
-  if (cfg_.run.executor == "lockstep") {
-    alone = alone_moves(c_.plan_);
-  } else {
-    const Kinematics k{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
-    alone = alone_s(c_.map_, c_.plan_, k);
+  AloneBound whole = *alone_;
+  for (const planner::Config& c : c_.plan_.kept()) whole.add(c);
+  std::vector<double> alone = whole.result();
+  if (cfg_.run.executor != "lockstep")
     for (double& t : alone) t /= cfg_.run.tick_s;
-  }
   for (double t : alone) m_.bound_ticks = tm_ ? m_.bound_ticks + t / alone.size() : std::max(m_.bound_ticks, t);
 
   const planner::Graph& g = c_.map_.graph;
@@ -253,7 +253,9 @@ void Run::finish()
                {"executor", cfg_.run.executor}};
     checked([&] {
       planner::write_file(dir_ + "/plan.txt", [&](std::ostream& out) {
-        planner::write_plan(out, g, ins_.starts, tm_ ? tm_->goals() : ins_.goals, c_.plan_, h);
+        planner::write_plan_header(out, g, ins_.starts, tm_ ? tm_->goals() : ins_.goals, h);
+        c_.plan_.copy_spilled(out);
+        planner::write_plan_steps(out, g, c_.plan_.kept(), c_.plan_.first());
       });
     });
   }

@@ -97,8 +97,10 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   long long last = 0;
   std::vector<long long> prog(n);
   for (int i = 0; i < n; ++i) last = std::max(last, prog[i] = adg.progress(i));
-  for (long long t = 0; t <= last; ++t)
-    for (int i = 0; i < n; ++i) c_.plan_[base + t][i] = c_.plan_[base + std::min(t, prog[i])][i];
+  // (Steps before the oldest kept one are before every AGV's progress: unchanged.)
+  const long long t0 = c_.plan_.first() > base ? static_cast<long long>(c_.plan_.first() - base) : 0;
+  for (long long t = t0; t <= last; ++t)
+    for (int i = 0; i < n; ++i) c_.plan_.at(base + t)[i] = c_.plan_.at(base + std::min(t, prog[i]))[i];
   c_.plan_.resize(base + static_cast<size_t>(last) + 1);
   if (c_.plan_.back() != at) throw ControlError("replan: the executed configuration is not where the ADG says");
 
@@ -143,9 +145,11 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   }
 
   const planner::Config goals = tm_ ? tm_->goals() : ins_.goals;
-  val_ = std::make_unique<planner::Validator>(g, c_.plan_.front(), goals);
-  for (size_t t = 1; t < c_.plan_.size(); ++t)
-    if (!val_->step(c_.plan_[t])) throw ControlError("replan: the cut plan is invalid: " + val_->error());
+  // From the oldest configuration kept (C^0 but in a long lifelong run, whose older part is
+  // final and was checked when committed).
+  val_ = std::make_unique<planner::Validator>(g, c_.plan_.at(c_.plan_.first()), goals);
+  for (size_t t = c_.plan_.first() + 1; t < c_.plan_.size(); ++t)
+    if (!val_->step(c_.plan_.at(t))) throw ControlError("replan: the cut plan is invalid: " + val_->error());
 
   // A fresh planner from there, the stuck ones immobile.
   replan_expansions_ += p_->expansions();

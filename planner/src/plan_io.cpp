@@ -29,6 +29,13 @@ void config_line(std::ostream& out, const Graph& g, const Config& c)
 void write_plan(std::ostream& out, const Graph& g, const Config& starts, const Config& goals,
                 const std::vector<Config>& plan, const PlanHeader& h)
 {
+  write_plan_header(out, g, starts, goals, h);
+  write_plan_steps(out, g, plan, 0);
+}
+
+void write_plan_header(std::ostream& out, const Graph& g, const Config& starts, const Config& goals,
+                       const PlanHeader& h)
+{
   out << "agents=" << starts.size() << '\n'
       << "map_file=" << h.map_file << '\n'
       << "solver=" << h.solver << '\n'
@@ -43,8 +50,12 @@ void write_plan(std::ostream& out, const Graph& g, const Config& starts, const C
   out << "goals=";
   config_line(out, g, goals);
   out << "solution=\n";
+}
+
+void write_plan_steps(std::ostream& out, const Graph& g, const std::vector<Config>& plan, size_t first_t)
+{
   for (size_t t = 0; t < plan.size(); ++t) {
-    out << t << ':';
+    out << first_t + t << ':';
     config_line(out, g, plan[t]);
   }
 }

@@ -257,3 +257,38 @@ TEST(ControllerLifelong, CellErrorsNeedTheGraph)
   // errands: 1 needs no drops; the stations of kind pickup are the default pickups.
   EXPECT_EQ(run_error(kNetAdd + ll + "  random: {errands: 1}\n"), "(no error)");
 }
+
+// A long lifelong run keeps only the recent part of its executed plan in memory
+// (executed_plan.hpp): plan.txt and the physical bound are the same as with all of it kept,
+// lockstep and adg-follow (replans included).
+TEST(ControllerLifelong, BoundedPlanMemoryWritesTheSamePlan)
+{
+  for (const char* file : {"small_warehouse_lifelong.yaml", "small_warehouse_lifelong_agv.yaml"}) {
+    std::string txt[2];
+    double bound[2];
+    for (int keep : {1 << 20, 3}) {
+      Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/" + file);
+      cfg.output.dir = temp_dir(std::string("keep") + std::to_string(keep) + file);
+      cfg.run.progress_s = 0;
+      cfg.run.max_ticks = 120;
+      cfg.planner.budget_ms = 0;
+      cfg.planner.expansions = 20;
+      cfg.sumo.outputs = {};
+      cfg.output.plan_keep = keep;
+      Controller c(cfg);
+      const Metrics m = c.run();
+      ASSERT_EQ(m.error, "") << file;
+      std::ifstream in(cfg.output.dir + "/plan.txt");
+      for (std::string line; std::getline(in, line);)
+        if (line.rfind("comp_time=", 0) != 0) txt[keep == 3] += line + '\n';  // a timing
+      bound[keep == 3] = m.bound_ticks;
+      if (keep == 3) {
+        EXPECT_LT(c.plan().size(), 40u) << file;  // the rest went to plan.txt
+      }
+      EXPECT_FALSE(fs::exists(cfg.output.dir + "/.plan.txt.part")) << file;
+    }
+    EXPECT_GT(std::count(txt[0].begin(), txt[0].end(), '\n'), 60) << file;  // more than kept
+    EXPECT_TRUE(txt[0] == txt[1]) << file;
+    EXPECT_DOUBLE_EQ(bound[0], bound[1]) << file;
+  }
+}

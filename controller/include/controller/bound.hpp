@@ -29,4 +29,19 @@ std::vector<double> alone_s(const gridify::CellMap& map, const std::vector<plann
 // Per agent, the moves of its path in `plan` (one tick each in lockstep).
 std::vector<double> alone_moves(const std::vector<planner::Config>& plan);
 
+// Either of the two, fed one configuration at a time (a lifelong run does not keep its
+// whole plan: controller/executed_plan.hpp). map == nullptr: moves (alone_moves).
+class AloneBound {
+ public:
+  AloneBound(const gridify::CellMap* map, const Kinematics& k) : map_(map), k_(k) {}
+  void add(const planner::Config& c);
+  std::vector<double> result() const;
+
+ private:
+  const gridify::CellMap* map_;
+  Kinematics k_;
+  planner::Config last_, before_;   // per agent: its path's last cell and the one before
+  std::vector<double> stretch_, t_;  // metres since the last rest; seconds (or moves) so far
+};
+
 }  // namespace controller

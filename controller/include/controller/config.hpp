@@ -121,6 +121,9 @@ struct DelaysSection {
 struct OutputSection {
   std::string dir = "out/run";  // relative to the working directory
   bool plan = true;
+  // Lifelong: executed configurations kept in memory beyond those a replan may rewrite;
+  // older ones are written to plan.txt as the run goes (controller/executed_plan.hpp).
+  int plan_keep = 4096;
 };
 
 struct Config {

@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "controller/config.hpp"
+#include "controller/executed_plan.hpp"
 #include "controller/metrics.hpp"
 #include "controller/sumo_backend.hpp"
 #include "gridify/cell_map.hpp"
@@ -59,13 +60,15 @@ class Controller {
   double tolerance = 1e-6;
 
   const gridify::CellMap& map() const { return map_; }
-  const std::vector<planner::Config>& plan() const { return plan_; }
+  // The executed plan; in a lifelong run only its recent part (executed_plan.hpp: the rest
+  // is in plan.txt) once it outgrows output.plan_keep configurations.
+  const std::vector<planner::Config>& plan() const { return plan_.kept(); }
 
  private:
   friend class Run;  // the phases of run() (src/run.hpp)
   Config cfg_;
   gridify::CellMap map_;
-  std::vector<planner::Config> plan_;
+  ExecutedPlan plan_;
 };
 
 }  // namespace controller

@@ -24,6 +24,11 @@ struct PlanHeader {
 
 void write_plan(std::ostream& out, const Graph& g, const Config& starts, const Config& goals,
                 const std::vector<Config>& plan, const PlanHeader& h);
+// The same in pieces, for a plan written as it grows: the header up to "solution=", then
+// the lines "t:..." of plan[0..] numbered from `first_t`.
+void write_plan_header(std::ostream& out, const Graph& g, const Config& starts, const Config& goals,
+                       const PlanHeader& h);
+void write_plan_steps(std::ostream& out, const Graph& g, const std::vector<Config>& plan, size_t first_t);
 
 // The "solution=" section of a result file in that format (ours, lacam's, lacam3's) on a
 // grid graph: C^0 .. C^T. Throws InputError (one line: file, line, what) on a malformed
