@@ -57,6 +57,21 @@ std::string Commander::net_problem() const
         return "edge '" + e + "' has no SUMO connection onwards (a dead end without a turnaround: rebuild with " +
                "netconvert --no-turnarounds.geometry false, gridify/README.md)";
     }
+  // A move the planner may make through a junction that SUMO has no connection for, other
+  // than back into the aisle it came from (a turn in place): only a jump could drive it.
+  for (planner::Vertex u = 0; u < map_.graph.size(); ++u) {
+    const gridify::Cell& c = map_.cells[u];
+    if (c.kind != gridify::CellKind::Junction) continue;
+    for (const gridify::SumoPose& in : c.poses)
+      for (planner::Vertex w : map_.graph.neighbors(u)) {
+        const std::string& out_lane = map_.pose_entering(u, w).lane;
+        const Lane& here = lane(in.lane);
+        if (out_lane == here.opposite || connected(here.edge, lane(out_lane).edge)) continue;
+        return "junction '" + c.junction + "': no SUMO connection from edge '" + here.edge + "' to edge '" +
+               lane(out_lane).edge + "' (an AGV would have to jump: rebuild the net with every turn connected, " +
+               "gridify/README.md)";
+      }
+  }
   return "";
 }
 
@@ -145,9 +160,13 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
       set_route(a, {here.edge, out, continuation(out)});
       if (connected(here.edge, out)) {
         set_speed(a, target.pos / tick_);
+      } else if (target.lane == here.opposite) {
+        // Back into the aisle it came from, without a turnaround connection: turn round on
+        // the junction (as inside an aisle), then drive.
+        set_speed(a, (target.pos - turn_round(a, here, target)) / tick_);
       } else {
-        // No SUMO connection for this turn: jump there now (SUMO runs with
-        // --ignore-route-errors in this case).
+        // No SUMO connection for this turn (net_problem() refuses such nets): jump there
+        // now (SUMO runs with --ignore-route-errors in this case).
         jump(a, target);
         set_speed(a, 0);
       }
@@ -215,8 +234,10 @@ double Commander::begin_move(int i, planner::Vertex u, planner::Vertex v)
       set_route(a, {here.edge, out, continuation(out)});
       if (connected(here.edge, out)) {
         d = target.pos;
+      } else if (target.lane == here.opposite) {
+        d = target.pos - turn_round(a, here, target);  // back into its aisle: turn in place
       } else {
-        jump(a, target);  // a real jump: counted, reported
+        jump(a, target);  // a real jump: counted, reported (net_problem() refuses such nets)
       }
     } else if (target.lane == here.opposite) {
       // Turn in place: the AGV stands on its cell (needs_rest); its front stays on the

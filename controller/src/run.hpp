@@ -89,7 +89,7 @@ class Run {
   double plan_in_tick_ = 0, epoch_ms_ = 0;
   // Planner work on this thread's CPU per SUMO step (search, commits, epoch starts, replans):
   // what planner.budget_ms bounds, told apart from time the thread was preempted.
-  std::vector<double> plan_cpu_step_;
+  planner::LatencySample plan_cpu_step_;
   double plan_cpu_pending_ = 0;  // planner CPU ms spent since the last step's slice
   std::vector<VehiclePose> last_poses_;
   // The physical bound over the executed plan's configurations that left memory (all of

@@ -271,6 +271,22 @@ TEST(BadInput, ADeadEndNetIsBadInput)
   EXPECT_EQ(lines(r.err), 1) << r.err;
 }
 
+// A net where a turn the planner may take has no SUMO connection (netconvert
+// --no-left-connections): only a jump could drive it, so it is bad input before SUMO starts.
+TEST(BadInput, ANetNeedingJumpsIsBadInput)
+{
+  const std::string path = write_config("noleft.yaml",
+                                        "sumo:\n  net: @/tests/data/gridify/no_left_turns.net.xml\n"
+                                        "fleet: {count: 2}\nrun: {max_ticks: 50, progress_s: 0}\n");
+  const test::CliResult r = test::run_cli(RTLACAM_SUMO_BIN, path + " --out " + test::temp_dir("noleft"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(path + ": sumo.net: " + kSrc + "/tests/data/gridify/no_left_turns.net.xml: junction '"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("(an AGV would have to jump"), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+}
+
 // A goal on a component gridify dropped: the error says gridify dropped it.
 TEST(BadInput, GoalOnADroppedComponentNamesTheDrop)
 {

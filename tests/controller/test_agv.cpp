@@ -244,3 +244,28 @@ TEST(AgvFollow, FollowingFinishesBeforeTheStrictAdg)
   }
   EXPECT_LT(ticks[1], ticks[0]) << "adg " << ticks[0] << " ticks, adg-follow " << ticks[1];
 }
+
+// A net with turnarounds at dead ends only (netconvert --no-turnarounds.except-deadend): a
+// reversal at a junction has no SUMO connection. The AGV turns in place on the junction
+// instead of jumping (was: jumps, a collision, exit 3), under lockstep and adg-follow.
+TEST(AgvNet, ReversalsAtJunctionsWithoutTurnaroundsAreTurnsNotJumps)
+{
+  for (const char* ex : {"lockstep", "adg-follow"}) {
+    Config cfg = agv_config(std::string("noturn_") + ex);
+    cfg.sumo.net = std::string(RTLACAM_TEST_DATA) + "/gridify/turnarounds_deadend_only.net.xml";
+    cfg.sumo.outputs.fcd = false;
+    cfg.fleet.count = 12;
+    cfg.fleet.random_starts = true;
+    cfg.fleet.starts.clear();
+    cfg.tasks = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml").tasks;
+    cfg.run.executor = ex;
+    cfg.run.max_ticks = 300;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    EXPECT_EQ(m.error, "") << ex;
+    EXPECT_EQ(m.commands.jumps, 0) << ex;
+    EXPECT_GT(m.commands.turns, 0) << ex;
+    EXPECT_GT(m.errands_finished, 0) << ex;
+    ctest_util::expect_no_sumo_collision(cfg.output.dir);
+  }
+}
