@@ -76,12 +76,16 @@ inline void expect_invariants(const gridify::CellMap& m, const gridify::NetFile&
       // Two-way unless both cells lie on one one-way aisle (a one-way aisle's arcs go A->B).
       const bool two_way = m.graph.adjacent(u, v);
       const int aisle = c.kind == CellKind::Aisle ? c.aisle : m.cells[u].aisle;
-      if (aisle >= 0 && !m.aisles[aisle].one_way) EXPECT_TRUE(two_way);
+      if (aisle >= 0 && !m.aisles[aisle].one_way) {
+        EXPECT_TRUE(two_way);
+      }
       SumoPose there = m.pose_entering(v, u);
       EXPECT_GE(there.pos, 0.0);
       EXPECT_LE(there.pos, lane_length(there.lane) + 1e-9);
       SumoPose back = two_way ? m.pose_entering(u, v) : SumoPose{};
-      if (two_way) EXPECT_LE(back.pos, lane_length(back.lane) + 1e-9);
+      if (two_way) {
+        EXPECT_LE(back.pos, lane_length(back.lane) + 1e-9);
+      }
       if (c.kind == CellKind::Junction) {
         // Leaving junction v into u: some connection at v leads into the lane of u's pose
         // (or, when u is a junction too, into the aisle edge from v to u).
@@ -95,7 +99,9 @@ inline void expect_invariants(const gridify::CellMap& m, const gridify::NetFile&
           leave |= mv.from == edge_of(back.lane);
         }
         EXPECT_TRUE(enter) << "no connection into " << into << " at " << c.junction;
-        if (two_way) EXPECT_TRUE(leave) << "no connection out of " << back.lane << " at " << c.junction;
+        if (two_way) {
+          EXPECT_TRUE(leave) << "no connection out of " << back.lane << " at " << c.junction;
+        }
       }
     }
   }
