@@ -59,10 +59,13 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, 
         lane = f"c{c}r{r}_c{c}r{r + 1}_0" if not one_way or c % 2 == 0 else f"c{c}r{r + 1}_c{c}r{r}_0"
         stations.append(("parkingArea", f"park{k}", lane, pos, "parking"))
 
-    write(name, nodes, edges, stations)
+    # A lone one-way edge is drawn on the centreline and netconvert 1.15 then computes lane
+    # lengths from the junction shapes (7.94 m for an 8 m aisle, 3.47 m for a 4 m one):
+    # fixing every length to the node distance keeps lane position == cell offset.
+    write(name, nodes, edges, stations, fixed_lengths=one_way)
 
 
-def write(name, nodes, edges, stations):
+def write(name, nodes, edges, stations, fixed_lengths=False):
     with open(os.path.join(HERE, f"{name}.nod.xml"), "w") as f:
         f.write("<nodes>\n")
         for n, (x, y) in nodes.items():
@@ -71,7 +74,9 @@ def write(name, nodes, edges, stations):
     with open(os.path.join(HERE, f"{name}.edg.xml"), "w") as f:
         f.write("<edges>\n")
         for e, a, b in edges:
-            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"/>\n')
+            (xa, ya), (xb, yb) = nodes[a], nodes[b]
+            length = f' length="{((xb - xa) ** 2 + (yb - ya) ** 2) ** 0.5:.2f}"' if fixed_lengths else ""
+            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"{length}/>\n')
         f.write("</edges>\n")
     with open(os.path.join(HERE, f"{name}.add.xml"), "w") as f:
         f.write("<additional>\n")
