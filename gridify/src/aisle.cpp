@@ -42,6 +42,7 @@ std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vecto
     a.b = e.to;
     a.lane_ab = lane0(e).id;
     a.length_ab = lane0(e).length;
+    a.speed_ab = lane0(e).speed;
     auto back = directed.find({e.to, e.from});
     if (back == directed.end()) {
       // A one-way aisle: kept as arcs A->B (a directed planner graph) unless asked to drop it.
@@ -60,6 +61,7 @@ std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vecto
     a.ba = o.id;
     a.lane_ba = lane0(o).id;
     a.length_ba = lane0(o).length;
+    a.speed_ba = lane0(o).speed;
     aisles.push_back(std::move(a));
   }
   return aisles;

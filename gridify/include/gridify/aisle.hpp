@@ -24,6 +24,7 @@ struct Aisle {
   std::string lane_ab, lane_ba;  // lane index 0 of each edge: the lanes AGVs are commanded on
   std::string a, b;              // junction ids
   double length_ab = 0, length_ba = 0;  // lane lengths (equal within tolerance)
+  double speed_ab = 0, speed_ba = 0;    // lane speed limits, m/s (the Driver keeps to them)
   int steps = 0;                 // n: the aisle has n-1 interior cells and n graph edges
   double spacing = 0;            // cell_length, or length_ab / n when snapped
   bool snapped = false;
