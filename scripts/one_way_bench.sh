@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 BUILD=${BUILD:-build}
 MAPS=${MAPS:-../shared/benchmarks/movingai}
 SCENS=${SCENS:-"1 2 3 4 5"}
-AGENTS=${AGENTS:-"100 200 300"}
+AGENTS=${AGENTS:-"200 400 600 800"}
 SEEDS=${SEEDS:-"0"}
 TIMEOUT_S=${TIMEOUT_S:-10}
 TICKS=${TICKS:-1000}
@@ -22,7 +22,7 @@ mkdir -p "$OUT"
 export SUMO_HOME=${SUMO_HOME:-/usr/share/sumo}
 
 echo "## RT-LaCAM, 1 ms per iteration, warehouse-10-20-10-2-1 (timeout ${TIMEOUT_S} s of planning per run)"
-echo "| N | runs | solved two-way | solved one-way | ratio one/two | mean steps two-way | mean steps one-way |"
+echo "| N | runs | solved two-way | solved one-way | ratio one/two | mean makespan two-way | mean makespan one-way |"
 echo "|---|---|---|---|---|---|---|"
 for n in $AGENTS; do
   runs=0 s2=0 s1=0 st2=0 st1=0
@@ -34,7 +34,7 @@ for n in $AGENTS; do
         "$BUILD/apps/rtlacam-bench" --map "$MAPS/warehouse-10-20-10-2-1.map" \
           --scen "$MAPS/warehouse-10-20-10-2-1-random-$sc.scen" -N "$n" --solver rtlacam --cutoff-ms 1 \
           --timeout-s "$TIMEOUT_S" --seed "$seed" --json $flag > "$out" || true
-        read -r solved steps < <(python3 -c "import json,sys; j=json.load(open('$out')); print(int(bool(j['solved'])), j.get('steps', 0))")
+        read -r solved steps < <(python3 -c "import json,sys; j=json.load(open('$out')); print(int(bool(j['solved'])), j.get('makespan', 0))")
         if [ "$mode" = two ]; then s2=$((s2 + solved)); st2=$((st2 + steps)); else s1=$((s1 + solved)); st1=$((st1 + steps)); fi
       done
       runs=$((runs + 1))
