@@ -12,6 +12,7 @@
 #include "cli.hpp"
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
+#include "planner/one_way_aisles.hpp"
 #include "planner/plan_io.hpp"
 #include "planner/lacam/runner.hpp"
 #include "planner/solver.hpp"
@@ -29,7 +30,7 @@ int main(int argc, char** argv)
   double cutoff_ms = 1.0, timeout_s = 60.0;
   uint64_t budget_expansions = 0, seed = 0;
   long long max_steps = 100000;
-  bool compact = false, no_swap = false, refine = true;
+  bool compact = false, no_swap = false, refine = true, one_way = false;
   double anytime_ms = 0, restart_rate = LacamOptions{}.restart_rate;
   bool lns = true;
   int lns_window = LacamOptions{}.lns_window;
@@ -97,6 +98,8 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"grid4", "rotation"}))
       ->capture_default_str();
   double progress_s = 2;
+  app.add_flag("--one-way-aisles", one_way,
+               "make the aisles between shelf rows one-way, alternately east and west (one_way_aisles.hpp)");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   cli::add_version(app, "rtlacam-bench");
   RTLACAM_PARSE(app, argc, argv);
@@ -106,7 +109,8 @@ int main(int argc, char** argv)
   }
 
   try {
-    const Graph g = load_map(map_file);
+    // The same cells with one-way aisles (planner/one_way_aisles.hpp), or the map as it is.
+    const Graph g = one_way ? one_way_aisles(load_map(map_file)) : load_map(map_file);
     const Instance ins = load_scen(scen_file, g, agents);
 
     LacamOptions lopt;

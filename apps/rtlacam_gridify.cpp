@@ -23,7 +23,7 @@ int main(int argc, char** argv)
   app.add_option("--cell-length", opt.cell_length, "metres between cells along an aisle")->capture_default_str();
   app.add_option("--tolerance", opt.tolerance, "metres of slack when checking lengths")->capture_default_str();
   app.add_flag("--snap", opt.snap, "stretch aisles whose length is not a multiple of the cell length");
-  app.add_flag("--drop-one-way", opt.drop_one_way, "drop edges without an opposite edge instead of failing");
+  app.add_flag("--drop-one-way", opt.drop_one_way, "drop edges without an opposite edge (default: keep them as one-way arcs)");
   app.add_option("--additional", opt.additional, "SUMO additional file with stations (parkingArea, busStop, poi, ...)");
   app.add_option("--svg", svg, "write a picture of the gridification");
   app.add_option("--map", map, "write a MovingAI .map (axis-aligned grid nets only)");
@@ -43,14 +43,17 @@ int main(int argc, char** argv)
 
     std::cout << net << ": " << m.num_junction_cells() << " junctions, " << m.aisles.size() << " aisles, "
               << m.cells.size() << " cells (" << m.num_aisle_cells() << " in aisles), " << m.graph.num_edges()
-              << " edges, max degree " << m.graph.max_degree() << ", " << m.stations.size() << " stations, "
+              << " edges (" << m.graph.num_one_way() << " one-way), max degree " << m.graph.max_degree() << ", "
+              << m.stations.size() << " stations, "
               << m.dropped.size() << " dropped; gridified in " << ms << " ms\n";
     for (const Dropped& d : m.dropped) std::cout << "  dropped " << d.kind << " " << d.id << ": " << d.reason << '\n';
     for (const std::string& w : m.warnings) std::cout << "  warning: " << w << '\n';
     for (const Station& s : m.stations) std::cout << "  station " << s.id << " (" << s.kind << ") at cell " << s.cell << '\n';
     std::string why;
     GridLayout g = grid_layout(m, &why);
-    if (g.width > 0) std::cout << "  axis-aligned grid " << g.width << "x" << g.height << " (MovingAI export possible)\n";
+    if (g.width > 0)
+      std::cout << "  axis-aligned grid " << g.width << "x" << g.height
+                << (m.graph.directed() ? " (no MovingAI export: one-way aisles)\n" : " (MovingAI export possible)\n");
     else std::cout << "  not a MovingAI grid: " << why << '\n';
   } catch (const planner::InputError& e) {
     std::cerr << "error: " << e.what() << '\n';

@@ -12,14 +12,19 @@ Also writes `huge` (the 1000-AGV benchmark warehouse, scripts/bench_sumo.sh) and
 `bottleneck`: a single corridor with dead-end sidings, where two groups of AGVs must pass
 each other (config/bottleneck.yaml: naive replanning livelocks there, RT-LaCAM finishes).
 
-Usage: make_warehouse.py  (writes small.*, large.*, huge.*, bottleneck.* here; then run ./build.sh)
+Also writes `small_oneway`: `small` with one-way picking aisles in alternate directions.
+
+Usage: make_warehouse.py  (writes small.*, small_oneway.*, large.*, huge.*, bottleneck.* here; then run ./build.sh)
 """
 import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
 
-def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park):
+def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, one_way=False):
+    """one_way: the picking aisles are single one-way edges, alternately up (even columns)
+    and down (odd columns); cross aisles and station stubs stay two-way (a stub is a dead
+    end, which a one-way edge could not leave)."""
     nodes, edges = {}, []
     top = cross_ys[-1]
     for c in range(columns):
@@ -33,7 +38,13 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park):
             aisle(f"c{c}r{r}", f"c{c + 1}r{r}")
     for c in range(columns):                  # picking aisles between shelf blocks
         for r in range(len(cross_ys) - 1):
-            aisle(f"c{c}r{r}", f"c{c}r{r + 1}")
+            a, b = f"c{c}r{r}", f"c{c}r{r + 1}"
+            if not one_way:
+                aisle(a, b)
+            elif c % 2 == 0:
+                edges.append((f"{a}_{b}", a, b))
+            else:
+                edges.append((f"{b}_{a}", b, a))
     stations = []
     for c in pick_cols:                       # pick-up stations below the bottom cross aisle
         nodes[f"pick{c}"] = (c * pitch, -stub)
@@ -45,12 +56,16 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park):
         aisle(f"c{c}r{last}", f"drop{c}")
         stations.append(("busStop", f"drop{c}", f"c{c}r{last}_drop{c}_0", stub, "drop"))
     for k, (c, r, pos) in enumerate(park):    # parking spots inside the outer picking aisles
-        stations.append(("parkingArea", f"park{k}", f"c{c}r{r}_c{c}r{r + 1}_0", pos, "parking"))
+        lane = f"c{c}r{r}_c{c}r{r + 1}_0" if not one_way or c % 2 == 0 else f"c{c}r{r + 1}_c{c}r{r}_0"
+        stations.append(("parkingArea", f"park{k}", lane, pos, "parking"))
 
-    write(name, nodes, edges, stations)
+    # A lone one-way edge is drawn on the centreline and netconvert 1.15 then computes lane
+    # lengths from the junction shapes (7.94 m for an 8 m aisle, 3.47 m for a 4 m one):
+    # fixing every length to the node distance keeps lane position == cell offset.
+    write(name, nodes, edges, stations, fixed_lengths=one_way)
 
 
-def write(name, nodes, edges, stations):
+def write(name, nodes, edges, stations, fixed_lengths=False):
     with open(os.path.join(HERE, f"{name}.nod.xml"), "w") as f:
         f.write("<nodes>\n")
         for n, (x, y) in nodes.items():
@@ -59,7 +74,9 @@ def write(name, nodes, edges, stations):
     with open(os.path.join(HERE, f"{name}.edg.xml"), "w") as f:
         f.write("<edges>\n")
         for e, a, b in edges:
-            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"/>\n')
+            (xa, ya), (xb, yb) = nodes[a], nodes[b]
+            length = f' length="{((xb - xa) ** 2 + (yb - ya) ** 2) ** 0.5:.2f}"' if fixed_lengths else ""
+            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"{length}/>\n')
         f.write("</edges>\n")
     with open(os.path.join(HERE, f"{name}.add.xml"), "w") as f:
         f.write("<additional>\n")
@@ -99,6 +116,10 @@ def corridor(name, length, sidings, siding_length, bays):
 # Small: 4 picking aisles 8 m long between 3 m shelf blocks, 2 pick-up and 2 drop stations.
 warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
           pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)])
+# Small with one-way picking aisles (alternately up and down; issue 24): the same layout,
+# stations and parking spot (config/small_oneway.yaml, small_oneway_lifelong.yaml).
+warehouse("small_oneway", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
+          pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)], one_way=True)
 # Large: 16 picking aisles, two shelf rows (cross aisles at y = 0, 12, 24),
 # 8 pick-up and 8 drop stations, 4 parking spots.
 warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,

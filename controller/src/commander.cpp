@@ -11,9 +11,10 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
     : map_(map), sumo_(sumo), tick_(tick_s)
 {
   for (const gridify::Aisle& a : map.aisles) {
-    lanes_[a.lane_ab] = Lane{a.ab, a.length_ab, a.lane_ba, a.cells.back()};
-    lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front()};
+    lanes_[a.lane_ab] = Lane{a.ab, a.length_ab, a.lane_ba, a.cells.back(), a.speed_ab};
     edge_lane_[a.ab] = a.lane_ab;
+    if (a.one_way) continue;  // no B->A lane (the planner never reverses on it)
+    lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front(), a.speed_ba};
     edge_lane_[a.ba] = a.lane_ba;
   }
   for (const gridify::Cell& c : map.cells)
@@ -28,7 +29,7 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
         if (!connected(lane(in.lane).edge, lane(map.pose_entering(u, w).lane).edge)) missing_turns_ = true;
   }
   for (const gridify::Aisle& a : map.aisles)
-    if (a.steps > 1 && (!connected(a.ab, a.ba) || !connected(a.ba, a.ab))) missing_turns_ = true;
+    if (a.steps > 1 && !a.one_way && (!connected(a.ab, a.ba) || !connected(a.ba, a.ab))) missing_turns_ = true;
 }
 
 const Commander::Lane& Commander::lane(const std::string& id) const

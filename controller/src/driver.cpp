@@ -30,6 +30,41 @@ double stop_speed(double room, double decel, double dt)
   return (room / dt + decel * dt * n * (n - 1) / 2) / n;
 }
 
+double reach_speed(double room, double limit, double decel, double dt)
+{
+  // Braking from v in whole steps drives v, v - decel dt, ...; every step driven faster
+  // than `limit` must end within `room` (the step that crosses the boundary is <= limit).
+  auto fits = [&](double v) {
+    double d = 0;
+    for (double u = v; u > limit + 1e-12; u -= decel * dt) d += u * dt;
+    return d <= room;
+  };
+  if (room <= 0) return limit;
+  double lo = limit, hi = limit + 1.0;
+  while (fits(hi)) lo = hi, hi += 2 * (hi - limit);
+  for (int k = 0; k < 50; ++k) {
+    const double mid = (lo + hi) / 2;
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+double Driver::lane_cap(int i) const
+{
+  const Agv& g = agv_[i];
+  double cap = cmd_.lane_speed(g.lane);  // the lane the front is on
+  double start = -g.done;                // distance from the front to the start of run[k]
+  for (size_t k = 0; k < g.run.size(); ++k) {
+    // During move k the front is on its target lane (a move out of a junction cell turns
+    // onto it at once): already there, keep to its limit; ahead, be able to slow to it.
+    const double w = cmd_.lane_speed(g.target[k].lane);
+    // A front exactly at a lane's end is moved onto the next lane by SUMO: a nanometre short.
+    cap = std::min(cap, start <= 1e-9 ? w : reach_speed(start - 1e-9, w, p_.decel, p_.dt));
+    start += g.dist[k];
+  }
+  return cap;
+}
+
 Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
     : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents())
 {
@@ -131,6 +166,7 @@ void Driver::before_step()
       // Land a nanometre short: SUMO moves a front exactly at a lane's end onto the next
       // edge of its route, which would leave the junction cell's pose.
       if (!held) v = std::min(p_.max_speed * factor, stop_speed(rem - 1e-9, p_.decel, p_.dt));
+      if (p_.lane_speeds) v = std::min(v, lane_cap(i));
     }
     speed[i] = v;
     rem_[i] = rem;
@@ -147,6 +183,8 @@ void Driver::before_step()
       if (agv_[j].dist.front() > agv_[lead].dist.front()) lead = j;
     }
     if (lead != i) speed[i] = speed[lead] * g.dist.front() / agv_[lead].dist.front();
+    if (p_.lane_speeds && lead != i)  // a member on a slower lane slows the group (scaled as above)
+      speed[i] = std::min(speed[i], lane_cap(i));
   }
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];

@@ -30,31 +30,38 @@ std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vecto
   std::vector<Aisle> aisles;
   // File order: the first edge of a pair seen becomes the aisle's A->B direction.
   for (const NetEdge& e : net.edges) {
-    auto back = directed.find({e.to, e.from});
-    if (back == directed.end()) {
-      std::string why = "one-way aisle: no opposite edge from '" + e.to + "' to '" + e.from +
-                        "' (every move must be reversible)";
-      if (!drop_one_way) throw planner::input_error(net.path, e.line, "edge '" + e.id + "': " + why + " (use --drop-one-way)");
-      dropped.push_back({"one-way edge", e.id, why, {{centre(net, e.from), centre(net, e.to)}}, {}});
-      continue;
-    }
-    const NetEdge& o = net.edges[back->second];
-    if (net.edge_index.at(o.id) < net.edge_index.at(e.id)) continue;  // pair already made from `o`
-    Aisle a;
-    a.ab = e.id;
-    a.ba = o.id;
-    a.a = e.from;
-    a.b = e.to;
     // Lane index 0 (rightmost): warehouse aisles have one lane per direction.
     auto lane0 = [&](const NetEdge& edge) -> const NetLane& {
       for (const NetLane& l : edge.lanes)
         if (l.index == 0) return l;
       throw planner::input_error(net.path, edge.line, "edge '" + edge.id + "' has no lane with index 0");
     };
+    Aisle a;
+    a.ab = e.id;
+    a.a = e.from;
+    a.b = e.to;
     a.lane_ab = lane0(e).id;
     a.length_ab = lane0(e).length;
+    a.speed_ab = lane0(e).speed;
+    auto back = directed.find({e.to, e.from});
+    if (back == directed.end()) {
+      // A one-way aisle: kept as arcs A->B (a directed planner graph) unless asked to drop it.
+      if (drop_one_way) {
+        dropped.push_back({"one-way edge", e.id, "one-way aisle: no opposite edge from '" + e.to + "' to '" + e.from + "'",
+                           {{centre(net, e.from), centre(net, e.to)}}, {}});
+        continue;
+      }
+      a.one_way = true;
+      a.length_ba = a.length_ab;  // the aisle's length (no B->A lane)
+      aisles.push_back(std::move(a));
+      continue;
+    }
+    const NetEdge& o = net.edges[back->second];
+    if (net.edge_index.at(o.id) < net.edge_index.at(e.id)) continue;  // pair already made from `o`
+    a.ba = o.id;
     a.lane_ba = lane0(o).id;
     a.length_ba = lane0(o).length;
+    a.speed_ba = lane0(o).speed;
     aisles.push_back(std::move(a));
   }
   return aisles;

@@ -32,9 +32,9 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
   for (Aisle& a : aisles) {
     const NetEdge& e = *net.edge(a.ab);
     // AGVs drive lane 0 only (one AGV per cell); wider edges are accepted but said so.
-    for (const NetEdge* d : {&e, net.edge(a.ba)})
+    for (const NetEdge* d : {&e, a.one_way ? &e : net.edge(a.ba)})
       if (d->lanes.size() > 1 && multi_lane++ == 0) multi_example = d->id + " (" + std::to_string(d->lanes.size()) + " lanes)";
-    if (std::fabs(a.length_ab - a.length_ba) > opt.tolerance)
+    if (!a.one_way && std::fabs(a.length_ab - a.length_ba) > opt.tolerance)
       throw planner::input_error(net.path, e.line,
                                  "edges '" + a.ab + "' and '" + a.ba + "' of one aisle differ in length (" + num(a.length_ab) +
                                      " vs " + num(a.length_ba) + ")");
@@ -86,15 +86,17 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
 // Which junction<->aisle links exist (step 4). link[i][0] is aisle i's link at A, [1] at B.
 // A link at J needs a connection into the aisle's edge leaving J and a connection out of
 // the aisle's edge arriving at J, both from/to edges whose own links at J exist: iterate
-// to the fixpoint because dropping one link can strand a connection of another.
+// to the fixpoint because dropping one link can strand a connection of another. A one-way
+// aisle has one edge: at A it needs only the connection into it, at B only the one out.
 std::vector<std::array<bool, 2>> find_links(const NetFile& net, const std::vector<Aisle>& aisles)
 {
   // edge id -> (aisle, end at its *to* junction: 0 = A, 1 = B)
   std::unordered_map<std::string, std::pair<int, int>> arrives, leaves;
   for (int i = 0; i < static_cast<int>(aisles.size()); ++i) {
     arrives[aisles[i].ab] = {i, 1};
-    arrives[aisles[i].ba] = {i, 0};
     leaves[aisles[i].ab] = {i, 0};
+    if (aisles[i].one_way) continue;
+    arrives[aisles[i].ba] = {i, 0};
     leaves[aisles[i].ba] = {i, 1};
   }
   std::vector<std::array<bool, 2>> link(aisles.size(), {true, true});
@@ -113,8 +115,11 @@ std::vector<std::array<bool, 2>> find_links(const NetFile& net, const std::vecto
       can_enter[oa][oend] = true;
     }
     for (size_t i = 0; i < aisles.size(); ++i)
-      for (int end = 0; end < 2; ++end)
-        if (link[i][end] && !(can_enter[i][end] && can_leave[i][end])) link[i][end] = false, changed = true;
+      for (int end = 0; end < 2; ++end) {
+        const bool need_enter = end == 0 || !aisles[i].one_way, need_leave = end == 1 || !aisles[i].one_way;
+        if (link[i][end] && !((can_enter[i][end] || !need_enter) && (can_leave[i][end] || !need_leave)))
+          link[i][end] = false, changed = true;
+      }
   }
   return link;
 }
@@ -166,7 +171,7 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
     cells.push_back(std::move(c));
   }
   auto links = find_links(net, aisles);
-  std::vector<std::pair<planner::Vertex, planner::Vertex>> edges;
+  std::vector<std::pair<planner::Vertex, planner::Vertex>> arcs;  // moves: both ways on two-way aisles
   std::vector<std::string> unlinked;
   for (int i = 0; i < static_cast<int>(aisles.size()); ++i) {
     Aisle& a = aisles[i];
@@ -180,7 +185,8 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       double f = static_cast<double>(k) / a.steps;
       c.x = ja.x + (jb.x - ja.x) * f;
       c.y = ja.y + (jb.y - ja.y) * f;
-      c.poses = {{a.lane_ab, k * a.spacing}, {a.lane_ba, std::max(0.0, a.length_ba - k * a.spacing)}};
+      c.poses = {{a.lane_ab, k * a.spacing}};
+      if (!a.one_way) c.poses.push_back({a.lane_ba, std::max(0.0, a.length_ba - k * a.spacing)});
       a.cells.push_back(static_cast<planner::Vertex>(cells.size()));
       cells.push_back(std::move(c));
     }
@@ -188,29 +194,33 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
     for (int k = 0; k < a.steps; ++k) {
       bool at_a = k == 0, at_b = k + 1 == a.steps;
       if ((at_a && !links[i][0]) || (at_b && !links[i][1])) continue;
-      edges.emplace_back(a.cells[k], a.cells[k + 1]);
+      arcs.emplace_back(a.cells[k], a.cells[k + 1]);
+      if (!a.one_way) arcs.emplace_back(a.cells[k + 1], a.cells[k]);
     }
     for (int end = 0; end < 2; ++end) {
       if (links[i][end]) continue;
       const std::string& j = end ? a.b : a.a;
-      std::string id = j + "/" + (end ? a.ba : a.ab);
+      std::string id = j + "/" + (end && !a.one_way ? a.ba : a.ab);
       unlinked.push_back(id);
       // Draw just the missing link: junction centre to the neighbouring cell.
       const NetJunction &from = end ? jb : ja, &to = end ? ja : jb;
       planner::Point p{from.x, from.y}, q{from.x + (to.x - from.x) / a.steps, from.y + (to.y - from.y) / a.steps};
-      m.dropped.push_back({"link", id,
-                           "no SUMO connection lets a vehicle at junction '" + j + "' enter '" + (end ? a.ba : a.ab) +
-                               "' or leave '" + (end ? a.ab : a.ba) + "' there",
+      const std::string why = !a.one_way ? "enter '" + (end ? a.ba : a.ab) + "' or leave '" + (end ? a.ab : a.ba) + "'"
+                              : end    ? "leave '" + a.ab + "'"
+                                       : "enter '" + a.ab + "'";
+      m.dropped.push_back({"link", id, "no SUMO connection lets a vehicle at junction '" + j + "' " + why + " there",
                            {{p, q}},
                            {}});
     }
   }
 
-  // Step 5: keep the largest component.
+  // Step 5: keep the largest strongly connected component: every kept cell can reach every
+  // other and come back (lifelong errands go anywhere). With two-way aisles only, these are
+  // the connected components.
   const int n0 = static_cast<int>(cells.size());
-  planner::Graph g0 = planner::Graph::from_edges(n0, edges);
+  planner::Graph g0 = planner::Graph::from_arcs(n0, arcs);
   int ncomp = 0;
-  std::vector<int> comp = g0.components(&ncomp);
+  std::vector<int> comp = g0.strong_components(&ncomp);
   std::vector<int> comp_size(ncomp, 0);
   for (int c : comp) ++comp_size[c];
   int keep = static_cast<int>(std::max_element(comp_size.begin(), comp_size.end()) - comp_size.begin());
@@ -224,8 +234,10 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
     if (!opt.keep_largest) {
       int other = keep == 0 ? 1 : 0;
       throw planner::input_error(net.path, 0,
-                                 "the net is disconnected (" + std::to_string(ncomp) + " components): junctions " +
-                                     name(other) + " are cut off from junctions " + name(keep));
+                                 std::string(g0.directed() ? "the net is not strongly connected (" : "the net is disconnected (") +
+                                     std::to_string(ncomp) + " components): junctions " + name(other) +
+                                     (g0.directed() ? " cannot reach and be reached from junctions " : " are cut off from junctions ") +
+                                     name(keep));
     }
     std::vector<Dropped> parts(ncomp);
     for (const Aisle& a : aisles) {
@@ -233,7 +245,8 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       if (c != keep) {
         const NetJunction &ja = *net.junction(a.a), &jb = *net.junction(a.b);
         parts[c].segments.push_back({{ja.x, ja.y}, {jb.x, jb.y}});
-        parts[c].members.insert(parts[c].members.end(), {a.ab, a.ba});
+        parts[c].members.push_back(a.ab);
+        if (!a.one_way) parts[c].members.push_back(a.ba);
       }
     }
     for (int v = 0; v < n0; ++v)  // dropped junctions as points (zero-length segments)
@@ -256,9 +269,9 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
       id[v] = static_cast<planner::Vertex>(m.cells.size());
       m.cells.push_back(std::move(cells[v]));
     }
-  std::vector<std::pair<planner::Vertex, planner::Vertex>> kept_edges;
-  for (auto [u, v] : edges)
-    if (id[u] >= 0 && id[v] >= 0) kept_edges.emplace_back(id[u], id[v]);
+  std::vector<std::pair<planner::Vertex, planner::Vertex>> kept_arcs;
+  for (auto [u, v] : arcs)
+    if (id[u] >= 0 && id[v] >= 0) kept_arcs.emplace_back(id[u], id[v]);
 
   // Kept aisles: those whose interior cells were kept, or (no interior cell) whose single
   // graph edge was kept. Dropped chain ends become -1 in Aisle::cells.
@@ -266,13 +279,13 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
   for (size_t i = 0; i < aisles.size(); ++i) {
     Aisle& a = aisles[i];
     bool kept = a.steps > 1 ? comp[a.cells[1]] == keep
-                            : links[i][0] && links[i][1] && comp[a.cells[0]] == keep;
+                            : links[i][0] && links[i][1] && comp[a.cells[0]] == keep && comp[a.cells[1]] == keep;
     for (planner::Vertex& v : a.cells) v = id[v];
     if (!kept) continue;
     int idx = aisle_index[i] = static_cast<int>(m.aisles.size());
     for (size_t k = 1; k + 1 < a.cells.size(); ++k) m.cells[a.cells[k]].aisle = idx;
     m.lane_aisle[a.lane_ab] = {idx, true};
-    m.lane_aisle[a.lane_ba] = {idx, false};
+    if (!a.one_way) m.lane_aisle[a.lane_ba] = {idx, false};
     m.aisles.push_back(a);
   }
 
@@ -284,9 +297,12 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
   for (size_t i = 0; i < aisles.size(); ++i) {
     if (aisle_index[i] < 0) continue;
     const Aisle& a = aisles[i];
-    if (links[i][1]) linked_in.insert(a.ab), linked_out.insert(a.ba);
-    if (links[i][0]) linked_in.insert(a.ba), linked_out.insert(a.ab);
+    if (links[i][1]) linked_in.insert(a.ab);
+    if (links[i][0]) linked_out.insert(a.ab);
     if (links[i][1]) m.cells[a.cells.back()].poses.push_back({a.lane_ab, a.length_ab});
+    if (a.one_way) continue;
+    if (links[i][1]) linked_out.insert(a.ba);
+    if (links[i][0]) linked_in.insert(a.ba);
     if (links[i][0]) m.cells[a.cells.front()].poses.push_back({a.lane_ba, a.length_ba});
   }
   int missing = 0;
@@ -320,7 +336,7 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
   std::vector<planner::Point> pos;
   pos.reserve(m.cells.size());
   for (const Cell& c : m.cells) pos.push_back({c.x, c.y});
-  m.graph = planner::Graph::from_edges(static_cast<int>(m.cells.size()), kept_edges, std::move(pos));
+  m.graph = planner::Graph::from_arcs(static_cast<int>(m.cells.size()), kept_arcs, std::move(pos));
   m.graph.name = net.path;
   // An axis-aligned lattice net also gets the planner's grid view (MovingAI-style cells),
   // which grid-based tools such as the learned policy's observations need.

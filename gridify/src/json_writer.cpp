@@ -14,7 +14,8 @@ nlohmann::json summary_json(const CellMap& m)
   for (const Aisle& a : m.aisles) snapped += a.snapped;
   return {{"junctions", m.num_junction_cells()}, {"aisles", m.aisles.size()},       {"cells", m.cells.size()},
           {"aisle_cells", m.num_aisle_cells()},  {"edges", m.graph.num_edges()},     {"max_degree", m.graph.max_degree()},
-          {"snapped_aisles", snapped},           {"stations", m.stations.size()},    {"dropped", m.dropped.size()}};
+          {"snapped_aisles", snapped},           {"stations", m.stations.size()},    {"dropped", m.dropped.size()},
+          {"one_way_arcs", m.graph.num_one_way()}};
 }
 
 nlohmann::json to_json(const CellMap& m)
@@ -45,22 +46,24 @@ nlohmann::json to_json(const CellMap& m)
     if (grid.width > 0) j["col"] = grid.coord[v].col, j["row"] = grid.coord[v].row;
     cells.push_back(std::move(j));
   }
-  json edges = json::array();
+  json edges = json::array(), arcs = json::array();  // two-way edges once; one-way arcs apart
   for (planner::Vertex v = 0; v < m.graph.size(); ++v)
-    for (planner::Vertex u : m.graph.neighbors(v))
-      if (v < u) edges.push_back({v, u});
+    for (planner::Vertex u : m.graph.neighbors(v)) {
+      if (!m.graph.adjacent(u, v)) arcs.push_back({v, u});
+      else if (v < u) edges.push_back({v, u});
+    }
   json aisles = json::array();
   for (const Aisle& a : m.aisles)
     aisles.push_back({{"ab", a.ab},           {"ba", a.ba},       {"lane_ab", a.lane_ab}, {"lane_ba", a.lane_ba},
                       {"a", a.a},             {"b", a.b},         {"length", a.length_ab}, {"steps", a.steps},
-                      {"spacing", a.spacing}, {"snapped", a.snapped}, {"cells", a.cells}});
+                      {"spacing", a.spacing}, {"snapped", a.snapped}, {"one_way", a.one_way}, {"cells", a.cells}});
   json stations = json::array();
   for (const Station& s : m.stations)
     stations.push_back({{"id", s.id}, {"kind", s.kind}, {"element", s.element}, {"cell", s.cell}});
   json dropped = json::array();
   for (const Dropped& d : m.dropped) dropped.push_back({{"kind", d.kind}, {"id", d.id}, {"reason", d.reason}});
   json out = {{"net", m.net_path}, {"cell_length", m.cell_length}, {"summary", summary_json(m)},
-              {"cells", cells},    {"edges", edges},               {"aisles", aisles},
+              {"cells", cells},    {"edges", edges}, {"one_way", arcs},             {"aisles", aisles},
               {"stations", stations}, {"dropped", dropped},        {"warnings", m.warnings}};
   if (grid.width > 0) out["grid"] = {{"width", grid.width}, {"height", grid.height}};
   return out;

@@ -59,7 +59,7 @@ GridLayout grid_layout(const CellMap& m, std::string* why)
       int col = L.coord[v].col + dc[d], row = L.coord[v].row + dr[d];
       if (col >= L.width || row >= L.height) continue;
       planner::Vertex u = at[static_cast<size_t>(row) * L.width + col];
-      if (u >= 0 && !m.graph.adjacent(u, v))
+      if (u >= 0 && !m.graph.adjacent(u, v) && !m.graph.adjacent(v, u))  // a one-way arc is a link too
         return fail("neighbouring cells " + std::to_string(v) + " and " + std::to_string(u) +
                     " are not connected in SUMO (aisles one cell apart?)");
     }
@@ -72,6 +72,10 @@ void write_movingai_map(const CellMap& m, const std::string& path)
   std::string why;
   GridLayout L = grid_layout(m, &why);
   if (L.width == 0) throw planner::InputError(m.net_path + ": cannot write a MovingAI map: " + why);
+  // A .map has two-way moves only: it would turn every one-way aisle into a two-way one.
+  if (m.graph.directed())
+    throw planner::InputError(m.net_path + ": cannot write a MovingAI map: " + std::to_string(m.graph.num_one_way()) +
+                              " one-way arc(s) (a .map has only two-way moves)");
   std::vector<std::string> rows(L.height, std::string(L.width, '@'));
   for (const GridCoord& g : L.coord) rows[g.row][g.col] = '.';
   planner::write_file(path, [&](std::ostream& out) {

@@ -37,6 +37,8 @@ NetFile NetFile::read(const std::string& path)
         lane.index = src.integer(l, "index");
         lane.length = src.num(l, "length");
         lane.width = src.num_or(l, "width", 3.2);  // SUMO's default lane width
+        lane.speed = src.num_or(l, "speed", 13.89);  // SUMO's default speed limit
+        if (!(lane.speed > 0)) throw src.error(l, "lane '" + lane.id + "': speed must be positive");
         if (!(lane.length > 0)) throw src.error(l, "lane '" + lane.id + "': length must be positive");
         e.lanes.push_back(std::move(lane));
       }

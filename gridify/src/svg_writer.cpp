@@ -93,7 +93,7 @@ std::string to_svg(const CellMap& m, const SvgOptions& opt)
   o << "<g stroke=\"#333333\" stroke-width=\"" << std::max(0.8, 0.06 * c * s) << "\">\n";
   for (planner::Vertex v = 0; v < m.graph.size(); ++v)
     for (planner::Vertex u : m.graph.neighbors(v))
-      if (v < u)
+      if (v < u || !m.graph.adjacent(u, v))  // two-way edges once, one-way arcs always
         o << "<line x1=\"" << X(m.cells[v].x) << "\" y1=\"" << Y(m.cells[v].y) << "\" x2=\"" << X(m.cells[u].x)
           << "\" y2=\"" << Y(m.cells[u].y) << "\"/>\n";
   o << "</g>\n";

@@ -48,7 +48,9 @@ void DistCache::Table::pop(const Graph& g)
 {
   const Vertex u = queue[head++];
   ++popped;
-  for (Vertex w : g.neighbors(u)) {
+  // Distances *to* the goal: the BFS walks arcs backwards (in-neighbours; the same as
+  // out-neighbours on an undirected graph).
+  for (Vertex w : g.in_neighbors(u)) {
     if (dist[w] != kInf) continue;
     dist[w] = dist[u] + 1;
     queue.push_back(w);
@@ -109,7 +111,7 @@ int32_t DistCache::Table::lower_bound(Vertex v, const Graph& g) const
   // The queue is in BFS order, so every vertex nearer than its head's distance + 1 has
   // been discovered; an undiscovered one is at least that far.
   int32_t d = dist[queue[head]] + 1;
-  if (g.is_grid())  // every edge joins 4-neighbours: Manhattan is a lower bound too
+  if (g.is_grid())  // every arc joins 4-neighbours: Manhattan is a lower bound too (one-way arcs only lengthen paths)
     d = std::max(d, std::abs(g.cell_x(v) - g.cell_x(goal)) + std::abs(g.cell_y(v) - g.cell_y(goal)));
   return d;
 }

@@ -8,17 +8,27 @@ namespace planner {
 
 Graph Graph::from_edges(int n, const std::vector<std::pair<Vertex, Vertex>>& edges, std::vector<Point> pos)
 {
+  std::vector<std::pair<Vertex, Vertex>> arcs;
+  arcs.reserve(edges.size() * 2);
+  for (auto [u, v] : edges) {
+    arcs.emplace_back(u, v);
+    arcs.emplace_back(v, u);
+  }
+  return from_arcs(n, arcs, std::move(pos));
+}
+
+Graph Graph::from_arcs(int n, const std::vector<std::pair<Vertex, Vertex>>& arcs_in, std::vector<Point> pos)
+{
   if (n < 0) throw std::invalid_argument("graph: negative vertex count");
   if (!pos.empty() && static_cast<int>(pos.size()) != n)
     throw std::invalid_argument("graph: " + std::to_string(pos.size()) + " positions for " + std::to_string(n) + " vertices");
   std::vector<std::pair<Vertex, Vertex>> arcs;
-  arcs.reserve(edges.size() * 2);
-  for (auto [u, v] : edges) {
+  arcs.reserve(arcs_in.size());
+  for (auto [u, v] : arcs_in) {
     if (u < 0 || v < 0 || u >= n || v >= n)
       throw std::invalid_argument("graph: edge (" + std::to_string(u) + "," + std::to_string(v) + ") out of range");
     if (u == v) throw std::invalid_argument("graph: self-loop at vertex " + std::to_string(u));
     arcs.emplace_back(u, v);
-    arcs.emplace_back(v, u);
   }
   std::sort(arcs.begin(), arcs.end());
   arcs.erase(std::unique(arcs.begin(), arcs.end()), arcs.end());
@@ -30,6 +40,19 @@ Graph Graph::from_edges(int n, const std::vector<std::pair<Vertex, Vertex>>& edg
   g.nbrs_.resize(arcs.size());
   for (size_t k = 0; k < arcs.size(); ++k) g.nbrs_[k] = arcs[k].second;  // arcs sorted by source
   for (int v = 0; v < n; ++v) g.max_degree_ = std::max(g.max_degree_, g.degree(v));
+  for (auto [u, v] : arcs) g.one_way_ += !g.adjacent(v, u);
+  g.directed_ = g.one_way_ > 0;
+  if (g.directed_) {  // in-lists: the arcs sorted by target
+    std::vector<std::pair<Vertex, Vertex>> rev;
+    rev.reserve(arcs.size());
+    for (auto [u, v] : arcs) rev.emplace_back(v, u);
+    std::sort(rev.begin(), rev.end());
+    g.in_offsets_.assign(n + 1, 0);
+    for (auto& a : rev) ++g.in_offsets_[a.first + 1];
+    for (int v = 0; v < n; ++v) g.in_offsets_[v + 1] += g.in_offsets_[v];
+    g.in_nbrs_.resize(rev.size());
+    for (size_t k = 0; k < rev.size(); ++k) g.in_nbrs_[k] = rev[k].second;
+  }
   g.pos_ = std::move(pos);
   return g;
 }
@@ -111,11 +134,74 @@ std::vector<int> Graph::components(int* count) const
       stack.pop_back();
       for (Vertex u : neighbors(v))
         if (comp[u] < 0) comp[u] = c, stack.push_back(u);
+      for (Vertex u : in_neighbors(v))  // weak components: arcs both ways
+        if (comp[u] < 0) comp[u] = c, stack.push_back(u);
     }
     ++c;
   }
   if (count) *count = c;
   return comp;
+}
+
+std::vector<int> Graph::strong_components(int* count, const std::vector<uint8_t>* blocked) const
+{
+  // Kosaraju, iteratively (a recursive DFS overflows the stack on 10^5-cell aisles):
+  // finish order of a DFS over out-arcs, then components by DFS over in-arcs in reverse
+  // finish order.
+  const int n = size();
+  auto off = [&](Vertex v) { return blocked && (*blocked)[v]; };
+  std::vector<Vertex> order;
+  order.reserve(n);
+  std::vector<uint8_t> seen(n, 0);
+  std::vector<std::pair<Vertex, int>> stack;  // vertex, index of the next out-neighbour
+  for (Vertex s = 0; s < n; ++s) {
+    if (seen[s] || off(s)) continue;
+    seen[s] = 1;
+    stack.emplace_back(s, 0);
+    while (!stack.empty()) {
+      auto& [v, k] = stack.back();
+      const auto nb = neighbors(v);
+      if (k < static_cast<int>(nb.size())) {
+        const Vertex u = nb[k++];
+        if (!seen[u] && !off(u)) seen[u] = 1, stack.emplace_back(u, 0);
+      } else {
+        order.push_back(v);
+        stack.pop_back();
+      }
+    }
+  }
+  std::vector<int> comp(n, -1);
+  std::vector<Vertex> todo;
+  int c = 0;
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    if (comp[*it] >= 0) continue;
+    comp[*it] = c;
+    todo.assign(1, *it);
+    while (!todo.empty()) {
+      const Vertex v = todo.back();
+      todo.pop_back();
+      for (Vertex u : in_neighbors(v))
+        if (comp[u] < 0 && !off(u)) comp[u] = c, todo.push_back(u);
+    }
+    ++c;
+  }
+  if (count) *count = c;
+  return comp;
+}
+
+bool Graph::reaches(Vertex from, Vertex to) const
+{
+  std::vector<uint8_t> seen(size(), 0);
+  std::vector<Vertex> todo{from};
+  seen[from] = 1;
+  while (!todo.empty()) {
+    const Vertex v = todo.back();
+    todo.pop_back();
+    if (v == to) return true;
+    for (Vertex u : neighbors(v))
+      if (!seen[u]) seen[u] = 1, todo.push_back(u);
+  }
+  return false;
 }
 
 }  // namespace planner

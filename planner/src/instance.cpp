@@ -8,7 +8,8 @@
 namespace planner {
 namespace {
 
-std::vector<int> bfs(const Graph& g, Vertex s)
+// Distances to `s` (BFS backwards along arcs: in-neighbours).
+std::vector<int> bfs_to(const Graph& g, Vertex s)
 {
   std::vector<int> d(g.size(), -1);
   std::queue<Vertex> q;
@@ -17,7 +18,7 @@ std::vector<int> bfs(const Graph& g, Vertex s)
   while (!q.empty()) {
     Vertex v = q.front();
     q.pop();
-    for (Vertex u : g.neighbors(v))
+    for (Vertex u : g.in_neighbors(v))
       if (d[u] < 0) d[u] = d[v] + 1, q.push(u);
   }
   return d;
@@ -45,9 +46,21 @@ void Instance::check(const Graph& g, bool distinct_goals) const
       if (auto [it, fresh] = goal_of.emplace(goals[i], i); !fresh)
         fail(i, "duplicate goal (same vertex as agent " + std::to_string(it->second) + ")");
   }
-  auto comp = g.components();
-  for (int i = 0; i < num_agents(); ++i)
-    if (comp[starts[i]] != comp[goals[i]]) fail(i, "goal unreachable from start");
+  if (!g.directed()) {
+    auto comp = g.components();
+    for (int i = 0; i < num_agents(); ++i)
+      if (comp[starts[i]] != comp[goals[i]]) fail(i, "goal unreachable from start");
+    return;
+  }
+  // One-way arcs: reachability is not symmetric, so search from each distinct goal backwards.
+  std::unordered_map<Vertex, std::vector<int>> to_goal;
+  for (int i = 0; i < num_agents(); ++i) {
+    auto it = to_goal.find(goals[i]);
+    if (it == to_goal.end()) it = to_goal.emplace(goals[i], bfs_to(g, goals[i])).first;
+    if (it->second[starts[i]] < 0)
+      fail(i, "goal " + std::to_string(goals[i]) + " unreachable from start " + std::to_string(starts[i]) +
+                  " along the one-way arcs");
+  }
 }
 
 long long Instance::soc_lower_bound(const Graph& g) const
@@ -57,7 +70,7 @@ long long Instance::soc_lower_bound(const Graph& g) const
   long long sum = 0;
   for (int i = 0; i < num_agents(); ++i) {
     auto it = dist.find(goals[i]);
-    if (it == dist.end()) it = dist.emplace(goals[i], bfs(g, goals[i])).first;
+    if (it == dist.end()) it = dist.emplace(goals[i], bfs_to(g, goals[i])).first;
     sum += it->second[starts[i]];
   }
   return sum;

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <regex>
 
 #include "controller/config.hpp"
@@ -268,4 +269,44 @@ TEST(AgvNet, ReversalsAtJunctionsWithoutTurnaroundsAreTurnsNotJumps)
     EXPECT_GT(m.errands_finished, 0) << ex;
     ctest_util::expect_no_sumo_collision(cfg.output.dir);
   }
+
+// Lane speed limits (issue 24): the small warehouse with its cross aisles raised to 2 m/s,
+// picking aisles and stubs left at 1 m/s, AGVs that could drive 2 m/s. SUMO's fcd output
+// (every step, every AGV: lane and speed) shows no AGV faster than its lane allows, and
+// that they do use the fast lanes (so the limit is per lane, not a global cap). Without
+// DriveParams::lane_speeds they drive 2 m/s in the picking aisles.
+TEST(AgvPhysics, NeverFasterThanTheLaneSpeedLimit)
+{
+  Config cfg = agv_config("lane_speeds");
+  const std::string net = cfg.output.dir + "/fast_cross_aisles.net.xml";
+  {
+    std::ifstream in(cfg.sumo.net);
+    std::ofstream out(net);
+    const std::regex cross(R"re(<lane id="c\d+r(\d+)_c\d+r\1_0"[^>]* speed=")re");
+    for (std::string line; std::getline(in, line);) {
+      if (std::regex_search(line, cross)) line = std::regex_replace(line, std::regex(R"(speed="1\.00")"), R"(speed="2.00")");
+      out << line << '\n';
+    }
+  }
+  cfg.sumo.net = net;
+  cfg.fleet.vtype.max_speed = 2.0;
+  cfg.fleet.vtype.accel = 2.0;
+  cfg.fleet.vtype.decel = 2.0;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  const std::string s = ctest_util::slurp(cfg.output.dir + "/fcd.xml");
+  const std::regex re(R"re(<vehicle id="([^"]+)"[^>]* speed="([-0-9.e]+)"[^>]* lane="([^"]+)")re");
+  const std::regex fast_lane(R"re(c\d+r(\d+)_c\d+r\1_0)re");
+  double top_fast = 0;
+  long samples = 0;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), re); it != std::sregex_iterator(); ++it) {
+    const std::string lane = (*it)[3];
+    const double v = std::stod((*it)[2]), limit = std::regex_match(lane, fast_lane) ? 2.0 : 1.0;
+    ++samples;
+    ASSERT_LE(v, limit + 1e-6) << (*it)[1] << " on " << lane;
+    if (limit > 1.5) top_fast = std::max(top_fast, v);
+  }
+  EXPECT_GT(samples, 1000);
+  EXPECT_GT(top_fast, 1.5);
 }

@@ -143,6 +143,31 @@ TEST(ControllerScenario, SmallWarehouseCompletesExactly)
   EXPECT_EQ(m.agents, 16);
 }
 
+// One-way picking aisles (issue 24): gridify keeps them as arcs, RT-LaCAM drives along
+// them only forwards, SUMO reports no collision, every AGV ends exactly on its goal.
+// Fails if the aisles were made two-way (no one-way arc) or refused (gridify error).
+TEST(ControllerScenario, OneWayWarehouseCompletesExactly)
+{
+  Config cfg = scenario("small_oneway.yaml", "oneway");
+  cfg.planner.budget_ms = 0;  // deterministic
+  cfg.planner.expansions = 100;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_exact_solved_run(cfg, c, m);
+  EXPECT_EQ(m.agents, 10);
+  const planner::Graph& g = c.map().graph;
+  ASSERT_TRUE(g.directed());
+  long long one_way_moves = 0;
+  const auto& plan = c.plan();
+  for (size_t t = 1; t < plan.size(); ++t)
+    for (size_t i = 0; i < plan[t].size(); ++i)
+      if (plan[t][i] != plan[t - 1][i]) {
+        ASSERT_TRUE(g.adjacent(plan[t - 1][i], plan[t][i]));
+        one_way_moves += !g.adjacent(plan[t][i], plan[t - 1][i]);
+      }
+  EXPECT_GT(one_way_moves, 16);
+}
+
 TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
 {
   Config cfg = scenario("large_warehouse.yaml", "large");
@@ -217,14 +242,15 @@ TEST(ControllerScenario, BottleneckNaiveReplanningStalls)
 TEST(ControllerScenario, ShippedConfigsAndSumocfgsLoad)
 {
   // Every scenario has a config and a .sumocfg that SUMO accepts (sumo-gui -c uses it).
-  for (const char* s : {"small", "large", "huge", "bottleneck"}) {
+  for (const char* s : {"small", "small_oneway", "large", "huge", "bottleneck"}) {
     const std::string cfgfile = std::string(RTLACAM_SCENARIOS) + "/" + s + ".sumocfg";
     ASSERT_TRUE(fs::exists(cfgfile)) << cfgfile;
     const std::string log = temp_dir(std::string("sumocfg_") + s) + "/sumo.log";
     const std::string cmd = "sumo -c " + cfgfile + " --end 1 --no-step-log true > " + log + " 2>&1";
     EXPECT_EQ(std::system(cmd.c_str()), 0) << slurp(log);
   }
-  for (const char* y : {"small_warehouse.yaml", "large_warehouse.yaml", "huge_warehouse.yaml", "bottleneck.yaml"}) {
+  for (const char* y : {"small_warehouse.yaml", "small_oneway.yaml", "small_oneway_lifelong.yaml", "large_warehouse.yaml",
+                        "huge_warehouse.yaml", "bottleneck.yaml"}) {
     Config c = load_config(std::string(RTLACAM_CONFIGS) + "/" + y);
     EXPECT_TRUE(fs::exists(c.sumo.net)) << y;
   }

@@ -49,12 +49,56 @@ std::string line_net(const std::vector<std::string>& xs, const std::string& len)
 
 }  // namespace
 
-TEST(GridifyErrors, OneWayAisleIsAnErrorNamingTheEdge)
+// A one-way aisle into a dead end (b -> d, nothing leaves d) is kept as arcs, but its
+// cells cannot get back: they are dropped with the cells outside the largest strongly
+// connected component, or, asked to keep everything, the net is refused naming them.
+TEST(GridifyErrors, OneWayDeadEndIsNotStronglyConnected)
 {
-  std::string e = error_of(data("oneway.net.xml"));
+  NetFile net = NetFile::read(data("oneway.net.xml"));
+  CellMap m = gridify::gridify(net);
+  EXPECT_EQ(m.aisles.size(), 2u);
+  EXPECT_EQ(m.junction_cell("d"), -1);
+  EXPECT_FALSE(m.graph.directed());  // what is left is two-way
+  bool b_d_dropped = false;
+  for (const Dropped& d : m.dropped)
+    for (const std::string& id : d.members) b_d_dropped |= d.kind == "component" && id == "b_d";
+  EXPECT_TRUE(b_d_dropped);
+  expect_invariants(m, net);
+  GridifyOptions opt;
+  opt.keep_largest = false;
+  std::string e = error_of(data("oneway.net.xml"), opt);
   EXPECT_TRUE(has(e, "oneway.net.xml:")) << e;
-  EXPECT_TRUE(has(e, "edge 'b_d'")) << e;
-  EXPECT_TRUE(has(e, "--drop-one-way")) << e;
+  EXPECT_TRUE(has(e, "not strongly connected")) << e;
+}
+
+// One-way rows joined by two-way cross aisles: the one-way aisles become arcs A->B only.
+// Fails if gridify made them two-way (or refused them, as it did before).
+TEST(GridifyErrors, OneWayAislesBecomeDirectedArcs)
+{
+  NetFile net = NetFile::read(data("oneway_loop.net.xml"));
+  CellMap m = gridify::gridify(net);
+  expect_invariants(m, net);
+  EXPECT_TRUE(m.dropped.empty());
+  ASSERT_EQ(m.aisles.size(), 7u);
+  EXPECT_TRUE(m.graph.directed());
+  EXPECT_EQ(m.graph.num_one_way(), 4u * 3u);  // 4 one-way aisles of 3 steps
+  int one_way = 0;
+  for (const Aisle& a : m.aisles) {
+    if (!a.one_way) continue;
+    ++one_way;
+    EXPECT_EQ(a.ba, "");
+    for (size_t k = 0; k + 1 < a.cells.size(); ++k) {
+      EXPECT_TRUE(m.graph.adjacent(a.cells[k], a.cells[k + 1])) << a.ab;
+      EXPECT_FALSE(m.graph.adjacent(a.cells[k + 1], a.cells[k])) << a.ab;
+      EXPECT_EQ(m.pose_entering(a.cells[k], a.cells[k + 1]).lane, a.lane_ab);
+      EXPECT_THROW(m.pose_entering(a.cells[k + 1], a.cells[k]), std::invalid_argument);
+    }
+  }
+  EXPECT_EQ(one_way, 4);
+  // With --drop-one-way the rows go and the cross aisles fall apart into pieces.
+  GridifyOptions opt;
+  opt.drop_one_way = true;
+  EXPECT_EQ(gridify::gridify(net, opt).aisles.size(), 1u);
 }
 
 TEST(GridifyErrors, OneWayAisleDroppedOnRequest)
@@ -187,7 +231,7 @@ TEST(GridifyErrors, BadCellLength)
 TEST(GridifyErrors, CliExitsNonZeroWithTheMessage)
 {
   std::string log = temp_dir() + "/err.txt";
-  std::string cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("oneway.net.xml") + "' 2> '" + log + "' > /dev/null";
+  std::string cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("notmultiple.net.xml") + "' 2> '" + log + "' > /dev/null";
   int rc = std::system(cmd.c_str());
   ASSERT_TRUE(WIFEXITED(rc));
   EXPECT_EQ(WEXITSTATUS(rc), 2);
@@ -195,8 +239,9 @@ TEST(GridifyErrors, CliExitsNonZeroWithTheMessage)
   std::stringstream ss;
   ss << in.rdbuf();
   EXPECT_TRUE(has(ss.str(), "error: ")) << ss.str();
-  EXPECT_TRUE(has(ss.str(), "edge 'b_d'")) << ss.str();
-  cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("oneway.net.xml") + "' --drop-one-way -q";
+  EXPECT_TRUE(has(ss.str(), "notmultiple.net.xml:")) << ss.str();
+  EXPECT_TRUE(has(ss.str(), "(use --snap)")) << ss.str();
+  cmd = std::string(RTLACAM_GRIDIFY_CLI) + " '" + data("notmultiple.net.xml") + "' --snap -q";
   EXPECT_EQ(std::system(cmd.c_str()), 0);
 }
 

@@ -54,6 +54,9 @@ class Commander {
   // The move u -> v leaves the lane of the commanded pose (a new route): SUMO replaces a
   // route only from the edge the vehicle is on, so a chained move may only do that once the
   // AGV has reached the commanded lane.
+  // The speed limit of a kept lane (the net's lane `speed`), m/s: the adg Driver never
+  // commands more on it.
+  double lane_speed(const std::string& lane_id) const { return lane(lane_id).speed; }
   bool changes_lane(int agent, planner::Vertex u, planner::Vertex v) const
   {
     return map_.pose_entering(u, v).lane != agv_[agent].pose.lane;
@@ -94,6 +97,7 @@ class Commander {
     double length = 0;
     std::string opposite;    // lane of the opposite edge of the aisle
     planner::Vertex end = -1;  // junction cell at the end of the lane
+    double speed = 0;          // the lane's speed limit, m/s
   };
 
   void command(int agent, planner::Vertex u, planner::Vertex v, int ticks);

@@ -69,6 +69,10 @@ struct DriveParams {
   // leader's back, m.
   bool follow = false;
   double length = 0.8, margin = 0.1;
+  // Lane speed limits (the net's lane `speed`): an AGV never drives faster than the limit
+  // of the lane its front is on, and brakes in time (at `decel`, whole steps) for a slower
+  // lane ahead on its running moves (reach_speed()).
+  bool lane_speeds = true;
 };
 
 struct DriveStats {
@@ -84,6 +88,10 @@ struct DriveStats {
 // (v, v - decel dt, ..., 0; each step covers speed x dt) stops within `room` metres, and
 // lands exactly on it when taken every step.
 double stop_speed(double room, double decel, double dt);
+// The highest speed from which braking at `decel` in whole steps of `dt` drives every step
+// faster than `limit` within `room` (so the front crosses a boundary `room` ahead at
+// <= limit); `limit` itself when room <= 0.
+double reach_speed(double room, double limit, double decel, double dt);
 
 class Driver {
  public:
@@ -132,6 +140,8 @@ class Driver {
   double ahead(int agent, int action) const;
   // Follow mode: how far agent i's front may still go (its leaders' backs minus margin).
   double room(int i) const;
+  // Lane speed limits: the most agent i may drive now (DriveParams::lane_speeds).
+  double lane_cap(int i) const;
   // How far past the start of action a's target cell the front may go: its leader's back
   // minus margin, short of the cell while the leader has not arrived; INFINITY without one.
   double gap(const executor::Action& a) const;

@@ -27,7 +27,9 @@ struct GridLayout {
 GridLayout grid_layout(const CellMap& map, std::string* why = nullptr);
 
 // Writes the .map ('.' = cell, '@' = no cell); throws planner::InputError naming the
-// reason when the net is not an axis-aligned grid or the file cannot be written.
+// reason when the net is not an axis-aligned grid, has one-way aisles (a .map cannot say
+// so: every move would become two-way) or the file cannot be written. grid_layout()
+// itself accepts one-way aisles (lattice neighbours joined one way are still joined).
 void write_movingai_map(const CellMap& map, const std::string& path);
 
 }  // namespace gridify

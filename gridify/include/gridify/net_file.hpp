@@ -22,6 +22,7 @@ struct NetLane {
   int index = 0;
   double length = 0;
   double width = 0;
+  double speed = 0;  // m/s, the lane's speed limit (SUMO's default 13.89 when absent)
 };
 
 struct NetEdge {

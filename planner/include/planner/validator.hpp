@@ -1,7 +1,8 @@
 #pragma once
 // Validator: checks an executed sequence of configurations C^0, C^1, ... :
 //   - C^0 equals the starts (and, when required, the last one equals the goals),
-//   - every agent waits or moves along a graph edge,
+//   - every agent waits or moves along a graph arc (on a directed graph, a one-way arc
+//     only forwards: Graph::adjacent(from, to)),
 //   - no vertex conflict (two agents on one vertex),
 //   - no swap conflict (two agents exchanging vertices over one edge).
 // It works step by step (executors feed it every move they make) or on a whole plan, and

@@ -25,21 +25,13 @@ GoalTest relaxed_goal_test(const Graph& g, const Config& current, const Config& 
 {
   if (test || !any_immobile(immobile)) return test;
   const int n = static_cast<int>(current.size());
-  // Components of the graph without the immobile agents' vertices (BFS, O(V + E)).
-  std::vector<int> comp(g.size(), -1);
+  // Strong components of the graph without the immobile agents' vertices: an agent must
+  // reach its goal only if it can get there and back (on an undirected graph: the
+  // connected components).
+  std::vector<uint8_t> blocked(g.size(), 0);
   for (int i = 0; i < n; ++i)
-    if (immobile[i]) comp[current[i]] = -2;
-  std::vector<Vertex> queue;
-  int c = 0;
-  for (Vertex s = 0; s < g.size(); ++s) {
-    if (comp[s] != -1) continue;
-    comp[s] = c;
-    queue.assign(1, s);
-    for (size_t k = 0; k < queue.size(); ++k)
-      for (Vertex u : g.neighbors(queue[k]))
-        if (comp[u] == -1) comp[u] = c, queue.push_back(u);
-    ++c;
-  }
+    if (immobile[i]) blocked[current[i]] = 1;
+  const std::vector<int> comp = g.strong_components(nullptr, &blocked);
   std::vector<int32_t> need;  // agents that must be on their goals
   for (int i = 0; i < n; ++i)
     if (!immobile[i] && comp[goals[i]] >= 0 && comp[goals[i]] == comp[current[i]]) need.push_back(i);
@@ -70,7 +62,7 @@ int32_t DetourTable::get(Vertex goal, Vertex v)
       queue.push_back(goal);
     }
     for (size_t k = 0; k < queue.size(); ++k)
-      for (Vertex u : g_.neighbors(queue[k]))
+      for (Vertex u : g_.in_neighbors(queue[k]))  // distances *to* goal: arcs backwards
         if (d[u] == DistTable::kInf && !blocked(u)) d[u] = d[queue[k]] + 1, queue.push_back(u);
     it = tables_.emplace(goal, std::move(d)).first;
   }

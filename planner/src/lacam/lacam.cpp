@@ -1,6 +1,8 @@
 #include "planner/lacam/lacam.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "planner/lacam/immobile.hpp"
 #include "planner/lacam/priority.hpp"
@@ -76,6 +78,14 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   // N = 1000). Here it is part of the reset (setup), not of an iteration's budget.
   for (int i = 0; i < n_; ++i)
     for (Vertex u : g_.neighbors(start[i])) dist_.get(i, u);
+  // On a directed graph a goal may be unreachable from its start although both lie in one
+  // connected piece: refuse it here, since the search would only stop after exhausting
+  // every reachable configuration.
+  if (g_.directed() && !test)
+    for (int i = 0; i < n_; ++i)
+      if (dist_.get(i, start[i]) == DistTable::kInf)
+        throw std::invalid_argument("lacam: agent " + std::to_string(i) + ": goal " + std::to_string(goals[i]) +
+                                    " is unreachable from start " + std::to_string(start[i]) + " along the one-way arcs");
   root_ = new_node(start.data(), nullptr, config_hash(start.data(), n_), priorities, priorities ? order : nullptr);
   scatter_root_ = root_;
   explored_.insert(root_);
@@ -275,12 +285,27 @@ const HNode* Lacam::next_toward(const HNode* target) const
   return h;
 }
 
+bool Lacam::reversible(const HNode* a, const HNode* b) const
+{
+  if (!g_.directed()) return true;
+  for (int i = 0; i < n_; ++i)
+    if (a->C[i] != b->C[i] && !g_.adjacent(b->C[i], a->C[i])) return false;
+  return true;
+}
+
 void Lacam::reroot(const HNode* child)
 {
   if (child == root_) return;
   ++reroots_;
   HNode* c = all_[child->id];  // non-const handle of the same node
   HNode* old = root_;
+  if (!reversible(old, c)) {
+    // The old root cannot be reached back from c: its link under c is kept for the tree's
+    // shape only. The goal's tree path leads from c away from it, and with refinement over
+    // no rewrite or rebase walks it again.
+    if (!goal_) throw std::logic_error("lacam: reroot over a one-way move before a goal node is known");
+    refining_ = preparing_ = false;
+  }
   old->parent = c;
   c->parent = nullptr;
   root_ = c;

@@ -22,6 +22,8 @@ int32_t Lacam::heuristic(const Vertex* C)
   return h;
 }
 
+// a -> b is a legal transition (b was generated from a). The link b -> a is recorded only
+// if it is legal too: a rewrite re-parents along links, and a parent must be one move away.
 void Lacam::link(HNode* a, HNode* b)
 {
   for (const Neighbor* e = a->neighbors; e; e = e->next)
@@ -29,6 +31,7 @@ void Lacam::link(HNode* a, HNode* b)
   Neighbor* e = links_.alloc(2);
   e[0] = Neighbor{b, a->neighbors, -1};
   a->neighbors = &e[0];
+  if (!reversible(a, b)) return;  // e[1] stays unused (one arena slot)
   e[1] = Neighbor{a, b->neighbors, -1};
   b->neighbors = &e[1];
 }

@@ -146,14 +146,18 @@ int32_t Pibt::swap_partner(int32_t i) const
   const Vertex best = cand_[static_cast<size_t>(i) * stride_];
   if (best == v) return -1;  // i wants to stay
 
+  // The partner is pulled into v (plan()): on a directed graph only over an arc into v.
+  auto can_pull = [&](int32_t k) { return !g_.directed() || g_.adjacent(now_[k], v); };
+
   // i is blocked by j coming the other way (cases a and b of LaCAM*).
   const int32_t j = occ_now_[best];
-  if (j >= 0 && next_[j] < 0 && !immobile(j) && swap_required(i, j, v, best) && swap_possible(best, v)) return j;
+  if (j >= 0 && next_[j] < 0 && !immobile(j) && can_pull(j) && swap_required(i, j, v, best) && swap_possible(best, v))
+    return j;
 
   // i clears the way for a neighbour k behind it (case c).
   for (Vertex u : g_.neighbors(v)) {
     const int32_t k = occ_now_[u];
-    if (k < 0 || best == now_[k] || immobile(k)) continue;
+    if (k < 0 || best == now_[k] || immobile(k) || !can_pull(k)) continue;
     if (swap_required(k, i, v, best) && swap_possible(best, v)) return k;
   }
   return -1;

@@ -11,6 +11,11 @@ namespace planner {
 RotationDist::RotationDist(const Graph& g, size_t max_tables) : g_(g), max_tables_(max_tables)
 {
   if (!g.is_grid()) throw std::invalid_argument("rotation distances need a grid graph");
+  // Their BFS over (cell, heading) states and the turn-in-place moves assume every edge can
+  // be driven both ways; one-way arcs are not supported by the rotation planners.
+  if (g.directed())
+    throw std::invalid_argument("rotation planners need an undirected graph: '" + g.name + "' has " +
+                                std::to_string(g.num_one_way()) + " one-way arc(s)");
   ahead_.assign(static_cast<size_t>(g.size()) * 4, -1);
   for (Vertex v = 0; v < g.size(); ++v)
     for (int o = 0; o < 4; ++o) ahead_[static_cast<size_t>(v) * 4 + o] = cell_ahead(g, v, o);

@@ -6,7 +6,9 @@ set -e
 cd "$(dirname "$0")"
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 OPTS="--no-internal-links --no-turnarounds.geometry false --default.junctions.radius 0 --junctions.corner-detail 0 --offset.disable-normalization"
-for n in oneway notmultiple disconnected; do
+# oneway: a one-way dead end b->d (not strongly connected); oneway_loop: one-way rows
+# (east below, west above) joined by two-way cross aisles.
+for n in oneway oneway_loop notmultiple disconnected; do
   netconvert -n $n.nod.xml -e $n.edg.xml -o $n.net.xml $OPTS
 done
 # The same kind of net, but with SUMO's default internal links: gridify must refuse it.

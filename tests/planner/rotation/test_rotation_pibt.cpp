@@ -207,3 +207,18 @@ TEST(RotationPibt, NeedsAGridAndDistinctStarts)
   const Graph g = test::grid({"..."});
   EXPECT_THROW(RotationPibt(g, {0, 0}, {1, 2}), std::invalid_argument);
 }
+
+// Directed graphs (one-way aisles) are refused with a clear error (rotation_dist.hpp).
+TEST(DirectedGraph, RotationPlannersRefuseOneWayArcs)
+{
+  Graph two_way = test::grid({"..."});
+  Graph g = Graph::from_arcs(3, {{0, 1}, {1, 2}, {2, 1}});
+  g.attach_grid(3, 1, {0, 1, 2});
+  EXPECT_NO_THROW(RotationPibt(two_way, {0}, {2}));
+  try {
+    RotationPibt r(g, {0}, {2});
+    FAIL() << "expected an error";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("one-way arc"), std::string::npos) << e.what();
+  }
+}

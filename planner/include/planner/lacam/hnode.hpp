@@ -12,8 +12,10 @@
 //
 // Neighbor: one link of LaCAM*'s neighbour sets (Okumura, IJCAI-23): a configuration the
 // node was seen to connect to (a successor it generated, or a node that generated it).
-// Links are kept in both directions -- a valid transition reversed is valid, and the
-// paper's edge cost is symmetric -- so that a reroot can walk the tree both ways. `cost`
+// Links are kept in both directions where both are legal -- on an undirected graph a valid
+// transition reversed is valid, and the paper's edge cost is symmetric -- so that a reroot
+// can walk the tree both ways. On a directed graph the reverse link is left out when the
+// transition used a one-way arc (Lacam::link). `cost`
 // is computed lazily (-1 = not yet): recording links before the first solution then costs
 // a pointer push, not an O(N) comparison.
 #include <cstdint>

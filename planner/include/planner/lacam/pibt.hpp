@@ -7,7 +7,9 @@
 // With `swap` on (default), PIBT uses the swap operation of LaCAM* (Okumura, IJCAI-23):
 // when two agents must pass each other in a corridor, the leading agent reverses its
 // preferences and pulls the other into its old vertex, which vanilla PIBT cannot do. It
-// is what lets LaCAM (and so RT-LaCAM) solve dense warehouse aisles.
+// is what lets LaCAM (and so RT-LaCAM) solve dense warehouse aisles. On a directed graph
+// (one-way arcs) a partner is pulled only over an arc into the vacated vertex; every other
+// move PIBT makes is to an out-neighbour, so its configurations are legal there too.
 #include <cstdint>
 #include <vector>
 

@@ -14,6 +14,31 @@
 // to the goal known now, re-read each iteration, so the path improves while the agents
 // move. Rerooting re-bases g at the new root (lacam.hpp): the executed prefix is sunk cost.
 //
+// Directed graphs (one-way arcs). Reversing the executed edge needs the reverse move, which
+// a one-way arc lacks. Rule: before a goal node is known, next() returns only moves that
+// can be undone (every agent that moves has the reverse arc); a step toward the top of the
+// DFS stack that uses a one-way arc is replaced by waiting at the root while the search
+// goes on. Once a goal node is known the agents follow its tree path, one-way arcs
+// included; a reroot over a one-way move then ends LaCAM* refinement (lacam.hpp), since the
+// old root is no longer reachable and no rewrite may route through it.
+// Guarantees:
+//  - undirected graphs: complete, as above (unchanged);
+//  - any finite directed graph, with a start from which the goal configuration is
+//    reachable: complete. Before the goal node exists every executed transition is
+//    reversible, so each current configuration reaches exactly the configurations the
+//    start reaches, every tree edge (original or reversed) is a legal move, and the search
+//    is the same single LaCAM search from the start, which finds the goal node; the agents
+//    then follow its tree path. If no goal configuration is reachable the search ends with
+//    NoSolution (exhausted()), as LaCAM does; an agent whose goal is unreachable from its
+//    start along the arcs is refused at construction / set_goals with
+//    std::invalid_argument. Strong connectivity is not required for this guarantee, but
+//    lifelong runs (a new goal after each errand) need every goal reachable from wherever
+//    an agent stands: gridify keeps the largest strongly connected component.
+//  - the caveat: where most moves are one-way (a warehouse of one-way aisles) the agents
+//    mostly wait until the search finds the goal, so RT-LaCAM acts like full-horizon LaCAM
+//    run across iterations; it is never worse than LaCAM in iterations to a solution, but
+//    the agents do not make progress while it searches.
+//
 // commit() moves to the configuration next() last returned, even if search() ran in
 // between (an executor may keep thinking while the agents move): that node was the root's
 // tree child, hence a valid move; if LaCAM* re-parented it meanwhile, reroot() still makes

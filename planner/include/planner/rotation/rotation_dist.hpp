@@ -13,6 +13,10 @@
 // DistCache's tables it is lazy and resumable (lacam3's DistTable): a query grows the BFS
 // only until the queried state is discovered.
 //
+// Undirected graphs only: the backward BFS takes (v - dir(o)) as a predecessor whenever
+// both cells are free, i.e. every edge two-way. A directed graph (one-way arcs) is refused
+// with std::invalid_argument, which makes every rotation planner refuse it.
+//
 // Memory: 4 states per cell, uint16 distances (8 bytes per cell, twice a DistCache cell
 // table's 4) plus the open BFS queue (4 bytes per state on it; compacted, freed when the
 // BFS is done). Distances saturate at 65,534 steps (kFar): beyond that a table is no
