@@ -269,6 +269,7 @@ TEST(AgvNet, ReversalsAtJunctionsWithoutTurnaroundsAreTurnsNotJumps)
     EXPECT_GT(m.errands_finished, 0) << ex;
     ctest_util::expect_no_sumo_collision(cfg.output.dir);
   }
+}
 
 // Lane speed limits (issue 24): the small warehouse with its cross aisles raised to 2 m/s,
 // picking aisles and stubs left at 1 m/s, AGVs that could drive 2 m/s. SUMO's fcd output
