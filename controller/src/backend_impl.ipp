@@ -72,6 +72,17 @@ class ApiBackend : public SumoBackend {
   {
     call("Vehicle.moveTo", [&] { api::Vehicle::moveTo(id, lane, pos); });
   }
+  void set_angle(const std::string& id, const std::string& edge, double angle, double dx, double dy) override
+  {
+    call("Vehicle.moveToXY", [&] {
+      const libsumo::TraCIPosition p = api::Vehicle::getPosition(id);
+      api::Vehicle::moveToXY(id, edge, 0, p.x + dx, p.y + dy, angle, 0);
+    });
+  }
+  double angle(const std::string& id) override
+  {
+    return call("Vehicle.getAngle", [&] { return api::Vehicle::getAngle(id); });
+  }
   VehiclePose pose(const std::string& id) override
   {
     return call("Vehicle.getLaneID/getLanePosition/getSpeed", [&] {

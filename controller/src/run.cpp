@@ -119,7 +119,21 @@ void Run::prepare()
     goals = tm_->goals();
     goal_test = tasks::lifelong_goal_test(*tm_, ins_.starts);
   }
-  p_ = make_planner(cfg_.planner, g, ins_.starts, goals, pref_.get(), goal_test);
+  // Rotation solvers: AGVs with a heading, the lattice's (planner/heading.hpp), each facing
+  // along its start lane.
+  std::vector<int> headings;
+  if (cfg_.planner.rotation_solver()) {
+    if (!g.is_grid())
+      throw ConfigError(cfg_.path + ": planner.solver: " + cfg_.planner.solver +
+                        " needs a net whose cells lie on an axis-aligned lattice ('" + cfg_.sumo.net + "' does not)");
+    headings = cmd_->start_headings(ins_.starts);
+    cmd_->use_headings(headings, static_cast<int>(std::lround(cfg_.fleet.turn_s / cfg_.sumo.step_length)));
+  }
+  try {
+    p_ = make_planner(cfg_.planner, g, ins_.starts, goals, pref_.get(), goal_test, headings);
+  } catch (const std::invalid_argument& e) {
+    throw ConfigError(cfg_.path + ": planner: " + e.what());
+  }
   if (tm_) {
     // Thousands of goal cells over a run: keep the tables in use plus a few hundred recent.
     p_->set_max_dist_tables(2 * ins_.starts.size() + 256);

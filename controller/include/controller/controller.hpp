@@ -30,11 +30,13 @@ namespace controller {
 class Run;
 
 // The solver named by planner.solver on this graph and instance; `pref` orders PIBT's
-// moves (a learned policy), `test` replaces "all at goals" (lifelong runs).
+// moves (a learned policy), `test` replaces "all at goals" (lifelong runs). Rotation
+// solvers take planner.rotation and each AGV's start heading (`headings`; empty: east).
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref = nullptr,
-                                                       planner::GoalTest test = {});
+                                                       planner::GoalTest test = {},
+                                                       const std::vector<int>& headings = {});
 
 // The back end named by run.backend (run.gui: sumo-gui through TraCI).
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r);
