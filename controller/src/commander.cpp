@@ -142,6 +142,10 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
       set_speed(a, 0);
       return;
     }
+    // With headings, an AGV only drives the way it faces (SUMO shows that heading).
+    if (!heading_.empty() && planner::heading_of_move(map_.graph, u, v) != heading_[i])
+      throw ControlError("agent " + std::to_string(i) + " moves " + std::to_string(u) + " -> " + std::to_string(v) +
+                         " facing " + planner::kHeadingLetter[heading_[i]] + ", not that way");
     const gridify::SumoPose target = map_.pose_entering(u, v);
     const Lane& here = lane(a.pose.lane);
     if (a.held || a.held_mm) {
