@@ -72,10 +72,12 @@ class ApiBackend : public SumoBackend {
   {
     call("Vehicle.moveTo", [&] { api::Vehicle::moveTo(id, lane, pos); });
   }
-  void set_angle(const std::string& id, const std::string& edge, double angle, double dx, double dy) override
+  void set_angle(const std::string& id, const std::string& lane, const std::string& edge, double pos, double back,
+                 double angle, double dx, double dy) override
   {
     call("Vehicle.moveToXY", [&] {
-      const libsumo::TraCIPosition p = api::Vehicle::getPosition(id);
+      const libsumo::TraCIPosition p = api::Simulation::convert2D(edge, pos, 0);
+      api::Vehicle::moveTo(id, lane, back);
       api::Vehicle::moveToXY(id, edge, 0, p.x + dx, p.y + dy, angle, 0);
     });
   }

@@ -239,27 +239,20 @@ void Commander::orient()
         if (a.held) unhold(a, false);
         continue;
       }
-      // A route that goes on past the lane, and never onto this edge again: the last
-      // set_angle cut it to the edge, and SUMO takes the speed of a moveToXY from the
-      // distance along the route -- with a later pass of the edge ahead it measured the
-      // 1 mm step back at a lane end as a lap (16 m in one step: collisions reported).
+      // A route that goes on past the lane (the last set_angle cut it to the edge; at a
+      // lane's end SUMO would let the AGV arrive).
       unhold(a, false);
       const Lane& here = lane(a.pose.lane);
-      double dx = 0, dy = 0;
+      double dx = 0, dy = 0, back = a.pose.pos - 1e-4;
       if (a.pose.pos > here.length - 2e-3) {
-        // At the lane's end SUMO puts the front 1 mm back (it clamps to length - 0.001).
-        // SUMO takes a moveToXY's speed from the distance along the route, and a step back
-        // reads as a lap of the route (16 m in one step: SUMO reported collisions): place
-        // it behind that point first (moveTo: no speed), then aim past the end.
-        if (!a.held_mm) {
-          sumo_.move_to(a.id, a.pose.lane, here.length - 1.5e-3);
-          ++stats_.move_to;
-        }
+        // At the lane's end SUMO puts the front 1 mm back (it clamps to length - 0.001):
+        // aim past the end, from behind that point.
+        back = here.length - 1.5e-3;
         const int h = lane_heading_.count(a.pose.lane) ? lane_heading_.at(a.pose.lane) : 0;
         dx = 0.01 * planner::kHeadingDx[h];
         dy = -0.01 * planner::kHeadingDy[h];  // the lattice's rows grow southward, SUMO's y northward
       }
-      sumo_.set_angle(a.id, here.edge, std::fmod(angle + 360.0, 360.0), dx, dy);
+      sumo_.set_angle(a.id, a.pose.lane, here.edge, a.pose.pos, back, std::fmod(angle + 360.0, 360.0), dx, dy);
     } catch (const SumoError& e) {
       failed(i, e);
     }
