@@ -72,6 +72,7 @@ void Run::loop_lockstep()
     for (int i = 0; i < ins_.num_agents(); ++i) allowed[i] = {cur[i], to[i]};
     plan_in_tick_ = 0;
     for (int s = 0; s < k_ * ticks; ++s) {
+      slice_ = s;
       if (rot) cmd_->orient();
       step(allowed, false);
     }
