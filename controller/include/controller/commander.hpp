@@ -6,6 +6,8 @@
 //   along its lane                -> setSpeed(d / tick)              (if it was not)
 //   out of a junction cell        -> setRoute({in, out, cont}); setSpeed(d / tick)
 //   reversal inside an aisle      -> setRoute({AB, BA, cont}); moveTo(BA_0, L - pos); setSpeed
+//   turn on the cell (rotation solvers: headings below) -> moveToXY with the angle, every
+//                                    SUMO step while it turns or faces off its lane
 // where the route always ends with one more edge `cont` so no AGV ever reaches the end of
 // its route (SUMO would remove it). Reference point: the vehicle FRONT sits on the cell
 // centre; a junction cell is the end of the incoming lane. With speedMode 0 and a step

@@ -11,6 +11,9 @@
 //   run.executor: adg -- the planner commits up to run.window configurations ahead into an
 //     action dependency graph; the Driver starts each AGV's moves when released and
 //     drives it with accel / decel (driver.hpp)
+//   rotation solvers (pibt-rot, epibt, wppl; lockstep): the committed step's actions also
+//     turn AGVs on their cells, fleet.turn_s per quarter turn, SUMO's angle animated
+//     (Commander::orient); check_rotation_step checks every step's actions
 //   after every SUMO step: no AGV arrived, teleported or collided, and Safety: no overlap,
 //   every AGV on its committed path (safety.hpp).
 // Any violation stops the run with a one-line error in Metrics::error; the outputs
