@@ -16,11 +16,14 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
     lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front()};
     edge_lane_[a.ab] = a.lane_ab;
     edge_lane_[a.ba] = a.lane_ba;
-    // On a lattice net every aisle runs along one axis: its lanes face two opposite headings.
-    if (map.graph.is_grid() && a.cells.size() >= 2) {
-      const int h = planner::heading_of_move(map.graph, a.cells[0], a.cells[1]);
+    // On a lattice net every aisle runs along one axis: its lanes face two opposite headings
+    // (from two consecutive cells on the graph: an end junction gridify dropped is -1).
+    for (size_t k = 0; map.graph.is_grid() && k + 1 < a.cells.size(); ++k) {
+      if (a.cells[k] < 0 || a.cells[k + 1] < 0) continue;
+      const int h = planner::heading_of_move(map.graph, a.cells[k], a.cells[k + 1]);
       lane_heading_[a.lane_ab] = h;
       if (!a.lane_ba.empty()) lane_heading_[a.lane_ba] = planner::reversed(h);
+      break;
     }
   }
   for (const gridify::Cell& c : map.cells)
