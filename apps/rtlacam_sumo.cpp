@@ -27,8 +27,8 @@ int main(int argc, char** argv)
   app.add_option("config", path, "scenario YAML (config/<scenario>.yaml)")->required();
   app.add_flag("--gui", gui, "watch it live in sumo-gui (through TraCI)");
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
-  app.add_option("--solver", solver, "override planner.solver: " + planner::solver_names(true, true))
-      ->check(CLI::IsMember(planner::solver_list(true, true)));
+  app.add_option("--solver", solver, "override planner.solver: " + planner::solver_names(true))
+      ->check(CLI::IsMember(planner::solver_list(true)));
   app.add_option("--policy", policy_file, "override planner.policy: learned policy weights (PIBT tries moves in its order)")
       ->check(CLI::ExistingFile);
   app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
@@ -45,8 +45,7 @@ int main(int argc, char** argv)
     if (!backend.empty()) cfg.run.backend = backend;
     if (!solver.empty()) cfg.planner.solver = solver;
     if (!policy_file.empty()) cfg.planner.policy = policy_file;
-    if (planner::needs_policy(planner::parse_solver(cfg.planner.solver)) && cfg.planner.policy.empty())
-      throw ConfigError(path + ": planner.solver: cspibt needs planner.policy (or --policy WEIGHTS)");
+    check_solver(cfg);
     if (port > 0) {
       cfg.run.port = port;
       if (backend.empty()) cfg.run.backend = "traci";

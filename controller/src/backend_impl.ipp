@@ -72,6 +72,19 @@ class ApiBackend : public SumoBackend {
   {
     call("Vehicle.moveTo", [&] { api::Vehicle::moveTo(id, lane, pos); });
   }
+  void set_angle(const std::string& id, const std::string& lane, const std::string& edge, double pos, double back,
+                 double angle, double dx, double dy) override
+  {
+    call("Vehicle.moveToXY", [&] {
+      const libsumo::TraCIPosition p = api::Simulation::convert2D(edge, pos, 0);
+      api::Vehicle::moveTo(id, lane, back);
+      api::Vehicle::moveToXY(id, edge, 0, p.x + dx, p.y + dy, angle, 0);
+    });
+  }
+  double angle(const std::string& id) override
+  {
+    return call("Vehicle.getAngle", [&] { return api::Vehicle::getAngle(id); });
+  }
   VehiclePose pose(const std::string& id) override
   {
     return call("Vehicle.getLaneID/getLanePosition/getSpeed", [&] {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "controller/sumo_error.hpp"
+#include "planner/heading.hpp"
 
 namespace controller {
 
@@ -16,6 +17,15 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
     if (a.one_way) continue;  // no B->A lane (the planner never reverses on it)
     lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front(), a.speed_ba};
     edge_lane_[a.ba] = a.lane_ba;
+    // On a lattice net every aisle runs along one axis: its lanes face two opposite headings
+    // (from two consecutive cells on the graph: an end junction gridify dropped is -1).
+    for (size_t k = 0; map.graph.is_grid() && k + 1 < a.cells.size(); ++k) {
+      if (a.cells[k] < 0 || a.cells[k + 1] < 0) continue;
+      const int h = planner::heading_of_move(map.graph, a.cells[k], a.cells[k + 1]);
+      lane_heading_[a.lane_ab] = h;
+      if (!a.lane_ba.empty()) lane_heading_[a.lane_ba] = planner::reversed(h);
+      break;
+    }
   }
   for (const gridify::Cell& c : map.cells)
     for (const gridify::Movement& m : c.movements) next_edges_[m.from].push_back(m.to);
@@ -151,8 +161,18 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
       set_speed(a, 0);
       return;
     }
+    // With headings, an AGV only drives the way it faces (SUMO shows that heading).
+    if (!heading_.empty() && planner::heading_of_move(map_.graph, u, v) != heading_[i])
+      throw ControlError("agent " + std::to_string(i) + " moves " + std::to_string(u) + " -> " + std::to_string(v) +
+                         " facing " + planner::kHeadingLetter[heading_[i]] + ", not that way");
     const gridify::SumoPose target = map_.pose_entering(u, v);
     const Lane& here = lane(a.pose.lane);
+    if (a.held || a.held_mm) {
+      // Held at its heading's angle, SUMO moved a front at the lane's end 1 mm back: the
+      // move starts from the exact cell centre, or it lands 1 mm short.
+      unhold(a, true);
+      a.held_mm = false;
+    }
     if (target.lane == a.pose.lane) {
       // Along the lane; the route already continues past its end.
       set_speed(a, (target.pos - a.pose.pos) / tick_);
@@ -180,6 +200,87 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
                          " -> " + std::to_string(v) + " from lane " + a.pose.lane);
     }
     a.pose = target;
+  }
+}
+
+std::vector<int> Commander::start_headings(const planner::Config& starts) const
+{
+  std::vector<int> h;
+  for (planner::Vertex v : starts) {
+    auto it = lane_heading_.find(map_.cells[v].poses.front().lane);
+    if (it == lane_heading_.end()) throw ControlError("headings need a lattice net: cell " + std::to_string(v) + " has none");
+    h.push_back(it->second);
+  }
+  return h;
+}
+
+void Commander::use_headings(const std::vector<int>& start, int turn_steps)
+{
+  heading_ = start;
+  turn_steps_ = std::max(1, turn_steps);
+}
+
+void Commander::turn(const std::string& actions)
+{
+  for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
+    const char act = actions[static_cast<size_t>(i)];
+    if (act != 'R' && act != 'C') continue;
+    Agv& a = agv_[i];
+    a.turn_from = sumo_angle(heading_[i]);
+    a.turn_by = act == 'R' ? 90.0 : -90.0;  // clockwise: SUMO's angle grows
+    heading_[i] = planner::heading_after(heading_[i], act);
+    ++stats_.quarter_turns;
+    a.turn_step = 1;  // the first of turn_steps_ steps runs next
+  }
+}
+
+void Commander::unhold(Agv& a, bool exact)
+{
+  const std::string& edge = lane(a.pose.lane).edge;
+  set_route(a, {edge, continuation(edge)});
+  if (exact) {
+    sumo_.move_to(a.id, a.pose.lane, a.pose.pos);
+    ++stats_.move_to;
+  }
+  a.held = false;
+}
+
+void Commander::orient()
+{
+  for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
+    Agv& a = agv_[i];
+    try {
+      double angle = 0;
+      if (a.turn_step > 0) {
+        angle = a.turn_from + a.turn_by * a.turn_step / turn_steps_;
+        a.turn_step = a.turn_step >= turn_steps_ ? 0 : a.turn_step + 1;
+      } else if (auto it = lane_heading_.find(a.pose.lane); it == lane_heading_.end() || heading_[i] != it->second) {
+        angle = sumo_angle(heading_[i]);
+      } else {
+        // SUMO draws it along its lane again: that is its heading. The 1 mm back at a lane
+        // end stays until it moves (command()); verify() accepts it meanwhile.
+        if (a.held) unhold(a, false);
+        continue;
+      }
+      // A route that goes on past the lane (the last set_angle cut it to the edge; at a
+      // lane's end SUMO would let the AGV arrive).
+      unhold(a, false);
+      const Lane& here = lane(a.pose.lane);
+      double dx = 0, dy = 0, back = a.pose.pos - 1e-4;
+      if (a.pose.pos > here.length - 2e-3) {
+        // At the lane's end SUMO puts the front 1 mm back (it clamps to length - 0.001):
+        // aim past the end, from behind that point.
+        back = here.length - 1.5e-3;
+        const int h = lane_heading_.count(a.pose.lane) ? lane_heading_.at(a.pose.lane) : 0;
+        dx = 0.01 * planner::kHeadingDx[h];
+        dy = -0.01 * planner::kHeadingDy[h];  // the lattice's rows grow southward, SUMO's y northward
+      }
+      sumo_.set_angle(a.id, a.pose.lane, here.edge, a.pose.pos, back, std::fmod(angle + 360.0, 360.0), dx, dy);
+    } catch (const SumoError& e) {
+      failed(i, e);
+    }
+    a.held = a.held_mm = true;
+    ++stats_.angle;
   }
 }
 
@@ -281,6 +382,9 @@ void Commander::verify(const std::vector<VehiclePose>& now, double tol)
       throw FleetError("AGV " + a.id + " (agent " + std::to_string(i) +
                        ") is not in SUMO any more (removed behind the controller's back?)");
     const double err = p.lane == a.pose.lane ? std::fabs(p.pos - a.pose.pos) : INFINITY;
+    // Held at an angle (set_angle), SUMO keeps a front at the lane's end 1 mm back
+    // (POSITION_EPS): that AGV stands on its cell; its next move starts exactly (command()).
+    if (a.held_mm && err <= 1.1e-3) continue;
     if (err <= tol) {
       if (err > stats_.max_error) stats_.max_error = err;
       continue;

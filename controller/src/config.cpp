@@ -224,6 +224,71 @@ static void check_duplicate_keys(const Reader& r, const YAML::Node& n, const std
   }
 }
 
+// planner.rotation: only with a rotation solver, and each key only with the solver that reads it.
+static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver kind, RotationSection& out)
+{
+  if (!p || !p.IsMap() || !p["rotation"]) return;
+  const YAML::Node n = p["rotation"];
+  const std::string key = "planner.rotation";
+  if (!planner::plans_rotation(kind))
+    r.fail(key, "only with a rotation solver (pibt-rot | epibt | wppl), not " + std::string(planner::to_string(kind)));
+  r.keys(n, key, {"back_last", "guidance", "guidance_costs", "traffic_flow", "depth", "lns_rounds", "priority",
+                  "window", "neighbourhood"});
+  const std::pair<const char*, planner::Solver> only[] = {{"traffic_flow", planner::Solver::Epibt},
+                                                         {"depth", planner::Solver::Epibt},
+                                                         {"lns_rounds", planner::Solver::Epibt},
+                                                         {"priority", planner::Solver::Epibt},
+                                                         {"window", planner::Solver::Wppl},
+                                                         {"neighbourhood", planner::Solver::Wppl}};
+  for (const auto& [k, s] : only)
+    if (n[k] && kind != s)
+      r.fail(key + "." + k, std::string("only with solver ") + planner::to_string(s) + ", not " + planner::to_string(kind));
+  if (n["back_last"] && kind == planner::Solver::Epibt)
+    r.fail(key + ".back_last", "only with solver pibt-rot or wppl (epibt's operations decide how a robot yields)");
+  r.flag(n, key, "back_last", out.back_last);
+  r.choice(n, key, "guidance", out.guidance, {"none", "arrows"});
+  if (n["guidance_costs"]) {
+    const YAML::Node c = n["guidance_costs"];
+    if (out.guidance != "arrows") r.fail(key + ".guidance_costs", "only with guidance: arrows");
+    if (!c.IsSequence() || c.size() != 3) r.fail(key + ".guidance_costs", "expected [along, against, turn]");
+    out.guidance_costs.clear();
+    for (size_t i = 0; i < 3; ++i) {
+      int v = 0;
+      if (!c[i].IsScalar() || !YAML::convert<int>::decode(c[i], v) || v < 1 || v > planner::Guidance::kMaxCost)
+        r.fail(key + ".guidance_costs[" + std::to_string(i) + "]",
+               "expected an integer in 1.." + std::to_string(planner::Guidance::kMaxCost));
+      out.guidance_costs.push_back(v);
+    }
+  }
+  r.flag(n, key, "traffic_flow", out.traffic_flow);
+  r.integer(n, key, "depth", out.depth, 3, 5);
+  r.integer(n, key, "lns_rounds", out.lns_rounds, -1, 1000000);
+  r.choice(n, key, "priority", out.priority, {"distance", "age"});
+  r.integer(n, key, "window", out.window, 1, 1000);
+  r.integer(n, key, "neighbourhood", out.neighbourhood, 1, 100000);
+}
+
+bool PlannerSection::rotation_solver() const { return planner::plans_rotation(planner::parse_solver(solver)); }
+
+void check_solver(const Config& c)
+{
+  auto fail = [&](const std::string& key, const std::string& what) { throw ConfigError(c.path + ": " + key + ": " + what); };
+  const planner::Solver kind = planner::parse_solver(c.planner.solver);
+  if (planner::needs_policy(kind) && c.planner.policy.empty()) fail("planner.solver", "cspibt needs planner.policy (a weights file)");
+  if (!planner::plans_rotation(kind)) return;
+  if (!c.planner.policy.empty())
+    fail("planner.policy", "orders a cell solver's moves; " + c.planner.solver + " plans rotation actions");
+  // The AGVs turn on their cells, animated in SUMO step by step: lockstep only (the adg
+  // Driver knows no turn actions yet), a turn a whole number of SUMO steps.
+  if (c.run.executor != "lockstep")
+    fail("run.executor", "'" + c.run.executor + "' runs cell plans; " + c.planner.solver +
+                             " (rotation actions) needs run.executor: lockstep");
+  const double turn_steps = c.fleet.turn_s / c.sumo.step_length;
+  if (std::fabs(turn_steps - std::round(turn_steps)) > 1e-9)
+    fail("fleet.turn_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
+  if (c.fleet.turn_s > 3600) fail("fleet.turn_s", "must be <= 3600 s, got " + Reader::fmt(c.fleet.turn_s));
+}
+
 int Config::steps_per_tick() const { return static_cast<int>(std::lround(run.tick_s / sumo.step_length)); }
 
 Config parse_config(const std::string& yaml, const std::string& name, const std::string& base_dir)
@@ -277,7 +342,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node f = root["fleet"];
   if (!f) r.fail("fleet", "missing (required: at least fleet.count)");
-  r.keys(f, "fleet", {"count", "seed", "starts", "vtype"});
+  r.keys(f, "fleet", {"count", "seed", "starts", "vtype", "turn_s"});
   r.get(f, "fleet", "seed", c.fleet.seed, "a non-negative integer");
   r.cells(f, "fleet", "starts", c.fleet.random_starts, c.fleet.starts);
   if (f["count"]) {
@@ -300,19 +365,21 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(v, "fleet.vtype", "accel", c.fleet.vtype.accel, 0, true);
   r.number(v, "fleet.vtype", "decel", c.fleet.vtype.decel, 0, true);
   r.number(v, "fleet.vtype", "max_speed", c.fleet.vtype.max_speed, 0, true);
+  r.number(f, "fleet", "turn_s", c.fleet.turn_s, 0, true);
   if (c.fleet.vtype.length + c.fleet.vtype.min_gap > c.grid.cell_length + 1e-9)
     r.fail("fleet.vtype", "length + min_gap (" + Reader::fmt(c.fleet.vtype.length + c.fleet.vtype.min_gap) +
                               ") exceeds grid.cell_length (" + Reader::fmt(c.grid.cell_length) +
                               "): AGVs on adjacent cells would overlap");
 
   const YAML::Node p = root["planner"];
-  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine"});
-  // The cell solvers: the rotation ones (pibt-rot, epibt, wppl) need AGV headings in SUMO.
-  const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true, /*cell_only=*/true);
+  r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine",
+                        "rotation"});
+  // Every real-time solver; lacam plans once, offline, and cannot follow SUMO.
+  const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
   r.file(p, "planner", "policy", c.planner.policy, false);
-  if (planner::needs_policy(planner::parse_solver(c.planner.solver)) && c.planner.policy.empty())
-    r.fail("planner.solver", "cspibt needs planner.policy (a weights file)");
+  const planner::Solver kind = planner::parse_solver(c.planner.solver);
+  read_rotation(r, p, kind, c.planner.rotation);
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");
   r.get(p, "planner", "seed", c.planner.seed, "a non-negative integer");
@@ -401,6 +468,11 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("run.tick_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
   if (k > 10000)
     r.fail("run.tick_s", "at most 10000 SUMO steps per tick (run.tick_s / sumo.step_length = " + Reader::fmt(k) + ")");
+
+  check_solver(c);
+  if (!c.planner.rotation_solver() && f["turn_s"])
+    r.fail("fleet.turn_s", "only with a rotation solver (pibt-rot | epibt | wppl): " + c.planner.solver +
+                               "'s AGVs turn with their lanes");
 
   // Delays: seconds -> ticks (rounded up), then executor::check for the ranges.
   const YAML::Node d = root["delays"];

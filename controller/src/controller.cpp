@@ -11,7 +11,8 @@ namespace controller {
 
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
-                                                       planner::ActionPreference* pref, planner::GoalTest test)
+                                                       planner::ActionPreference* pref, planner::GoalTest test,
+                                                       const std::vector<int>& headings)
 {
   planner::SolverOptions opt;
   opt.seed = p.seed;
@@ -19,7 +20,20 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.lacam.keep_priorities = p.keep_priorities;
   opt.lacam.refine = p.refine;
   opt.pref = pref;
-  return planner::make_planner(planner::parse_solver(p.solver), g, starts, goals, opt, std::move(test));
+  const planner::Solver kind = planner::parse_solver(p.solver);
+  if (planner::plans_rotation(kind)) {
+    const RotationSection& r = p.rotation;
+    opt.headings = headings;
+    opt.back_last = r.back_last;
+    if (r.guidance == "arrows") opt.guidance = planner::arrow_guidance(g, r.guidance_costs[0], r.guidance_costs[1], r.guidance_costs[2]);
+    opt.epibt.depth = r.depth;
+    opt.epibt.lns_rounds = r.lns_rounds;
+    opt.epibt.priority = r.priority == "age" ? planner::EpibtOptions::Priority::Age : planner::EpibtOptions::Priority::Distance;
+    opt.epibt.tf.on = r.traffic_flow;
+    opt.wppl.window = r.window;
+    opt.wppl.neighbourhood = r.neighbourhood;
+  }
+  return planner::make_planner(kind, g, starts, goals, opt, std::move(test));
 }
 
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r)

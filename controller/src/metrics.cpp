@@ -84,7 +84,9 @@ nlohmann::json Metrics::to_json() const
                    {"set_speed", commands.speed},
                    {"set_route", commands.route},
                    {"move_to", commands.move_to},
+                   {"set_angle", commands.angle},
                    {"jumps", commands.jumps}};
+  j["quarter_turns"] = commands.quarter_turns;
   j["resyncs"] = commands.resyncs;
   j["turns_in_place"] = commands.turns;
   j["teleports_or_jumps"] = commands.jumps + commands.resyncs;

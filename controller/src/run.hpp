@@ -47,6 +47,8 @@ class Run {
   // the cells each AGV may occupy now.
   void step(const std::vector<std::vector<planner::Vertex>>& allowed, bool exclusive, const std::vector<int>& groups = {});
   std::vector<VehiclePose> poses();
+  // The budget of a search that plans a step: budget_, a tick's worth for a rotation solver.
+  planner::Budget plan_budget() const;
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
   void progress_line(const planner::Config& executed);
@@ -84,6 +86,7 @@ class Run {
   tasks::LifelongResult life_;
   planner::Budget budget_;
   int k_ = 1;
+  int slice_ = 0;  // SUMO step within the tick (lockstep), for the rotation solvers' budget
   // Bounded however long the run (lifelong): exact up to 65536 samples, a reservoir beyond.
   planner::LatencySample plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
   double plan_in_tick_ = 0, epoch_ms_ = 0;

@@ -1,5 +1,6 @@
 // The two tick loops of Run (run.hpp): lockstep (scheme S) and adg (executor/ + Driver),
 // and the final phase writing the outputs.
+#include <cmath>
 #include <functional>
 
 #include "controller/bound.hpp"
@@ -7,7 +8,9 @@
 #include "controller/sumo_options.hpp"
 #include "planner/output_file.hpp"
 #include "planner/plan_io.hpp"
+#include "planner/rotation/rotation_planner.hpp"
 #include "run.hpp"
+#include "tasks/action_model.hpp"
 #include "tasks/lifelong_log.hpp"
 
 namespace controller {
@@ -22,6 +25,11 @@ void Run::loop_lockstep()
 {
   planner::Config cur = ins_.starts;
   planner::Config next;  // committed, not yet executed
+  // Rotation solvers: next's actions (F, R, C, W); a turn takes fleet.turn_s, so a tick
+  // with one lasts ceil(turn_s / tick_s) ticks for everybody (all wait for the slowest).
+  planner::RotationPlanner* rot = p_->rotation();
+  std::string acts;
+  const int turn_ticks = std::max(1, static_cast<int>(std::ceil(cfg_.fleet.turn_s / cfg_.run.tick_s - 1e-9)));
   for (;;) {
     if (!tm_ && p_->at_goal() && next.empty()) {
       m_.solved = true;
@@ -35,6 +43,12 @@ void Run::loop_lockstep()
     if (next.empty()) {
       const double c0 = planner::thread_cpu_ms();
       next = p_->next();
+      if (rot) {
+        // The actions themselves: forward into the cell ahead, turns and waits in place.
+        acts = rot->actions();
+        const std::string bad = tasks::check_rotation_step(c_.map_.graph, p_->current(), rot->headings(), acts, next);
+        if (!bad.empty()) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid rotation step: " + bad);
+      }
       p_->commit();
       plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       ++m_.commits;
@@ -46,16 +60,22 @@ void Run::loop_lockstep()
       held = held || delays_->stopped(i);
       ticks = std::max(ticks, delays_->move_ticks(i));
     }
+    if (rot && !held && acts.find_first_of("RC") != std::string::npos) ticks = std::max(ticks, turn_ticks);
     const planner::Config& to = held ? cur : next;
     if (held) ++m_.lockstep_waits;
     if (!val_->step(to)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
     cmd_->command(cur, to, ticks);
+    if (rot && !held) cmd_->turn(acts);
     double ctl = ms_since(t0);
 
     std::vector<std::vector<planner::Vertex>> allowed(ins_.num_agents());
     for (int i = 0; i < ins_.num_agents(); ++i) allowed[i] = {cur[i], to[i]};
     plan_in_tick_ = 0;
-    for (int s = 0; s < k_ * ticks; ++s) step(allowed, false);
+    for (int s = 0; s < k_ * ticks; ++s) {
+      slice_ = s;
+      if (rot) cmd_->orient();
+      step(allowed, false);
+    }
     plan_tick_.push_back(plan_in_tick_);
     const double tick_planner_ms = plan_in_tick_ + epoch_ms_;
     epoch_ms_ = 0;

@@ -27,7 +27,11 @@ Claim Safety::locate(const std::pair<const std::string, std::pair<int, bool>>& l
   const double k = (lane.second.second ? pos : a.length_ba - pos) / a.spacing;
   const double kc = std::min<double>(std::max(k, 0.0), a.steps);
   const double r = std::round(kc);
-  if (std::fabs(kc - r) * a.spacing <= 1e-6) return {a.cells[static_cast<size_t>(r)], -1};
+  // At the lane's end (a junction cell) 1.1 mm count as on the cell: SUMO keeps the front
+  // of an AGV held at an angle there (Commander::orient, set_angle) 1 mm (POSITION_EPS) back.
+  const double lane_end = lane.second.second ? a.steps : 0;
+  const double tol = r == lane_end ? 1.1e-3 : 1e-6;
+  if (std::fabs(kc - r) * a.spacing <= tol) return {a.cells[static_cast<size_t>(r)], -1};
   const size_t lo = static_cast<size_t>(std::floor(kc));
   return {a.cells[lo], a.cells[std::min(lo + 1, a.cells.size() - 1)]};
 }

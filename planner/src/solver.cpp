@@ -18,6 +18,7 @@ constexpr Solver kAll[] = {Solver::Pibt,   Solver::Lacam,   Solver::RtLacam, Sol
 void apply(RotationPlanner& p, const SolverOptions& opt)
 {
   if (opt.max_dist_tables) p.set_max_dist_tables(opt.max_dist_tables);
+  if (!opt.headings.empty()) p.set_headings(opt.headings);
   p.set_back_last(opt.back_last);
   if (!opt.guidance.uniform()) p.set_guidance(opt.guidance);
 }

@@ -113,3 +113,26 @@ TEST(Solver, AppliesEveryRotationOptionAtConstruction)
   r->search(Budget::expansion_count(1));
   EXPECT_EQ(r->next(), starts);
 }
+
+TEST(Solver, RotationSolversTakeOneStartHeadingPerRobot)
+{
+  // SolverOptions::headings (SUMO AGVs face along their start lanes) overrides `heading`
+  // robot by robot: a robot already facing its goal moves at once, one facing away turns.
+  const Graph g = test::grid({"....", "...."});
+  const Config starts{g.at(1, 0), g.at(1, 1)}, goals{g.at(3, 0), g.at(3, 1)};
+  SolverOptions opt;
+  opt.heading = 3;
+  opt.headings = {0, 2};  // east (toward its goal), west (away)
+  for (Solver s : {Solver::PibtRot, Solver::Epibt, Solver::Wppl}) {
+    SCOPED_TRACE(to_string(s));
+    auto p = make_planner(s, g, starts, goals, opt);
+    EXPECT_EQ(p->rotation()->headings(), opt.headings);
+    p->search(Budget::expansion_count(10));
+    EXPECT_EQ(p->rotation()->actions()[0], 'F');
+    EXPECT_NE(p->rotation()->actions()[1], 'F');
+  }
+  opt.headings = {0};
+  EXPECT_THROW(make_planner(Solver::PibtRot, g, starts, goals, opt), std::invalid_argument);
+  opt.headings = {0, 4};
+  EXPECT_THROW(make_planner(Solver::Epibt, g, starts, goals, opt), std::invalid_argument);
+}

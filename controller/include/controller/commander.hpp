@@ -6,6 +6,8 @@
 //   along its lane                -> setSpeed(d / tick)              (if it was not)
 //   out of a junction cell        -> setRoute({in, out, cont}); setSpeed(d / tick)
 //   reversal inside an aisle      -> setRoute({AB, BA, cont}); moveTo(BA_0, L - pos); setSpeed
+//   turn on the cell (rotation solvers: headings below) -> moveToXY with the angle, every
+//                                    SUMO step while it turns or faces off its lane
 // where the route always ends with one more edge `cont` so no AGV ever reaches the end of
 // its route (SUMO would remove it). Reference point: the vehicle FRONT sits on the cell
 // centre; a junction cell is the end of the incoming lane. With speedMode 0 and a step
@@ -28,7 +30,9 @@ struct CommandStats {
   long long turns = 0;     // in-aisle reversals: moveTo onto the opposite lane at the mirrored
                            // position of an AGV standing on its cell (front stays put)
   double max_error = 0;    // largest position error seen by verify(), metres
-  long long total() const { return speed + route + move_to; }
+  long long angle = 0;     // set_angle calls (moveToXY): AGVs turning or facing off their lane
+  long long quarter_turns = 0;  // rotation solvers' turn actions executed (R, C), each turn_s long
+  long long total() const { return speed + route + move_to + angle; }
 };
 
 class Commander {
@@ -64,6 +68,25 @@ class Commander {
   // Sets the speed for the next step. SUMO keeps a speed until it is set again, and another
   // TraCI client may have changed it: `resend` sets it even if it equals the last command.
   void drive(int agent, double speed, bool resend = false);
+  // Headings (rotation solvers; planner/heading.hpp: 0 east .. 3 north). An AGV faces
+  // along its lane unless it turned on its cell: a turn action (R, C) keeps it on the cell
+  // while its SUMO angle turns 90 degrees over `turn_steps` SUMO steps (orient() before each
+  // step); an AGV facing off its lane is held at its heading's angle every step (SUMO
+  // would draw the lane's). A later forward move (F) leaves along the heading, so the lane
+  // it enters faces that way again. Needs a lattice net (map.graph.is_grid()).
+  //
+  // The heading of the lane of each cell's first pose (where insert() puts an AGV).
+  std::vector<int> start_headings(const planner::Config& starts) const;
+  void use_headings(const std::vector<int>& start, int turn_steps);
+  bool headings() const { return !heading_.empty(); }
+  // At a tick's start, with the executed rotation actions (F, R, C, W per agent).
+  void turn(const std::string& actions);
+  // Before every SUMO step.
+  void orient();
+  int heading(int agent) const { return heading_[agent]; }
+  // SUMO's angle (0 north, 90 east) of a heading.
+  static double sumo_angle(int heading) { return heading == 3 ? 0.0 : 90.0 + 90.0 * heading; }
+
   // SUMO ids in agent order.
   const std::vector<std::string>& ids() const { return ids_; }
 
@@ -91,6 +114,11 @@ class Commander {
     std::string id;
     gridify::SumoPose pose;  // commanded front position
     double speed = 0;        // last commanded speed
+    bool held = false;       // set_angle before the last step: SUMO moved a lane-end front back
+                             // 1 mm and cut the route to the current edge
+    bool held_mm = false;    // held since its last move: its front may stand 1 mm back
+    int turn_step = 0;       // steps of the running turn done (0: none running)
+    double turn_from = 0, turn_by = 0;  // SUMO angle at the turn's start, +-90
   };
   struct Lane {
     std::string edge;
@@ -108,6 +136,8 @@ class Commander {
   bool connected(const std::string& from, const std::string& to) const;
   void set_speed(Agv& a, double v);
   void set_route(Agv& a, std::vector<std::string> edges);
+  // After set_angle: the exact cell pose again and a route that goes on past its lane.
+  void unhold(Agv& a, bool exact);
   // A moveTo that SUMO cannot drive (no connection for the turn): counted as a jump.
   void jump(Agv& a, const gridify::SumoPose& target);
   // Reversal inside an aisle: route onto the opposite lane and turn the AGV round where it
@@ -120,6 +150,9 @@ class Commander {
   std::unordered_map<std::string, Lane> lanes_;
   std::unordered_map<std::string, std::string> edge_lane_;
   std::unordered_map<std::string, std::vector<std::string>> next_edges_;  // SUMO connections
+  std::unordered_map<std::string, int> lane_heading_;  // lattice heading of each aisle lane (grid nets)
+  std::vector<int> heading_;  // per agent, with headings (empty without)
+  int turn_steps_ = 1;
   bool missing_turns_ = false;
   std::vector<Agv> agv_;
   std::vector<std::string> ids_;  // SUMO ids of the agents, in agent order

@@ -59,10 +59,32 @@ struct FleetSection {
   bool random_starts = true;  // starts: random
   std::vector<CellRef> starts;
   VType vtype;
+  // Seconds per quarter turn of an AGV standing on its cell (rotation solvers only: they
+  // plan turns as actions; a cell solver's AGVs turn with their lanes).
+  double turn_s = 1.0;
+};
+
+// planner.rotation: the options of the rotation solvers (pibt-rot, epibt, wppl), which plan
+// forward / turn / wait actions for AGVs with a heading (planner/solver.hpp).
+struct RotationSection {
+  bool back_last = true;            // pibt-rot, wppl: RotationPibt::set_back_last
+  std::string guidance = "none";    // none | arrows (planner/rotation/guidance.hpp)
+  std::vector<int> guidance_costs = {1, 3, 1};  // arrows: along, against, turn
+  bool traffic_flow = true;         // epibt: congestion-aware guide paths (traffic_flow.hpp)
+  int depth = 3;                    // epibt: actions per operation (3..5)
+  int lns_rounds = 20;              // epibt: LNS rounds after the pass (0 off)
+  // epibt: age (pibt-rot's rule) | distance (nearest goal first: the paper's and LoRR's
+  // default). Age here: with distance, 16 AGVs on the small lifelong warehouse swung
+  // between two cells in the one-cell aisles (0.007 errands/tick over 300 ticks; age 0.143).
+  std::string priority = "age";
+  int window = 20;                  // wppl: steps planned ahead
+  int neighbourhood = 8;            // wppl: robots replanned per LNS iteration
 };
 
 struct PlannerSection {
-  std::string solver = "rtlacam";  // rtlacam | naive | pibt | cspibt (pibt ordered by the policy)
+  // rtlacam | naive | pibt | cspibt (pibt ordered by the policy) | pibt-rot | epibt | wppl
+  // (the last three plan rotation actions: AGVs with a heading, fleet.turn_s per turn)
+  std::string solver = "rtlacam";
   std::string policy;              // learned policy weights (absolute after loading); "" = none
   double budget_ms = 1.0;          // per SUMO step; 0 = no time limit
   uint64_t expansions = 0;         // per SUMO step; 0 = no limit (set it for deterministic runs)
@@ -70,6 +92,8 @@ struct PlannerSection {
   bool swap = true;
   bool keep_priorities = true;  // lifelong epochs keep PIBT priorities (planner::LacamOptions)
   bool refine = true;           // RT-LaCAM*: LaCAM* refinement after the first solution (false: the paper)
+  RotationSection rotation;
+  bool rotation_solver() const;  // solver plans rotation actions (planner::plans_rotation)
 };
 
 // one_shot: one goal per AGV, the run ends when all are there. lifelong: a stream of tasks
@@ -141,6 +165,9 @@ struct Config {
 };
 
 Config load_config(const std::string& path);
+// The checks that follow from planner.solver (policy, executor, fleet.turn_s); parse_config
+// runs them, and an app that overrides the solver runs them again.
+void check_solver(const Config& c);
 // The same from YAML text; relative paths resolve against `base_dir`.
 Config parse_config(const std::string& yaml, const std::string& name, const std::string& base_dir);
 

@@ -11,6 +11,9 @@
 //   run.executor: adg -- the planner commits up to run.window configurations ahead into an
 //     action dependency graph; the Driver starts each AGV's moves when released and
 //     drives it with accel / decel (driver.hpp)
+//   rotation solvers (pibt-rot, epibt, wppl; lockstep): the committed step's actions also
+//     turn AGVs on their cells, fleet.turn_s per quarter turn, SUMO's angle animated
+//     (Commander::orient); check_rotation_step checks every step's actions
 //   after every SUMO step: no AGV arrived, teleported or collided, and Safety: no overlap,
 //   every AGV on its committed path (safety.hpp).
 // Any violation stops the run with a one-line error in Metrics::error; the outputs
@@ -31,11 +34,13 @@ namespace controller {
 class Run;
 
 // The solver named by planner.solver on this graph and instance; `pref` orders PIBT's
-// moves (a learned policy), `test` replaces "all at goals" (lifelong runs).
+// moves (a learned policy), `test` replaces "all at goals" (lifelong runs). Rotation
+// solvers take planner.rotation and each AGV's start heading (`headings`; empty: east).
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref = nullptr,
-                                                       planner::GoalTest test = {});
+                                                       planner::GoalTest test = {},
+                                                       const std::vector<int>& headings = {});
 
 // The back end named by run.backend (run.gui: sumo-gui through TraCI).
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r);

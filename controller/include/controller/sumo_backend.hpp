@@ -36,6 +36,18 @@ class SumoBackend {
   virtual void set_speed(const std::string& id, double speed) = 0;
   virtual void set_route(const std::string& id, const std::vector<std::string>& edges) = 0;
   virtual void move_to(const std::string& id, const std::string& lane, double pos) = 0;
+  // Shows a vehicle standing with its front at `pos` on `lane` (of `edge`) at `angle` (SUMO
+  // degrees: 0 north, 90 east) in the next step: moveTo(lane, back) now, then moveToXY(edge,
+  // x/y of pos + (dx, dy), angle, keepRoute 0). Measured on SUMO 1.15 (controller/README.md
+  // "Headings"): the angle holds for that step only (then the lane's again); a front at a
+  // lane's very end lands 1 mm (POSITION_EPS) back; the route becomes just `edge` (set it
+  // again before the following step); and SUMO takes the vehicle's speed from the distance
+  // along its route from where it stands -- a point the smallest bit behind reads as a lap
+  // of the route (6-16 m in one step: SUMO then reported collisions), hence `back`, a
+  // little behind the point moveToXY lands on.
+  virtual void set_angle(const std::string& id, const std::string& lane, const std::string& edge, double pos,
+                         double back, double angle, double dx, double dy) = 0;
+  virtual double angle(const std::string& id) = 0;  // SUMO degrees
   virtual VehiclePose pose(const std::string& id) = 0;
   // Many poses at once. Call request_poses() before the step after which poses() reads
   // them: a back end may batch the read (TraCI: one context subscription answered with

@@ -41,6 +41,7 @@ struct SolverOptions {
   size_t max_dist_tables = 0;
   // Rotation solvers.
   int heading = 0;                   // every robot's heading at the start (0 east .. 3 north; LoRR: east)
+  std::vector<int> headings;         // one per robot instead of `heading` (RotationPlanner::set_headings)
   bool back_last = true;             // pibt-rot, wppl: RotationPibt::set_back_last
   Guidance guidance;                 // distances in these costs (guidance.hpp); default: none
   EpibtOptions epibt;                // epibt: operation depth, revisits, LNS rounds, traffic flow

@@ -33,6 +33,16 @@ Epibt::Epibt(const Graph& g, const Config& starts, const Config& goals, Options 
   set_options(opt);
 }
 
+void Epibt::set_headings(const std::vector<int>& headings)
+{
+  if (headings.size() != heading_.size()) throw std::invalid_argument("headings: wrong number of robots");
+  for (int h : headings)
+    if (h < 0 || h > 3) throw std::invalid_argument("heading must be 0..3");
+  heading_ = headings;
+  planned_ = false;  // a step planned for the old headings is void
+  tf_reset();        // guide paths start from the robots' states
+}
+
 void Epibt::tf_reset()
 {
   tf_.reset();

@@ -28,6 +28,15 @@ RotationPibt::RotationPibt(const Graph& g, const Config& starts, const Config& g
   next_ = current_;
 }
 
+void RotationPibt::set_headings(const std::vector<int>& headings)
+{
+  if (headings.size() != heading_.size()) throw std::invalid_argument("headings: wrong number of robots");
+  for (int h : headings)
+    if (h < 0 || h > 3) throw std::invalid_argument("heading must be 0..3");
+  heading_ = headings;
+  planned_ = false;  // a step planned for the old headings is void
+}
+
 void RotationPibt::set_goals(const Config& goals, GoalTest test)
 {
   if (goals.size() != current_.size()) throw std::invalid_argument("goals: wrong number of agents");

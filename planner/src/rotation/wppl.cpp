@@ -38,6 +38,13 @@ void Wppl::set_options(const WpplOptions& opt)
   planned_ = false;
 }
 
+void Wppl::set_headings(const std::vector<int>& headings)
+{
+  pibt_.set_headings(headings);
+  planned_ = false;  // the window was rolled out from the old headings
+  tail_valid_ = false;
+}
+
 void Wppl::set_goals(const Config& goals, GoalTest test)
 {
   pibt_.set_goals(goals, std::move(test));

@@ -116,6 +116,7 @@ class Epibt : public RotationPlanner {
   // Guide tables wanted (traffic flow) first, then the distance tables.
   bool precompute(std::chrono::steady_clock::time_point deadline) override;
   size_t pending() const override { return dist_.pending() + tf_queue_.size(); }
+  void set_headings(const std::vector<int>& headings) override;
   void set_back_last(bool) override {}  // a RotationPibt option; operations decide how a robot yields
   // Guided: an operation costs the sum of its actions' costs (a quarter turn turn_cost, F
   // forward_cost(v, o), W the cheapest action) up to the goal, or all D + h(end state);

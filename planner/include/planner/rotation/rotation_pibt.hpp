@@ -76,6 +76,7 @@ class RotationPibt : public RotationPlanner {
   // 05 / 07 and +6 % tasks/step on WAREHOUSE, but -7 % on I-08 and -3 / -9 % on LoRR 2024
   // RANDOM-04 / 05 (docs/rotation_lorr.md).
   void set_back_last(bool on) override { back_last_ = on; }
+  void set_headings(const std::vector<int>& headings) override;
 
   // Guidance (guidance.hpp): PIBT ranks a candidate by its action's cost + the guided
   // distance from there (a quarter turn turn_cost, forward forward_cost(v, o); waiting costs

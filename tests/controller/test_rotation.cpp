@@ -1,0 +1,170 @@
+// The rotation solvers in SUMO (planner.solver: pibt-rot | epibt | wppl): AGVs with a
+// heading, turns that take fleet.turn_s while the AGV stands on its cell, on the real SUMO.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "controller/commander.hpp"
+#include "controller/config.hpp"
+#include "controller/controller.hpp"
+#include "controller_test_util.hpp"
+#include "planner/validator.hpp"
+#include "temp_path.hpp"
+
+using namespace controller;
+
+namespace {
+
+// The small warehouse with 6 AGVs (fleet seed 1, task seed 6: an instance all three rotation
+// solvers finish; they are PIBT-based and incomplete -- 16 AGVs there livelock in the
+// one-cell aisles, which is why rtlacam stays the default) and deterministic budgets.
+Config small_rotation(const std::string& solver, const std::string& dir)
+{
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse.yaml");
+  c.output.dir = test::temp_dir(dir);
+  c.run.progress_s = 0;
+  c.run.max_ticks = 200;
+  c.sumo.outputs = {false, false, false, true};
+  c.fleet.count = 6;
+  c.fleet.seed = 1;
+  c.tasks.seed = 6;
+  c.planner.solver = solver;
+  c.planner.budget_ms = 0;
+  c.planner.expansions = 20;
+  return c;
+}
+
+// One-shot: all goals, nothing SUMO or the checks object to, turns really executed.
+void expect_all_goals(const std::string& solver)
+{
+  const Config c = small_rotation(solver, "ctl_rot_" + solver);
+  Controller ctl(c);
+  const Metrics m = ctl.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_EQ(m.commands.jumps, 0);
+  EXPECT_EQ(m.commands.resyncs, 0);
+  EXPECT_GT(m.commands.quarter_turns, 0) << "no turn executed: the run did not use headings";
+  // Every tick's committed step went through the validator (and check_rotation_step), and
+  // Safety checked every SUMO step; the whole executed plan validates again here.
+  EXPECT_EQ(m.commits, m.makespan);
+  EXPECT_EQ(m.safety_checks, m.ticks * c.steps_per_tick());
+  const auto& plan = ctl.plan();
+  ASSERT_FALSE(plan.empty());
+  EXPECT_EQ(planner::validate_plan(ctl.map().graph, plan.front(), plan.back(), plan, true), "");
+  ctest_util::expect_no_sumo_collision(c.output.dir);
+}
+
+}  // namespace
+
+TEST(ControllerRotation, PibtRotReachesAllGoalsOnTheSmallWarehouse) { expect_all_goals("pibt-rot"); }
+TEST(ControllerRotation, EpibtReachesAllGoalsOnTheSmallWarehouse) { expect_all_goals("epibt"); }
+TEST(ControllerRotation, WpplReachesAllGoalsOnTheSmallWarehouse) { expect_all_goals("wppl"); }
+
+// SUMO's angle of every standing AGV, step by step: a quarter turn is turn_s / step_length
+// steps of 90 / N degrees each (here 2 s = 16 steps of 5.625 degrees, the tick stretched to
+// two), never a jump; and there are as many such turns as the controller executed.
+TEST(ControllerRotation, ATurnTakesTurnSecondsInSumo)
+{
+  Config c = small_rotation("pibt-rot", "ctl_rot_turn");
+  c.fleet.turn_s = 2.0;
+  const int n = static_cast<int>(std::lround(c.fleet.turn_s / c.sumo.step_length));
+  const double per_step = 90.0 / n;
+  Controller ctl(c);
+  std::map<int, double> last_angle;
+  std::map<int, VehiclePose> last_pose;
+  std::map<int, int> run;  // consecutive steps of one turn direction, per agent
+  long long turns_seen = 0, bad_steps = 0;
+  auto close_run = [&](int i) {
+    if (run[i] == 0) return;
+    EXPECT_EQ(run[i] % n, 0) << "agent " << i << ": a turn of " << run[i] << " steps";
+    turns_seen += run[i] / n;
+    run[i] = 0;
+  };
+  // After every SUMO step: on_step (before the next step) sees it, except where a tick
+  // starts -- the tick's commands (a moveTo) come before on_step there, so on_tick reads.
+  bool tick_start = false;
+  auto sample = [&](SumoBackend& sumo, const std::vector<VehiclePose>& poses) {
+    for (int i = 0; i < static_cast<int>(poses.size()); ++i) {
+      const double a = sumo.angle(Commander::vehicle_id(i));
+      // Standing: on its cell (a front at a lane's end held at an angle: 1 mm back, SUMO's).
+      const bool standing = last_pose.count(i) && last_pose[i].lane == poses[i].lane &&
+                            std::fabs(last_pose[i].pos - poses[i].pos) <= 1.1e-3;
+      if (standing) {
+        const double d = std::remainder(a - last_angle[i], 360.0);
+        if (std::fabs(d) < 1e-6) {
+          close_run(i);
+        } else if (std::fabs(std::fabs(d) - per_step) < 1e-6) {
+          ++run[i];
+        } else {
+          ++bad_steps;  // an instant flip, or a turn at the wrong rate
+          ADD_FAILURE() << "agent " << i << " turned " << d << " degrees in one step";
+        }
+      } else {
+        close_run(i);
+      }
+      last_angle[i] = a;
+      last_pose[i] = poses[i];
+    }
+  };
+  ctl.on_tick = [&](long long, SumoBackend& sumo) {
+    std::vector<VehiclePose> poses;
+    for (int i = 0; i < c.fleet.count; ++i) poses.push_back(sumo.pose(Commander::vehicle_id(i)));
+    sample(sumo, poses);
+    tick_start = true;
+  };
+  ctl.on_step = [&](SumoBackend& sumo, const std::vector<VehiclePose>& poses) {
+    if (!poses.empty() && !tick_start) sample(sumo, poses);
+    tick_start = false;
+  };
+  const Metrics m = ctl.run();
+  for (auto& [i, r] : run) close_run(i);
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  EXPECT_EQ(bad_steps, 0);
+  EXPECT_GT(m.commands.quarter_turns, 0);
+  // A turn still running when the run ends is not closed; none here (all at their goals).
+  EXPECT_EQ(turns_seen, m.commands.quarter_turns);
+  EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
+}
+
+TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
+{
+  const std::string sumo = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n", net = sumo + "fleet: {count: 3}\n";
+  auto err = [&](const std::string& rest) { return ctest_util::config_error(net + rest); };
+  EXPECT_EQ(err("planner: {solver: pibt-rot, rotation: {window: 5}}\n"),
+            "t.yaml: planner.rotation.window: only with solver wppl, not pibt-rot");
+  EXPECT_EQ(err("planner: {solver: rtlacam, rotation: {back_last: false}}\n"),
+            "t.yaml: planner.rotation: only with a rotation solver (pibt-rot | epibt | wppl), not rtlacam");
+  EXPECT_EQ(err("planner: {solver: epibt, rotation: {depth: 7}}\n"), "t.yaml: planner.rotation.depth: must be in 3..5, got 7");
+  EXPECT_EQ(err("planner: {solver: wppl, rotation: {windw: 5}}\n").rfind("t.yaml: planner.rotation.windw: unknown key", 0), 0u);
+  const std::string turn = ctest_util::config_error(sumo + "fleet: {count: 3, turn_s: 2}\n");
+  EXPECT_EQ(turn.rfind("t.yaml: fleet.turn_s: only with a rotation solver", 0), 0u) << turn;
+  EXPECT_EQ(ctest_util::config_error(sumo + "fleet: {count: 3, turn_s: 0.3}\nplanner: {solver: epibt}\n"),
+            "t.yaml: fleet.turn_s: must be a whole multiple of sumo.step_length (0.125)");
+  EXPECT_EQ(err("planner: {solver: epibt}\nrun: {executor: adg}\n"),
+            "t.yaml: run.executor: 'adg' runs cell plans; epibt (rotation actions) needs run.executor: lockstep");
+  EXPECT_EQ(err("planner: {solver: lacam}\n").rfind("t.yaml: planner.solver: 'lacam' is not one of", 0), 0u);
+  // Accepted: each solver with its own options, and a turn of 0.5 s.
+  const Config ok = parse_config(net + "planner: {solver: wppl, rotation: {window: 8, guidance: arrows}}\n", "t.yaml",
+                                 RTLACAM_CONFIGS);
+  EXPECT_EQ(ok.planner.rotation.window, 8);
+  EXPECT_TRUE(ok.planner.rotation_solver());
+
+  // A net whose cells are not on a lattice: refused before SUMO starts, naming the net.
+  Config diag = parse_config("sumo:\n  net: " + std::string(RTLACAM_CONTROLLER_DATA) +
+                                 "/diagonal.net.xml\nfleet: {count: 2}\nplanner: {solver: pibt-rot}\n",
+                             "t.yaml", RTLACAM_CONFIGS);
+  diag.output.dir = test::temp_dir("ctl_rot_diag");
+  try {
+    Controller(diag).run();
+    ADD_FAILURE() << "the diagonal net ran with pibt-rot";
+  } catch (const ConfigError& e) {
+    const std::string w = e.what();
+    EXPECT_EQ(w.rfind("t.yaml: planner.solver: pibt-rot needs a net whose cells lie on an axis-aligned lattice", 0), 0u) << w;
+    EXPECT_NE(w.find("diagonal.net.xml"), std::string::npos) << w;
+    EXPECT_EQ(w.find('\n'), std::string::npos) << w;
+  }
+}
