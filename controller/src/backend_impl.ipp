@@ -102,6 +102,22 @@ class ApiBackend : public SumoBackend {
   {
     return call("Simulation.getCollidingVehiclesIDList", [] { return api::Simulation::getCollidingVehiclesIDList(); });
   }
+  void set_color(const std::string& id, int r, int g, int b, int a) override
+  {
+    call("Vehicle.setColor", [&] { api::Vehicle::setColor(id, libsumo::TraCIColor(r, g, b, a)); });
+  }
+  void add_poi(const std::string& id, double x, double y, int r, int g, int b, int a, double size) override
+  {
+    // Layer 1: above the lanes, below the vehicles (sumo-gui draws by layer).
+    call("POI.add", [&] {
+      if (!api::POI::add(id, x, y, libsumo::TraCIColor(r, g, b, a), "goal", 1, "", size, size))
+        throw libsumo::TraCIException("a POI '" + id + "' exists already");
+    });
+  }
+  void move_poi(const std::string& id, double x, double y) override
+  {
+    call("POI.setPosition", [&] { api::POI::setPosition(id, x, y); });
+  }
 
  protected:
   // A call on a running simulation. libtraci dereferences a null connection once it is

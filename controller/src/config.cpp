@@ -458,9 +458,10 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
 
   const YAML::Node w = root["output"];
-  r.keys(w, "output", {"dir", "plan"});
+  r.keys(w, "output", {"dir", "plan", "congestion"});
   r.text(w, "output", "dir", c.output.dir);
   r.flag(w, "output", "plan", c.output.plan);
+  r.flag(w, "output", "congestion", c.output.congestion);
   return c;
 }
 

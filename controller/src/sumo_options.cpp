@@ -37,6 +37,29 @@ std::string write_vtype_file(const Config& cfg, const std::string& dir, double m
   return path;
 }
 
+std::string write_gui_settings(const Config& cfg, const std::string& dir)
+{
+  // Names scale with the zoom (constantSize 0) at about a cell's size, so they stay on
+  // their AGV and never cover the net when zoomed out.
+  const std::string size = num(std::max(20.0, 60.0 * cfg.grid.cell_length));
+  const std::string path = dir + "/gui.xml";
+  planner::write_file(path, [&](std::ostream& out) {
+    out << "<viewsettings>\n"
+        << "    <scheme name=\"rtlacam\">\n"
+        << "        <vehicles vehicleQuality=\"2\" vehicle_minSize=\"0\" vehicle_exaggeration=\"1\" "
+           "vehicle_constantSize=\"0\" showBlinker=\"0\" vehicleName_show=\"1\" vehicleName_size=\""
+        << size
+        << "\" vehicleName_color=\"black\" vehicleName_bgColor=\"255,255,255,160\" vehicleName_constantSize=\"0\" "
+           "vehicleName_onlySelected=\"0\"/>\n"
+        << "        <pois poi_minSize=\"0\" poi_exaggeration=\"1\" poi_constantSize=\"0\" poiDetail=\"16\" "
+           "poiName_show=\"1\" poiName_size=\""
+        << size << "\" poiName_color=\"0,110,120\" poiName_constantSize=\"0\" poiName_onlySelected=\"0\"/>\n"
+        << "    </scheme>\n"
+        << "</viewsettings>\n";
+  });
+  return path;
+}
+
 std::vector<SumoOutput> sumo_outputs(const Config& cfg, const std::string& dir)
 {
   const SumoOutputs& o = cfg.sumo.outputs;
@@ -95,7 +118,7 @@ std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, co
   }
   if (cfg.run.gui)
     a.insert(a.end(), {"--start", "true", "--quit-on-end", "true", "--delay", num(cfg.run.gui_delay_ms),
-                       "--window-size", "1280,800", "--window-pos", "0,0"});
+                       "--window-size", "1280,800", "--window-pos", "0,0", "--gui-settings-file", dir + "/gui.xml"});
   a.insert(a.end(), cfg.sumo.extra_args.begin(), cfg.sumo.extra_args.end());
   return a;
 }

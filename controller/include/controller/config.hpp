@@ -121,6 +121,7 @@ struct DelaysSection {
 struct OutputSection {
   std::string dir = "out/run";  // relative to the working directory
   bool plan = true;
+  bool congestion = true;  // congestion.png (congestion.hpp)
 };
 
 struct Config {

@@ -59,6 +59,12 @@ class SumoBackend {
   virtual std::vector<std::string> colliding() = 0;
 
   virtual std::string name() const = 0;
+
+  // What a person sees (fleet_view.hpp): a vehicle's colour, and point markers (POIs) drawn
+  // as discs of `size` metres under the vehicles.
+  virtual void set_color(const std::string& id, int r, int g, int b, int a) = 0;
+  virtual void add_poi(const std::string& id, double x, double y, int r, int g, int b, int a, double size) = 0;
+  virtual void move_poi(const std::string& id, double x, double y) = 0;
 };
 
 // Embedded SUMO in this process (one simulation per process).
