@@ -106,17 +106,16 @@ class ApiBackend : public SumoBackend {
   {
     call("Vehicle.setColor", [&] { api::Vehicle::setColor(id, libsumo::TraCIColor(r, g, b, a)); });
   }
-  void add_poi(const std::string& id, double x, double y, int r, int g, int b, int a, double size) override
+  void add_polygon(const std::string& id, const std::string& type, const Shape& shape, int r, int g, int b,
+                   double line_width) override
   {
-    // Layer 1: above the lanes, below the vehicles (sumo-gui draws by layer).
-    call("POI.add", [&] {
-      if (!api::POI::add(id, x, y, libsumo::TraCIColor(r, g, b, a), "goal", 1, "", size, size))
-        throw libsumo::TraCIException("a POI '" + id + "' exists already");
-    });
+    // Layer 10: above the lanes, below the vehicles (sumo-gui draws by layer).
+    call("Polygon.add",
+         [&] { api::Polygon::add(id, positions(shape), libsumo::TraCIColor(r, g, b, 255), false, type, 10, line_width); });
   }
-  void move_poi(const std::string& id, double x, double y) override
+  void set_polygon_shape(const std::string& id, const Shape& shape) override
   {
-    call("POI.setPosition", [&] { api::POI::setPosition(id, x, y); });
+    call("Polygon.setShape", [&] { api::Polygon::setShape(id, positions(shape)); });
   }
 
  protected:
@@ -144,6 +143,18 @@ class ApiBackend : public SumoBackend {
   }
 
   bool running_ = false;
+
+  static libsumo::TraCIPositionVector positions(const Shape& shape)
+  {
+    libsumo::TraCIPositionVector v;
+    for (const auto& [x, y] : shape) {
+      libsumo::TraCIPosition p;
+      p.x = x;
+      p.y = y;
+      v.value.push_back(p);
+    }
+    return v;
+  }
 
   // Exact decimal of a double: SUMO parses departPos as text.
   static std::string fmt(double x)

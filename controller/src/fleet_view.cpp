@@ -1,6 +1,5 @@
 #include "controller/fleet_view.hpp"
 
-#include "planner/budget.hpp"
 
 namespace controller {
 
@@ -50,7 +49,6 @@ FleetView::FleetView(SumoBackend& sumo, const gridify::CellMap& map, std::vector
 
 void FleetView::show(const std::vector<AgvState>& states)
 {
-  const auto t0 = planner::Clock::now();
   for (size_t i = 0; i < ids_.size(); ++i) {
     const int s = static_cast<int>(states[i]);
     if (shown_[i] == s) continue;
@@ -59,28 +57,28 @@ void FleetView::show(const std::vector<AgvState>& states)
     shown_[i] = s;
     ++st_.colour_calls;
   }
-  st_.ms += planner::ms_since(t0);
 }
 
 void FleetView::goals(const planner::Config& goals)
 {
-  const auto t0 = planner::Clock::now();
   const bool first = goal_.empty();
   if (first) goal_.assign(ids_.size(), -1);
   const Rgb c = goal_colour();
   for (size_t i = 0; i < ids_.size(); ++i) {
     if (goal_[i] == goals[i]) continue;
     const gridify::Cell& cell = map_.cells[goals[i]];
-    // Half transparent, under the AGVs (layer below the vehicles'), so an AGV on its goal
-    // stays readable; the id says whose goal it is.
+    // An outline (a POI is a disc of fixed size in sumo-gui 1.15, whatever its width), under
+    // the AGVs, so an AGV on its goal stays visible; its type is the AGV's id.
+    const double h = marker_ / 2;
+    const SumoBackend::Shape square{{cell.x - h, cell.y - h}, {cell.x + h, cell.y - h}, {cell.x + h, cell.y + h},
+                                    {cell.x - h, cell.y + h}, {cell.x - h, cell.y - h}};
     if (goal_[i] < 0)
-      sumo_.add_poi(goal_id(ids_[i]), cell.x, cell.y, c.r, c.g, c.b, 140, marker_);
+      sumo_.add_polygon(goal_id(ids_[i]), ids_[i], square, c.r, c.g, c.b, marker_ / 6);
     else
-      sumo_.move_poi(goal_id(ids_[i]), cell.x, cell.y);
+      sumo_.set_polygon_shape(goal_id(ids_[i]), square);
     goal_[i] = goals[i];
     ++st_.goal_calls;
   }
-  st_.ms += planner::ms_since(t0);
 }
 
 }  // namespace controller

@@ -192,9 +192,9 @@ void Run::start_sumo()
   if (!waiting.empty()) throw FleetError("SUMO could not insert AGV(s) on their start cells: " + join_ids(waiting));
   cmd_->verify(ins_.starts, c_.tolerance);
   // Every AGV idle (grey) and its goal marked before the first tick; changes only after.
-  view_ = std::make_unique<FleetView>(*sumo_, c_.map_, cmd_->ids(), 0.6 * cfg_.grid.cell_length);
+  view_ = std::make_unique<FleetView>(*sumo_, c_.map_, cmd_->ids(), 0.7 * cfg_.grid.cell_length);
   view_->show(std::vector<AgvState>(ins_.num_agents(), AgvState::Idle));
-  view_->goals(goals());
+  show_goals();
 }
 
 void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
@@ -210,7 +210,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
     const double c0 = planner::thread_cpu_ms();
     p_->set_goals(tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
-    view_->goals(tm_->goals());
+    show_goals();
     p_->search(budget_);
     plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
     ++life_.epochs;

@@ -60,6 +60,7 @@ class Run {
   // markers when goals change, the congestion counts per tick and their picture.
   void show_lockstep(const planner::Config& cur, const planner::Config& next, bool held);
   void show_adg(const executor::Adg& adg);
+  void show_goals();
   bool carrying(int i) const;  // lifelong: its task's pick-up done, on its way to deliver
   const planner::Config& goals() const { return tm_ ? tm_->goals() : ins_.goals; }
   void count_tick(const planner::Config& executed);

@@ -16,6 +16,7 @@ bool Run::carrying(int i) const
 
 void Run::show_lockstep(const planner::Config& cur, const planner::Config& next, bool held)
 {
+  const auto t0 = planner::Clock::now();
   // The tick's commands are out: movers move, unless a stopped mover holds the whole fleet
   // (then every AGV with a move waits on it). No stuck replan in lockstep.
   const int n = ins_.num_agents();
@@ -25,6 +26,7 @@ void Run::show_lockstep(const planner::Config& cur, const planner::Config& next,
     states_[i] = agv_state(false, delays_->stopped(i), held && move, move && !held, carrying(i));
   }
   view_->show(states_);
+  view_->add_ms(planner::ms_since(t0));
 }
 
 void Run::show_adg(const executor::Adg& adg)
@@ -34,6 +36,7 @@ void Run::show_adg(const executor::Adg& adg)
   // the Driver's dependency wait), and who is about to go (released but not started: a
   // group member not ready, or the step at rest before a turn -- shown as moving, not as a
   // one-step flicker).
+  const auto t0 = planner::Clock::now();
   const int n = ins_.num_agents();
   const bool follow = cfg_.run.executor == "adg-follow";
   states_.resize(n);
@@ -55,6 +58,14 @@ void Run::show_adg(const executor::Adg& adg)
     states_[i] = agv_state(stuck, stopped, waiting, moving, carrying(i));
   }
   view_->show(states_);
+  view_->add_ms(planner::ms_since(t0));
+}
+
+void Run::show_goals()
+{
+  const auto t0 = planner::Clock::now();
+  view_->goals(goals());
+  view_->add_ms(planner::ms_since(t0));
 }
 
 void Run::count_tick(const planner::Config& executed)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <thread>
@@ -39,9 +40,9 @@ std::string write_vtype_file(const Config& cfg, const std::string& dir, double m
 
 std::string write_gui_settings(const Config& cfg, const std::string& dir)
 {
-  // Names scale with the zoom (constantSize 0) at about a cell's size, so they stay on
-  // their AGV and never cover the net when zoomed out.
-  const std::string size = num(std::max(20.0, 60.0 * cfg.grid.cell_length));
+  // Names scale with the zoom (constantSize 0; size 20 is about 1 m high in 1.15): a third
+  // of a cell, so they stay on their AGV and never cover the net when zoomed out.
+  const std::string size = num(7.0 * cfg.grid.cell_length);
   const std::string path = dir + "/gui.xml";
   planner::write_file(path, [&](std::ostream& out) {
     out << "<viewsettings>\n"
@@ -51,11 +52,17 @@ std::string write_gui_settings(const Config& cfg, const std::string& dir)
         << size
         << "\" vehicleName_color=\"black\" vehicleName_bgColor=\"255,255,255,160\" vehicleName_constantSize=\"0\" "
            "vehicleName_onlySelected=\"0\"/>\n"
-        << "        <pois poi_minSize=\"0\" poi_exaggeration=\"1\" poi_constantSize=\"0\" poiDetail=\"16\" "
-           "poiName_show=\"1\" poiName_size=\""
-        << size << "\" poiName_color=\"0,110,120\" poiName_constantSize=\"0\" poiName_onlySelected=\"0\"/>\n"
-        << "    </scheme>\n"
-        << "</viewsettings>\n";
+
+        << "        <polys poly_minSize=\"0\" poly_exaggeration=\"1\" poly_constantSize=\"0\" polyName_show=\"0\" "
+           "polyType_show=\"1\" polyType_size=\""
+        << size << "\" polyType_color=\"0,110,120\" polyType_constantSize=\"0\" polyType_onlySelected=\"0\"/>\n"
+        << "    </scheme>\n";
+    // sumo-gui's own snapshots of its view (output.gui_snapshots), absolute: sumo-gui may
+    // run in another working directory (an external one over TraCI).
+    for (double t : cfg.output.gui_snapshots)
+      out << "    <snapshot file=\"" << std::filesystem::absolute(dir + "/gui_" + num(t) + ".png").string()
+          << "\" time=\"" << num(t) << "\"/>\n";
+    out << "</viewsettings>\n";
   });
   return path;
 }

@@ -122,6 +122,7 @@ struct OutputSection {
   std::string dir = "out/run";  // relative to the working directory
   bool plan = true;
   bool congestion = true;  // congestion.png (congestion.hpp)
+  std::vector<double> gui_snapshots;  // run.gui: sumo-gui writes gui_<t>.png at these simulated seconds
 };
 
 struct Config {

@@ -1,8 +1,8 @@
 #pragma once
 // FleetView: what a person sees of the fleet in SUMO (sumo-gui, or any TraCI client that
-// reads colours and POIs). The one place that maps an AGV's state to its colour (the
-// legend in controller/README.md), and one goal marker (a POI "goal_<agv id>" on the goal
-// cell's x/y) per AGV. Only changes cost a SUMO call: with 1000 AGVs a step where nothing
+// reads colours and polygons). The one place that maps an AGV's state to its colour (the
+// legend in controller/README.md), and one goal marker per AGV: a square outline polygon
+// "goal_<agv id>" (type: the AGV's id) centred on the goal cell's x/y. Only changes cost a SUMO call: with 1000 AGVs a step where nothing
 // changed state sends nothing.
 #include <cstdint>
 #include <string>
@@ -35,18 +35,18 @@ struct Rgb {
 AgvState agv_state(bool stuck, bool delayed, bool waiting, bool moving, bool carrying);
 Rgb state_colour(AgvState s);
 const char* state_name(AgvState s);
-// Colour of the goal markers (one for all: the POI's id names the AGV).
+// Colour of the goal markers (one for all: the marker's type names the AGV).
 Rgb goal_colour();
 
 struct ViewStats {
   long long colour_calls = 0;  // Vehicle.setColor sent
-  long long goal_calls = 0;    // POI.add / POI.setPosition sent
-  double ms = 0;               // wall time spent in show() and goals()
+  long long goal_calls = 0;    // Polygon.add / Polygon.setShape sent
+  double ms = 0;               // wall time: the states, show() and goals() (Run measures it)
 };
 
 class FleetView {
  public:
-  // `ids`: SUMO vehicle ids in agent order; `marker_m`: goal marker diameter (m).
+  // `ids`: SUMO vehicle ids in agent order; `marker_m`: goal marker side (m).
   FleetView(SumoBackend& sumo, const gridify::CellMap& map, std::vector<std::string> ids, double marker_m);
 
   static std::string goal_id(const std::string& vehicle) { return "goal_" + vehicle; }
@@ -56,6 +56,7 @@ class FleetView {
   // Moves each AGV's goal marker to its goal cell (the first call adds them).
   void goals(const planner::Config& goals);
   const ViewStats& stats() const { return st_; }
+  void add_ms(double ms) { st_.ms += ms; }
 
  private:
   SumoBackend& sumo_;
