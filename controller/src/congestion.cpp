@@ -11,18 +11,19 @@
 
 namespace controller {
 
-void Congestion::tick(const planner::Config& at, const std::vector<VehiclePose>& poses, const planner::Config& goals)
+void Congestion::tick(const planner::Config& at, const std::vector<VehiclePose>& poses, const planner::Config& goals,
+                      int ticks)
 {
   for (size_t i = 0; i < at.size(); ++i) {
-    ++occupancy_[at[i]];
+    occupancy_[at[i]] += ticks;
     // Stood still: SUMO's pose unchanged over the whole tick (exact: scheme S and the
     // Driver land fronts exactly on cells); a turn in place changes the lane, so it moved.
     const bool stood = i < last_.size() && i < poses.size() && poses[i].lane == last_[i].lane &&
                        std::fabs(poses[i].pos - last_[i].pos) < 1e-9;
-    if (stood && at[i] != goals[i]) ++waiting_[at[i]];
+    if (stood && at[i] != goals[i]) waiting_[at[i]] += ticks;
   }
   last_ = poses;
-  ++ticks_;
+  ticks_ += ticks;
 }
 
 namespace {

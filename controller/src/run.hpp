@@ -56,14 +56,15 @@ class Run {
   void stuck_step(executor::Adg& adg, Driver& drv);
   void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
   // What a person sees (run_view.cpp): each AGV's state colour once its commands are out
-  // (lockstep: per tick from the step it executes; adg: per SUMO step from the ADG), goal
-  // markers when goals change, the congestion counts per tick and their picture.
+  // (lockstep: per tick from the step it executes; adg: before every SUMO step, from the
+  // ADG after the Driver's starts), goal markers when goals change, the congestion counts
+  // per tick and their picture.
   void show_lockstep(const planner::Config& cur, const planner::Config& next, bool held);
   void show_adg(const executor::Adg& adg);
   void show_goals();
   bool carrying(int i) const;  // lifelong: its task's pick-up done, on its way to deliver
   const planner::Config& goals() const { return tm_ ? tm_->goals() : ins_.goals; }
-  void count_tick(const planner::Config& executed);
+  void count_tick(const planner::Config& executed, int ticks = 1);
   void write_congestion();
   // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
   // search proved unsolvable (RT-LaCAM's DFS exhausted: waiting for max_ticks would change

@@ -70,7 +70,7 @@ void Run::loop_lockstep()
     m_.ticks += ticks;
     m_.makespan = val_->steps();  // executed steps only (a tick cut short by an error is not)
     m_.soc = val_->sum_of_costs();
-    count_tick(cur);
+    count_tick(cur, ticks);
     if (tm_) lifelong_tick(cur, tick_planner_ms);  // completions need moves: none while held
     progress_line(cur);
   }

@@ -68,11 +68,11 @@ void Run::show_goals()
   view_->add_ms(planner::ms_since(t0));
 }
 
-void Run::count_tick(const planner::Config& executed)
+void Run::count_tick(const planner::Config& executed, int ticks)
 {
   if (!congestion_) return;
   const auto t0 = planner::Clock::now();
-  congestion_->tick(executed, last_poses_, goals());
+  congestion_->tick(executed, last_poses_, goals(), ticks);
   m_.congestion_ms += planner::ms_since(t0);
 }
 

@@ -20,8 +20,10 @@ class Congestion {
  public:
   explicit Congestion(int cells) : occupancy_(cells, 0), waiting_(cells, 0) {}
 
-  // End of a tick: each AGV's executed cell, its SUMO pose after the tick, its goal during it.
-  void tick(const planner::Config& at, const std::vector<VehiclePose>& poses, const planner::Config& goals);
+  // End of a tick: each AGV's executed cell, its SUMO pose after the tick, its goal during
+  // it; `ticks` > 1: a lockstep step stretched over that many ticks (a slowed mover).
+  void tick(const planner::Config& at, const std::vector<VehiclePose>& poses, const planner::Config& goals,
+            int ticks = 1);
 
   const std::vector<long long>& occupancy() const { return occupancy_; }
   const std::vector<long long>& waiting() const { return waiting_; }
