@@ -6,7 +6,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PKGS=(
   build-essential cmake git
   libgtest-dev libcli11-dev nlohmann-json3-dev libyaml-cpp-dev libeigen3-dev
-  libpugixml-dev libexpat1-dev
+  libpugixml-dev libexpat1-dev libcairo2-dev pkgconf
   sumo sumo-tools
   python3 python3-matplotlib
   pybind11-dev python3-dev python3-pytest

@@ -115,6 +115,21 @@ class ApiBackend : public SumoBackend {
   {
     return call("Simulation.getCollidingVehiclesIDList", [] { return api::Simulation::getCollidingVehiclesIDList(); });
   }
+  void set_color(const std::string& id, int r, int g, int b, int a) override
+  {
+    call("Vehicle.setColor", [&] { api::Vehicle::setColor(id, libsumo::TraCIColor(r, g, b, a)); });
+  }
+  void add_polygon(const std::string& id, const std::string& type, const Shape& shape, int r, int g, int b,
+                   double line_width) override
+  {
+    // Layer 10: above the lanes, below the vehicles (sumo-gui draws by layer).
+    call("Polygon.add",
+         [&] { api::Polygon::add(id, positions(shape), libsumo::TraCIColor(r, g, b, 255), false, type, 10, line_width); });
+  }
+  void set_polygon_shape(const std::string& id, const Shape& shape) override
+  {
+    call("Polygon.setShape", [&] { api::Polygon::setShape(id, positions(shape)); });
+  }
 
  protected:
   // A call on a running simulation. libtraci dereferences a null connection once it is
@@ -141,6 +156,18 @@ class ApiBackend : public SumoBackend {
   }
 
   bool running_ = false;
+
+  static libsumo::TraCIPositionVector positions(const Shape& shape)
+  {
+    libsumo::TraCIPositionVector v;
+    for (const auto& [x, y] : shape) {
+      libsumo::TraCIPosition p;
+      p.x = x;
+      p.y = y;
+      v.value.push_back(p);
+    }
+    return v;
+  }
 
   // Exact decimal of a double: SUMO parses departPos as text.
   static std::string fmt(double x)

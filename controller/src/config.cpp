@@ -530,10 +530,23 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
 
   const YAML::Node w = root["output"];
-  r.keys(w, "output", {"dir", "plan", "plan_keep"});
+  r.keys(w, "output", {"dir", "plan", "plan_keep", "congestion", "gui_snapshots"});
   r.text(w, "output", "dir", c.output.dir);
   r.flag(w, "output", "plan", c.output.plan);
   r.integer(w, "output", "plan_keep", c.output.plan_keep, 1, 1 << 30);
+  r.flag(w, "output", "congestion", c.output.congestion);
+  if (w && w.IsMap() && w["gui_snapshots"]) {
+    const YAML::Node l = w["gui_snapshots"];
+    if (!l.IsSequence()) r.fail("output.gui_snapshots", "expected a list of simulated seconds");
+    for (size_t i = 0; i < l.size(); ++i) {
+      const std::string key = "output.gui_snapshots[" + std::to_string(i) + "]";
+      double t = -1;
+      // decode() leaves 0 behind on a failed parse: its result decides.
+      if (!l[i].IsScalar() || !YAML::convert<double>::decode(l[i], t) || !(t >= 0) || !std::isfinite(t))
+        r.fail(key, "expected simulated seconds >= 0");
+      c.output.gui_snapshots.push_back(t);
+    }
+  }
   return c;
 }
 

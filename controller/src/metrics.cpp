@@ -108,6 +108,11 @@ nlohmann::json Metrics::to_json() const
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   j["max_position_error_m"] = commands.max_error;
+  // What the display costs (fleet_view.hpp, congestion.hpp): calls are sent on changes only.
+  j["view"] = {{"colour_calls", view.colour_calls},
+               {"goal_calls", view.goal_calls},
+               {"ms", view.ms},
+               {"congestion_ms", congestion_ms}};
   return j;
 }
 

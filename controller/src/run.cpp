@@ -151,6 +151,7 @@ void Run::prepare()
   // still ends by the deadline (an expansion cannot stop halfway): p99 near the budget.
   if (cfg_.planner.budget_ms > 0) budget_.reserve_ms = 1e-3;
   k_ = cfg_.steps_per_tick();
+  if (cfg_.output.congestion) congestion_ = std::make_unique<Congestion>(g.size());
 }
 
 planner::Budget Run::plan_budget() const
@@ -211,6 +212,7 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
 
 void Run::start_sumo()
 {
+  if (cfg_.run.gui) write_gui_settings(cfg_, dir_);  // sumo_args names it
   sumo_->start(sumo_args(cfg_, dir_, write_vtype_file(cfg_, dir_, max_spacing_), cmd_->needs_ignore_route_errors()));
   cmd_->insert(ins_.starts);
   // Insertion step (the AGVs are pending until it): no safety check before they exist.
@@ -220,6 +222,10 @@ void Run::start_sumo()
   const std::vector<std::string> waiting = sumo_->pending();
   if (!waiting.empty()) throw FleetError("SUMO could not insert AGV(s) on their start cells: " + join_ids(waiting));
   cmd_->verify(ins_.starts, c_.tolerance);
+  // Every AGV idle (grey) and its goal marked before the first tick; changes only after.
+  view_ = std::make_unique<FleetView>(*sumo_, c_.map_, cmd_->ids(), 0.7 * cfg_.grid.cell_length);
+  view_->show(std::vector<AgvState>(ins_.num_agents(), AgvState::Idle));
+  show_goals();
 }
 
 void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
@@ -235,6 +241,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
     const double c0 = planner::thread_cpu_ms();
     p_->set_goals(tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
+    show_goals();
     p_->search(plan_budget());
     plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
     ++life_.epochs;

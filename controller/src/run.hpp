@@ -11,8 +11,10 @@
 
 #include "controller/bound.hpp"
 #include "controller/commander.hpp"
+#include "controller/congestion.hpp"
 #include "controller/controller.hpp"
 #include "controller/driver.hpp"
+#include "controller/fleet_view.hpp"
 #include "controller/safety.hpp"
 #include "stuck_replan.hpp"
 #include "executor/adg.hpp"
@@ -57,6 +59,17 @@ class Run {
   // driving to, `immobile` AGVs kept in place.
   void stuck_step(executor::Adg& adg, Driver& drv);
   void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
+  // What a person sees (run_view.cpp): each AGV's state colour once its commands are out
+  // (lockstep: per tick from the step it executes; adg: before every SUMO step, from the
+  // ADG after the Driver's starts), goal markers when goals change, the congestion counts
+  // per tick and their picture.
+  void show_lockstep(const planner::Config& cur, const planner::Config& next, bool held);
+  void show_adg(const executor::Adg& adg);
+  void show_goals();
+  bool carrying(int i) const;  // lifelong: its task's pick-up done, on its way to deliver
+  const planner::Config& goals() const { return tm_ ? tm_->goals() : ins_.goals; }
+  void count_tick(const planner::Config& executed, int ticks = 1);
+  void write_congestion();
   // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
   // search proved unsolvable (RT-LaCAM's DFS exhausted: waiting for max_ticks would change
   // nothing): each ends the loop through its normal end, so finish() writes every output
@@ -82,6 +95,9 @@ class Run {
   std::unique_ptr<planner::Validator> val_;
   std::unique_ptr<executor::DelayModel> delays_;
   std::unique_ptr<StuckWatch> stuck_;  // run.replan_on_stuck (adg)
+  std::unique_ptr<FleetView> view_;
+  std::unique_ptr<Congestion> congestion_;
+  std::vector<AgvState> states_;
   uint64_t replan_expansions_ = 0;     // expansions of the planners replaced by replans
   tasks::LifelongResult life_;
   planner::Budget budget_;

@@ -66,6 +66,7 @@ void Run::loop_lockstep()
     if (!val_->step(to)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
     cmd_->command(cur, to, ticks);
     if (rot && !held) cmd_->turn(acts);
+    show_lockstep(cur, next, held);
     double ctl = ms_since(t0);
 
     std::vector<std::vector<planner::Vertex>> allowed(ins_.num_agents());
@@ -90,6 +91,7 @@ void Run::loop_lockstep()
     m_.ticks += ticks;
     m_.makespan = val_->steps();  // executed steps only (a tick cut short by an error is not)
     m_.soc = val_->sum_of_costs();
+    count_tick(cur, ticks);
     if (tm_) lifelong_tick(cur, tick_planner_ms);  // completions need moves: none while held
     progress_line(cur);
   }
@@ -152,6 +154,7 @@ void Run::loop_adg()
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
       drv.before_step();
+      show_adg(adg);  // what each AGV does in this step
       const double before_ms = ms_since(t0);
       try {
         step(drv.allowed(), true, drv.groups());
@@ -178,6 +181,7 @@ void Run::loop_adg()
     m_.followed = drv.stats().followed;
     m_.overshoot_m = drv.stats().overshoot;
     const planner::Config now = executed();
+    count_tick(now);
     if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
     progress_line(now);
   }
@@ -259,6 +263,8 @@ void Run::finish()
     if (!m_.error.empty()) j["error"] = m_.error;
     checked([&] { planner::write_file(dir_ + "/" + cfg_.tasks.log, j.dump(2) + '\n'); });
   }
+  if (cfg_.output.congestion && m_.ticks > 0) checked([&] { write_congestion(); });
+  if (view_) m_.view = view_->stats();
   checked([&] { planner::write_file(dir_ + "/metrics.json", m_.to_json().dump(2) + '\n'); });
   if (cfg_.output.plan) {
     planner::PlanHeader h;

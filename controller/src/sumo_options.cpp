@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <thread>
@@ -33,6 +34,35 @@ std::string write_vtype_file(const Config& cfg, const std::string& dir, double m
         << num(emergency) << "\" maxSpeed=\"" << num(vmax)
         << "\" speedFactor=\"1\" speedDev=\"0\" sigma=\"0\" guiShape=\"truck\"/>\n"
         << "</additional>\n";
+  });
+  return path;
+}
+
+std::string write_gui_settings(const Config& cfg, const std::string& dir)
+{
+  // Names scale with the zoom (constantSize 0; size 20 is about 1 m high in 1.15): a third
+  // of a cell, so they stay on their AGV and never cover the net when zoomed out.
+  const std::string size = num(7.0 * cfg.grid.cell_length);
+  const std::string path = dir + "/gui.xml";
+  planner::write_file(path, [&](std::ostream& out) {
+    out << "<viewsettings>\n"
+        << "    <scheme name=\"rtlacam\">\n"
+        << "        <vehicles vehicleQuality=\"2\" vehicle_minSize=\"0\" vehicle_exaggeration=\"1\" "
+           "vehicle_constantSize=\"0\" showBlinker=\"0\" vehicleName_show=\"1\" vehicleName_size=\""
+        << size
+        << "\" vehicleName_color=\"black\" vehicleName_bgColor=\"255,255,255,160\" vehicleName_constantSize=\"0\" "
+           "vehicleName_onlySelected=\"0\"/>\n"
+
+        << "        <polys poly_minSize=\"0\" poly_exaggeration=\"1\" poly_constantSize=\"0\" polyName_show=\"0\" "
+           "polyType_show=\"1\" polyType_size=\""
+        << size << "\" polyType_color=\"0,110,120\" polyType_constantSize=\"0\" polyType_onlySelected=\"0\"/>\n"
+        << "    </scheme>\n";
+    // sumo-gui's own snapshots of its view (output.gui_snapshots), absolute: sumo-gui may
+    // run in another working directory (an external one over TraCI).
+    for (double t : cfg.output.gui_snapshots)
+      out << "    <snapshot file=\"" << std::filesystem::absolute(dir + "/gui_" + num(t) + ".png").string()
+          << "\" time=\"" << num(t) << "\"/>\n";
+    out << "</viewsettings>\n";
   });
   return path;
 }
@@ -95,7 +125,7 @@ std::vector<std::string> sumo_args(const Config& cfg, const std::string& dir, co
   }
   if (cfg.run.gui)
     a.insert(a.end(), {"--start", "true", "--quit-on-end", "true", "--delay", num(cfg.run.gui_delay_ms),
-                       "--window-size", "1280,800", "--window-pos", "0,0"});
+                       "--window-size", "1280,800", "--window-pos", "0,0", "--gui-settings-file", dir + "/gui.xml"});
   a.insert(a.end(), cfg.sumo.extra_args.begin(), cfg.sumo.extra_args.end());
   return a;
 }

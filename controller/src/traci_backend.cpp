@@ -29,7 +29,7 @@ std::vector<std::string> absolute_files(std::vector<std::string> args)
 {
   static const std::set<std::string> kFileOptions{"-n", "--net-file", "-a", "--additional-files", "-r",
                                                   "--route-files", "--fcd-output", "--tripinfo-output",
-                                                  "--summary-output", "--collision-output"};
+                                                  "--summary-output", "--collision-output", "--gui-settings-file"};
   for (size_t i = 0; i + 1 < args.size(); ++i) {
     if (!kFileOptions.count(args[i])) continue;
     std::stringstream in(args[i + 1]);

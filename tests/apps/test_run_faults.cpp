@@ -146,6 +146,7 @@ TEST(FullDisk, EveryRtlacamSumoOutput)
                                    {"small_warehouse.yaml", "fcd.xml"},
                                    {"small_warehouse.yaml", "tripinfo.xml"},
                                    {"small_warehouse.yaml", "agv.add.xml"},
+                                   {"small_warehouse.yaml", "congestion.png"},
                                    {"small_warehouse_lifelong.yaml", "lifelong.json"}};
   for (const Case& c : cases) {
     const std::string dir = dir_with_full(c.file, c.file);

@@ -1,7 +1,12 @@
 // Controller tests against the real SUMO 1.15. ctest runs each TEST in its own process
 // (libsumo: one global simulation per process); every test writes into its own temp dir.
+#include <cairo.h>
 #include <gtest/gtest.h>
+#include <libsumo/libsumo.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -9,11 +14,15 @@
 
 #include "controller/commander.hpp"
 #include "controller/config.hpp"
+#include "controller/congestion.hpp"
+#include "controller/fleet_view.hpp"
 #include "controller_test_util.hpp"
 #include "controller/controller.hpp"
+#include "controller/display.hpp"
 #include "controller/sumo_error.hpp"
 #include "controller/sumo_options.hpp"
 #include "gridify/gridifier.hpp"
+#include "planner/output_file.hpp"
 #include "planner/validator.hpp"
 #include "temp_path.hpp"
 
@@ -281,4 +290,257 @@ TEST(ControllerConfig, CellErrorsNeedTheGraph)
   EXPECT_EQ(run_error(kNet + "  additional: ../sumo_scenarios/small.add.xml\nfleet: {count: 2}\ntasks: {goals: [pickup1, nowhere]}\n"),
             "t.yaml: tasks.goals[1]: 'nowhere' is neither a cell id, a station nor a junction of the graph");
   EXPECT_EQ(run_error(kNet + "fleet: {count: 100}\n"), "t.yaml: fleet.count: 100 AGVs but the graph has only 62 cells");
+}
+
+// ---------------------------------------------------------------------------------------
+// What a person sees (fleet_view.hpp, congestion.hpp), read back from the real SUMO with
+// libsumo's own getters and from the PNG with cairo.
+namespace {
+
+AgvState colour_state(const libsumo::TraCIColor& c)
+{
+  for (int s = 0; s < kAgvStates; ++s) {
+    const Rgb r = state_colour(static_cast<AgvState>(s));
+    if (c.r == r.r && c.g == r.g && c.b == r.b) return static_cast<AgvState>(s);
+  }
+  return static_cast<AgvState>(kAgvStates);  // not a state colour (SUMO's default yellow)
+}
+
+// Before every SUMO step: each AGV's colour (libsumo Vehicle::getColor) paired with whether
+// it then drove in that step (its speed over the step, read before the next one) -- the
+// colour shown is the state the AGV is in. (Not the odometer: a turn in place moves it.)
+struct ColourLog {
+  std::vector<std::array<long long, 2>> seen = std::vector<std::array<long long, 2>>(kAgvStates + 1);  // [stood, moved]
+  std::vector<AgvState> last;
+  void attach(Controller& c)
+  {
+    c.on_step = [this](SumoBackend&, const std::vector<VehiclePose>&) {
+      const size_t n = libsumo::Vehicle::getIDList().size();
+      for (size_t i = 0; i < n; ++i) {
+        const std::string id = Commander::vehicle_id(static_cast<int>(i));
+        if (last.size() == n) ++seen[static_cast<int>(last[i])][libsumo::Vehicle::getSpeed(id) > 1e-6];
+        last.resize(n);
+        last[i] = colour_state(libsumo::Vehicle::getColor(id));
+      }
+    };
+  }
+  long long stood(AgvState s) const { return seen[static_cast<int>(s)][0]; }
+  long long moved(AgvState s) const { return seen[static_cast<int>(s)][1]; }
+};
+
+// The centre of a goal marker (of its outline's bounding box) -- throws if there is none.
+libsumo::TraCIPosition marker_centre(const std::string& id)
+{
+  double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+  for (const libsumo::TraCIPosition& p : libsumo::Polygon::getShape(id).value)
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  libsumo::TraCIPosition c;
+  c.x = (x0 + x1) / 2;
+  c.y = (y0 + y1) / 2;
+  return c;
+}
+
+// RGB of the pixel at p of a decoded cairo image.
+std::array<int, 3> pixel(cairo_surface_t* s, Pixel p)
+{
+  const unsigned char* d = cairo_image_surface_get_data(s);
+  const uint32_t v = *reinterpret_cast<const uint32_t*>(d + static_cast<int>(p.y) * cairo_image_surface_get_stride(s) +
+                                                        4 * static_cast<int>(p.x));
+  return {static_cast<int>((v >> 16) & 255), static_cast<int>((v >> 8) & 255), static_cast<int>(v & 255)};
+}
+
+}  // namespace
+
+TEST(ControllerView, HeldAgvsShowWaitingMoversMovingTheStoppedOneDelayed)
+{
+  // Lockstep with agv0 stopped for ticks 2-5: while it has a move, the whole fleet waits on it.
+  Config cfg = small_config("view_colour");
+  cfg.sumo.outputs = {false, false, false, true};
+  cfg.delays.spec.stuck = {{0, 2, 4}};
+  Controller c(cfg);
+  ColourLog log;
+  log.attach(c);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_GT(m.lockstep_waits, 0);
+  // Every colour the AGVs showed is a state colour, and it told the truth about the step.
+  EXPECT_EQ(log.stood(static_cast<AgvState>(kAgvStates)) + log.moved(static_cast<AgvState>(kAgvStates)), 0);
+  EXPECT_GT(log.stood(AgvState::Waiting), 0);
+  EXPECT_EQ(log.moved(AgvState::Waiting), 0);
+  EXPECT_GT(log.moved(AgvState::Moving), 0);
+  EXPECT_EQ(log.stood(AgvState::Moving), 0);
+  EXPECT_GT(log.stood(AgvState::Delayed), 0);
+  EXPECT_EQ(log.moved(AgvState::Delayed), 0);
+  EXPECT_FALSE(state_colour(AgvState::Waiting) == state_colour(AgvState::Moving));
+  // Only changes cost a call: far fewer than one per AGV per tick.
+  EXPECT_GT(m.view.colour_calls, m.agents);
+  EXPECT_LT(m.view.colour_calls, m.agents * m.ticks / 2);
+}
+
+TEST(ControllerView, AdgHeldAgvsShowWaitingAndTheStuckOneStuck)
+{
+  // adg with physics: agv0 stopped 20 s early on, so the stuck replan makes it immobile;
+  // the colour (set after each step from the ADG) holds for the step that follows.
+  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_agv.yaml");
+  cfg.output.dir = temp_dir("view_adg");
+  cfg.run.progress_s = 0;
+  cfg.run.executor = "adg";
+  cfg.planner.budget_ms = 0;
+  cfg.planner.expansions = 20;
+  cfg.delays = {};
+  cfg.delays.spec.stuck = {{0, 2, 20}};
+  cfg.sumo.outputs = {false, false, false, true};
+  Controller c(cfg);
+  ColourLog log;
+  log.attach(c);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_GT(m.dependency_waits, 0);
+  EXPECT_GT(log.stood(AgvState::Waiting), 0);
+  EXPECT_EQ(log.moved(AgvState::Waiting), 0);
+  EXPECT_GT(log.moved(AgvState::Moving), 0);
+  ASSERT_GT(m.stuck_events, 0);
+  EXPECT_GT(log.stood(AgvState::Stuck), 0);
+  EXPECT_EQ(log.moved(AgvState::Stuck), 0);
+}
+
+TEST(ControllerView, GoalMarkersFollowLifelongGoalsAndCarryingShowsWhileDelivering)
+{
+  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
+  cfg.output.dir = temp_dir("view_goals");
+  cfg.run.progress_s = 0;
+  cfg.run.max_ticks = 60;
+  cfg.planner.budget_ms = 0;
+  cfg.planner.expansions = 20;
+  cfg.tasks.assignment = "roundrobin";  // an AGV's goal changes only when it completes an errand
+  cfg.sumo.outputs = {false, false, false, true};
+  Controller c(cfg);
+  std::vector<std::vector<libsumo::TraCIPosition>> marks;  // per tick start: each AGV's goal marker
+  c.on_tick = [&](long long, SumoBackend&) {
+    std::vector<libsumo::TraCIPosition> m;
+    for (int i = 0; i < cfg.fleet.count; ++i)
+      m.push_back(marker_centre(FleetView::goal_id(Commander::vehicle_id(i))));
+    marks.push_back(m);
+  };
+  ColourLog log;
+  log.attach(c);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  ASSERT_EQ(static_cast<long long>(marks.size()), m.ticks);
+  const auto& plan = c.plan();
+  const auto& cells = c.map().cells;
+  long long moves = 0;
+  for (size_t t = 1; t < marks.size(); ++t)
+    for (int i = 0; i < cfg.fleet.count; ++i) {
+      if (std::hypot(marks[t][i].x - marks[t - 1][i].x, marks[t][i].y - marks[t - 1][i].y) < 1e-6) continue;
+      // Moved after tick t: agent i completed the errand it marked, standing on that cell.
+      ++moves;
+      const auto& at = cells[plan[t][i]];
+      EXPECT_NEAR(at.x, marks[t - 1][i].x, 1e-6) << "agv" << i << " tick " << t;
+      EXPECT_NEAR(at.y, marks[t - 1][i].y, 1e-6) << "agv" << i << " tick " << t;
+    }
+  // One move per completed errand (those of the last tick have no tick start after them).
+  EXPECT_GT(moves, 0);
+  EXPECT_LE(moves, m.errands_finished);
+  EXPECT_GE(moves, m.errands_finished - cfg.fleet.count);
+  EXPECT_GT(log.moved(AgvState::Carrying), 0);
+  EXPECT_EQ(log.stood(AgvState::Carrying), 0);
+}
+
+TEST(ControllerView, OneShotGoalMarkersFrameEveryGoal)
+{
+  Config cfg = small_config("view_goal_oneshot");
+  cfg.sumo.outputs = {false, false, false, false};
+  Controller c(cfg);
+  std::vector<libsumo::TraCIPosition> marks;
+  c.on_tick = [&](long long tick, SumoBackend&) {
+    if (tick == 0)
+      for (int i = 0; i < cfg.fleet.count; ++i)
+        marks.push_back(marker_centre(FleetView::goal_id(Commander::vehicle_id(i))));
+  };
+  const Metrics m = c.run();
+  ASSERT_TRUE(m.solved) << m.error;
+  ASSERT_EQ(static_cast<int>(marks.size()), cfg.fleet.count);
+  for (int i = 0; i < cfg.fleet.count; ++i) {
+    EXPECT_NEAR(marks[i].x, c.map().cells[c.plan().back()[i]].x, 1e-6) << "agv" << i;
+    EXPECT_NEAR(marks[i].y, c.map().cells[c.plan().back()[i]].y, 1e-6) << "agv" << i;
+  }
+}
+
+TEST(ControllerView, CongestionPngDrawsOccupancyAndWaitingAtTheCells)
+{
+  Config cfg = small_config("view_png");
+  cfg.sumo.outputs = {false, false, false, false};
+  Controller c(cfg);
+  const Metrics m = c.run();
+  ASSERT_TRUE(m.solved) << m.error;
+  // The same counts from the executed plan: a lockstep AGV stood iff its cell did not change.
+  const auto& plan = c.plan();
+  const planner::Config& goals = plan.back();
+  std::vector<long long> occ(c.map().cells.size()), wait(c.map().cells.size());
+  for (size_t t = 1; t < plan.size(); ++t)
+    for (size_t i = 0; i < goals.size(); ++i) {
+      ++occ[plan[t][i]];
+      wait[plan[t][i]] += plan[t][i] == plan[t - 1][i] && plan[t][i] != goals[i];
+    }
+  const auto busy = std::max_element(occ.begin(), occ.end()) - occ.begin();
+  const auto queue = std::max_element(wait.begin(), wait.end()) - wait.begin();
+  const auto empty = std::find(occ.begin(), occ.end(), 0) - occ.begin();
+  ASSERT_GT(wait[queue], 0);
+  ASSERT_LT(empty, static_cast<long>(occ.size()));
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> png(
+      cairo_image_surface_create_from_png((cfg.output.dir + "/congestion.png").c_str()), cairo_surface_destroy);
+  ASSERT_EQ(cairo_surface_status(png.get()), CAIRO_STATUS_SUCCESS) << cfg.output.dir;
+  EXPECT_EQ(cairo_image_surface_get_width(png.get()), kCongestionWidth);
+  EXPECT_EQ(cairo_image_surface_get_height(png.get()), kCongestionHeight);
+  for (int panel : {0, 1}) {
+    const auto none = pixel(png.get(), congestion_pixel(c.map(), panel, empty));
+    EXPECT_NE(pixel(png.get(), congestion_pixel(c.map(), panel, panel ? queue : busy)), none) << "panel " << panel;
+  }
+  EXPECT_GT(m.congestion_ms, 0);
+  EXPECT_LT(fs::file_size(cfg.output.dir + "/congestion.png"), 300000u);
+}
+
+TEST(ControllerView, CongestionPngFullDiskIsOneLineNamingTheFile)
+{
+  const gridify::CellMap map = gridify::gridify(std::string(RTLACAM_SCENARIOS) + "/small.net.xml");
+  try {
+    write_congestion_png("/dev/full", map, Congestion(map.graph.size()), "t");
+    FAIL() << "no error";
+  } catch (const planner::OutputError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot write '/dev/full'"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos);
+  }
+  EXPECT_EQ(config_error(kNet + "fleet: {count: 2}\noutput: {congestion: 3}\n"),
+            "t.yaml: output.congestion: expected true or false, got '3'");
+  EXPECT_EQ(config_error(kNet + "fleet: {count: 2}\noutput: {gui_snapshots: [1, x]}\n"),
+            "t.yaml: output.gui_snapshots[1]: expected simulated seconds >= 0");
+}
+
+// sumo-gui itself draws the colours: its own snapshot (output.gui_snapshots) of the small
+// demo at t = 5 s has pixels of the moving colour. Needs an X display (xvfb-run ctest ...):
+// skipped without one (CI has none).
+TEST(ControllerView, SumoGuiSnapshotShowsTheStateColours)
+{
+  if (const std::string why = display_problem(); !why.empty()) GTEST_SKIP() << why;
+  Config cfg = small_config("view_gui");
+  cfg.sumo.outputs = {false, false, false, false};
+  cfg.run.gui = true;
+  cfg.run.gui_delay_ms = 0;
+  cfg.run.max_ticks = 8;
+  cfg.output.gui_snapshots = {5};
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)> png(
+      cairo_image_surface_create_from_png((cfg.output.dir + "/gui_5.png").c_str()), cairo_surface_destroy);
+  ASSERT_EQ(cairo_surface_status(png.get()), CAIRO_STATUS_SUCCESS) << cfg.output.dir;
+  const Rgb want = state_colour(AgvState::Moving);
+  long long hits = 0;
+  for (int y = 0; y < cairo_image_surface_get_height(png.get()); ++y)
+    for (int x = 0; x < cairo_image_surface_get_width(png.get()); ++x) {
+      const auto p = pixel(png.get(), {static_cast<double>(x), static_cast<double>(y)});
+      hits += std::abs(p[0] - want.r) + std::abs(p[1] - want.g) + std::abs(p[2] - want.b) <= 6;
+    }
+  EXPECT_GT(hits, 50) << "no AGV drawn in the moving colour";
 }

@@ -148,6 +148,8 @@ struct OutputSection {
   // Lifelong: executed configurations kept in memory beyond those a replan may rewrite;
   // older ones are written to plan.txt as the run goes (controller/executed_plan.hpp).
   int plan_keep = 4096;
+  bool congestion = true;  // congestion.png (congestion.hpp)
+  std::vector<double> gui_snapshots;  // run.gui: sumo-gui writes gui_<t>.png at these simulated seconds
 };
 
 struct Config {

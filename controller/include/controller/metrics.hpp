@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "controller/commander.hpp"
+#include "controller/fleet_view.hpp"
 #include "planner/latency.hpp"
 
 namespace controller {
@@ -49,6 +50,8 @@ struct Metrics {
   long long stuck_events = 0;       // adg: AGVs found stuck (then made immobile)
   std::vector<double> goal_s;       // adg, one-shot: sim time each AGV reached its goal for good (-1: not)
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
+  ViewStats view;                   // fleet_view.hpp: colour and goal-marker calls, their ms
+  double congestion_ms = 0;         // counting + writing congestion.png
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
   long long end_stop_steps = 0;     // SUMO steps the stop at the run's end took (all AGVs at rest after)
   // The physical bound (bound.hpp), in ticks: one-shot, the slowest AGV alone on its path;

@@ -6,6 +6,7 @@
 // Every call throws SumoError (one line) on failure, including a lost TraCI connection.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace controller {
@@ -71,6 +72,14 @@ class SumoBackend {
   virtual std::vector<std::string> colliding() = 0;
 
   virtual std::string name() const = 0;
+
+  // What a person sees (fleet_view.hpp): a vehicle's colour, and outline polygons drawn at
+  // their real size under the vehicles, with a type (sumo-gui can show it).
+  using Shape = std::vector<std::pair<double, double>>;  // x/y points, closed by SUMO
+  virtual void set_color(const std::string& id, int r, int g, int b, int a) = 0;
+  virtual void add_polygon(const std::string& id, const std::string& type, const Shape& shape, int r, int g, int b,
+                           double line_width) = 0;
+  virtual void set_polygon_shape(const std::string& id, const Shape& shape) = 0;
 };
 
 // Embedded SUMO in this process (one simulation per process).

@@ -19,6 +19,12 @@ namespace controller {
 // Returns the file's path.
 std::string write_vtype_file(const Config& cfg, const std::string& dir, double max_spacing);
 
+// run.gui: writes <dir>/gui.xml, sumo-gui's view settings (--gui-settings-file): vehicles
+// at their vType's size (no exaggeration, no minimum size) with their ids, the goal
+// markers (fleet_view.hpp) with theirs; a snapshot of the view at each of output.gui_snapshots.
+// Returns the file's path.
+std::string write_gui_settings(const Config& cfg, const std::string& dir);
+
 // SUMO's output files of the config (sumo.outputs) in `dir`: path and XML root element
 // (SUMO writes the root's closing tag only at its close, so a complete file ends with it).
 struct SumoOutput {
