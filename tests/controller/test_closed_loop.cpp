@@ -128,7 +128,9 @@ void expect_all_at_rest(const Config& cfg, const Metrics& m, bool physical)
   const ctest_util::Kinematics k = ctest_util::fcd_kinematics(cfg.output.dir + "/fcd.xml", cfg.sumo.step_length);
   ASSERT_FALSE(k.last_speed.empty());
   for (const auto& [id, v] : k.last_speed) EXPECT_EQ(v, 0) << id << " still moving when the controller detached";
-  if (physical) EXPECT_LE(k.max_decel, cfg.fleet.vtype.decel + 1e-4);
+  if (physical) {
+    EXPECT_LE(k.max_decel, cfg.fleet.vtype.decel + 1e-4);
+  }
   EXPECT_GT(m.end_stop_steps, 0);  // there was something to stop
 }
 

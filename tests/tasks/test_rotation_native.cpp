@@ -92,7 +92,7 @@ TEST(RotationNative, GuidedAndDeadlineBoundedStepsAreValidLorrActions)
   // replayed here.
   const ttest::Lorr L("/2023/random.domain/MR23-I-04.json");
   const planner::Graph& g = L.g;
-  for (const std::string solver : {std::string("pibt-rot"), std::string("epibt"), std::string("wppl")})
+  for (const std::string& solver : {std::string("pibt-rot"), std::string("epibt"), std::string("wppl")})
   for (double ms : {100.0, 0.05}) {
     SCOPED_TRACE(solver);
     std::string plain;
