@@ -155,7 +155,10 @@ void Commander::command(const planner::Config& cur, const planner::Config& next,
 void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
 {
   {
-    const double tick_ = this->tick_ * ticks;
+    // SUMO adds v * step_length per step: with a step length that is no binary fraction
+    // (0.1) the steps can sum to an ulp past the target -- onto the next lane at a lane's
+    // end, a re-sync. Aim a hair (1e-12 relative) short: far inside the tolerance.
+    const double tick_ = this->tick_ * ticks * (1 + 1e-12);
     Agv& a = agv_[i];
     if (u == v) {
       set_speed(a, 0);

@@ -311,3 +311,21 @@ TEST(AgvPhysics, NeverFasterThanTheLaneSpeedLimit)
   EXPECT_GT(samples, 1000);
   EXPECT_GT(top_fast, 1.5);
 }
+
+// A SUMO step length that is no binary fraction (0.1 s): SUMO's steps sum to an ulp past a
+// lane's end unless the commanded speed aims a hair short (was: 40 re-syncs on the small
+// warehouse in lockstep).
+TEST(AgvNet, NonBinaryStepLengthNeedsNoResync)
+{
+  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse.yaml");
+  cfg.output.dir = test::temp_dir("agv_step01");
+  cfg.run.progress_s = 0;
+  cfg.sumo.step_length = 0.1;
+  cfg.sumo.outputs.fcd = false;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_TRUE(m.solved);
+  EXPECT_EQ(m.commands.resyncs, 0);
+  EXPECT_LE(m.commands.max_error, 1e-9);
+}
