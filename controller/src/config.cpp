@@ -533,7 +533,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.keys(w, "output", {"dir", "plan", "plan_keep", "congestion", "gui_snapshots"});
   r.text(w, "output", "dir", c.output.dir);
   r.flag(w, "output", "plan", c.output.plan);
-  r.integer(w, "output", "plan_keep", c.output.plan_keep, 1, 1 << 30);
+  r.integer(w, "output", "plan_keep", c.output.plan_keep, 0, 1 << 30);
   r.flag(w, "output", "congestion", c.output.congestion);
   if (w && w.IsMap() && w["gui_snapshots"]) {
     const YAML::Node l = w["gui_snapshots"];

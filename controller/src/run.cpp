@@ -315,7 +315,9 @@ Metrics Run::execute()
   const Kinematics kin{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
   alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kin);
   if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
-    c_.plan_.bound(static_cast<size_t>(cfg_.output.plan_keep), [this](const planner::Config& c) { alone_->add(c); },
+    c_.plan_.bound(cfg_.output.plan_keep > 0 ? static_cast<size_t>(cfg_.output.plan_keep)
+                                             : std::max<size_t>(64, (size_t{1} << 18) / static_cast<size_t>(ins_.num_agents())),
+                   [this](const planner::Config& c) { alone_->add(c); },
                    &c_.map_.graph, cfg_.output.plan ? dir_ + "/.plan.txt.part" : "");
   loop0_ = last_progress_ = Clock::now();
   try {

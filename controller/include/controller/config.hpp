@@ -147,7 +147,8 @@ struct OutputSection {
   bool plan = true;
   // Lifelong: executed configurations kept in memory beyond those a replan may rewrite;
   // older ones are written to plan.txt as the run goes (controller/executed_plan.hpp).
-  int plan_keep = 4096;
+  // 0: 2^18 vertex ids' worth (1 MB), at least 64 configurations.
+  int plan_keep = 0;
   bool congestion = true;  // congestion.png (congestion.hpp)
   std::vector<double> gui_snapshots;  // run.gui: sumo-gui writes gui_<t>.png at these simulated seconds
 };
