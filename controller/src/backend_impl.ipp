@@ -68,6 +68,10 @@ class ApiBackend : public SumoBackend {
   {
     call("Vehicle.setRoute", [&] { api::Vehicle::setRoute(id, edges); });
   }
+  void set_route_id(const std::string& id, const std::string& route) override
+  {
+    call("Vehicle.setRouteID", [&] { api::Vehicle::setRouteID(id, route); });
+  }
   void move_to(const std::string& id, const std::string& lane, double pos) override
   {
     call("Vehicle.moveTo", [&] { api::Vehicle::moveTo(id, lane, pos); });

@@ -104,7 +104,18 @@ void Commander::set_speed(Agv& a, double v)
 
 void Commander::set_route(Agv& a, std::vector<std::string> edges)
 {
-  sumo_.set_route(a.id, edges);
+  // SUMO 1.15's setRoute prepends every edge the vehicle has passed: over a lifelong run
+  // each AGV's route (and each copy of it) grows without end (33 MB over 5000 ticks at
+  // 1000 AGVs). A route named once per edge sequence and set by id is not extended, and
+  // the few distinct sequences (net-sized) are shared by every AGV.
+  std::string key;
+  for (const std::string& e : edges) key += e + ' ';
+  auto it = routes_.find(key);
+  if (it == routes_.end()) {
+    it = routes_.emplace(key, "rt" + std::to_string(routes_.size())).first;
+    sumo_.add_route(it->second, edges);
+  }
+  sumo_.set_route_id(a.id, it->second);
   ++stats_.route;
 }
 

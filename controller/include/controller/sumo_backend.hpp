@@ -36,6 +36,9 @@ class SumoBackend {
   virtual void set_speed_mode(const std::string& id, int mode) = 0;
   virtual void set_speed(const std::string& id, double speed) = 0;
   virtual void set_route(const std::string& id, const std::vector<std::string>& edges) = 0;
+  // To a route added with add_route: unlike set_route, SUMO does not prepend the edges the
+  // vehicle has passed (its route does not grow with the run).
+  virtual void set_route_id(const std::string& id, const std::string& route) = 0;
   virtual void move_to(const std::string& id, const std::string& lane, double pos) = 0;
   // Shows a vehicle standing with its front at `pos` on `lane` (of `edge`) at `angle` (SUMO
   // degrees: 0 north, 90 east) in the next step: moveTo(lane, back) now, then moveToXY(edge,
