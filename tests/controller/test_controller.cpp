@@ -544,3 +544,24 @@ TEST(ControllerView, SumoGuiSnapshotShowsTheStateColours)
     }
   EXPECT_GT(hits, 50) << "no AGV drawn in the moving colour";
 }
+
+// A long run does not grow SUMO's routes: Commander::set_route sets named edge sequences
+// by id (SUMO 1.15's setRoute prepends every edge passed, one more per route change).
+TEST(ControllerRoutes, RoutesStayShortOverALifelongRun)
+{
+  Config cfg = small_config("routes");
+  const Config ll = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
+  cfg.tasks = ll.tasks;
+  cfg.sumo.outputs = {};
+  cfg.run.max_ticks = 400;
+  size_t longest = 0;
+  Controller c(cfg);
+  c.on_tick = [&](long long, SumoBackend&) {
+    for (const std::string& id : libsumo::Vehicle::getIDList())
+      longest = std::max(longest, libsumo::Vehicle::getRoute(id).size());
+  };
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_GT(m.commands.route, 16 * 10);  // every AGV changed its route many times
+  EXPECT_LE(longest, 3u);                // [here, next, continuation]
+}
