@@ -35,8 +35,17 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
     const gridify::Cell& c = map.cells[u];
     if (c.kind != gridify::CellKind::Junction) continue;
     for (const gridify::SumoPose& in : c.poses)
-      for (planner::Vertex w : map.graph.neighbors(u))
-        if (!connected(lane(in.lane).edge, lane(map.pose_entering(u, w).lane).edge)) missing_turns_ = true;
+      for (planner::Vertex w : map.graph.neighbors(u)) {
+        const std::string& out_lane = map.pose_entering(u, w).lane;
+        const Lane &here = lane(in.lane), &out = lane(out_lane);
+        if (connected(here.edge, out.edge)) continue;
+        missing_turns_ = true;
+        // Back into the aisle it came from is a turn in place; any other turn a jump.
+        if (out_lane != here.opposite && jump_turn_.empty())
+          jump_turn_ = "junction '" + c.junction + "': no SUMO connection from edge '" + here.edge + "' to edge '" +
+                       out.edge + "' (an AGV would have to jump: rebuild the net with every turn connected, " +
+                       "gridify/README.md)";
+      }
   }
   for (const gridify::Aisle& a : map.aisles)
     if (a.steps > 1 && !a.one_way && (!connected(a.ab, a.ba) || !connected(a.ba, a.ab))) missing_turns_ = true;
@@ -68,22 +77,7 @@ std::string Commander::net_problem() const
         return "edge '" + e + "' has no SUMO connection onwards (a dead end without a turnaround: rebuild with " +
                "netconvert --no-turnarounds.geometry false, gridify/README.md)";
     }
-  // A move the planner may make through a junction that SUMO has no connection for, other
-  // than back into the aisle it came from (a turn in place): only a jump could drive it.
-  for (planner::Vertex u = 0; u < map_.graph.size(); ++u) {
-    const gridify::Cell& c = map_.cells[u];
-    if (c.kind != gridify::CellKind::Junction) continue;
-    for (const gridify::SumoPose& in : c.poses)
-      for (planner::Vertex w : map_.graph.neighbors(u)) {
-        const std::string& out_lane = map_.pose_entering(u, w).lane;
-        const Lane& here = lane(in.lane);
-        if (out_lane == here.opposite || connected(here.edge, lane(out_lane).edge)) continue;
-        return "junction '" + c.junction + "': no SUMO connection from edge '" + here.edge + "' to edge '" +
-               lane(out_lane).edge + "' (an AGV would have to jump: rebuild the net with every turn connected, " +
-               "gridify/README.md)";
-      }
-  }
-  return "";
+  return jump_turn_;  // (the constructor's scan of the junction turns)
 }
 
 const std::string& Commander::continuation(const std::string& edge) const

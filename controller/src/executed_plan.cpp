@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <iterator>
 
 #include "planner/output_file.hpp"
 #include "planner/plan_io.hpp"
@@ -38,11 +39,12 @@ void ExecutedPlan::settle(size_t t)
 {
   if (!bounded_ || t < first_ + 2 * keep_) return;  // in batches of `keep`: amortised O(1)
   const size_t drop = t - keep_ - first_;
-  const std::vector<planner::Config> out(kept_.begin(), kept_.begin() + static_cast<std::ptrdiff_t>(drop));
+  const auto end = kept_.begin() + static_cast<std::ptrdiff_t>(drop);
+  const std::vector<planner::Config> out(std::make_move_iterator(kept_.begin()), std::make_move_iterator(end));
   for (const planner::Config& c : out)
     if (on_final_) on_final_(c);
   if (spill_.is_open() && g_) planner::write_plan_steps(spill_, *g_, out, first_);
-  kept_.erase(kept_.begin(), kept_.begin() + static_cast<std::ptrdiff_t>(drop));
+  kept_.erase(kept_.begin(), end);
   first_ += drop;
 }
 

@@ -257,35 +257,33 @@ TEST(BadInput, UnsolvableProvenEndsAtOnce)
   EXPECT_LE(std::stol(m.substr(at + 9)), 2) << m;  // proven within the first ticks, not after 100000
 }
 
+// rtlacam-sumo on a net in tests/data/gridify/ that it refuses: exit 2 before SUMO starts,
+// one line "<config>: sumo.net: <net>: <where>..." that contains `why`.
+void expect_bad_net(const std::string& net, const std::string& where, const std::string& why)
+{
+  const std::string path = write_config(net + ".yaml", "sumo:\n  net: @/tests/data/gridify/" + net +
+                                                           ".net.xml\nfleet: {count: 2}\nrun: {max_ticks: 50, progress_s: 0}\n");
+  const test::CliResult r = test::run_cli(RTLACAM_SUMO_BIN, path + " --out " + test::temp_dir(net));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(path + ": sumo.net: " + kSrc + "/tests/data/gridify/" + net + ".net.xml: " + where),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(why), std::string::npos) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+}
+
 // A net SUMO cannot drive (a dead-end aisle without a turnaround: an AGV there would reach
 // its route's end and be removed) is bad input, found before SUMO starts (was exit 3).
 TEST(BadInput, ADeadEndNetIsBadInput)
 {
-  const std::string path = write_config("deadend.yaml",
-                                        "sumo:\n  net: @/tests/data/gridify/noturnarounds.net.xml\n"
-                                        "fleet: {count: 2}\nrun: {max_ticks: 50, progress_s: 0}\n");
-  const test::CliResult r = test::run_cli(RTLACAM_SUMO_BIN, path + " --out " + test::temp_dir("deadend"));
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find(path + ": sumo.net: " + kSrc + "/tests/data/gridify/noturnarounds.net.xml: edge '"), std::string::npos)
-      << r.err;
-  EXPECT_NE(r.err.find("' has no SUMO connection onwards (a dead end without a turnaround"), std::string::npos) << r.err;
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  expect_bad_net("noturnarounds", "edge '", "' has no SUMO connection onwards (a dead end without a turnaround");
 }
 
 // A net where a turn the planner may take has no SUMO connection (netconvert
 // --no-left-connections): only a jump could drive it, so it is bad input before SUMO starts.
 TEST(BadInput, ANetNeedingJumpsIsBadInput)
 {
-  const std::string path = write_config("noleft.yaml",
-                                        "sumo:\n  net: @/tests/data/gridify/no_left_turns.net.xml\n"
-                                        "fleet: {count: 2}\nrun: {max_ticks: 50, progress_s: 0}\n");
-  const test::CliResult r = test::run_cli(RTLACAM_SUMO_BIN, path + " --out " + test::temp_dir("noleft"));
-  EXPECT_EQ(r.code, 2) << r.err;
-  EXPECT_NE(r.err.find(path + ": sumo.net: " + kSrc + "/tests/data/gridify/no_left_turns.net.xml: junction '"),
-            std::string::npos)
-      << r.err;
-  EXPECT_NE(r.err.find("(an AGV would have to jump"), std::string::npos) << r.err;
-  EXPECT_EQ(lines(r.err), 1) << r.err;
+  expect_bad_net("no_left_turns", "junction '", "(an AGV would have to jump");
 }
 
 // A goal on a component gridify dropped: the error says gridify dropped it.

@@ -154,6 +154,7 @@ class Commander {
   std::vector<int> heading_;  // per agent, with headings (empty without)
   int turn_steps_ = 1;
   bool missing_turns_ = false;
+  std::string jump_turn_;  // the first junction turn only a jump could drive ("": none)
   std::unordered_map<std::string, std::string> routes_;  // edge sequence -> SUMO route id (set_route)
   std::vector<Agv> agv_;
   std::vector<std::string> ids_;  // SUMO ids of the agents, in agent order

@@ -48,7 +48,6 @@ class ExecutedPlan {
   // The spill file's lines (plan.txt's body from C^0 to C^first-1) into `out`, then the
   // file is removed. Throws planner::OutputError if it could not be written or read.
   void copy_spilled(std::ostream& out);
-  const std::string& spill_path() const { return spill_path_; }
 
  private:
   std::vector<planner::Config> kept_;
