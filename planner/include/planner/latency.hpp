@@ -31,10 +31,13 @@ struct Latency {
 // steps): count, mean and max stay exact; the percentiles are exact up to `cap` samples,
 // beyond that they are those of a uniform reservoir of `cap` (Vitter's algorithm R, fixed
 // seed: the same run gives the same numbers). Vector-like where the controller uses it:
-// push_back, back() (the last sample can still be added to), empty.
+// push_back, back() (the last sample can still be added to), empty. The default cap, 16384
+// samples (128 KB), is reached after ~2000 ticks of 8 SUMO steps; a p99 from a reservoir
+// that size is within about +-0.15 percentile points. (At 65536 each per-step sample of the
+// controller grew until tick 8192, to 0.5 MB: part of a long run's RSS growth.)
 class LatencySample {
  public:
-  explicit LatencySample(std::size_t cap = 1 << 16) : cap_(cap) {}
+  explicit LatencySample(std::size_t cap = 1 << 14) : cap_(cap) {}
   void push_back(double ms);
   double& back() { return last_; }  // the latest sample (committed at the next push_back)
   bool empty() const { return count_ == 0; }
