@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "planner/heading.hpp"
+
 namespace controller {
 
 double rest_to_rest_s(double L, const Kinematics& k)
@@ -28,6 +30,12 @@ std::vector<double> alone_moves(const std::vector<planner::Config>& plan)
   return b.result();
 }
 
+void AloneBound::count_turns(const planner::Graph& g, std::vector<int> start_headings)
+{
+  turns_on_ = &g;
+  heading_ = std::move(start_headings);
+}
+
 void AloneBound::add(const planner::Config& c)
 {
   if (last_.empty()) {
@@ -41,6 +49,11 @@ void AloneBound::add(const planner::Config& c)
     if (v == last_[i]) continue;
     if (!map_) {
       t_[i] += 1;
+      if (turns_on_) {
+        const int h = planner::heading_of_move(*turns_on_, last_[i], v);
+        t_[i] += planner::quarter_turns(heading_[i], h);
+        heading_[i] = h;
+      }
     } else {
       if (v == before_[i] && before_[i] != last_[i]) {  // reverses: rest, turn in place (one step)
         t_[i] += rest_to_rest_s(stretch_[i], k_) + k_.dt;

@@ -129,6 +129,7 @@ void Run::prepare()
                         " needs a net whose cells lie on an axis-aligned lattice ('" + cfg_.sumo.net + "' does not)");
     headings = cmd_->start_headings(ins_.starts);
     cmd_->use_headings(headings, static_cast<int>(std::lround(cfg_.fleet.turn_s / cfg_.sumo.step_length)));
+    start_headings_ = headings;
   }
   try {
     p_ = make_planner(cfg_.planner, g, ins_.starts, goals, pref_.get(), goal_test, headings);
@@ -314,6 +315,7 @@ Metrics Run::execute()
   // The physical bound (bound.hpp): lockstep moves a cell per tick; the others drive.
   const Kinematics kin{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
   alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kin);
+  if (!start_headings_.empty()) alone_->count_turns(c_.map_.graph, start_headings_);  // rotation: turns are steps
   if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
     c_.plan_.bound(cfg_.output.plan_keep > 0 ? static_cast<size_t>(cfg_.output.plan_keep)
                                              : std::max<size_t>(64, (size_t{1} << 18) / static_cast<size_t>(ins_.num_agents())),

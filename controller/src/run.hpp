@@ -103,7 +103,7 @@ class Run {
   planner::Budget budget_;
   int k_ = 1;
   int slice_ = 0;  // SUMO step within the tick (lockstep), for the rotation solvers' budget
-  // Bounded however long the run (lifelong): exact up to 65536 samples, a reservoir beyond.
+  // Bounded however long the run (lifelong): exact up to 16384 samples, a reservoir beyond.
   planner::LatencySample plan_step_, plan_tick_, sumo_step_, control_, exec_step_;
   double plan_in_tick_ = 0, epoch_ms_ = 0;
   // Planner work on this thread's CPU per SUMO step (search, commits, epoch starts, replans):
@@ -114,6 +114,7 @@ class Run {
   // The physical bound over the executed plan's configurations that left memory (all of
   // them at the end): bound.hpp.
   std::optional<AloneBound> alone_;
+  std::vector<int> start_headings_;  // rotation solvers: each AGV's heading at its start
   planner::Clock::time_point wall0_, loop0_, last_progress_;
 };
 

@@ -2,9 +2,11 @@
 // heading, turns that take fleet.turn_s while the AGV stands on its cell, on the real SUMO.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
+#include "controller/bound.hpp"
 #include "controller/commander.hpp"
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
@@ -55,9 +57,30 @@ void expect_all_goals(const std::string& solver)
   ASSERT_FALSE(plan.empty());
   EXPECT_EQ(planner::validate_plan(ctl.map().graph, plan.front(), plan.back(), plan, true), "");
   ctest_util::expect_no_sumo_collision(c.output.dir);
+  // The physical bound counts each AGV's moves and the quarter turns they need: at least the
+  // longest path in moves, never more than the run took.
+  const std::vector<double> moves = alone_moves(plan);
+  EXPECT_GE(m.bound_ticks, *std::max_element(moves.begin(), moves.end()));
+  EXPECT_LE(m.bound_ticks, m.makespan);
 }
 
 }  // namespace
+
+// The bound of a rotation plan: a move in a new direction first turns toward it, a quarter
+// turn being one plan step (lockstep), a reversal two.
+TEST(ControllerRotation, TheBoundCountsTheTurnsEachMoveNeeds)
+{
+  // 3 x 2 open grid: 0 1 2 / 3 4 5; headings 0 E, 1 S, 2 W, 3 N (planner/heading.hpp).
+  const planner::Graph g = planner::Graph::from_grid(3, 2, std::vector<bool>(6, true));
+  const std::vector<planner::Config> plan = {{0, 5}, {1, 5}, {2, 5}, {2, 5}, {5, 4}, {5, 3}};
+  AloneBound plain(nullptr, {});
+  AloneBound turning(nullptr, {});
+  turning.count_turns(g, {0, 0});  // both face east
+  for (const planner::Config& c : plan) plain.add(c), turning.add(c);
+  // Agent 0: E, E, then S: 3 moves + 1 quarter turn. Agent 1: W, W from east: 2 + 2.
+  EXPECT_EQ(plain.result(), (std::vector<double>{3, 2}));
+  EXPECT_EQ(turning.result(), (std::vector<double>{4, 4}));
+}
 
 TEST(ControllerRotation, PibtRotReachesAllGoalsOnTheSmallWarehouse) { expect_all_goals("pibt-rot"); }
 TEST(ControllerRotation, EpibtReachesAllGoalsOnTheSmallWarehouse) { expect_all_goals("epibt"); }

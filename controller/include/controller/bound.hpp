@@ -7,11 +7,14 @@
 // decel down to rest on the last cell); it rests where its path reverses (a turn in place:
 // one SUMO step at rest, as the Driver needs) and at the path's end. Moves are measured
 // between the cells' centres. Waits are dropped: alone, nobody waits. For lockstep (scheme
-// S: one cell per tick, stops in one step) the bound is the longest path in moves.
+// S: one cell per tick, stops in one step) the bound is the longest path in moves, plus,
+// for the rotation solvers, the quarter turns each move needs from the AGV's heading (a
+// turn is a plan step too: count_turns).
 #include <vector>
 
 #include "gridify/cell_map.hpp"
 #include "planner/config.hpp"
+#include "planner/graph.hpp"
 
 namespace controller {
 
@@ -34,6 +37,9 @@ std::vector<double> alone_moves(const std::vector<planner::Config>& plan);
 class AloneBound {
  public:
   AloneBound(const gridify::CellMap* map, const Kinematics& k) : map_(map), k_(k) {}
+  // Moves mode only (map == nullptr): AGVs with headings on the lattice `g`, facing
+  // `start_headings` (planner/heading.hpp); each move first turns toward its direction.
+  void count_turns(const planner::Graph& g, std::vector<int> start_headings);
   void add(const planner::Config& c);
   std::vector<double> result() const;
 
@@ -42,6 +48,8 @@ class AloneBound {
   Kinematics k_;
   planner::Config last_, before_;   // per agent: its path's last cell and the one before
   std::vector<double> stretch_, t_;  // metres since the last rest; seconds (or moves) so far
+  const planner::Graph* turns_on_ = nullptr;
+  std::vector<int> heading_;  // count_turns: each AGV's heading after its last move
 };
 
 }  // namespace controller
