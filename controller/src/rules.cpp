@@ -283,14 +283,30 @@ std::vector<uint8_t> Rules::occupied(const planner::Config& at) const
   return occ;
 }
 
-planner::Graph Rules::graph(const std::vector<uint8_t>& occupied, bool closures, bool zones) const
+std::vector<uint8_t> Rules::blocked_zones(const planner::Config& at) const
+{
+  std::vector<uint8_t> b = occupied(at);
+  for (size_t z = 0; z < b.size(); ++z) b[z] = b[z] && z < zone_held_.size() && zone_held_[z] >= kBlockAfter;
+  return b;
+}
+
+std::vector<uint8_t> Rules::frozen_cells(const planner::Config& at, const std::vector<std::string>& pose_lanes) const
+{
+  std::vector<uint8_t> f = cells_of_lanes(lanes_closed_);
+  for (size_t i = 0; i < at.size() && i < pose_lanes.size(); ++i)
+    if (std::find(lanes_closed_.begin(), lanes_closed_.end(), pose_lanes[i]) != lanes_closed_.end()) f[at[i]] = 1;
+  return f;
+}
+
+planner::Graph Rules::graph(const std::vector<uint8_t>& occupied, bool closures, const std::vector<uint8_t>& frozen) const
 {
   const planner::Graph& g = map_.graph;
   const bool any_closed = closures && num_closed_ > 0;
-  const bool any_occupied = zones && std::find(occupied.begin(), occupied.end(), 1) != occupied.end();
-  if (!any_closed && !any_occupied) return planner::without_arcs(g, [](planner::Vertex, planner::Vertex) { return false; });
-  planner::Graph b = any_closed ? planner::blocked_graph(g, closed_)
-                                : planner::without_arcs(g, [](planner::Vertex, planner::Vertex) { return false; });
+  const bool any_occupied = std::find(occupied.begin(), occupied.end(), 1) != occupied.end();
+  const bool any_frozen = closures && std::find(frozen.begin(), frozen.end(), 1) != frozen.end();
+  auto none = [](planner::Vertex, planner::Vertex) { return false; };
+  planner::Graph b = any_closed ? planner::blocked_graph(g, closed_) : planner::without_arcs(g, none);
+  if (any_frozen) b = planner::without_arcs(b, [&](planner::Vertex u, planner::Vertex) { return frozen[u] != 0; });
   if (!any_occupied) return b;
   // Into an occupied zone from outside it: nobody but its occupant may be in it.
   return planner::without_arcs(b, [&](planner::Vertex u, planner::Vertex v) {
@@ -354,6 +370,7 @@ int Rules::admit(const planner::Config& cur, planner::Config& next)
 {
   const size_t n = cur.size();
   if (zone_wait_.size() != n) zone_wait_.assign(n, 0);
+  if (zone_held_.size() != zones_.size()) zone_held_.assign(zones_.size(), 0);
   planner::Config out = next;
   int held = 0;
   // Hold agent i (stay on cur[i]), and whoever moves into its cell, transitively.
@@ -372,7 +389,11 @@ int Rules::admit(const planner::Config& cur, planner::Config& next)
       if (in(cur[i])) inside = true;
       else if (in(out[i])) entrants.push_back(i);
     }
-    if (entrants.empty() || (!inside && entrants.size() == 1)) continue;
+    if (entrants.empty() || (!inside && entrants.size() == 1)) {
+      if (!inside) zone_held_[z] = 0;  // empty again: the count starts over with the next occupant
+      continue;
+    }
+    ++zone_held_[z];
     // Keep the one inside; else the entrant that waited longest (then the lowest index).
     size_t keep = n;
     if (!inside)

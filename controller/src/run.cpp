@@ -168,8 +168,11 @@ void Run::prepare()
 void Run::rules_restart(const planner::Config& at)
 {
   const double c0 = planner::thread_cpu_ms();
-  zone_occ_ = rules_->occupied(at);
-  auto g = std::make_unique<planner::Graph>(rules_->graph(zone_occ_, cfg_.rules.enforce_closures, cfg_.rules.enforce_zones));
+  zone_occ_ = cfg_.rules.enforce_zones ? rules_->blocked_zones(at) : std::vector<uint8_t>(rules_->zones().size(), 0);
+  std::vector<std::string> lanes;  // each AGV's SUMO lane (none before the first step)
+  for (const VehiclePose& p : last_poses_) lanes.push_back(p.lane);
+  auto g = std::make_unique<planner::Graph>(
+      rules_->graph(zone_occ_, cfg_.rules.enforce_closures, rules_->frozen_cells(at, lanes)));
   std::vector<std::string> lines;
   const planner::Config eff = rules_->goals(*g, at, goals(), waiting_, m_.ticks * cfg_.run.tick_s, lines);
   for (const std::string& l : lines) std::fprintf(stderr, "[rtlacam-sumo] %s\n", l.c_str());
@@ -197,11 +200,14 @@ void Run::rules_tick(const planner::Config& cur)
 {
   const double t = m_.ticks * cfg_.run.tick_s;
   if (rules_->update(t, sumo_.get())) {
+    std::vector<std::string> edges;  // SUMO refuses routes through these now
+    for (const std::string& l : rules_->lanes_closed()) edges.push_back(l.substr(0, l.rfind('_')));
+    cmd_->avoid_edges(std::move(edges));
     ++m_.rules.closure_changes;
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
     std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed\n", t, rules_->num_closed());
     rules_restart(cur);
-  } else if (rules_->occupied(cur) != zone_occ_) {
+  } else if (cfg_.rules.enforce_zones && rules_->blocked_zones(cur) != zone_occ_) {
     rules_restart(cur);
   }
   for (uint8_t w : waiting_) m_.rules.waits += w;

@@ -113,7 +113,7 @@ class Run {
   std::unique_ptr<RuleCheck> rule_check_;
   // The planner's graph while rules_ exist (declared before p_: it outlives the planner).
   std::unique_ptr<planner::Graph> rules_graph_;
-  std::vector<uint8_t> zone_occ_, waiting_;
+  std::vector<uint8_t> zone_occ_, waiting_;  // zones the planner's graph blocks; agents waiting
   std::vector<long long> errand_start_;  // lifelong: tick each AGV's current goal began
   planner::Config errand_goal_;
   std::unique_ptr<planner::RealtimePlanner> p_;

@@ -61,7 +61,7 @@ void Run::loop_lockstep()
         // fills or empties restarts the planner at what is executed.
         const int held = rules_->admit(cur, next);
         m_.rules.zone_holds += held;
-        if (held > 0 || rules_->occupied(next) != zone_occ_) rules_restart(next);
+        if (held > 0 || rules_->blocked_zones(next) != zone_occ_) rules_restart(next);
       }
     }
     bool held = false;

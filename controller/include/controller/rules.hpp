@@ -6,7 +6,8 @@
 //     sumo.additional (read before SUMO starts; gridify/rules_file.hpp);
 //   - SUMO at run time: a lane whose permissions another TraCI client (or the test) changed
 //     so that the AGVs' class ("passenger", the controller's vType) may not use it -- polled
-//     once per tick on the lanes gridify mapped (rules.watch_lanes);
+//     once per tick on the lanes gridify mapped (rules.watch_lanes). SUMO itself then
+//     refuses routes over it, so AGVs on such a lane wait there (frozen_cells());
 //   - YAML: rules.closures [{lanes, edges, cells, begin, end}].
 //   A closed lane closes the interior cells of its aisle (both directions share them); a
 //   junction cell is closed when every aisle lane at it is closed. SUMO 1.15's rerouter does
@@ -17,9 +18,10 @@
 //
 // How the controller keeps them (lockstep, run_loops.cpp):
 //   - the planner plans on graph(): no arc into a closed cell (planner/blocked.hpp: AGVs on
-//     a cell being closed leave it or wait), and no arc from outside into a zone another
-//     AGV occupies; a change of either restarts the planner at the current configuration
-//     (a new epoch), so the search never carries a tree built on another graph;
+//     a cell being closed leave it or wait), and no arc from outside into a zone whose
+//     occupant keeps others waiting (blocked_zones()); a change of either restarts the
+//     planner at the current configuration (a new epoch), so the search never carries a
+//     tree built on another graph;
 //   - an AGV whose goal it cannot reach on that graph (its goal closed or cut off, or in an
 //     occupied zone) waits: its planner goal becomes the nearest reachable cell that is
 //     open, outside every zone and nobody's goal (goals()); one line names it when a
@@ -86,10 +88,23 @@ class Rules {
   const std::vector<std::vector<int>>& zones_of() const { return zone_of_; }  // cell -> zone indices
   // Per zone: 1 if some AGV of `at` stands in it.
   std::vector<uint8_t> occupied(const planner::Config& at) const;
+  // Per zone: 1 if the planner must route around it -- someone stands in it and an entrant
+  // has been held at its entry for kBlockAfter ticks in a row (the occupant is parked, or
+  // the planner keeps sending others in). Otherwise admit() alone keeps the zone: a fresh
+  // planner per zone entry and exit cost 5x the throughput on the small lifelong demo.
+  std::vector<uint8_t> blocked_zones(const planner::Config& at) const;
+  static constexpr int kBlockAfter = 3;
 
-  // The graph the planner plans on: closed cells blocked (if enforced), occupied zones
-  // without their entry arcs (if enforced).
-  planner::Graph graph(const std::vector<uint8_t>& occupied, bool closures, bool zones) const;
+  // The graph the planner plans on: closed cells blocked (if enforced), the `blocked` zones
+  // without their entry arcs, and no arc out of a `frozen` cell (one entry per cell, or
+  // empty). Frozen: an AGV whose SUMO lane is closed by its permissions (watched lanes) can
+  // go nowhere -- SUMO refuses every route from a lane the vehicle's class may not use
+  // ("No connection", measured on 1.15) -- so it waits on its cell, and the cells of such
+  // lanes are no way out for anyone.
+  planner::Graph graph(const std::vector<uint8_t>& blocked, bool closures, const std::vector<uint8_t>& frozen = {}) const;
+  // Watched lanes closed at the last update, and their cells (interior, junctions closed).
+  const std::vector<std::string>& lanes_closed() const { return lanes_closed_; }
+  std::vector<uint8_t> frozen_cells(const planner::Config& at, const std::vector<std::string>& pose_lanes) const;
 
   // Goals each AGV can reach from `at` on `g`, the others waiting (above); `waiting[i]` is
   // set for those. `lines` receives one line per AGV whose waiting (for a closure) began.
@@ -114,6 +129,7 @@ class Rules {
   int num_closed_ = 0;
   std::vector<uint8_t> waiting_;          // agent -> waiting for a closure (for the lines)
   std::vector<long long> zone_wait_;      // agent -> ticks held at a zone entry
+  std::vector<int> zone_held_;            // zone -> ticks in a row an entrant was held
 };
 
 }  // namespace controller
