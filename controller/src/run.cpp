@@ -157,11 +157,11 @@ void Run::prepare()
   rules_ = Rules::make(cfg_, c_.map_, ins_.starts, tm_ ? planner::Config{} : ins_.goals, warnings);
   for (const std::string& w : warnings) std::fprintf(stderr, "[rtlacam-sumo] warning: %s\n", w.c_str());
   if (rules_) {
-    m_.rules.active = true;
     rule_check_ = std::make_unique<RuleCheck>(c_.map_, *rules_);
     rules_->update(0, nullptr);
     m_.rules.max_closed = rules_->num_closed();
-    rules_restart(ins_.starts);
+    // Only watched lanes: the planner stays the one built above until one closes.
+    if (rules_->configured()) rules_restart(ins_.starts);
   }
 }
 
@@ -186,6 +186,7 @@ void Run::rules_restart(const planner::Config& at)
   p_->search(plan_budget());
   plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
   ++m_.rules.replans;
+  m_.rules.active = true;
 }
 
 planner::Config Run::rule_goals(const planner::Config& at)
@@ -309,7 +310,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
   if (!ev.empty()) {
     const double c0 = planner::thread_cpu_ms();
-    p_->set_goals(rules_ ? rule_goals(p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+    p_->set_goals(rules_graph_ ? rule_goals(p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
     show_goals();
     p_->search(plan_budget());

@@ -75,6 +75,9 @@ class Rules {
 
   Rules(const gridify::CellMap& map, std::vector<Closure> closures, std::vector<Zone> zones);
 
+  // Closures or zones configured (else only lanes are watched: the planner stays as it is
+  // until a watched lane closes).
+  bool configured() const { return !closures_.empty() || !zones_.empty(); }
   // Lanes polled every tick for their permissions (none: watching off).
   void watch(std::vector<std::string> lanes) { watched_ = std::move(lanes); }
   // The tick boundary at time t: the closures active then, plus the watched lanes SUMO says
