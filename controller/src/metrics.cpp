@@ -110,7 +110,8 @@ nlohmann::json Metrics::to_json() const
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   if (rules.active)
     j["rules"] = {{"closure_changes", rules.closure_changes}, {"replans", rules.replans}, {"zone_holds", rules.zone_holds},
-                  {"waits", rules.waits}, {"max_closed", rules.max_closed}, {"checks", rules.checks}};
+                  {"waits", rules.waits}, {"max_closed", rules.max_closed}, {"checks", rules.checks},
+                  {"poll_ms", rules.poll_ms}};
   j["max_position_error_m"] = commands.max_error;
   // What the display costs (fleet_view.hpp, congestion.hpp): calls are sent on changes only.
   j["view"] = {{"colour_calls", view.colour_calls},

@@ -243,6 +243,7 @@ bool Rules::update(double t, SumoBackend* sumo)
     for (planner::Vertex v : cl.cells)
       if (who[v] < 0) who[v] = static_cast<int>(c);
   }
+  const std::vector<std::string> lanes_before = std::move(lanes_closed_);
   lanes_closed_.clear();
   if (sumo)
     for (const std::string& l : watched_) {
@@ -256,7 +257,7 @@ bool Rules::update(double t, SumoBackend* sumo)
     for (planner::Vertex v = 0; v < static_cast<planner::Vertex>(cells.size()); ++v)
       if (cells[v] && who[v] < 0) who[v] = -2;
   }
-  bool changed = false;
+  bool changed = lanes_closed_ != lanes_before;  // (the routes must avoid the new set)
   num_closed_ = 0;
   for (size_t v = 0; v < who.size(); ++v) {
     const uint8_t c = who[v] != -1;

@@ -158,6 +158,7 @@ void Run::prepare()
   for (const std::string& w : warnings) std::fprintf(stderr, "[rtlacam-sumo] warning: %s\n", w.c_str());
   if (rules_) {
     rule_check_ = std::make_unique<RuleCheck>(c_.map_, *rules_);
+    m_.rules.active = true;
     rules_->update(0, nullptr);
     m_.rules.max_closed = rules_->num_closed();
     // Only watched lanes: the planner stays the one built above until one closes.
@@ -186,7 +187,6 @@ void Run::rules_restart(const planner::Config& at)
   p_->search(plan_budget());
   plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
   ++m_.rules.replans;
-  m_.rules.active = true;
 }
 
 planner::Config Run::rule_goals(const planner::Config& at)
@@ -200,7 +200,10 @@ planner::Config Run::rule_goals(const planner::Config& at)
 void Run::rules_tick(const planner::Config& cur)
 {
   const double t = m_.ticks * cfg_.run.tick_s;
-  if (rules_->update(t, sumo_.get())) {
+  const auto t0 = Clock::now();
+  const bool changed = rules_->update(t, sumo_.get());
+  m_.rules.poll_ms += ms_since(t0);
+  if (changed) {
     std::vector<std::string> edges;  // SUMO refuses routes through these now
     for (const std::string& l : rules_->lanes_closed()) edges.push_back(l.substr(0, l.rfind('_')));
     cmd_->avoid_edges(std::move(edges));

@@ -81,7 +81,7 @@ class Rules {
   // Lanes polled every tick for their permissions (none: watching off).
   void watch(std::vector<std::string> lanes) { watched_ = std::move(lanes); }
   // The tick boundary at time t: the closures active then, plus the watched lanes SUMO says
-  // the AGVs may not use. true if the closed cells changed.
+  // the AGVs may not use. true if the closed cells or the closed watched lanes changed.
   bool update(double t, SumoBackend* sumo);
   const std::vector<uint8_t>& closed() const { return closed_; }
   int num_closed() const { return num_closed_; }
