@@ -101,7 +101,7 @@ def main():
             r = m.get("rules", {})
             jr = m["teleports_or_jumps"]
             clean = clean and m["violations"] == 0 and jr == 0 and not m["error"]
-            what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zone" in extra else "")
+            what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zones" in extra else "")
             print(f"| {name} | {what} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
                   f"{m['lifelong']['maxErrandTicks']} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
                   f"{r.get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
