@@ -119,6 +119,10 @@ class ApiBackend : public SumoBackend {
   {
     return call("Simulation.getCollidingVehiclesIDList", [] { return api::Simulation::getCollidingVehiclesIDList(); });
   }
+  std::vector<std::string> lane_allowed(const std::string& lane) override
+  {
+    return call("Lane.getAllowed", [&] { return api::Lane::getAllowed(lane); });
+  }
   void set_color(const std::string& id, int r, int g, int b, int a) override
   {
     call("Vehicle.setColor", [&] { api::Vehicle::setColor(id, libsumo::TraCIColor(r, g, b, a)); });

@@ -85,6 +85,8 @@ const std::string& Commander::continuation(const std::string& edge) const
   auto it = next_edges_.find(edge);
   if (it == next_edges_.end() || it->second.empty())
     throw ControlError("edge '" + edge + "' has no SUMO connection onwards: an AGV there would leave the network");
+  for (const std::string& e : it->second)
+    if (std::find(avoid_.begin(), avoid_.end(), e) == avoid_.end()) return e;
   return it->second.front();
 }
 

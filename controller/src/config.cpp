@@ -302,7 +302,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
   if (!root.IsMap()) r.fail("", "expected a mapping with sections sumo, grid, fleet, planner, tasks, run, output");
   check_duplicate_keys(r, root, "");
-  r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "delays", "output"});
+  r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "delays", "output", "rules"});
 
   Config c;
   c.path = name;
@@ -547,6 +547,68 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
       c.output.gui_snapshots.push_back(t);
     }
   }
+
+  // Rules (rules.hpp): closures and one-at-a-time zones.
+  const YAML::Node ru = root["rules"];
+  r.keys(ru, "rules", {"sumo", "watch_lanes", "closures", "zones", "enforce_closures", "enforce_zones"});
+  r.flag(ru, "rules", "sumo", c.rules.sumo);
+  if (ru && ru.IsMap() && ru["watch_lanes"]) {
+    bool w = false;
+    r.flag(ru, "rules", "watch_lanes", w);
+    c.rules.watch_lanes = w;
+  }
+  r.flag(ru, "rules", "enforce_closures", c.rules.enforce_closures);
+  r.flag(ru, "rules", "enforce_zones", c.rules.enforce_zones);
+  auto names = [&](const YAML::Node& n, const std::string& key, const char* k, std::vector<std::string>& out) {
+    if (!n[k]) return;
+    const YAML::Node l = n[k];
+    const std::string kk = key + "." + k;
+    if (!l.IsSequence()) r.fail(kk, "expected a list of ids");
+    for (size_t i = 0; i < l.size(); ++i) {
+      if (!l[i].IsScalar()) r.fail(kk + "[" + std::to_string(i) + "]", "expected an id");
+      out.push_back(l[i].Scalar());
+    }
+  };
+  auto rule_list = [&](const char* k, auto&& each) {
+    if (!ru || !ru.IsMap() || !ru[k]) return;
+    const YAML::Node l = ru[k];
+    const std::string key = std::string("rules.") + k;
+    if (!l.IsSequence()) r.fail(key, "expected a list of mappings");
+    for (size_t i = 0; i < l.size(); ++i) {
+      const std::string ki = key + "[" + std::to_string(i) + "]";
+      if (!l[i].IsMap()) r.fail(ki, "expected a mapping");
+      each(l[i], ki);
+    }
+  };
+  rule_list("closures", [&](const YAML::Node& n, const std::string& key) {
+    r.keys(n, key, {"lanes", "edges", "cells", "begin", "end"});
+    RuleClosure cl;
+    cl.key = key;
+    names(n, key, "lanes", cl.lanes);
+    names(n, key, "edges", cl.edges);
+    if (n["cells"]) r.cell_list(n["cells"], key + ".cells", cl.cells);
+    if (cl.lanes.empty() && cl.edges.empty() && cl.cells.empty())
+      r.fail(key, "closes nothing (give lanes, edges or cells)");
+    r.number(n, key, "begin", cl.begin, 0);
+    if (n["end"]) {
+      r.number(n, key, "end", cl.end, 0);
+      if (cl.end < cl.begin)
+        r.fail(key + ".end", "end " + Reader::fmt(cl.end) + " < begin " + Reader::fmt(cl.begin));
+    }
+    c.rules.closures.push_back(std::move(cl));
+  });
+  rule_list("zones", [&](const YAML::Node& n, const std::string& key) {
+    r.keys(n, key, {"id", "lanes", "edges", "cells"});
+    RuleZone z;
+    z.key = key;
+    z.id = key;
+    r.text(n, key, "id", z.id);
+    names(n, key, "lanes", z.lanes);
+    names(n, key, "edges", z.edges);
+    if (n["cells"]) r.cell_list(n["cells"], key + ".cells", z.cells);
+    if (z.lanes.empty() && z.edges.empty() && z.cells.empty()) r.fail(key, "a zone with no cells (give lanes, edges or cells)");
+    c.rules.zones.push_back(std::move(z));
+  });
   return c;
 }
 

@@ -48,6 +48,7 @@ nlohmann::json Metrics::to_json() const
                      {"epochs", epochs}};
   if (mode == "lifelong") {
     j["lifelong"]["throughputBound"] = throughput_bound();
+    j["lifelong"]["maxErrandTicks"] = max_errand_ticks;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
   }
   j["bound_ticks"] = bound_ticks;
@@ -107,6 +108,10 @@ nlohmann::json Metrics::to_json() const
                    {"end_stop_steps", end_stop_steps},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
+  if (rules.active)
+    j["rules"] = {{"closure_changes", rules.closure_changes}, {"replans", rules.replans}, {"zone_holds", rules.zone_holds},
+                  {"waits", rules.waits}, {"max_closed", rules.max_closed}, {"checks", rules.checks},
+                  {"poll_ms", rules.poll_ms}};
   j["max_position_error_m"] = commands.max_error;
   // What the display costs (fleet_view.hpp, congestion.hpp): calls are sent on changes only.
   j["view"] = {{"colour_calls", view.colour_calls},

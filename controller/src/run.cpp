@@ -153,6 +153,79 @@ void Run::prepare()
   if (cfg_.planner.budget_ms > 0) budget_.reserve_ms = 1e-3;
   k_ = cfg_.steps_per_tick();
   if (cfg_.output.congestion) congestion_ = std::make_unique<Congestion>(g.size());
+  // Traffic rules (rules.hpp): bad input is a ConfigError here, before SUMO starts.
+  std::vector<std::string> warnings;
+  rules_ = Rules::make(cfg_, c_.map_, ins_.starts, tm_ ? planner::Config{} : ins_.goals, warnings);
+  for (const std::string& w : warnings) std::fprintf(stderr, "[rtlacam-sumo] warning: %s\n", w.c_str());
+  if (rules_) {
+    rule_check_ = std::make_unique<RuleCheck>(c_.map_, *rules_);
+    m_.rules.active = true;
+    rules_->update(0, nullptr);
+    m_.rules.max_closed = rules_->num_closed();
+    // Only watched lanes: the planner stays the one built above until one closes.
+    if (rules_->configured()) rules_restart(ins_.starts);
+  }
+}
+
+void Run::rules_restart(const planner::Config& at)
+{
+  const double c0 = planner::thread_cpu_ms();
+  zone_occ_ = cfg_.rules.enforce_zones ? rules_->blocked_zones(at) : std::vector<uint8_t>(rules_->zones().size(), 0);
+  std::vector<std::string> lanes;  // each AGV's SUMO lane (none before the first step)
+  for (const VehiclePose& p : last_poses_) lanes.push_back(p.lane);
+  auto g = std::make_unique<planner::Graph>(
+      rules_->graph(zone_occ_, cfg_.rules.enforce_closures, rules_->frozen_cells(at, lanes)));
+  std::vector<std::string> lines;
+  const planner::Config eff = rules_->goals(*g, at, goals(), waiting_, m_.ticks * cfg_.run.tick_s, lines);
+  for (const std::string& l : lines) std::fprintf(stderr, "[rtlacam-sumo] %s\n", l.c_str());
+  planner::GoalTest test;
+  if (tm_) test = tasks::lifelong_goal_test(*tm_, at);
+  if (p_) replan_expansions_ += p_->expansions();
+  // The old planner goes first (it still refers to the old graph), then the old graph.
+  p_ = make_planner(cfg_.planner, *g, at, eff, pref_.get(), test, {});
+  rules_graph_ = std::move(g);
+  if (tm_) p_->set_max_dist_tables(2 * ins_.starts.size() + 256);
+  p_->search(plan_budget());
+  plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+  ++m_.rules.replans;
+}
+
+planner::Config Run::rule_goals(const planner::Config& at)
+{
+  std::vector<std::string> lines;
+  const planner::Config eff = rules_->goals(*rules_graph_, at, goals(), waiting_, m_.ticks * cfg_.run.tick_s, lines);
+  for (const std::string& l : lines) std::fprintf(stderr, "[rtlacam-sumo] %s\n", l.c_str());
+  return eff;
+}
+
+void Run::rules_tick(const planner::Config& cur)
+{
+  const double t = m_.ticks * cfg_.run.tick_s;
+  const auto t0 = Clock::now();
+  const bool changed = rules_->update(t, sumo_.get());
+  m_.rules.poll_ms += ms_since(t0);
+  if (changed) {
+    std::vector<std::string> edges;  // SUMO refuses routes through these now
+    for (const std::string& l : rules_->lanes_closed()) edges.push_back(l.substr(0, l.rfind('_')));
+    cmd_->avoid_edges(std::move(edges));
+    ++m_.rules.closure_changes;
+    m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
+    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed\n", t, rules_->num_closed());
+    rules_restart(cur);
+  } else if (cfg_.rules.enforce_zones && rules_->blocked_zones(cur) != zone_occ_) {
+    rules_restart(cur);
+  }
+  for (uint8_t w : waiting_) m_.rules.waits += w;
+}
+
+void Run::errand_ticks()
+{
+  const planner::Config& g = tm_->goals();
+  if (errand_goal_.size() != g.size()) errand_goal_ = g, errand_start_.assign(g.size(), 0);
+  for (size_t i = 0; i < g.size(); ++i) {
+    if (g[i] != errand_goal_[i]) errand_goal_[i] = g[i], errand_start_[i] = m_.ticks;
+    m_.max_errand_ticks = std::max(m_.max_errand_ticks, m_.ticks - errand_start_[i]);
+  }
 }
 
 planner::Budget Run::plan_budget() const
@@ -208,6 +281,7 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
       throw FleetError("AGV " + cmd_->ids()[i] + " (agent " + std::to_string(i) +
                        ") is not in SUMO any more (removed behind the controller's back?)");
   safety_->check(last_poses_, allowed, cmd_->ids(), sumo_->time(), exclusive, groups);
+  if (rule_check_) rule_check_->check(last_poses_, cmd_->ids(), sumo_->time());
   exec_step_.push_back(ms_since(t0));
 }
 
@@ -240,7 +314,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
   if (!ev.empty()) {
     const double c0 = planner::thread_cpu_ms();
-    p_->set_goals(tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+    p_->set_goals(rules_graph_ ? rule_goals(p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
     show_goals();
     p_->search(plan_budget());
@@ -251,6 +325,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   } else {
     life_.task_ms += ms_since(t0);
   }
+  errand_ticks();
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
 }
@@ -342,7 +417,7 @@ Metrics Run::execute()
     m_.error = std::string("controller: ") + e.what();
   }
   if (!m_.solved) m_.signal = planner::stop_signal();
-  m_.unsolvable = !m_.solved && !tm_ && p_ && p_->exhausted();
+  m_.unsolvable = !m_.solved && proven_unsolvable();
   stop_all();  // every run end, a signal's included: all AGVs braked to rest before detaching
   finish();
   return m_;

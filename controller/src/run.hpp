@@ -6,6 +6,7 @@
 //   loop_adg()       run.executor: adg -- the ADG releases moves, AGVs drive physically
 //   finish()         metrics.json, the lifelong log, plan.txt
 // step() is the one SUMO step both loops share: planner slice, SUMO, event and safety checks.
+#include <algorithm>
 #include <memory>
 #include <optional>
 
@@ -15,6 +16,8 @@
 #include "controller/controller.hpp"
 #include "controller/driver.hpp"
 #include "controller/fleet_view.hpp"
+#include "controller/rule_check.hpp"
+#include "controller/rules.hpp"
 #include "controller/safety.hpp"
 #include "stuck_replan.hpp"
 #include "executor/adg.hpp"
@@ -69,6 +72,14 @@ class Run {
   bool carrying(int i) const;  // lifelong: its task's pick-up done, on its way to deliver
   const planner::Config& goals() const { return tm_ ? tm_->goals() : ins_.goals; }
   void count_tick(const planner::Config& executed, int ticks = 1);
+  // Traffic rules (rules.hpp), lockstep: at a tick boundary, closures that began or ended
+  // and zones that filled or emptied restart the planner at `cur` on the rules' graph;
+  // rules_restart() builds that planner (goals it cannot reach: the AGV waits);
+  // rule_goals() the goals the planner gets from `at` on the current rules graph.
+  void rules_tick(const planner::Config& cur);
+  void rules_restart(const planner::Config& at);
+  planner::Config rule_goals(const planner::Config& at);
+  void errand_ticks();  // lifelong: how long each AGV has been on its errand
   void write_congestion();
   // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
   // search proved unsolvable (RT-LaCAM's DFS exhausted: waiting for max_ticks would change
@@ -76,7 +87,14 @@ class Run {
   // and closes SUMO.
   bool out_of_ticks() const
   {
-    return m_.ticks >= cfg_.run.max_ticks || planner::stop_signal() != 0 || (!tm_ && p_->exhausted());
+    return m_.ticks >= cfg_.run.max_ticks || planner::stop_signal() != 0 || proven_unsolvable();
+  }
+  // One-shot: the search proved no solution on the real graph (not on one the rules narrowed
+  // for a while: closures end, zones empty).
+  bool proven_unsolvable() const
+  {
+    if (tm_ || !p_ || !p_->exhausted()) return false;
+    return !rules_ || (rules_->num_closed() == 0 && std::find(zone_occ_.begin(), zone_occ_.end(), 1) == zone_occ_.end());
   }
 
   const Config& cfg_;
@@ -91,6 +109,13 @@ class Run {
   std::unique_ptr<SumoBackend> sumo_;
   std::unique_ptr<Commander> cmd_;
   std::unique_ptr<Safety> safety_;
+  std::unique_ptr<Rules> rules_;
+  std::unique_ptr<RuleCheck> rule_check_;
+  // The planner's graph while rules_ exist (declared before p_: it outlives the planner).
+  std::unique_ptr<planner::Graph> rules_graph_;
+  std::vector<uint8_t> zone_occ_, waiting_;  // zones the planner's graph blocks; agents waiting
+  std::vector<long long> errand_start_;  // lifelong: tick each AGV's current goal began
+  planner::Config errand_goal_;
   std::unique_ptr<planner::RealtimePlanner> p_;
   std::unique_ptr<planner::Validator> val_;
   std::unique_ptr<executor::DelayModel> delays_;

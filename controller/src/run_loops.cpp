@@ -1,5 +1,6 @@
 // The two tick loops of Run (run.hpp): lockstep (scheme S) and adg (executor/ + Driver),
 // and the final phase writing the outputs.
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -31,7 +32,9 @@ void Run::loop_lockstep()
   std::string acts;
   const int turn_ticks = std::max(1, static_cast<int>(std::ceil(cfg_.fleet.turn_s / cfg_.run.tick_s - 1e-9)));
   for (;;) {
-    if (!tm_ && p_->at_goal() && next.empty()) {
+    // (An AGV waiting for a closed goal is not on its goal: rules.hpp.)
+    if (!tm_ && p_->at_goal() && next.empty() &&
+        std::find(waiting_.begin(), waiting_.end(), 1) == waiting_.end()) {
       m_.solved = true;
       break;
     }
@@ -41,6 +44,7 @@ void Run::loop_lockstep()
 
     auto t0 = Clock::now();
     if (next.empty()) {
+      if (rules_) rules_tick(cur);  // closures that began or ended: a planner on the new graph
       const double c0 = planner::thread_cpu_ms();
       next = p_->next();
       if (rot) {
@@ -52,6 +56,13 @@ void Run::loop_lockstep()
       p_->commit();
       plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       ++m_.commits;
+      if (rules_ && cfg_.rules.enforce_zones) {
+        // One AGV per zone (rules.hpp): entrants beyond one wait; a held step or a zone that
+        // fills or empties restarts the planner at what is executed.
+        const int held = rules_->admit(cur, next);
+        m_.rules.zone_holds += held;
+        if (held > 0 || rules_->blocked_zones(next) != zone_occ_) rules_restart(next);
+      }
     }
     bool held = false;
     int ticks = 1;
@@ -224,6 +235,7 @@ void Run::finish()
   m_.delay_agent_ticks = delays_->stop_ticks();
   m_.delay_stops = delays_->stops();
   m_.safety_checks = safety_->checks();
+  if (rule_check_) m_.rules.checks = rule_check_->checks();
   m_.wall_s = ms_since(wall0_) / 1000;
   if (m_.sim_s == 0) m_.sim_s = m_.ticks * cfg_.run.tick_s;
 

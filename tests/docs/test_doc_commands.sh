@@ -34,6 +34,7 @@ README.md|0|./build/apps/rtlacam-sumo config/small_warehouse_agv.yaml
 controller/README.md|0|./build/apps/rtlacam-sumo config/small_warehouse.yaml
 controller/README.md|0|./build/apps/rtlacam-sumo config/bottleneck.yaml
 controller/README.md|4|./build/apps/rtlacam-sumo config/bottleneck.yaml --solver naive
+controller/README.md|0|./build/apps/rtlacam-sumo config/small_rules.yaml
 docs/rt_lacam_star.md|0|./build/apps/rtlacam-gridify sumo_scenarios/small.net.xml --additional sumo_scenarios/small.add.xml --map out/small.map
 CMDS
 # rtlacam-ggo --out/--log into folders that do not exist yet (tools/ggo/README.md's

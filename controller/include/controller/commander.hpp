@@ -133,6 +133,13 @@ class Commander {
   [[noreturn]] void failed(int agent, const SumoError& e);
   const Lane& lane(const std::string& id) const;
   const std::string& continuation(const std::string& edge) const;  // an edge SUMO may take after `edge`
+ public:
+  // Edges whose lane SUMO now disallows for the AGVs (rules.hpp, lanes closed over TraCI):
+  // SUMO refuses any route through one, so a route's continuation avoids them.
+  void avoid_edges(std::vector<std::string> edges) { avoid_ = std::move(edges); }
+
+ private:
+  std::vector<std::string> avoid_;
   bool connected(const std::string& from, const std::string& to) const;
   void set_speed(Agv& a, double v);
   void set_route(Agv& a, std::vector<std::string> edges);

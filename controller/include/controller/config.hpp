@@ -153,6 +153,33 @@ struct OutputSection {
   std::vector<double> gui_snapshots;  // run.gui: sumo-gui writes gui_<t>.png at these simulated seconds
 };
 
+// Warehouse traffic rules (rules.hpp): closures and one-at-a-time zones from the YAML; the
+// SUMO forms (rerouter closingReroute intervals, rtlacam.zone polygons) come from
+// sumo.additional (rules.sumo), lane permissions changed over TraCI from polling
+// (rules.watch_lanes). Lockstep and cell solvers only.
+struct RuleClosure {
+  std::string key;  // rules.closures[i]
+  std::vector<std::string> lanes, edges;
+  std::vector<CellRef> cells;
+  double begin = 0, end = 1e300;  // s (end omitted: the rest of the run)
+};
+
+struct RuleZone {
+  std::string key;  // rules.zones[i]
+  std::string id;
+  std::vector<std::string> lanes, edges;
+  std::vector<CellRef> cells;
+};
+
+struct RulesSection {
+  bool sumo = true;          // read rerouters / zone polygons of sumo.additional
+  int watch_lanes = -1;      // poll the AGV lanes' permissions every tick; -1: with libsumo only
+  std::vector<RuleClosure> closures;
+  std::vector<RuleZone> zones;
+  bool enforce_closures = true;  // false: the planner ignores closures (Safety still checks them)
+  bool enforce_zones = true;     // false: no zone admission (Safety still checks the zones)
+};
+
 struct Config {
   std::string path;  // the YAML file
   SumoSection sumo;
@@ -163,6 +190,7 @@ struct Config {
   RunSection run;
   DelaysSection delays;
   OutputSection output;
+  RulesSection rules;
 
   int steps_per_tick() const;  // tick_s / step_length (validated to be a whole number)
 };

@@ -53,6 +53,19 @@ struct Metrics {
   ViewStats view;                   // fleet_view.hpp: colour and goal-marker calls, their ms
   double congestion_ms = 0;         // counting + writing congestion.png
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
+  // Traffic rules (rules.hpp), written as metrics.json "rules" when a run has them (also
+  // when it only watches lanes: libsumo lockstep runs by default).
+  struct RuleStats {
+    bool active = false;
+    long long closure_changes = 0;  // tick boundaries where the closed cells changed
+    long long replans = 0;          // planner restarts (closures, zone occupancy, held entrants)
+    long long zone_holds = 0;       // AGV-ticks held at a zone entry by the admission
+    long long waits = 0;            // AGV-ticks an AGV waited for an unreachable goal
+    int max_closed = 0;             // most cells closed at once
+    long long checks = 0;           // SUMO steps RuleCheck checked
+    double poll_ms = 0;             // wall ms in Rules::update (closure schedule + lane polling), all ticks
+  } rules;
+  long long max_errand_ticks = 0;   // lifelong: longest any AGV spent on one errand (open ones to the end)
   long long end_stop_steps = 0;     // SUMO steps the stop at the run's end took (all AGVs at rest after)
   // The physical bound (bound.hpp), in ticks: one-shot, the slowest AGV alone on its path;
   // lifelong, the mean over the AGVs (throughput bound = tasks / that mean).

@@ -76,6 +76,10 @@ class SumoBackend {
 
   virtual std::string name() const = 0;
 
+  // The vehicle classes a lane allows now (empty: every class): lane permissions another
+  // TraCI client may change at run time (rules.hpp polls them).
+  virtual std::vector<std::string> lane_allowed(const std::string& lane) = 0;
+
   // What a person sees (fleet_view.hpp): a vehicle's colour, and outline polygons drawn at
   // their real size under the vehicles, with a type (sumo-gui can show it).
   using Shape = std::vector<std::pair<double, double>>;  // x/y points, closed by SUMO

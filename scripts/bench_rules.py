@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Lifelong throughput with each warehouse traffic rule on and off (issue 24; controller/rules.hpp).
+
+For each warehouse, four runs of rtlacam-sumo in the same invocation, identical but for the
+rules: off (no closure, no zone, no lane watch), closure (a picking aisle closed over
+[20 %, 50 %) of the run, as a YAML event), zone (a cross aisle as a one-at-a-time zone), both.
+The planner has a fixed number of expansions per SUMO step (deterministic decisions, so the
+rules alone make the difference). Prints errands per tick, the ratio to "off", the longest
+any AGV spent on one errand, and the rule counters; every run must end clean (0 violations,
+0 jumps / re-syncs; the script says so).
+
+  scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
+                         [--skip-large]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import yaml  # PyYAML
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# name, config, ticks option, closure edges, candidate zone edges (the first whose cells hold
+# no two random starts is used: a zone may hold one AGV only, from the start on)
+WAREHOUSES = [
+    ("small (16 AGVs)", "config/small_warehouse_lifelong.yaml", "ticks",
+     ["c1r0_c1r1", "c1r1_c1r0"], [["c1r1_c2r1"], ["c2r1_c3r1"], ["c0r1_c1r1"]]),
+    ("large (200 AGVs)", "config/large_warehouse_lifelong.yaml", "large_ticks",
+     ["c5r0_c5r1", "c5r1_c5r0"],
+     [["c5r1_c6r1"], ["c6r1_c7r1"], ["c4r1_c5r1"], ["c7r1_c8r1"], ["c3r1_c4r1"], ["c8r1_c9r1"], ["c2r1_c3r1"]]),
+]
+
+
+def run(build, base, out, ticks, expansions, rules):
+    cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+    here = os.path.dirname(os.path.join(ROOT, base))
+    for k in ("net", "additional"):
+        if k in cfg["sumo"]:
+            cfg["sumo"][k] = os.path.normpath(os.path.join(here, cfg["sumo"][k]))
+    cfg["sumo"]["outputs"] = {"fcd": False, "tripinfo": False, "summary": False, "collision": True}
+    cfg["planner"]["budget_ms"] = 0
+    cfg["planner"]["expansions"] = expansions
+    cfg["run"]["max_ticks"] = ticks
+    cfg["run"]["progress_s"] = 0
+    cfg["output"] = {"dir": out, "congestion": False}
+    cfg["rules"] = rules
+    path = out + ".yaml"
+    with open(path, "w") as f:
+        yaml.safe_dump(cfg, f)
+    p = subprocess.run([os.path.join(build, "apps", "rtlacam-sumo"), path], capture_output=True, text=True)
+    if p.returncode == 2:
+        return None, p.stderr.strip()
+    m = json.load(open(os.path.join(out, "metrics.json")))
+    return m, p.stderr
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--ticks", type=int, default=1000)
+    ap.add_argument("--large-ticks", type=int, default=500)
+    ap.add_argument("--expansions", type=int, default=50)
+    ap.add_argument("--skip-large", action="store_true")
+    a = ap.parse_args()
+    build = os.path.abspath(a.build)
+    tmp = tempfile.mkdtemp(prefix="bench_rules_")
+    clean = True
+    print("| warehouse | rules | ticks | errands/tick | vs off | max ticks on one errand | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, base, tick_opt, closure, zones in WAREHOUSES:
+        if a.skip_large and "large" in name:
+            continue
+        ticks = getattr(a, tick_opt)
+        closure_rule = [{"edges": closure, "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]
+        zone_rule = None
+        for z in zones:  # a zone holding no two random starts
+            m, err = run(build, base, os.path.join(tmp, "probe"), 1, a.expansions,
+                         {"sumo": False, "watch_lanes": False, "zones": [{"id": "z", "edges": z}]})
+            if m is not None:
+                zone_rule = [{"id": "z", "edges": z}]
+                break
+        if zone_rule is None:
+            print(f"# {name}: every candidate zone holds two starts: {err}", file=sys.stderr)
+            return 1
+        variants = [("off", {}), ("closure", {"closures": closure_rule}), ("zone", {"zones": zone_rule}),
+                    ("both", {"closures": closure_rule, "zones": zone_rule})]
+        base_rate = None
+        for label, extra in variants:
+            rules = {"sumo": False, "watch_lanes": False}
+            rules.update(extra)
+            out = os.path.join(tmp, name.split()[0] + "_" + label)
+            m, err = run(build, base, out, ticks, a.expansions, rules)
+            if m is None:
+                print(f"# {name} {label}: {err}", file=sys.stderr)
+                return 1
+            rate = m["lifelong"]["errandThroughput"]
+            base_rate = rate if base_rate is None else base_rate
+            r = m.get("rules", {})
+            jr = m["teleports_or_jumps"]
+            clean = clean and m["violations"] == 0 and jr == 0 and not m["error"]
+            what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zones" in extra else "")
+            print(f"| {name} | {what} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
+                  f"{m['lifelong']['maxErrandTicks']} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
+                  f"{r.get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
+    print("all runs clean (0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
