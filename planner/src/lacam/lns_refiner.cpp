@@ -181,7 +181,7 @@ void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Con
 }
 
 bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng& rng, Clock::time_point deadline,
-                      const uint8_t* stays)
+                      const uint8_t* stays, int seed)
 {
   const int n = static_cast<int>(goals.size());
   const int T = static_cast<int>(path.size()) - 1;
@@ -212,6 +212,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
     delay[i] = std::max<int64_t>(0, cost[i] - std::abs(dist_.get(i, path[0][i]) - dist_.get(i, path[T][i])));
     total_delay += delay[i];
   }
+  if (seed >= 0 && seed < n) total_delay = std::max<int64_t>(total_delay, 1);  // the caller's seed
   if (total_delay <= 0) return false;
   // The time window [t0, t1]: the agents keep their positions at both ends.
   const int t0 = T > window_ ? static_cast<int>(rng.below(static_cast<uint32_t>(T - window_ + 1))) : 0;
@@ -228,7 +229,8 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   last_h_ = h;
   set_.clear();
   int64_t r = static_cast<int64_t>(rng.uniform() * static_cast<double>(total_delay));
-  for (int i = 0; i < n; ++i) {
+  if (seed >= 0 && seed < n) set_.push_back(seed);
+  for (int i = 0; i < n && set_.empty(); ++i) {
     r -= delay[i];
     if (r < 0 || i == n - 1) {
       set_.push_back(i);

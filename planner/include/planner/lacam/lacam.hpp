@@ -255,6 +255,7 @@ class Lacam {
   HNode* step_to(HNode* from, const Vertex* C);  // known or new node after `from`, linked and rewired
 
   static constexpr int kMinLnsWindow = 4;  // shorter windows rarely leave room to improve
+  static constexpr int kLnsLead = 2;       // soc: an LNS window starts this far ahead of the root
 
   const Graph& g_;
   DistTable& dist_;

@@ -64,9 +64,10 @@ class LnsRefiner {
   // Under Objective::soc, `stays` (per agent, optional) says whether the agent stays on its
   // goal at every step after path.back() (a window of a longer path); null: path.back() is
   // the end, so an agent on its goal there stays. Under soc a neighbourhood also takes the
-  // agents that pass the seed's goal in the window (they are what pushes it off).
+  // agents that pass the seed's goal in the window (they are what pushes it off). `seed`
+  // (optional) is the agent the neighbourhood starts from, else a delayed one by roulette.
   bool step(std::vector<Config>& path, const Config& goals, int k, Rng& rng,
-            Clock::time_point deadline = Clock::time_point::max(), const uint8_t* stays = nullptr);
+            Clock::time_point deadline = Clock::time_point::max(), const uint8_t* stays = nullptr, int seed = -1);
   // The agents the last step replanned.
   const std::vector<int>& last_set() const { return set_; }
 
