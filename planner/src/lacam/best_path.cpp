@@ -97,7 +97,7 @@ bool BestPath::splice(const HNode* from, const std::vector<HNode*>& window, cons
       }
   }
   const int64_t c = price(last);
-  if (c >= cost_) return false;
+  if (c > cost_) return false;  // equal: LNS lowered the loss at the same SOC
   nodes_.swap(p);
   last_.swap(last);
   cost_ = c;

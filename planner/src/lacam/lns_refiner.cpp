@@ -30,7 +30,8 @@ int64_t LnsRefiner::cost_of(const std::vector<Config>& path, const Config& goals
 }
 
 // Space-time A* for agent i from (path[t0][i], t0) to (path[t1][i], t1) around the agents in
-// occ_; cost per step 1, but 0 for waiting on the goal (loss) or 1 throughout (soc). h =
+// occ_; cost per step 1, but 0 for waiting on the goal (loss; soc for an agent that leaves its
+// goal after t1, whose standard SOC no path changes) or 1 throughout (soc, settling). h =
 // |d(v, goal) - d(end, goal)|, a lower bound on d(v, end) from the goal's distance table (no
 // table per window end). `settle` (soc; the end is the goal): done on reaching the goal once
 // nobody else stands there until t1 (then it waits there), so the first such pop is the
@@ -59,7 +60,6 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   best_[slot(t0, s)] = 0;
   stamp_[slot(t0, s)] = epoch_;
   open_.push({h(s), -t0, 0});
-  const bool soc = obj_ == Objective::soc;
   int free_from = t1 + 1;  // settle: the goal is free of others from here to t1
   if (settle) {
     free_from = t1;
@@ -96,7 +96,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
         const int32_t j = occ_[slot(n.t, u)];
         if (j != 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
       }
-      const int64_t g = n.g + (soc || !(n.v == goal && u == goal));
+      const int64_t g = n.g + (settle || !(n.v == goal && u == goal));
       if (stamp_[at] == epoch_ && best_[at] <= g) continue;
       stamp_[at] = epoch_;
       best_[at] = g;
@@ -265,8 +265,15 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
       }
 
   work_ += written_.size();
+  // Under soc the cost is (standard SOC, loss) lexicographically: soc x S + loss, S above any
+  // loss of the set. A step that keeps the standard SOC and lowers the loss wins too: it frees
+  // room (waits, detours of agents whose SOC is fixed by a later leave) for the next steps.
+  const int64_t S = soc ? static_cast<int64_t>(t1 - t0 + 1) * static_cast<int64_t>(set.size()) + 1 : 1;
   int64_t before = 0;
-  for (int i : set) before += cost_of(path, goals, i, t0, t1, st);
+  for (int i : set) {
+    before += cost_of(path, goals, i, t0, t1, st) * S;
+    if (soc) before += agent_cost(path, goals, i, t0, t1);
+  }
   rng.shuffle(set.data(), static_cast<int>(set.size()));
   std::vector<std::vector<Vertex>> fresh(set.size());
   int64_t after = 0;
@@ -283,9 +290,9 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
       occ_[key] = i + 1;
       written_.push_back(key);
       if (v != goals[i]) last_off = t;
-      if (!soc && t < t1) after += !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
+      if (t < t1) after += !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
     }
-    if (soc) after += settle ? (last_off < 0 ? 0 : last_off - t0 + 1) : t1 - t0;
+    if (soc) after += S * (settle ? (last_off < 0 ? 0 : last_off - t0 + 1) : t1 - t0);
     if (after >= before) ok = false;  // cannot win any more
   }
   for (size_t key : written_) occ_[key] = 0;
@@ -293,7 +300,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   constexpr double kGamma = 0.01;  // MAPF-LNS's reaction factor
   const bool won = ok && after < before;
   if (nbh_ == LnsNeighbourhood::adaptive)
-    weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(set.size()) : 0.0) +
+    weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(S * set.size()) : 0.0) +
                                     (1 - kGamma) * weight_[h]);
   if (!won) return false;
   for (size_t m = 0; m < set.size(); ++m)

@@ -44,7 +44,8 @@ class BestPath {
   bool price_node();
 
   // The path with its nodes after `from` replaced by `window` (window.back() is the path's
-  // own node there), where only `agents` moved differently: adopted, and true, iff cheaper.
+  // own node there), where only `agents` moved differently: adopted, and true, unless
+  // costlier (an LNS window of the same standard SOC has a lower loss).
   bool splice(const HNode* from, const std::vector<HNode*>& window, const std::vector<int>& agents);
 
  private:

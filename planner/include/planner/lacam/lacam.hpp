@@ -11,7 +11,11 @@
 // node's constraint tree is exhausted.
 //
 // LaCAM* refinement (LacamOptions::refine; Okumura, IJCAI-23, and lacam3's planner.cpp).
-// Cost: one per agent per action, 0 for an agent that stays on its goal. Before the first
+// Cost: one per agent per action, 0 for an agent that stays on its goal (the sum of loss,
+// as lacam3's get_edge_cost). Under LacamOptions::objective soc (the default) the tree keeps
+// this cost, but the agents follow a path kept apart (best_path.hpp), changed only when a
+// candidate -- the goal's tree path after its g dropped, or an LNS window -- lowers the
+// standard SOC, and LNS lowers the standard SOC (lns_refiner.hpp). Before the first
 // solution nothing changes but the bookkeeping: each expansion records a neighbour link
 // (both directions) and the tree, the expansions and the explored set are exactly LaCAM's.
 // At the first solution every node gets g (cost of its tree path from the root) and h (sum

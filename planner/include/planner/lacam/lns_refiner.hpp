@@ -10,7 +10,9 @@
 // window is charged up to its last arrival in it, and its A* arrives once and stays (the goal
 // must be free from then to the window's end, SIPP's rule in lacam3's refiner), so it is
 // never parked where someone passes later; an agent that leaves its goal after the window
-// costs the whole window whatever it does there (it is replanned only to make room). The window keeps a step's cost small and
+// costs the whole window whatever it does there (it is replanned only to make room, at the
+// least loss). Ties in the standard SOC are broken by the loss: a step that keeps it and
+// lowers the loss is kept too. The window keeps a step's cost small and
 // independent of the path length (the occupancy table is window x |V|), so steps fit in a
 // real-time budget. Every transition stays free of
 // vertex and swap conflicts, so the new path is a valid chain of LaCAM configurations.
