@@ -35,7 +35,7 @@ int main(int argc, char** argv)
   bool lns = true;
   int lns_window = LacamOptions{}.lns_window;
   int lns_agents = LacamOptions{}.lns_agents;
-  std::string lns_nbh = "random";
+  std::string lns_nbh = "random", objective = "soc";
   bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
       scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
@@ -64,6 +64,11 @@ int main(int argc, char** argv)
   app.add_flag("--refine,!--no-refine", refine,
                "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
       ->capture_default_str();
+  app.add_option("--objective", objective,
+                 "what refinement lowers: soc (standard sum of costs, each agent up to its last arrival) or loss "
+                 "(sum of loss; objective.hpp)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"soc", "loss"}));
   app.add_flag("--lns,!--no-lns", lns, "with --refine: LNS steps on the best path (lns_refiner.hpp)")
       ->capture_default_str();
   app.add_option("--lns-agents", lns_agents, "agents replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
@@ -122,6 +127,7 @@ int main(int argc, char** argv)
     lopt.lns_window = lns_window;
     lopt.lns_agents = lns_agents;
     lopt.lns_neighbourhood = parse_lns_neighbourhood(lns_nbh);
+    lopt.objective = parse_objective(objective);
     lopt.scatter = scatter;
     lopt.scatter_margin = scatter_margin;
     lopt.scatter_lead = scatter_lead;
@@ -202,6 +208,7 @@ int main(int argc, char** argv)
     j["anytime_ms"] = anytime_ms;
     j["lns"] = lns;
     j["lns_window"] = lns_window;
+    j["objective"] = objective;
     j["lns_agents"] = lns_agents;
     j["lns_neighbourhood"] = lns_nbh;
     j["scatter"] = scatter;

@@ -182,7 +182,7 @@ PYBIND11_MODULE(_rtlacam, m)
 
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
-           policy::PolicyPreference* pref, bool refine) {
+           policy::PolicyPreference* pref, bool refine, const std::string& objective) {
           if (static_cast<int>(starts.size()) != static_cast<int>(goals.size()))
             throw std::invalid_argument("starts and goals differ in length");
           for (Vertex v : starts)
@@ -193,17 +193,21 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.seed = seed;
           opt.pref = pref;
           opt.lacam.refine = opt.lacam.scatter = refine;  // as rtlacam-bench: RT-LaCAM* unless refine=False
+          opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           return make_planner(parse_solver(solver), g, starts, goals, opt);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
-        py::arg("policy") = nullptr, py::arg("refine") = true, py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
+        py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc", py::keep_alive<0, 2>(),
+        py::keep_alive<0, 6>(),
         "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan "
         "rotation actions on a grid, every robot facing east at the start); refine=False: the paper's RT-LaCAM "
-        "(rtlacam-bench --no-refine), else RT-LaCAM* as the CLI");
+        "(rtlacam-bench --no-refine), else RT-LaCAM* as the CLI; objective: what refinement lowers, 'soc' "
+        "(standard sum of costs) or 'loss' (sum of loss), as rtlacam-bench --objective");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
-           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine) {
+           double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine,
+           const std::string& objective) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
@@ -213,6 +217,7 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.seed = seed;
           sopt.lacam.seed = seed;  // run_full_horizon (lacam) reads it there
           sopt.lacam.refine = sopt.lacam.scatter = refine;  // as rtlacam-bench (lacam: executes its first solution either way)
+          sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;
@@ -230,7 +235,7 @@ PYBIND11_MODULE(_rtlacam, m)
         },
         py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
         py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
-        py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true,
+        py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
         "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict");
 
   py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")

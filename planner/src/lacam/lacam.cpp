@@ -20,7 +20,7 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood), scatter_(g, dist), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood, opt.objective), scatter_(g, dist), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
   lns_wanted_ = opt.lns;
@@ -60,6 +60,10 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   open_.clear();
   all_.clear();
   goal_ = nullptr;
+  best_.reset(goals_);
+  goal_version_ = priced_version_ = 0;
+  splice_from_ = nullptr;
+  spliced_.clear();
   scratch_.assign(n_, -1);
   pibt_.set_scatter(nullptr);
   scatter_.clear();
@@ -309,6 +313,7 @@ void Lacam::reroot(const HNode* child)
   old->parent = c;
   c->parent = nullptr;
   root_ = c;
+  best_.advance(old, c);
   if (refining_ && !preparing_) {  // timed: search() keeps the next one's cost free
     const double c0 = thread_cpu_ms();
     rebase(c, old, false);

@@ -107,8 +107,22 @@ Status Lacam::refine_expand()
     last_step_ = Step::insert;
     return status_;
   }
+  if (soc_on()) {  // a new tree path to the goal: price it by the standard SOC
+    if (!best_.pricing() && (best_.empty() || goal_version_ != priced_version_)) {
+      path_nodes_.clear();
+      for (HNode* h = goal_; h; h = h->parent) path_nodes_.push_back(h);
+      std::reverse(path_nodes_.begin(), path_nodes_.end());
+      best_.start_candidate(path_nodes_);
+      priced_version_ = goal_version_;
+    }
+    if (best_.pricing()) {
+      if (!price_step()) stalled_ = true;
+      last_step_ = Step::price;
+      return status_;
+    }
+  }
   const bool all_goals = config_equal(goal_->C, goals_.data(), n_);
-  const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals;
+  const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
   const bool guide = all_goals && !goal_test_ &&
                      (dive_ ||
@@ -206,20 +220,54 @@ Status Lacam::refine_expand()
 // and its last configuration is the path's own node there, which the rewiring then lowers.
 bool Lacam::lns_step(int window)
 {
-  path_nodes_.clear();
-  for (HNode* h = goal_; h; h = h->parent) path_nodes_.push_back(h);
-  std::reverse(path_nodes_.begin(), path_nodes_.end());
+  const bool soc = soc_on();
+  if (soc) {
+    path_nodes_ = best_.nodes();
+  } else {
+    path_nodes_.clear();
+    for (HNode* h = goal_; h; h = h->parent) path_nodes_.push_back(h);
+    std::reverse(path_nodes_.begin(), path_nodes_.end());
+  }
   const int T = static_cast<int>(path_nodes_.size()) - 1;
   if (T < 1) return false;
-  const int W = std::min(window, T);
-  const int t0 = T > W ? static_cast<int>(rng_.below(static_cast<uint32_t>(T - W + 1))) : 0;
+  int W = std::min(window, T);
+  int t0 = T > W ? static_cast<int>(rng_.below(static_cast<uint32_t>(T - W + 1))) : 0;
+  int seed = -1;
+  if (soc) {
+    // A delayed agent by roulette over the path (its last arrival less its distance), and a
+    // window that ends a little after that arrival: only there can its standard SOC drop.
+    int64_t total = 0;
+    for (int i = 0; i < n_; ++i) total += std::max<int64_t>(0, best_.last_off(i) + 1 - dist_.get(i, root_->C[i]));
+    if (total > 0) {
+      int64_t r = static_cast<int64_t>(rng_.uniform() * static_cast<double>(total));
+      for (int i = 0; i < n_ && seed < 0; ++i) {
+        r -= std::max<int64_t>(0, best_.last_off(i) + 1 - dist_.get(i, root_->C[i]));
+        if (r < 0) seed = i;
+      }
+      if (seed >= 0) {
+        // Not from the root: the agents may move on before the window is inserted, and a
+        // window that starts behind the root can no longer be followed.
+        const int t1 = std::min(T, best_.last_off(seed) + 1 + static_cast<int>(rng_.below(static_cast<uint32_t>(W / 4 + 1))));
+        t0 = std::max(std::min(kLnsLead, t1 - 1), t1 - W);
+        W = t1 - t0;
+        if (W < 1) return false;
+      }
+    }
+  }
   window_.resize(static_cast<size_t>(W) + 1);
   for (int t = 0; t <= W; ++t) window_[t].assign(path_nodes_[t0 + t]->C, path_nodes_[t0 + t]->C + n_);
   lns_.set_window(W);
-  if (!lns_.step(window_, goals_, opt_.lns_agents, rng_, deadline_)) return false;
+  if (soc) {
+    stays_.resize(n_);
+    for (int i = 0; i < n_; ++i) stays_[i] = best_.last_off(i) < t0 + W;
+  }
+  if (!lns_.step(window_, goals_, opt_.lns_agents, rng_, deadline_, soc ? stays_.data() : nullptr, seed)) return false;
   pending_.swap(window_);  // inserted by insert_step(), now or in the next calls
   pending_next_ = 1;
   pending_prev_ = path_nodes_[t0];
+  splice_from_ = path_nodes_[t0];
+  spliced_.clear();
+  splice_set_ = lns_.last_set();
   if (!timed_) insert_step();  // no deadline: at once, in this step (deterministic runs)
   return true;
 }
@@ -237,12 +285,15 @@ bool Lacam::insert_step()
       return false;
     }
     pending_prev_ = step_to(pending_prev_, pending_[pending_next_++].data());
+    spliced_.push_back(pending_prev_);
     if (timed_) {
       const double c = thread_cpu_ms();
       insert_cost_.record(1, c - c0);
       c0 = c;
     }
   }
+  // soc: the window is followed if it lowers the standard SOC, whatever the tree's loss says
+  if (soc_on()) best_.splice(splice_from_, spliced_, splice_set_);
   pending_.clear();
   pending_next_ = 0;
   pending_prev_ = nullptr;
@@ -265,6 +316,7 @@ void Lacam::rewrite(HNode* a, HNode* b)
       if (g >= to->g) continue;
       to->g = g;
       to->parent = from;
+      if (to == goal_) ++goal_version_;
       queue_.push_back(to);
       if (to->g + to->h < goal_->g + goal_->h) open_.push_back(to);
     }
@@ -292,6 +344,50 @@ void Lacam::rebase(HNode* new_root, HNode* old_root, bool explicit_costs)
       walk_.emplace_back(y, y_old);
     }
   }
+}
+
+bool Lacam::price_step()
+{
+  price_cost_.set_prior(expand_cost_.rate());  // a node: O(N), like an expansion's PIBT call at most
+  double c0 = timed_ ? thread_cpu_ms() : 0.0;
+  // Against an expansions budget kPricedPerUnit nodes count as one expansion: a node is N
+  // comparisons, an expansion a PIBT call over N agents (measured: ~20x dearer).
+  constexpr uint64_t kPricedPerUnit = 16;
+  ++expansions_;
+  uint64_t k = 0;
+  const uint64_t most = std::max<uint64_t>(left_, 1) > UINT64_MAX / kPricedPerUnit ? UINT64_MAX
+                                                                                   : std::max<uint64_t>(left_, 1) * kPricedPerUnit;
+  while (best_.pricing()) {
+    if ((timed_ && !fits(price_cost_.predict_ms(1))) || k >= most) {
+      if (timed_ && k < most) price_cost_.forget();
+      units_ = std::max<uint64_t>(k / kPricedPerUnit, 1);
+      return false;
+    }
+    best_.price_node();
+    ++k;
+    if (timed_) {
+      const double c = thread_cpu_ms();
+      price_cost_.record(1, c - c0);
+      c0 = c;
+    }
+  }
+  units_ = std::max<uint64_t>(k / kPricedPerUnit, 1);
+  return true;
+}
+
+std::vector<Config> Lacam::best_path() const
+{
+  if (!soc_on() || best_.empty()) return path(goal_);
+  std::vector<Config> out;
+  for (const HNode* h : best_.nodes()) out.emplace_back(h->C, h->C + n_);
+  return out;
+}
+
+const HNode* Lacam::best_next() const
+{
+  if (!soc_on() || best_.empty()) return nullptr;
+  const auto& p = best_.nodes();
+  return p.size() >= 2 ? p[1] : p[0];
 }
 
 bool Lacam::check_costs(std::string* why) const

@@ -14,11 +14,30 @@ int64_t LnsRefiner::agent_cost(const std::vector<Config>& path, const Config& go
   return c;
 }
 
+int64_t LnsRefiner::agent_soc(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1, bool stays)
+{
+  if (!stays) return t1 - t0;
+  for (int t = t1; t >= t0; --t)
+    if (path[t][i] != goals[i]) return t - t0 + 1;  // last off the goal; arrives at t + 1
+  return 0;
+}
+
+int64_t LnsRefiner::cost_of(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1,
+                            const uint8_t* stays) const
+{
+  if (obj_ == Objective::loss) return agent_cost(path, goals, i, t0, t1);
+  return agent_soc(path, goals, i, t0, t1, stays ? stays[i] != 0 : path[t1][i] == goals[i]);
+}
+
 // Space-time A* for agent i from (path[t0][i], t0) to (path[t1][i], t1) around the agents in
-// occ_; cost per step 1, but 0 for waiting on the goal. h = |d(v, goal) - d(end, goal)|, a
-// lower bound on d(v, end) from the goal's distance table (no table per window end).
+// occ_; cost per step 1, but 0 for waiting on the goal (loss; soc for an agent that leaves its
+// goal after t1, whose standard SOC no path changes) or 1 throughout (soc, settling). h =
+// |d(v, goal) - d(end, goal)|, a lower bound on d(v, end) from the goal's distance table (no
+// table per window end). `settle` (soc; the end is the goal): done on reaching the goal once
+// nobody else stands there until t1 (then it waits there), so the first such pop is the
+// earliest arrival that is not pushed off again.
 bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& goals, int t0, int t1,
-                        std::vector<Vertex>& out, Clock::time_point deadline)
+                        std::vector<Vertex>& out, Clock::time_point deadline, bool settle)
 {
   const size_t V = g_.size();
   const Vertex goal = goals[i], end = path[t1][i];
@@ -41,6 +60,11 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   best_[slot(t0, s)] = 0;
   stamp_[slot(t0, s)] = epoch_;
   open_.push({h(s), -t0, 0});
+  int free_from = t1 + 1;  // settle: the goal is free of others from here to t1
+  if (settle) {
+    free_from = t1;
+    while (free_from > t0 && occ_[slot(free_from - 1, goal)] == 0) --free_from;
+  }
   // Bound the work of one replan: a failing search would otherwise sweep |V| x window states.
   const size_t limit = 32 * W + 1024;
   size_t pops = 0;
@@ -55,9 +79,9 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
     open_.pop();
     const AstarNode n = nodes_[idx];
     if (best_[slot(n.t, n.v)] < n.g) continue;
-    if (n.t == t1) {
+    if (n.t == t1 || (settle && n.v == goal && n.t >= free_from)) {
       if (n.v != end) continue;
-      out.assign(W, -1);
+      out.assign(W, goal);  // settle: waits on the goal after arriving
       for (int32_t k = idx; k >= 0; k = nodes_[k].parent) out[nodes_[k].t - t0] = nodes_[k].v;
       found = true;
       break;
@@ -72,7 +96,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
         const int32_t j = occ_[slot(n.t, u)];
         if (j != 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
       }
-      const int64_t g = n.g + !(n.v == goal && u == goal);
+      const int64_t g = n.g + (settle || !(n.v == goal && u == goal));
       if (stamp_[at] == epoch_ && best_[at] <= g) continue;
       stamp_[at] = epoch_;
       best_[at] = g;
@@ -156,7 +180,8 @@ void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Con
   }
 }
 
-bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng& rng, Clock::time_point deadline)
+bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng& rng, Clock::time_point deadline,
+                      const uint8_t* stays, int seed)
 {
   const int n = static_cast<int>(goals.size());
   const int T = static_cast<int>(path.size()) - 1;
@@ -164,21 +189,38 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   if (T < 1 || n == 0) return false;
   // A delayed agent seeds the neighbourhood: only where someone waits or detours can the
   // cost drop. One pass in time order (the configurations are stored by time step).
+  const bool soc = obj_ == Objective::soc;
+  auto stays_after = [&](int i) { return stays ? stays[i] != 0 : path[T][i] == goals[i]; };
   std::vector<int64_t> cost(n, 0);
-  for (int t = 0; t < T; ++t)
-    for (int i = 0; i < n; ++i) cost[i] += !(path[t][i] == goals[i] && path[t + 1][i] == goals[i]);
+  std::vector<int32_t> last(soc ? n : 0, -1);
+  if (soc) {  // the last step off the goal, per agent
+    for (int t = 0; t < T; ++t)
+      for (int i = 0; i < n; ++i)
+        if (path[t][i] != goals[i]) last[i] = t;
+    for (int i = 0; i < n; ++i) cost[i] = stays_after(i) ? last[i] + 1 : T;
+  } else {
+    for (int t = 0; t < T; ++t)
+      for (int i = 0; i < n; ++i) cost[i] += !(path[t][i] == goals[i] && path[t + 1][i] == goals[i]);
+  }
   // The seed: a delayed agent, roulette by delay over what the path's ends allow (a window of
-  // a longer path need not end at the goals).
+  // a longer path need not end at the goals). Under soc only an agent that stays on its goal
+  // after the window can gain: one that leaves later costs the whole window anyway.
   std::vector<int64_t> delay(n, 0);
   int64_t total_delay = 0;
   for (int i = 0; i < n; ++i) {
+    if (soc && !stays_after(i)) continue;
     delay[i] = std::max<int64_t>(0, cost[i] - std::abs(dist_.get(i, path[0][i]) - dist_.get(i, path[T][i])));
     total_delay += delay[i];
   }
+  if (seed >= 0 && seed < n) total_delay = std::max<int64_t>(total_delay, 1);  // the caller's seed
   if (total_delay <= 0) return false;
   // The time window [t0, t1]: the agents keep their positions at both ends.
   const int t0 = T > window_ ? static_cast<int>(rng.below(static_cast<uint32_t>(T - window_ + 1))) : 0;
   const int t1 = std::min(T, t0 + window_);
+  // soc: who stays on the goal after t1 (after the path's end, and from t1 to it)
+  std::vector<uint8_t> settled(soc ? n : 0, 0);
+  for (int i = 0; soc && i < n; ++i) settled[i] = stays_after(i) && last[i] < t1 && path[t1][i] == goals[i];
+  const uint8_t* st = soc ? settled.data() : nullptr;
   int h = static_cast<int>(nbh_);
   if (nbh_ == LnsNeighbourhood::adaptive) {
     const double r = rng.uniform() * (weight_[0] + weight_[1] + weight_[2]);
@@ -187,12 +229,24 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   last_h_ = h;
   set_.clear();
   int64_t r = static_cast<int64_t>(rng.uniform() * static_cast<double>(total_delay));
-  for (int i = 0; i < n; ++i) {
+  if (seed >= 0 && seed < n) set_.push_back(seed);
+  for (int i = 0; i < n && set_.empty(); ++i) {
     r -= delay[i];
     if (r < 0 || i == n - 1) {
       set_.push_back(i);
       break;
     }
+  }
+  if (soc) {  // who passes the seed's goal: they push it off, or keep it from arriving
+    const int a = set_[0];
+    std::vector<int> cand;
+    for (int t = t0; t <= t1; ++t)
+      for (int j = 0; j < n; ++j)
+        if (j != a && path[t][j] == goals[a] && std::find(cand.begin(), cand.end(), j) == cand.end()) cand.push_back(j);
+    work_ += static_cast<uint64_t>(t1 - t0 + 1) * static_cast<uint64_t>(n);
+    rng.shuffle(cand.data(), static_cast<int>(cand.size()));
+    for (int j : cand)
+      if (static_cast<int>(set_.size()) < std::min(k, n)) set_.push_back(j);
   }
   neighbourhood(h, path, goals, cost, std::min(k, n), t0, t1, rng);
   std::vector<int>& set = set_;
@@ -211,23 +265,34 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
       }
 
   work_ += written_.size();
+  // Under soc the cost is (standard SOC, loss) lexicographically: soc x S + loss, S above any
+  // loss of the set. A step that keeps the standard SOC and lowers the loss wins too: it frees
+  // room (waits, detours of agents whose SOC is fixed by a later leave) for the next steps.
+  const int64_t S = soc ? static_cast<int64_t>(t1 - t0 + 1) * static_cast<int64_t>(set.size()) + 1 : 1;
   int64_t before = 0;
-  for (int i : set) before += agent_cost(path, goals, i, t0, t1);
+  for (int i : set) {
+    before += cost_of(path, goals, i, t0, t1, st) * S;
+    if (soc) before += agent_cost(path, goals, i, t0, t1);
+  }
   rng.shuffle(set.data(), static_cast<int>(set.size()));
   std::vector<std::vector<Vertex>> fresh(set.size());
   int64_t after = 0;
   bool ok = true;
   for (size_t m = 0; m < set.size() && ok; ++m) {
     const int i = set[m];
-    ok = replan(i, path, goals, t0, t1, fresh[m], deadline);
+    const bool settle = soc && settled[i];
+    ok = replan(i, path, goals, t0, t1, fresh[m], deadline, settle);
     if (!ok) break;
+    int last_off = -1;
     for (int t = t0; t <= t1; ++t) {
       const Vertex v = fresh[m][t - t0];
       const size_t key = static_cast<size_t>(t - t0) * V + static_cast<size_t>(v);
       occ_[key] = i + 1;
       written_.push_back(key);
+      if (v != goals[i]) last_off = t;
       if (t < t1) after += !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
     }
+    if (soc) after += S * (settle ? (last_off < 0 ? 0 : last_off - t0 + 1) : t1 - t0);
     if (after >= before) ok = false;  // cannot win any more
   }
   for (size_t key : written_) occ_[key] = 0;
@@ -235,7 +300,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   constexpr double kGamma = 0.01;  // MAPF-LNS's reaction factor
   const bool won = ok && after < before;
   if (nbh_ == LnsNeighbourhood::adaptive)
-    weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(set.size()) : 0.0) +
+    weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(S * set.size()) : 0.0) +
                                     (1 - kGamma) * weight_[h]);
   if (!won) return false;
   for (size_t m = 0; m < set.size(); ++m)

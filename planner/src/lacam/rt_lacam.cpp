@@ -55,7 +55,8 @@ const HNode* RtLacam::planned()
 {
   if (planned_) return planned_;
   const HNode* target = lacam_.goal_node() ? lacam_.goal_node() : lacam_.top();
-  const HNode* h = lacam_.next_toward(target);
+  const HNode* h = lacam_.best_next();  // soc: the followed path (best_path.hpp)
+  if (!h) h = lacam_.next_toward(target);
   // Before a goal node is known the agents take only moves they can undo (the header's
   // one-way rule): the old root then hangs under the new one by a legal move and the tree
   // stays one search over the start's configurations. A one-way move waits for the goal.

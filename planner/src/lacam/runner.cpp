@@ -94,7 +94,7 @@ RunResult run_full_horizon(const Graph& g, const Config& starts, const Config& g
   r.no_solution = lacam.status() == Status::NoSolution;
   r.timed_out = lacam.status() == Status::Searching;
   if (lacam.status() != Status::Solved) return r;
-  std::vector<Config> path = lacam.path(lacam.goal_node());
+  std::vector<Config> path = lacam.best_path();
   Validator val(g, starts, goals);
   for (size_t t = 1; t < path.size(); ++t)
     if (!val.step(path[t])) {

@@ -193,9 +193,12 @@ TEST(RtLacamStar, GStaysTheTreePathCostThroughReroots)
 namespace {
 
 // Runs RT-LaCAM* (20 expansions per move) to the goals: every move passes the validator and
-// executed cost + the followed tree path's remaining cost, recomputed edge by edge, never rises.
-void expect_followed_path_never_costlier(const Graph& g, const Instance& r, const LacamOptions& o)
+// executed cost + the followed tree path's remaining cost, recomputed edge by edge, never rises
+// (the loss objective, where the followed path is the goal's tree path; Objective::soc:
+// test_objective.cpp).
+void expect_followed_path_never_costlier(const Graph& g, const Instance& r, LacamOptions o)
 {
+  o.objective = Objective::loss;
   RtLacam rt(g, r.starts, r.goals, o);
   Validator val(g, r.starts, r.goals);
   int64_t executed = 0, best = -1, first = -1;

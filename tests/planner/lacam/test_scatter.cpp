@@ -187,6 +187,7 @@ TEST(RtLacamScatter, FirstSolutionIsLacamsAndTheFollowedPathNeverGetsCostlier)
       o.scatter = true;
       o.scatter_lead = 3;
       o.dive = dive;
+      o.objective = Objective::loss;  // the tree's cost; Objective::soc: test_objective.cpp
       RtLacam rt(g, r.starts, r.goals, o);
       Validator val(g, r.starts, r.goals);
       int64_t executed = 0, best = -1;

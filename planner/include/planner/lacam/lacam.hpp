@@ -11,7 +11,11 @@
 // node's constraint tree is exhausted.
 //
 // LaCAM* refinement (LacamOptions::refine; Okumura, IJCAI-23, and lacam3's planner.cpp).
-// Cost: one per agent per action, 0 for an agent that stays on its goal. Before the first
+// Cost: one per agent per action, 0 for an agent that stays on its goal (the sum of loss,
+// as lacam3's get_edge_cost). Under LacamOptions::objective soc (the default) the tree keeps
+// this cost, but the agents follow a path kept apart (best_path.hpp), changed only when a
+// candidate -- the goal's tree path after its g dropped, or an LNS window -- lowers the
+// standard SOC, and LNS lowers the standard SOC (lns_refiner.hpp). Before the first
 // solution nothing changes but the bookkeeping: each expansion records a neighbour link
 // (both directions) and the tree, the expansions and the explored set are exactly LaCAM's.
 // At the first solution every node gets g (cost of its tree path from the root) and h (sum
@@ -61,12 +65,14 @@
 
 #include "planner/action_preference.hpp"
 #include "planner/lacam/arena.hpp"
+#include "planner/lacam/best_path.hpp"
 #include "planner/budget.hpp"
 #include "planner/config.hpp"
 #include "planner/dist_table.hpp"
 #include "planner/lacam/explored_table.hpp"
 #include "planner/lacam/hnode.hpp"
 #include "planner/lacam/lns_refiner.hpp"
+#include "planner/lacam/objective.hpp"
 #include "planner/lacam/pibt.hpp"
 #include "planner/rng.hpp"
 #include "planner/lacam/scatter.hpp"
@@ -86,6 +92,11 @@ struct LacamOptions {
   // LaCAM* refinement after the first solution (see above). Off here, so that the library
   // default stays the paper's RT-LaCAM; the apps switch it on by default.
   bool refine = false;
+  // What refinement lowers (objective.hpp): the standard SOC (each agent up to its last
+  // arrival) or the sum of loss. Under soc the tree's g stays the loss (an edge cost) and the
+  // followed path is kept apart, priced by the standard SOC (best_path.hpp), and LNS lowers
+  // the standard SOC. A goal test other than "all at goals" follows the tree as under loss.
+  Objective objective = Objective::soc;
   double restart_rate = 0.001;  // lacam3's RESTART_RATE
   size_t refine_max_mb = 512;   // refinement stops past this much search memory
   // With refine: every other refinement iteration is one LnsRefiner step on the best path
@@ -177,6 +188,14 @@ class Lacam {
 
   // Configurations along the tree from the root to `to`.
   std::vector<Config> path(const HNode* to) const;
+  // The path the agents follow once solved: under Objective::soc the followed path
+  // (best_path.hpp) once priced, else the goal's tree path.
+  std::vector<Config> best_path() const;
+  // The root's next node on the followed path (the root at its end); null when the goal's
+  // tree path is followed (objective loss, a goal test, or none priced yet).
+  const HNode* best_next() const;
+  // The standard SOC still to pay along the followed path (soc; -1 when none), for tests.
+  int64_t best_cost() const { return soc_on() && !best_.empty() ? best_.cost() : -1; }
   // The root's child on the tree path root -> target, or the root itself when target is
   // the root (or null).
   const HNode* next_toward(const HNode* target) const;
@@ -214,6 +233,8 @@ class Lacam {
   HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities = nullptr,
                   const int32_t* root_order = nullptr);
   bool is_goal(const HNode* h) const;
+  bool soc_on() const { return opt_.refine && opt_.objective == Objective::soc && !goal_test_; }
+  bool price_step();  // soc: prices the goal's tree path node by node; true when done
   // LaCAM* (lacam_star.cpp)
   void link(HNode* a, HNode* b);           // neighbour links both ways, no duplicates
   int32_t cost(HNode* from, Neighbor* e);  // lazily computed edge cost
@@ -238,6 +259,7 @@ class Lacam {
   HNode* step_to(HNode* from, const Vertex* C);  // known or new node after `from`, linked and rewired
 
   static constexpr int kMinLnsWindow = 4;  // shorter windows rarely leave room to improve
+  static constexpr int kLnsLead = 2;       // soc: an LNS window starts this far ahead of the root
 
   const Graph& g_;
   DistTable& dist_;
@@ -283,11 +305,21 @@ class Lacam {
   Clock::time_point deadline_ = Clock::time_point::max();
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
-  enum class Step { expansion, lns, guide, prepare, insert, none };
+  enum class Step { expansion, lns, guide, prepare, insert, price, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
   StepCost insert_cost_;          // one node of an improved LNS window
+  // Objective::soc: the followed path; the goal's g drops counted (a new tree path to
+  // price) and the count last priced; an LNS window being inserted: its start, its nodes,
+  // and the agents it replanned (spliced into best_ when inserted).
+  BestPath best_;
+  StepCost price_cost_;           // one node of a priced path
+  uint64_t goal_version_ = 0, priced_version_ = 0;
+  HNode* splice_from_ = nullptr;
+  std::vector<HNode*> spliced_;
+  std::vector<int> splice_set_;
+  std::vector<uint8_t> stays_;    // scratch: per agent, on its goal from an LNS window's end on
   std::vector<Config> pending_;   // that window: configurations [pending_next_, end) still to insert
   size_t pending_next_ = 0;
   HNode* pending_prev_ = nullptr; // the node they continue from

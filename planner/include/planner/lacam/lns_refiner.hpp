@@ -4,8 +4,15 @@
 // iterative refinement). One step picks a few agents -- a random delayed agent and random
 // others -- and a random time window [t0, t0 + window] of the path, erases their moves in
 // the window and replans them one by one with space-time A* around everybody else's (same
-// positions at both ends of the window), and keeps the result only when their LaCAM* cost
-// (per action, 0 while staying on the goal) drops. The window keeps a step's cost small and
+// positions at both ends of the window), and keeps the result only when their cost drops:
+// under Objective::loss LaCAM*'s (per action, 0 while staying on the goal); under
+// Objective::soc the standard SOC (objective.hpp): an agent that stays on its goal after the
+// window is charged up to its last arrival in it, and its A* arrives once and stays (the goal
+// must be free from then to the window's end, SIPP's rule in lacam3's refiner), so it is
+// never parked where someone passes later; an agent that leaves its goal after the window
+// costs the whole window whatever it does there (it is replanned only to make room, at the
+// least loss). Ties in the standard SOC are broken by the loss: a step that keeps it and
+// lowers the loss is kept too. The window keeps a step's cost small and
 // independent of the path length (the occupancy table is window x |V|), so steps fit in a
 // real-time budget. Every transition stays free of
 // vertex and swap conflicts, so the new path is a valid chain of LaCAM configurations.
@@ -25,6 +32,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
 #include "planner/lacam/lazy_table.hpp"
+#include "planner/lacam/objective.hpp"
 #include "planner/rng.hpp"
 
 namespace planner {
@@ -49,14 +57,21 @@ enum class LnsNeighbourhood { random, blocking, intersection, adaptive };
 class LnsRefiner {
  public:
   LnsRefiner(const Graph& g, DistTable& dist, int window = 32,
-             LnsNeighbourhood nbh = LnsNeighbourhood::random)
-      : g_(g), dist_(dist), window_(window), nbh_(nbh) {}
+             LnsNeighbourhood nbh = LnsNeighbourhood::random, Objective obj = Objective::loss)
+      : g_(g), dist_(dist), window_(window), nbh_(nbh), obj_(obj) {}
 
   // path[0] and path.back() are fixed (a caller may pass a window of a longer path; the
   // delays that seed the neighbourhood are taken against its ends). Returns true when `path` was improved
   // (rewritten in place). Gives up (false) at `deadline`: a real-time caller's budget holds.
+  // Under Objective::soc, `stays` (per agent, optional) says whether the agent stays on its
+  // goal at every step after path.back() (a window of a longer path); null: path.back() is
+  // the end, so an agent on its goal there stays. Under soc a neighbourhood also takes the
+  // agents that pass the seed's goal in the window (they are what pushes it off). `seed`
+  // (optional) is the agent the neighbourhood starts from, else a delayed one by roulette.
   bool step(std::vector<Config>& path, const Config& goals, int k, Rng& rng,
-            Clock::time_point deadline = Clock::time_point::max());
+            Clock::time_point deadline = Clock::time_point::max(), const uint8_t* stays = nullptr, int seed = -1);
+  // The agents the last step replanned.
+  const std::vector<int>& last_set() const { return set_; }
 
   // Work of the last step, in visited cells and A* states (the cost pass over the path, the
   // occupancy table, the A* nodes and pops): a caller with a budget in expansions charges it.
@@ -67,12 +82,17 @@ class LnsRefiner {
   int last_heuristic() const { return last_h_; }
   const double* weights() const { return weight_; }
 
-  // LaCAM* cost of agent i's path between steps t0 and t1.
+  // LaCAM* cost (the loss) of agent i's path between steps t0 and t1.
   static int64_t agent_cost(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1);
+  // Standard SOC of agent i's path between steps t0 and t1 when it stays on its goal after
+  // t1 (`stays`): the steps up to its last arrival; otherwise all t1 - t0 steps.
+  static int64_t agent_soc(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1, bool stays);
 
  private:
+  int64_t cost_of(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1, const uint8_t* stays) const;
+  // `settle`: (soc) the agent stays on its goal after t1, so it arrives once and stays.
   bool replan(int i, const std::vector<Config>& path, const Config& goals, int t0, int t1, std::vector<Vertex>& out,
-              Clock::time_point deadline);
+              Clock::time_point deadline, bool settle);
 
   // Fills set_ (the seed first) with up to k agents by heuristic h (0 random, 1 blocking,
   // 2 intersection); `cost` is every agent's cost over the whole path.
@@ -83,6 +103,7 @@ class LnsRefiner {
   DistTable& dist_;
   int window_;
   LnsNeighbourhood nbh_;
+  Objective obj_;
   double weight_[3] = {1.0, 1.0, 1.0};  // adaptive: ALNS weights of the three heuristics
   std::vector<int> set_;
   // Window x |V| tables, touched only where a step writes (lazy_table.hpp)
