@@ -36,6 +36,8 @@ int main(int argc, char** argv)
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0;
   int k_nearest = 32, agents = 0;
+  tasks::QueueOptions queues;
+  std::string parking_file;
   bool quiet = false;
   cli::SolverCli sc;  // --solver, --seed, --policy and every solver's options
   cli::ExecCli xc;    // --executor and the delays
@@ -51,6 +53,22 @@ int main(int argc, char** argv)
                "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
                "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--queue-capacity", queues.capacity,
+                 "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "
+                 "(tasks/station_queues.hpp); 0 = off")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--queue-length", queues.length, "station queues: queue cells per station")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--queue-admission", queues.admission,
+                 "station queues, pool mode: tasks held at once with an errand left at one station "
+                 "(0 = capacity + length, -1 = no limit)")
+      ->check(CLI::Range(-1, 10000000))
+      ->capture_default_str();
+  app.add_option("--parking", parking_file,
+                 "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
+                 "(tasks/parking.hpp)");
   app.add_flag("--prefetch,!--no-prefetch", prefetch,
                "grow the distance tables of upcoming goals in each step's spare budget (default on)");
   app.add_flag("--bound-queries,!--exact-queries", bound_queries,
@@ -101,6 +119,14 @@ int main(int argc, char** argv)
     std::unique_ptr<TaskManager> tm;
     if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
     else tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner, k_nearest), reassign);
+    if (queues.admission > 0 && queues.admission < queues.capacity)
+      throw planner::InputError("--queue-admission " + std::to_string(queues.admission) + ": must be >= --queue-capacity, 0 or -1");
+    tm->set_queues(g, queues);
+    if (!parking_file.empty()) {
+      // The agents-file reader: a count, cell ids, each on the map and distinct.
+      const planner::Config cells = load_lorr_agents(parking_file, g);
+      tm->set_parking(g, std::vector<planner::Vertex>(cells.begin(), cells.end()));
+    }
 
     LifelongOptions opt;
     sc.apply(app, g, starts.size(), action_model == "rotation", opt.solver);

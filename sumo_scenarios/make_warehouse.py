@@ -63,6 +63,7 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, 
     # lengths from the junction shapes (7.94 m for an 8 m aisle, 3.47 m for a 4 m one):
     # fixing every length to the node distance keeps lane position == cell offset.
     write(name, nodes, edges, stations, fixed_lengths=one_way)
+    return stations
 
 
 def write(name, nodes, edges, stations, fixed_lengths=False):
@@ -78,6 +79,10 @@ def write(name, nodes, edges, stations, fixed_lengths=False):
             length = f' length="{((xb - xa) ** 2 + (yb - ya) ** 2) ** 0.5:.2f}"' if fixed_lengths else ""
             f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"{length}/>\n')
         f.write("</edges>\n")
+    write_additional(name, stations)
+
+
+def write_additional(name, stations):
     with open(os.path.join(HERE, f"{name}.add.xml"), "w") as f:
         f.write("<additional>\n")
         for elem, sid, lane, pos, kind in stations:
@@ -122,9 +127,15 @@ warehouse("small_oneway", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
           pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)], one_way=True)
 # Large: 16 picking aisles, two shelf rows (cross aisles at y = 0, 12, 24),
 # 8 pick-up and 8 drop stations, 4 parking spots.
-warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
-          pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
-          park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)])
+large = warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
+                  pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
+                  park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)])
+# Large with a parking lane (issue 24, config/large_warehouse_parking.yaml): the same net and
+# stations, and parking spots on every other cell of both outer picking aisles (20 spots:
+# a spot between two parked AGVs stays free, so one can leave or pass).
+write_additional("large_parking", [st for st in large if st[0] != "parkingArea"] +
+                 [("parkingArea", f"lot{c}_{r}_{pos}", f"c{c}r{r}_c{c}r{r + 1}_0", pos, "parking")
+                  for c in (0, 15) for r in (0, 1) for pos in (2, 4, 6, 8, 10)])
 # Huge (benchmark, 1000 AGVs): 48 picking aisles 10 m long in 7 shelf rows (cross aisles
 # every 10 m), 24 pick-up and 24 drop stations: about 4600 cells.
 warehouse("huge", columns=48, pitch=4, cross_ys=list(range(0, 71, 10)), stub=3,

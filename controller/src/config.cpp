@@ -391,11 +391,12 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node t = root["tasks"];
   r.keys(t, "tasks", {"mode", "goals", "seed", "pickups", "drops", "random", "list", "assignment", "assigner",
-                      "pool_size", "k_nearest", "reassign", "log"});
+                      "pool_size", "k_nearest", "reassign", "queues", "parking", "log"});
   r.choice(t, "tasks", "mode", c.tasks.mode, {"one_shot", "lifelong"});
   r.get(t, "tasks", "seed", c.tasks.seed, "a non-negative integer");
   if (!c.tasks.lifelong()) {
-    for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "reassign", "log"})
+    for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "reassign",
+                          "queues", "parking", "log"})
       if (t && t.IsMap() && t[k]) r.fail(std::string("tasks.") + k, "only with tasks.mode: lifelong");
     r.cells(t, "tasks", "goals", c.tasks.random_goals, c.tasks.goals);
     if (!c.tasks.random_goals && static_cast<int>(c.tasks.goals.size()) != c.fleet.count)
@@ -433,6 +434,26 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.integer(t, "tasks", "pool_size", c.tasks.pool_size, 0, 10000000);
     r.integer(t, "tasks", "k_nearest", c.tasks.k_nearest, 1, 1000000);
     r.flag(t, "tasks", "reassign", c.tasks.reassign);
+    if (const YAML::Node q = t["queues"]) {
+      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A}");
+      r.keys(q, "tasks.queues", {"capacity", "length", "admission"});
+      r.integer(q, "tasks.queues", "capacity", c.tasks.queue_capacity, 0, 1000000);
+      r.integer(q, "tasks.queues", "length", c.tasks.queue_length, 0, 1000000);
+      r.integer(q, "tasks.queues", "admission", c.tasks.queue_admission, -1, 10000000);
+      if (c.tasks.queue_admission > 0 && c.tasks.queue_admission < c.tasks.queue_capacity)
+        r.fail("tasks.queues.admission", "must be >= capacity (" + std::to_string(c.tasks.queue_capacity) + "), 0 or -1, got " +
+                                             std::to_string(c.tasks.queue_admission));
+    }
+    if (const YAML::Node pk = t["parking"]) {
+      if (pk.IsSequence()) {
+        r.cell_list(pk, "tasks.parking", c.tasks.parking_cells);
+        if (c.tasks.parking_cells.empty()) r.fail("tasks.parking", "must list at least one cell (or be true / false)");
+        c.tasks.parking = true;
+      } else {
+        r.get(t, "tasks", "parking", c.tasks.parking, "true (the parkingAreas of sumo.additional), false or a list of cells");
+        c.tasks.parking_auto = c.tasks.parking;
+      }
+    }
     r.text(t, "tasks", "log", c.tasks.log);
     if (c.tasks.log.empty() || c.tasks.log.find('/') != std::string::npos)
       r.fail("tasks.log", "expected a file name (written in output.dir), got '" + c.tasks.log + "'");

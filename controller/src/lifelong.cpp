@@ -30,6 +30,25 @@ std::vector<planner::Vertex> errand_cells(const Config& cfg, const gridify::Cell
 
 }  // namespace
 
+std::vector<planner::Vertex> parking_cells(const Config& cfg, const gridify::CellMap& map)
+{
+  std::vector<planner::Vertex> out;
+  if (!cfg.tasks.parking_auto) {
+    for (const CellRef& r : cfg.tasks.parking_cells) out.push_back(resolve_cell(cfg, map, r));
+    return out;
+  }
+  // A parkingArea on a lane gridify dropped is named, not silently lost.
+  for (const gridify::Dropped& d : map.dropped)
+    if (d.kind == "station" && d.reason.rfind("<parkingArea>", 0) == 0)
+      throw ConfigError(cfg.path + ": tasks.parking: parkingArea '" + d.id + "' is on a lane gridify dropped (" + d.reason + ")");
+  for (const gridify::Station& s : map.stations)
+    if (s.element == "parkingArea") out.push_back(s.cell);
+  if (out.empty())
+    throw ConfigError(cfg.path + ": tasks.parking: true, but " +
+                      (cfg.sumo.additional.empty() ? std::string("there is no sumo.additional") : "sumo.additional has no parkingArea"));
+  return out;
+}
+
 std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const gridify::CellMap& map)
 {
   const TasksSection& t = cfg.tasks;
@@ -53,9 +72,20 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
                                                       std::shared_ptr<const tasks::TaskFile> file)
 {
   const TasksSection& t = cfg.tasks;
-  if (t.assignment == "roundrobin") return std::make_unique<tasks::RoundRobin>(std::move(file));
-  const int pool = t.pool_size > 0 ? t.pool_size : static_cast<int>(std::ceil(1.5 * cfg.fleet.count));
-  return std::make_unique<tasks::TaskPool>(std::move(file), map.graph, pool, tasks::make_assigner(t.assigner, t.k_nearest), t.reassign);
+  std::unique_ptr<tasks::TaskManager> tm;
+  if (t.assignment == "roundrobin") {
+    tm = std::make_unique<tasks::RoundRobin>(std::move(file));
+  } else {
+    const int pool = t.pool_size > 0 ? t.pool_size : static_cast<int>(std::ceil(1.5 * cfg.fleet.count));
+    tm = std::make_unique<tasks::TaskPool>(std::move(file), map.graph, pool, tasks::make_assigner(t.assigner, t.k_nearest), t.reassign);
+  }
+  tasks::QueueOptions q;
+  q.capacity = t.queue_capacity;
+  q.length = t.queue_length;
+  q.admission = t.queue_admission;
+  tm->set_queues(map.graph, q);
+  if (t.parking) tm->set_parking(map.graph, parking_cells(cfg, map));
+  return tm;
 }
 
 }  // namespace controller

@@ -50,6 +50,8 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["throughputBound"] = throughput_bound();
     j["lifelong"]["maxErrandTicks"] = max_errand_ticks;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
+    j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}};
+    j["lifelong"]["parking"] = {{"idleAtEnd", idle_at_end}, {"parkedAtEnd", parked_at_end}};
   }
   j["bound_ticks"] = bound_ticks;
   if (mode != "lifelong") j["makespan_over_bound"] = makespan_over_bound();

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <unordered_map>
 
 #include "controller/fleet.hpp"
 #include "controller/lifelong.hpp"
@@ -312,7 +313,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   life_.planner_ms.push_back(tick_planner_ms);
   auto t0 = Clock::now();
   const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
-  if (!ev.empty()) {
+  if (!ev.empty() || tm_->goals_changed()) {  // goals change without a completion only with station queues
     const double c0 = planner::thread_cpu_ms();
     p_->set_goals(rules_graph_ ? rule_goals(p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
@@ -328,6 +329,27 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   errand_ticks();
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
+  count_queues(executed);
+}
+
+void Run::count_queues(const planner::Config& executed)
+{
+  if (is_station_.empty()) {
+    is_station_.assign(c_.map_.graph.size(), 0);
+    for (const std::vector<planner::Vertex>& t : tm_->file().tasks)
+      for (planner::Vertex v : t) is_station_[v] = 1;
+  }
+  const planner::Config& goals = tm_->goals();
+  std::unordered_map<planner::Vertex, int> heading;
+  m_.idle_at_end = m_.parked_at_end = 0;
+  for (int a = 0; a < tm_->num_agents(); ++a) {
+    if (tm_->heading(a) && is_station_[goals[a]]) m_.max_heading = std::max(m_.max_heading, ++heading[goals[a]]);
+    if (tm_->busy(a) && !tm_->heading(a) && executed[a] == goals[a]) ++m_.queued_ticks;
+    if (!tm_->busy(a)) {
+      ++m_.idle_at_end;
+      m_.parked_at_end += tm_->parking() && tm_->parking()->is_parking(executed[a]);
+    }
+  }
 }
 
 void Run::progress_line(const planner::Config& executed)

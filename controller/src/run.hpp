@@ -56,6 +56,8 @@ class Run {
   planner::Budget plan_budget() const;
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
+  // Lifelong: the queue and parking counts of metrics.json (Metrics::max_heading ...).
+  void count_queues(const planner::Config& executed);
   void progress_line(const planner::Config& executed);
   // adg, after each SUMO step: the stuck-AGV watch (stuck_replan.hpp) and, when the set
   // of immobile AGVs changes, replan(): new planner and ADG from where the AGVs are and are
@@ -123,6 +125,7 @@ class Run {
   std::unique_ptr<FleetView> view_;
   std::unique_ptr<Congestion> congestion_;
   std::vector<AgvState> states_;
+  std::vector<uint8_t> is_station_;  // lifelong: the task file's errand cells
   uint64_t replan_expansions_ = 0;     // expansions of the planners replaced by replans
   tasks::LifelongResult life_;
   planner::Budget budget_;

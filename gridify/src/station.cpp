@@ -70,7 +70,7 @@ void tag_stations(CellMap& map, const NetFile& net, const std::string& path)
                                " is outside lane '" + lane + "' (length " + std::to_string(length) + ")");
       st.cell = map.locate(lane, pos);
       if (st.cell < 0) {
-        map.dropped.push_back({"station", st.id, "lane '" + lane + "' was dropped from the graph", {}, {}});
+        map.dropped.push_back({"station", st.id, "<" + element + "> on lane '" + lane + "': the lane was dropped from the graph", {}, {}});
         continue;
       }
     } else {

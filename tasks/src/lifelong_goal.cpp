@@ -25,7 +25,7 @@ planner::GoalTest lifelong_goal_test(const planner::Config& goals, const planner
 planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Config& positions)
 {
   std::vector<char> busy(tasks.num_agents());
-  for (int a = 0; a < tasks.num_agents(); ++a) busy[a] = tasks.busy(a);
+  for (int a = 0; a < tasks.num_agents(); ++a) busy[a] = tasks.awaited(a);
   return lifelong_goal_test(tasks.goals(), positions, busy);
 }
 

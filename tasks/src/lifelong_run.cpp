@@ -334,7 +334,7 @@ void LifelongRun::complete(Step& s, const planner::Config& real)
   // the frontier (that agent no longer pending) keeps the others' plans going. The robot
   // still completes the errand when it physically gets there.
   const bool replan =
-      !ev.empty() || (exec_ && !graph_ && s.plan_now && p_->at_goal() && has_pending(tasks_, p_->current()));
+      !ev.empty() || tasks_.goals_changed() || (exec_ && !graph_ && s.plan_now && p_->at_goal() && has_pending(tasks_, p_->current()));
   if (!ev.empty()) last_completion_ = s.rec.t;
   max_gap_ = std::max(max_gap_, s.rec.t - last_completion_);
   // The epoch start is the next step's planning (StepBudget::epoch_start_ms; at 1 ms on

@@ -10,7 +10,7 @@ namespace tasks {
 std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p, long t)
 {
   std::vector<Event> events = tasks.update(t, p.current());
-  if (!events.empty()) p.set_goals(tasks.goals(), lifelong_goal_test(tasks, p.current()));
+  if (!events.empty() || tasks.goals_changed()) p.set_goals(tasks.goals(), lifelong_goal_test(tasks, p.current()));
   return events;
 }
 

@@ -34,9 +34,19 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       on_finished(a, done);
     }
   }
-  if (!events.empty()) {
-    after_step(positions);
+  goals_changed_ = false;
+  if (!events.empty() || queues_ || parking_) {
+    const planner::Config before = goals_;
+    if (!events.empty()) after_step(positions);
     refresh_goals(positions);
+    goals_changed_ = !events.empty() || goals_ != before;
+    // An agent that just reached a queue or parking goal: the epoch waited for it.
+    at_goal_.resize(num_agents(), 0);
+    for (int a = 0; a < num_agents(); ++a) {
+      const bool at = positions[a] == goals_[a];
+      if (at && !at_goal_[a] && awaited(a) && !heading(a)) goals_changed_ = true;
+      at_goal_[a] = at;
+    }
   }
   return events;
 }
@@ -111,10 +121,38 @@ std::vector<int> TaskManager::live_slots() const
   return out;
 }
 
+void TaskManager::set_queues(const planner::Graph& g, const QueueOptions& options)
+{
+  queues_.reset();
+  if (!options.on()) return;
+  std::vector<planner::Vertex> cells;
+  for (const std::vector<planner::Vertex>& t : file_->tasks) cells.insert(cells.end(), t.begin(), t.end());
+  queues_ = std::make_unique<StationQueues>(g, std::move(cells), options);
+  if (!parking_) parking_ = std::make_unique<Parking>(g, std::vector<planner::Vertex>{});
+}
+
+void TaskManager::set_parking(const planner::Graph& g, std::vector<planner::Vertex> cells)
+{
+  parking_ = std::make_unique<Parking>(g, std::move(cells));
+}
+
 void TaskManager::refresh_goals(const planner::Config& positions)
 {
   for (int a = 0; a < num_agents(); ++a)
     goals_[a] = holding_[a] >= 0 ? slots_[holding_[a]].next_cell() : positions[a];
+  std::vector<char> unplaced(num_agents(), 0);
+  if (queues_) {
+    std::vector<planner::Vertex> errand(num_agents(), -1);
+    for (int a = 0; a < num_agents(); ++a)
+      if (holding_[a] >= 0) errand[a] = slots_[holding_[a]].next_cell();
+    queues_->apply(errand, positions, goals_, unplaced);
+  }
+  if (parking_) {
+    // Idle agents, and busy ones beyond their station's queue, wait parked.
+    std::vector<char> idle(num_agents());
+    for (int a = 0; a < num_agents(); ++a) idle[a] = holding_[a] < 0 || unplaced[a];
+    parking_->apply(idle, positions, queues_ ? &queues_->reserved_cells() : nullptr, goals_);
+  }
 }
 
 }  // namespace tasks

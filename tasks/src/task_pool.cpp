@@ -1,5 +1,7 @@
 #include "tasks/task_pool.hpp"
 
+#include <algorithm>
+
 namespace tasks {
 
 TaskPool::TaskPool(std::shared_ptr<const TaskFile> file, const planner::Graph& g, int pool_size,
@@ -47,6 +49,37 @@ void TaskPool::after_step(const planner::Config& positions)
   else assign_free(positions);
 }
 
+std::vector<int> TaskPool::admissible(const std::vector<int>& cols) const
+{
+  const StationQueues* q = queues();
+  if (!q || q->options().admission < 0) return cols;
+  std::vector<int> held(q->num_stations(), 0), marks;
+  // The stations of a task's remaining errands, each once.
+  auto stations = [&](const Task& t) {
+    marks.clear();
+    for (size_t e = t.next; e < t.errands.size(); ++e)
+      if (const int i = q->station_index(t.errands[e]); i >= 0 && std::find(marks.begin(), marks.end(), i) == marks.end())
+        marks.push_back(i);
+    return marks;
+  };
+  for (int s : live_slots())
+    if (slot(s).agent >= 0)
+      for (int i : stations(slot(s))) ++held[i];
+  std::vector<int> out;
+  for (int s : cols) {
+    if (slot(s).agent >= 0) {
+      out.push_back(s);
+      continue;
+    }
+    bool room = true;
+    for (int i : stations(slot(s))) room = room && held[i] < q->admission_limit(i);
+    if (!room) continue;
+    for (int i : marks) ++held[i];
+    out.push_back(s);
+  }
+  return out;
+}
+
 void TaskPool::steal_rounds(const planner::Config& positions)
 {
   std::vector<int> agents;
@@ -58,6 +91,7 @@ void TaskPool::steal_rounds(const planner::Config& positions)
     std::vector<int> cols;
     for (int s : live_slots())
       if (slot(s).next == 0) cols.push_back(s);
+    cols = admissible(cols);
     if (cols.empty()) return;
     planner::Config in_use;
     for (int s : cols) in_use.push_back(slot(s).errands[0]);
@@ -95,6 +129,7 @@ void TaskPool::assign_free(const planner::Config& positions)
   if (agents.empty()) return;
   for (int s : live_slots())
     if (slot(s).agent < 0) cols.push_back(s);
+  cols = admissible(cols);
   if (cols.empty()) return;
   planner::Config in_use;
   for (int s : cols) in_use.push_back(slot(s).errands[slot(s).next]);

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <set>
 
 #include "controller/config.hpp"
@@ -142,6 +143,77 @@ TEST(ControllerLifelong, RoundRobinListedTasksWithSharedGoals)
   expect_clean_lifelong_run(y, c, m);
   EXPECT_GE(m.errands_finished, 6);
   EXPECT_EQ(read_json(y.output.dir + "/lifelong.json")["assigner"], "none");
+}
+
+// Station queues (tasks.queues, tasks/station_queues.hpp): at most `capacity` AGVs head for
+// a station's cell at once, the others wait on queue cells; the run stays clean and flows.
+TEST(ControllerLifelong, StationQueuesAdmitOneAgvPerStation)
+{
+  Config cfg = lifelong_config("queues", 200);
+  cfg.tasks.queue_capacity = 1;
+  cfg.tasks.queue_length = 3;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean_lifelong_run(cfg, c, m);
+  EXPECT_LE(m.max_heading, 1);   // 16 AGVs, 4 stations: without queues up to 5 at once
+  EXPECT_GT(m.queued_ticks, 20); // AGV-ticks standing on their queue cell
+  EXPECT_GE(m.errands_finished, 10);
+  const nlohmann::json mj = read_json(cfg.output.dir + "/metrics.json");
+  EXPECT_EQ(mj["lifelong"]["queues"]["maxHeading"], m.max_heading);
+}
+
+// Parking (tasks.parking, tasks/parking.hpp): idle AGVs end on parking cells, not where
+// their last errand left them.
+TEST(ControllerLifelong, IdleAgvsEndOnParkingCells)
+{
+  Config cfg = lifelong_config("parking", 150);
+  Config y = parse_config(kNetAdd +
+                              "fleet: {count: 6, seed: 4}\n"
+                              "tasks:\n  mode: lifelong\n  assignment: pool\n  pool_size: 2\n"
+                              "  random: {count: 50, errands: 2}\n"
+                              "  parking: [{lane: c0r0_c0r1_0, pos: 2}, {lane: c0r0_c0r1_0, pos: 4}, {lane: c0r0_c0r1_0, pos: 6},"
+                              " {lane: c3r0_c3r1_0, pos: 2}, {lane: c3r0_c3r1_0, pos: 4}, {lane: c3r0_c3r1_0, pos: 6}]\n",
+                          "t.yaml", RTLACAM_CONFIGS);
+  y.output = cfg.output;
+  y.run = cfg.run;
+  y.planner = cfg.planner;
+  Controller c(y);
+  const Metrics m = c.run();
+  expect_clean_lifelong_run(y, c, m);
+  EXPECT_GE(m.idle_at_end, 4);  // two tasks at a time for six AGVs
+  // All but those just freed by the last two completions stand on a parking cell (without
+  // parking: none).
+  EXPECT_GE(m.parked_at_end, m.idle_at_end - 2);
+  EXPECT_GE(m.errands_finished, 4);
+  // On the cells listed, read back from the executed plan (busy AGVs may stand there too).
+  const std::vector<planner::Vertex> park = parking_cells(y, c.map());
+  int on_parking = 0;
+  for (planner::Vertex v : c.plan().back()) on_parking += std::count(park.begin(), park.end(), v) > 0;
+  EXPECT_GE(on_parking, m.idle_at_end - 2);
+}
+
+TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
+{
+  const std::string ll = "fleet: {count: 2}\ntasks:\n  mode: lifelong\n";
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, length: -1}\n"),
+            "t.yaml: tasks.queues.length: must be in 0..1000000, got -1");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 2, admission: 1}\n"),
+            "t.yaml: tasks.queues.admission: must be >= capacity (2), 0 or -1, got 1");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: 3\n"),
+            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A}");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  parking: maybe\n"),
+            "t.yaml: tasks.parking: expected true (the parkingAreas of sumo.additional), false or a list of cells, got 'maybe'");
+  EXPECT_EQ(config_error(kNetAdd + "fleet: {count: 2}\ntasks: {parking: true}\n"),
+            "t.yaml: tasks.parking: only with tasks.mode: lifelong");
+  // parking: true reads the parkingAreas; one on a lane gridify dropped is named.
+  EXPECT_EQ(run_error(kNetAdd + ll + "  parking: true\n"), "(no error)");
+  EXPECT_EQ(run_error(kNet + ll + "  pickups: [3]\n  drops: [4]\n  parking: true\n"),
+            "t.yaml: tasks.parking: true, but there is no sumo.additional");
+  EXPECT_EQ(run_error("sumo:\n  net: ../sumo_scenarios/small_oneway.net.xml\n"
+                      "  additional: ../sumo_scenarios/small_oneway.add.xml\n"
+                      "grid: {drop_one_way: true}\n" + ll + "  pickups: [3]\n  drops: [4]\n  parking: true\n"),
+            "t.yaml: tasks.parking: parkingArea 'park0' is on a lane gridify dropped (<parkingArea> on lane 'c0r0_c0r1_0': "
+            "the lane was dropped from the graph)");
 }
 
 TEST(ControllerLifelong, HungarianPoolRuns)

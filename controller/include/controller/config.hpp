@@ -116,6 +116,12 @@ struct TasksSection {
   int pool_size = 0;                       // pool: revealed tasks; 0 = ceil(1.5 x fleet.count)
   int k_nearest = 32;                      // hungarian: candidate tasks per AGV
   bool reassign = false;                   // pool: a nearer free AGV may take an unopened task
+  // Station queues (tasks/station_queues.hpp): AGVs admitted to one station at once (0: off),
+  // queue cells per station, pool admission limit (0: capacity + length, -1: none).
+  int queue_capacity = 0, queue_length = 4, queue_admission = 0;
+  // Parking (tasks/parking.hpp): off, the sumo.additional parkingAreas (parking_auto), or a list.
+  bool parking = false, parking_auto = false;
+  std::vector<CellRef> parking_cells;
   std::string log = "lifelong.json";       // in output.dir
 
   bool lifelong() const { return mode == "lifelong"; }

@@ -16,7 +16,12 @@ namespace controller {
 // tasks.random (errand i from pickups when i is even, from drops when odd) or tasks.list.
 std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const gridify::CellMap& map);
 
-// tasks.assignment: roundrobin, or pool with tasks.assigner and tasks.pool_size.
+// tasks.parking: the listed cells, or (true) the cells of the parkingAreas in
+// sumo.additional; a parkingArea on a lane gridify dropped is an error naming it.
+std::vector<planner::Vertex> parking_cells(const Config& cfg, const gridify::CellMap& map);
+
+// tasks.assignment: roundrobin, or pool with tasks.assigner and tasks.pool_size; then
+// tasks.queues (station queues at the errand cells) and tasks.parking.
 std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
                                                       std::shared_ptr<const tasks::TaskFile> file);
 

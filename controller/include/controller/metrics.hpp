@@ -76,6 +76,13 @@ struct Metrics {
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;
   long long errands_finished = 0, tasks_finished = 0, epochs = 0;
+  // Station queues and parking (tasks.queues, tasks.parking), counted at every tick's end
+  // over the task file's errand cells whether queues are on or not: the most AGVs heading
+  // for one station's cell at once, AGV-ticks spent standing on a queue goal (busy, not
+  // heading for its errand), and at the end the idle AGVs and those of them on a parking cell.
+  int max_heading = 0;
+  long long queued_ticks = 0;
+  int idle_at_end = 0, parked_at_end = 0;
   double throughput() const { return ticks > 0 ? static_cast<double>(tasks_finished) / ticks : 0.0; }
   double errand_throughput() const { return ticks > 0 ? static_cast<double>(errands_finished) / ticks : 0.0; }
 

@@ -19,7 +19,8 @@ class TaskManager;
 planner::GoalTest lifelong_goal_test(const planner::Config& goals, const planner::Config& positions,
                                      const std::vector<char>& busy);
 
-// The same for the task manager's current goals.
+// The same for the task manager's current goals; with station queues or parking every
+// agent off its goal is pending (TaskManager::awaited).
 planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Config& positions);
 
 }  // namespace tasks

@@ -51,8 +51,9 @@
 namespace tasks {
 
 // The seam for every executor (this runner, the SUMO controller): after the agents
-// committed step t, report their positions; on completions the planner gets the new goals
-// and the lifelong goal test (a fresh search tree). Returns the step's completions.
+// committed step t, report their positions; on completions (or goals changed without one:
+// station queues, TaskManager::goals_changed) the planner gets the new goals and the
+// lifelong goal test (a fresh search tree). Returns the step's completions.
 std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& planner, long t);
 
 struct StepRecord {      // what one step did (for tests and progress output)

@@ -9,14 +9,19 @@
 //
 // Each agent's goal is the cell of its next errand, or its own position while it holds no
 // task (it then counts as arrived). Goals change only inside start() and update().
+// Optional, set before start(): station queues (an agent not admitted at its errand's
+// station waits on a queue cell: station_queues.hpp) and parking (an idle agent goes to a
+// parking cell: parking.hpp).
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "planner/config.hpp"
 #include "planner/dist_cache.hpp"
-#include "tasks/task.hpp"
 #include "tasks/lorr_files.hpp"
+#include "tasks/parking.hpp"
+#include "tasks/station_queues.hpp"
+#include "tasks/task.hpp"
 
 namespace tasks {
 
@@ -30,8 +35,11 @@ class TaskManager {
   // Gives the agents their first tasks.
   void start(const planner::Config& positions);
   // End of step t: each agent standing on the cell of its next errand completes it. Then
-  // the mode hands out new work. Returns the step's completions (agent order).
+  // the mode hands out new work. Returns the step's completions (agent order). With
+  // station queues the queues are also redone in steps without a completion (a way out
+  // clears); goals_changed() says whether any goal changed in the last update().
   std::vector<Event> update(long t, const planner::Config& positions);
+  bool goals_changed() const { return goals_changed_; }
 
   const planner::Config& goals() const { return goals_; }
   // Goals that will be needed soon, for prefetching their distance tables: `agent` will
@@ -44,9 +52,25 @@ class TaskManager {
   };
   virtual std::vector<Upcoming> upcoming() const;
   // Distances the mode needs (the pool's assigner) come from `cache`, shared with the planner.
-  virtual void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { (void)cache; }
+  virtual void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { share_queue_cache(std::move(cache)); }
   // Agents that hold a task (and so have a real errand to reach).
   bool busy(int agent) const { return holding_[agent] >= 0; }
+  // Busy and heading for its errand's cell (not waiting in a station's queue or parked).
+  bool heading(int agent) const { return busy(agent) && goals_[agent] == task_of(agent)->next_cell(); }
+  // Agents an epoch's goal test waits for while they are off their goal
+  // (lifelong_goal.hpp): the busy ones, and idle ones sent to a parking cell or off a
+  // reserved cell (one left standing in a dead-end station would block it); not an idle
+  // agent that just stays where it stood. Reaching a queue or parking goal completes
+  // nothing, so update() reports it as a change of goals (a new epoch, goals_changed()).
+  bool awaited(int agent) const { return busy(agent) || (parking_ && parking_->sent(agent)); }
+
+  // Station queues at every errand cell of the task file (options.on()), and parking
+  // (cells may be empty: idle agents then only leave reserved cells). Before start().
+  void set_queues(const planner::Graph& g, const QueueOptions& options);
+  void set_parking(const planner::Graph& g, std::vector<planner::Vertex> cells);
+  StationQueues* queues() { return queues_.get(); }
+  const StationQueues* queues() const { return queues_.get(); }
+  const Parking* parking() const { return parking_.get(); }
   const Task* task_of(int agent) const;  // null when free
 
   int num_agents() const { return static_cast<int>(goals_.size()); }
@@ -78,13 +102,22 @@ class TaskManager {
   void drop(int s);                    // remove a finished task
   std::vector<int> live_slots() const; // slots in use, ascending task id
 
+  void share_queue_cache(std::shared_ptr<planner::DistCache> cache)
+  {
+    if (queues_) queues_->share_dist_cache(std::move(cache));
+  }
+
   std::shared_ptr<const TaskFile> file_;
   std::vector<int> holding_;
 
  private:
+  std::unique_ptr<StationQueues> queues_;
+  std::unique_ptr<Parking> parking_;
   void refresh_goals(const planner::Config& positions);
 
   long now_ = 0;  // step of the current start()/update(), for the history
+  bool goals_changed_ = false;
+  std::vector<char> at_goal_;  // queues / parking: stood on its goal at the last update
   std::vector<TaskRecord> revealed_;
   std::vector<Assignment> assignments_;
   std::vector<Task> slots_;

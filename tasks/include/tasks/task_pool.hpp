@@ -9,6 +9,9 @@
 // The work stays O(free agents x unopened tasks), as without reassignment, so it scales to
 // LoRR's 10,000 agents (a full rematch of every unopened task each step does not). Goals
 // still change only at steps with a completion, so RT-LaCAM's epochs stay as they are.
+// With station queues (TaskManager::set_queues) a task is handed out only while each of
+// its stations holds fewer tasks than the admission limit (admissible()): the rest of the
+// fleet stays idle (parked) instead of queueing at saturated stations.
 #include <memory>
 
 #include "planner/dist_table.hpp"
@@ -29,7 +32,11 @@ class TaskPool : public TaskManager {
   // Cost of `agent` at `pos` taking a task: distance to its first errand + its chain.
   int64_t cost(planner::Vertex pos, const Task& t);
   int revealed() const { return static_cast<int>(next_id_); }
-  void share_dist_cache(std::shared_ptr<planner::DistCache> cache) override { dist_.share(std::move(cache)); }
+  void share_dist_cache(std::shared_ptr<planner::DistCache> cache) override
+  {
+    share_queue_cache(cache);
+    dist_.share(std::move(cache));
+  }
 
  protected:
   void on_start(const planner::Config& positions) override;
@@ -39,6 +46,10 @@ class TaskPool : public TaskManager {
  private:
   void assign_free(const planner::Config& positions);
   void steal_rounds(const planner::Config& positions);  // assign_free with reassignment
+  // Admission (station queues on, QueueOptions::admission): of the unassigned tasks among
+  // `cols` (ascending task id), keeps the oldest whose every remaining errand station
+  // holds fewer than the limit of held tasks with an errand left there; assigned ones stay.
+  std::vector<int> admissible(const std::vector<int>& cols) const;
   static constexpr int64_t kForbidden = int64_t{1} << 40;
   int chain_length(const Task& t);
 

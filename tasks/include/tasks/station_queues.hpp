@@ -1,0 +1,97 @@
+#pragma once
+// StationQueues: admission control and queues at stations (issue 24, "parking and queues").
+//
+// A station is an errand cell. It admits at most `capacity` agents at once: only they head
+// for its cell (their goal is the station, and only they are the epoch's pending agents:
+// tasks/lifelong_goal.hpp); an agent still standing in the station's pocket (below) on its
+// way out takes a place too, so the next one is let in only once the way is clear. The
+// next agents with an errand there wait on the station's queue cells in order (q1 nearest
+// the station) and move up as the queue moves; any further ones are `unplaced` and wait
+// like idle agents (parking.hpp) until the queue has room. Places are sticky: an admitted agent keeps its place until its errand there
+// completes, a queued one only moves up; newcomers are taken nearest first (graph
+// distance to the station). Without this every agent with an errand at a station drives
+// to it at once, and at a dead-end station the crowd in front of it blocks the way out of
+// the one standing on it (the 1000-AGV lifelong jam, controller/README.md).
+//
+// Queue cells: a chain, each cell one move farther from the station (along arcs) than the
+// one before, so a queue moves towards the station. The chain avoids the station's pocket
+// -- the corridor cells (at most 2 neighbours) joined to it when that corridor has only
+// one way out -- and the junction at the pocket's mouth: an agent leaving a dead-end
+// station comes back the way it came, and a queue in the pocket would meet it head-on
+// (no swaps: a deadlock). So the chain starts beside the mouth and goes along the longest
+// corridor there (a picking aisle rather than the cross aisle, which carries the traffic;
+// junctions only where no corridor goes on), never on another station, pocket or queue.
+// Stations, pockets and queue cells are `reserved()`: idle agents do not rest there
+// (tasks/parking.hpp). All queues are laid out at construction, stations in cell order.
+//
+// Goals change only when the task manager calls apply() (its start() and update(), every
+// step while queues are on: a way out that clears is no completion); the task manager
+// then starts a new epoch if any goal changed (TaskManager::goals_changed).
+#include <memory>
+#include <unordered_map>
+#include <vector>
+
+#include "planner/config.hpp"
+#include "planner/dist_table.hpp"
+#include "planner/graph.hpp"
+
+namespace tasks {
+
+struct QueueOptions {
+  int capacity = 0;   // agents heading for one station at once; 0 = no queues
+  int length = 4;     // queue cells per station (fewer where the net has no room), >= 0
+  int admission = 0;  // pool mode: tasks held at once with an errand left at one station;
+                      // 0 = capacity + its queue cells (nobody beyond the queue), -1 = no limit
+  bool on() const { return capacity > 0; }
+};
+
+class StationQueues {
+ public:
+  // `stations`: the errand cells (duplicates ignored).
+  StationQueues(const planner::Graph& g, std::vector<planner::Vertex> stations, QueueOptions o);
+
+  // errand[a]: agent a's next errand cell, -1 without a task. Rewrites goals[a] of the
+  // queued agents; unplaced[a] (same size) is set for the agents beyond a queue, whose goal
+  // the caller chooses (they wait like idle agents).
+  void apply(const std::vector<planner::Vertex>& errand, const planner::Config& positions, planner::Config& goals,
+             std::vector<char>& unplaced);
+
+  const QueueOptions& options() const { return opt_; }
+  int station_index(planner::Vertex v) const;  // -1: not a station
+  int num_stations() const { return static_cast<int>(st_.size()); }
+  planner::Vertex station(int i) const { return st_[i].cell; }
+  // The queue cells of station i, q1 first.
+  const std::vector<planner::Vertex>& queue_cells(int i) const { return st_[i].queue; }
+  // Pool admission: tasks held at once with an errand left at station i (-1: no limit).
+  int admission_limit(int i) const;
+  // The pocket cells of station i (the station itself at a through aisle or junction).
+  int pocket_of(planner::Vertex v) const { return pocket_of_[v]; }
+  bool reserved(planner::Vertex v) const { return reserved_[v] != 0; }
+  const std::vector<uint8_t>& reserved_cells() const { return reserved_; }
+  // Agents admitted to station i now (heading for its cell).
+  const std::vector<int>& admitted(int i) const { return st_[i].admitted; }
+  const std::vector<int>& waiting(int i) const { return st_[i].waiting; }
+  void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { dist_.share(std::move(cache)); }
+
+ private:
+  struct Station {
+    planner::Vertex cell = -1;
+    planner::Vertex mouth = -1;  // where the queue chain starts from: the pocket's junction, or the station
+    int depth = 0;               // moves from the mouth to the station
+    std::vector<planner::Vertex> queue;
+    std::vector<int> admitted, waiting;
+  };
+  void build_queue(Station& s);
+  void drop_place(int agent);
+
+  const planner::Graph& g_;
+  QueueOptions opt_;
+  std::vector<Station> st_;
+  std::unordered_map<planner::Vertex, int> index_;
+  std::vector<uint8_t> reserved_;  // per vertex: station, pocket or queue cell
+  std::vector<int> pocket_of_;     // per vertex: the station whose pocket it is in, -1
+  std::vector<int> place_;         // per agent: station index it is admitted or queued at, -1
+  planner::DistTable dist_;        // distances to stations (ranking newcomers)
+};
+
+}  // namespace tasks

@@ -1,0 +1,190 @@
+#include "tasks/station_queues.hpp"
+
+#include <algorithm>
+#include <queue>
+
+namespace tasks {
+
+namespace {
+
+// Neighbours either way (a one-way aisle is still a corridor).
+std::vector<planner::Vertex> around(const planner::Graph& g, planner::Vertex v)
+{
+  std::vector<planner::Vertex> out(g.neighbors(v).begin(), g.neighbors(v).end());
+  for (planner::Vertex u : g.in_neighbors(v))
+    if (std::find(out.begin(), out.end(), u) == out.end()) out.push_back(u);
+  return out;
+}
+
+}  // namespace
+
+StationQueues::StationQueues(const planner::Graph& g, std::vector<planner::Vertex> stations, QueueOptions o)
+    : g_(g), opt_(o), reserved_(g.size(), 0), pocket_of_(g.size(), -1), dist_(g)
+{
+  std::sort(stations.begin(), stations.end());
+  stations.erase(std::unique(stations.begin(), stations.end()), stations.end());
+  for (planner::Vertex s : stations) {
+    index_[s] = static_cast<int>(st_.size());
+    Station k;
+    k.cell = s;
+    k.mouth = s;
+    st_.push_back(std::move(k));
+    reserved_[s] = 1;
+    pocket_of_[s] = index_[s];
+  }
+  // Pockets: the corridor (cells with at most 2 neighbours) joined to the station. With one
+  // junction at its mouth it is a dead end: reserved with its mouth, and the queue starts
+  // beside the mouth. Otherwise (a through aisle, or the station is a junction) only the
+  // station is reserved and the queue starts beside it.
+  for (Station& k : st_) {
+    if (around(g_, k.cell).size() > 2) continue;
+    std::vector<planner::Vertex> pocket{k.cell}, mouths;
+    std::vector<int> depth{0};
+    for (size_t i = 0; i < pocket.size(); ++i)
+      for (planner::Vertex u : around(g_, pocket[i])) {
+        if (std::find(pocket.begin(), pocket.end(), u) != pocket.end()) continue;
+        if (around(g_, u).size() <= 2) {
+          pocket.push_back(u);
+          depth.push_back(depth[i] + 1);
+        } else if (std::find(mouths.begin(), mouths.end(), u) == mouths.end()) {
+          mouths.push_back(u);
+          if (mouths.size() == 1) k.depth = depth[i] + 1;
+        }
+      }
+    if (mouths.size() != 1) continue;
+    k.mouth = mouths[0];
+    for (planner::Vertex v : pocket) {
+      reserved_[v] = 1;
+      if (pocket_of_[v] < 0) pocket_of_[v] = index_[k.cell];
+    }
+    reserved_[k.mouth] = 1;
+  }
+  for (Station& k : st_) build_queue(k);
+}
+
+int StationQueues::admission_limit(int i) const
+{
+  if (opt_.admission < 0) return -1;
+  return opt_.admission > 0 ? opt_.admission : opt_.capacity + static_cast<int>(st_[i].queue.size());
+}
+
+int StationQueues::station_index(planner::Vertex v) const
+{
+  auto it = index_.find(v);
+  return it == index_.end() ? -1 : it->second;
+}
+
+void StationQueues::build_queue(Station& s)
+{
+  if (opt_.length == 0) return;
+  // Moves to the station, searched backwards along arcs, as far as the chain can reach.
+  const int limit = s.depth + opt_.length + 1;
+  std::unordered_map<planner::Vertex, int> d{{s.cell, 0}};
+  std::queue<planner::Vertex> open;
+  open.push(s.cell);
+  while (!open.empty()) {
+    const planner::Vertex v = open.front();
+    open.pop();
+    if (d[v] >= limit) continue;
+    for (planner::Vertex u : g_.in_neighbors(v))
+      if (d.emplace(u, d[v] + 1).second) open.push(u);
+  }
+  if (!d.count(s.mouth)) return;
+  // Free corridor cells in a row from u away from the station (u itself included).
+  auto run = [&](planner::Vertex u) {
+    int n = 0;
+    for (planner::Vertex v = u, prev = -1; n < opt_.length && !reserved_[v] && around(g_, v).size() <= 2; ++n) {
+      planner::Vertex next = -1;
+      for (planner::Vertex w : g_.in_neighbors(v))
+        if (w != prev && d.count(w) && d.at(w) == d.at(v) + 1) next = w;
+      if (next < 0) return n + 1;
+      prev = v, v = next;
+    }
+    return n;
+  };
+  planner::Vertex cur = s.mouth;
+  while (static_cast<int>(s.queue.size()) < opt_.length) {
+    planner::Vertex best = -1;
+    int best_run = -1;
+    for (planner::Vertex u : g_.in_neighbors(cur)) {
+      auto it = d.find(u);
+      if (it == d.end() || it->second != d[cur] + 1 || reserved_[u]) continue;
+      const int r = run(u);
+      if (r > best_run || (r == best_run && u < best)) best = u, best_run = r;
+    }
+    if (best < 0) break;
+    s.queue.push_back(best);
+    reserved_[best] = 1;
+    cur = best;
+  }
+}
+
+void StationQueues::drop_place(int agent)
+{
+  Station& s = st_[place_[agent]];
+  for (std::vector<int>* l : {&s.admitted, &s.waiting})
+    l->erase(std::remove(l->begin(), l->end(), agent), l->end());
+  place_[agent] = -1;
+}
+
+void StationQueues::apply(const std::vector<planner::Vertex>& errand, const planner::Config& positions,
+                          planner::Config& goals, std::vector<char>& unplaced)
+{
+  const int n = static_cast<int>(errand.size());
+  unplaced.assign(n, 0);
+  if (static_cast<int>(place_.size()) != n) place_.assign(n, -1);
+  for (int a = 0; a < n; ++a)
+    if (place_[a] >= 0 && errand[a] != st_[place_[a]].cell) drop_place(a);
+  // Newcomers per station; stations with anybody at them.
+  std::unordered_map<int, std::vector<int>> fresh;
+  std::vector<int> touched;
+  for (int a = 0; a < n; ++a) {
+    if (errand[a] < 0) continue;
+    const int i = station_index(errand[a]);
+    if (i < 0) continue;
+    auto [it, added] = fresh.try_emplace(i);
+    if (added) touched.push_back(i);
+    if (place_[a] < 0) it->second.push_back(a);
+  }
+  std::sort(touched.begin(), touched.end());
+  // Agents in a station's pocket that are not admitted there (on their way out, idle ones
+  // leaving, passers-by at a through station) hold a place until they are out.
+  std::unordered_map<int, int> inside;
+  for (int a = 0; a < n; ++a)
+    if (const int i = pocket_of_[positions[a]]; i >= 0 && !(place_[a] == i && errand[a] == st_[i].cell &&
+                                                              std::find(st_[i].admitted.begin(), st_[i].admitted.end(), a) !=
+                                                                  st_[i].admitted.end()))
+      ++inside[i];
+  std::vector<std::pair<int32_t, int>> order;
+  for (int i : touched) {
+    Station& s = st_[i];
+    auto room = [&] {
+      auto it = inside.find(i);
+      return static_cast<int>(s.admitted.size()) + (it == inside.end() ? 0 : it->second) < opt_.capacity;
+    };
+    while (room() && !s.waiting.empty()) {
+      s.admitted.push_back(s.waiting.front());
+      s.waiting.erase(s.waiting.begin());
+    }
+    order.clear();
+    for (int a : fresh[i]) order.push_back({dist_.from_goal(s.cell, positions[a]), a});
+    std::sort(order.begin(), order.end());
+    size_t k = 0;
+    for (; k < order.size() && s.waiting.empty() && room(); ++k) {
+      s.admitted.push_back(order[k].second);
+      place_[order[k].second] = i;
+    }
+    if (k < order.size()) {
+      const std::vector<planner::Vertex>& q = s.queue;
+      for (; k < order.size() && s.waiting.size() < q.size(); ++k) {
+        s.waiting.push_back(order[k].second);
+        place_[order[k].second] = i;
+      }
+    }
+    for (size_t w = 0; w < s.waiting.size(); ++w) goals[s.waiting[w]] = s.queue[w];
+    // Beyond the queue (not sticky): the caller parks them.
+    for (; k < order.size(); ++k) unplaced[order[k].second] = 1;
+  }
+}
+
+}  // namespace tasks

@@ -1,0 +1,177 @@
+// Station queues and parking (tasks/station_queues.hpp, tasks/parking.hpp): the queue's
+// layout at a dead-end station, admission in order, and whole lifelong runs in which no
+// more than `capacity` agents head for a station and idle agents end on parking cells.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "tasks/greedy_assigner.hpp"
+#include "tasks/lifelong_run.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/station_queues.hpp"
+#include "tasks/task_pool.hpp"
+#include "tasks_test_util.hpp"
+
+using namespace tasks;
+using planner::Config;
+using planner::Vertex;
+
+namespace {
+
+// A dead-end station S at the top of a 2-cell stub off a cross aisle; below the stub's
+// mouth a picking aisle (4 cells) leads to a second cross aisle.
+//   y0  ###S##
+//   y1  ###.##
+//   y2  ......   <- mouth (3, 2)
+//   y3..y6 ###.##
+//   y7  ......
+const planner::Graph& stub()
+{
+  static const planner::Graph g = ttest::grid({"###.##", "###.##", "......", "###.##", "###.##", "###.##", "###.##", "......"});
+  return g;
+}
+
+}  // namespace
+
+TEST(StationQueues, ADeadEndStationQueuesBesideItsMouthAlongTheLongestAisle)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  StationQueues q(g, {s, s}, {1, 4, 0});
+  ASSERT_EQ(q.num_stations(), 1);
+  EXPECT_EQ(q.station(0), s);
+  // Not in the pocket (the stub) nor on its mouth, where the AGV leaving would meet it; down
+  // the picking aisle (4 corridor cells) rather than along the cross aisle (2 east, 3 west).
+  EXPECT_EQ(q.queue_cells(0), (std::vector<Vertex>{g.at(3, 3), g.at(3, 4), g.at(3, 5), g.at(3, 6)}));
+  for (Vertex v : {g.at(3, 0), g.at(3, 1), g.at(3, 2), g.at(3, 3), g.at(3, 6)}) EXPECT_TRUE(q.reserved(v)) << v;
+  for (Vertex v : {g.at(2, 2), g.at(4, 2), g.at(3, 7)}) EXPECT_FALSE(q.reserved(v)) << v;
+  EXPECT_EQ(q.admission_limit(0), 5);  // capacity + queue cells
+  // The chain stops where the net has no more room.
+  StationQueues longer(g, {s}, {1, 20, 0});
+  EXPECT_EQ(longer.queue_cells(0).size(), 8u);  // the aisle, the cross-aisle junction (3, 7), then west (3 cells)
+}
+
+TEST(StationQueues, AdmitsTheNearestQueuesTheRestAndLetsTheNextInWhenTheWayIsClear)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  StationQueues q(g, {s}, {1, 3, 0});
+  const std::vector<Vertex> qc = q.queue_cells(0);
+  ASSERT_EQ(qc.size(), 3u);
+  // Five agents with an errand at S, one idle.
+  Config pos{g.at(0, 7), g.at(5, 2), g.at(0, 2), g.at(5, 7), g.at(3, 7), g.at(1, 7)};
+  std::vector<Vertex> errand{s, s, s, s, s, -1};
+  Config goals(6);
+  // The task manager's goals (errand cells, idle agents where they stand), then the queues.
+  std::vector<char> unplaced;
+  auto apply = [&] {
+    for (int a = 0; a < 6; ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
+    q.apply(errand, pos, goals, unplaced);
+  };
+  apply();
+  // Distances to S: a1 4, a2 5, a4 7, a3 9, a0 10: a1 admitted, a2, a4, a3 queued in that
+  // order, a0 beyond the queue is unplaced (its goal is the caller's); the idle agent is untouched.
+  EXPECT_EQ(goals, (Config{s, s, qc[0], qc[2], qc[1], g.at(1, 7)}));
+  EXPECT_EQ(unplaced, (std::vector<char>{1, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+  EXPECT_EQ(q.waiting(0), (std::vector<int>{2, 4, 3}));
+
+  // a1 reaches S and completes (no errand left): while it stands in the stub nobody else
+  // is let in, whoever is nearer.
+  pos[1] = s;
+  pos[3] = g.at(3, 2);
+  errand[1] = -1;
+  apply();
+  EXPECT_TRUE(q.admitted(0).empty());
+  EXPECT_EQ(goals[2], qc[0]);
+  pos[1] = g.at(3, 1);
+  apply();
+  EXPECT_TRUE(q.admitted(0).empty());
+  // Out of the stub: the queue moves up by one, in its order; a0 joins its end.
+  pos[1] = g.at(3, 2);
+  apply();
+  EXPECT_EQ(q.admitted(0), (std::vector<int>{2}));
+  EXPECT_EQ(q.waiting(0), (std::vector<int>{4, 3, 0}));
+  EXPECT_EQ(goals[2], s);
+  EXPECT_EQ(goals[4], qc[0]);
+  EXPECT_EQ(goals[3], qc[1]);
+  EXPECT_EQ(goals[0], qc[2]);
+}
+
+namespace {
+
+struct QueueRun {
+  long errands = 0;
+  int max_heading = 0;   // most agents heading for S at once
+  long queued_ticks = 0; // agent-steps standing on their queue cell, waiting
+};
+
+// Six agents, tasks alternating S -> a drop at either end of the bottom aisle.
+QueueRun run_station(int capacity)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  auto file = ttest::task_file(g, {{{3, 0}, {0, 7}}, {{3, 0}, {5, 7}}});
+  TaskPool pool(file, g, 6, std::make_unique<GreedyAssigner>());
+  pool.set_queues(g, {capacity, 3, 0});
+  const Config starts{g.at(0, 2), g.at(5, 2), g.at(1, 7), g.at(4, 7), g.at(0, 7), g.at(5, 7)};
+  LifelongOptions opt;
+  opt.steps = 300;
+  opt.budget = planner::Budget::expansion_count(50);
+  LifelongRun run(g, starts, pool, "rtlacam", 0, opt);
+  QueueRun r;
+  std::vector<Vertex> queue_cells;
+  if (pool.queues()) queue_cells = pool.queues()->queue_cells(0);
+  while (!run.done()) {
+    run.step();
+    const Config& pos = run.planner().current();
+    int heading = 0;
+    for (int a = 0; a < pool.num_agents(); ++a) {
+      if (pool.heading(a) && pool.goals()[a] == s) ++heading;
+      if (pool.busy(a) && !pool.heading(a) && pos[a] == pool.goals()[a] &&
+          std::find(queue_cells.begin(), queue_cells.end(), pos[a]) != queue_cells.end())
+        ++r.queued_ticks;
+    }
+    r.max_heading = std::max(r.max_heading, heading);
+  }
+  r.errands = pool.errands_finished();
+  EXPECT_EQ(run.finish().planner_errors, 0);
+  return r;
+}
+
+}  // namespace
+
+TEST(StationQueues, ALifelongRunSendsAtMostCapacityAgentsToTheStationAndTheRestWaitOnQueueCells)
+{
+  const QueueRun r = run_station(1);
+  EXPECT_LE(r.max_heading, 1);
+  EXPECT_GT(r.queued_ticks, 50);
+  // Each visit needs the one before out of the stub first: it still flows.
+  EXPECT_GE(r.errands, 30);
+}
+
+TEST(Parking, IdleAgentsEndOnParkingCells)
+{
+  const auto& g = stub();
+  // One task at a time in the pool for four agents: three are always idle.
+  auto file = ttest::task_file(g, {{{0, 2}, {5, 2}}, {{5, 2}, {0, 2}}});
+  TaskPool pool(file, g, 1, std::make_unique<GreedyAssigner>());
+  const std::vector<Vertex> park{g.at(3, 3), g.at(3, 4), g.at(3, 5), g.at(3, 6)};
+  pool.set_parking(g, park);
+  const Config starts{g.at(3, 0), g.at(0, 7), g.at(5, 7), g.at(2, 2)};
+  LifelongOptions opt;
+  opt.steps = 80;
+  opt.budget = planner::Budget::expansion_count(50);
+  LifelongRun run(g, starts, pool, "rtlacam", 0, opt);
+  while (!run.done()) run.step();
+  const Config& pos = run.planner().current();
+  int idle = 0;
+  for (int a = 0; a < pool.num_agents(); ++a) {
+    if (pool.busy(a)) continue;
+    ++idle;
+    EXPECT_NE(std::find(park.begin(), park.end(), pos[a]), park.end()) << "agent " << a << " idle at " << pos[a];
+  }
+  EXPECT_GE(idle, 3);
+  EXPECT_GE(pool.errands_finished(), 4);
+  EXPECT_EQ(run.finish().planner_errors, 0);
+}
