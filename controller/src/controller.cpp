@@ -12,9 +12,11 @@ namespace controller {
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref, planner::GoalTest test,
-                                                       const std::vector<int>& headings)
+                                                       const std::vector<int>& headings,
+                                                       std::shared_ptr<planner::DistCache> cache)
 {
   planner::SolverOptions opt;
+  opt.dist_cache = std::move(cache);
   opt.seed = p.seed;
   opt.lacam.swap = p.swap;
   opt.lacam.keep_priorities = p.keep_priorities;

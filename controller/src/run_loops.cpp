@@ -149,7 +149,7 @@ void Run::loop_adg()
         ++m_.commits;
       }
       // Steps every AGV has finished are final: no replan rewrites them.
-      c_.plan_.settle(c_.plan_.size() - 1 - static_cast<size_t>(adg.steps()) + static_cast<size_t>(adg.min_progress()));
+      settle(c_.plan_.size() - 1 - static_cast<size_t>(adg.steps()) + static_cast<size_t>(adg.min_progress()));
       const double commit_ms = ms_since(t0);
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();

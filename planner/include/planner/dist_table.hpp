@@ -24,7 +24,7 @@ class DistTable {
 
   // A table set of its own; max_tables == 0: keep every table (one-shot instances).
   explicit DistTable(const Graph& g, size_t max_tables = 0);
-  DistTable(const Graph& g, std::shared_ptr<DistCache> cache);
+  DistTable(const Graph& g, std::shared_ptr<DistCache> cache);  // null: a cache of its own
   ~DistTable();
   DistTable(const DistTable&) = delete;
   DistTable& operator=(const DistTable&) = delete;

@@ -6,7 +6,7 @@ namespace planner {
 
 Pibt::Pibt(const Graph& g, DistTable& d, bool swap)
     : g_(g), d_(d), swap_(swap), stride_(g.max_degree() + 1), occ_now_(g.size(), -1), occ_next_(g.size(), -1),
-      key_(stride_), detour_(g)
+      key_(stride_), detour_(g, &d)
 {
 }
 
