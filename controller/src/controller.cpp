@@ -45,8 +45,8 @@ std::unique_ptr<SumoBackend> make_backend(const RunSection& r)
     const std::string why = display_problem();
     if (!why.empty()) throw SumoError("sumo-gui: " + why);
   }
-  if (r.gui) return make_traci_backend("sumo-gui", r.port);
-  if (r.backend == "traci") return make_traci_backend("sumo", r.port);
+  if (r.gui) return make_traci_backend("sumo-gui", r.port, r.order);
+  if (r.backend == "traci") return make_traci_backend("sumo", r.port, r.order);
   return make_libsumo_backend();
 }
 
