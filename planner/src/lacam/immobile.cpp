@@ -57,7 +57,8 @@ void DetourTable::set_blocked(std::vector<Vertex> blocked)
   std::sort(blocked.begin(), blocked.end());
   if (blocked == blocked_) return;
   blocked_ = std::move(blocked);
-  tables_.clear();
+  for (const Shadow& s : shadows_) shadow_of_[s.goal] = -1;
+  shadows_.clear();
   to_blocked_.assign(blocked_.size(), {});
   for (size_t k = 0; k < blocked_.size(); ++k) {
     std::vector<int32_t>& d = to_blocked_[k];
@@ -72,10 +73,11 @@ void DetourTable::set_blocked(std::vector<Vertex> blocked)
 
 bool DetourTable::blocked(Vertex v) const { return std::binary_search(blocked_.begin(), blocked_.end(), v); }
 
-int32_t DetourTable::get(Vertex goal, Vertex v)
+int32_t DetourTable::get(Vertex goal, Vertex v) { return get(goal, v, plain_->cache()->table(goal)); }
+
+int32_t DetourTable::get(Vertex goal, Vertex v, DistCache::Table* t)
 {
   if (blocked(v) || blocked(goal)) return DistTable::kInf;
-  DistCache::Table* t = plain_->cache()->table(goal);
   const int32_t dv = t->at(v, g_);
   // The blocked vertices d's BFS has found (all those nearer the goal than v among them).
   size_t found = 0;
@@ -86,25 +88,31 @@ int32_t DetourTable::get(Vertex goal, Vertex v)
     ++found;
     through = through || (to_blocked_[k][v] != DistTable::kInf && db + to_blocked_[k][v] == dv);
   }
-  auto it = tables_.find(goal);
-  if (it == tables_.end() || it->second.found != found) {
+  if (shadow_of_.empty()) shadow_of_.assign(g_.size(), -1);
+  int32_t k = shadow_of_[goal];
+  if (k < 0 || shadows_[k].found != found) {
     if (!through) return dv;  // not in any shadow: no need to search it yet
     // Past the step's deadline (the plain tables' own, dist_cache.hpp) no shadow is searched:
     // d is a lower bound, and a later step's query searches it.
     const DistCache& c = *plain_->cache();
     if (c.bounded() && std::chrono::steady_clock::now() >= c.deadline()) return dv;
-    it = tables_.emplace(goal, Shadow{}).first;
-    build(goal, it->second, found);
+    if (k < 0) {
+      k = shadow_of_[goal] = static_cast<int32_t>(shadows_.size());
+      shadows_.emplace_back();
+      shadows_.back().goal = goal;
+    }
+    build(shadows_[k], found, t);
   }
-  const auto at = it->second.dist.find(v);
-  return at == it->second.dist.end() ? dv : at->second;
+  const Shadow& s = shadows_[k];
+  if (s.dist.empty()) return dv;
+  const auto at = s.dist.find(v);
+  return at == s.dist.end() ? dv : at->second;
 }
 
-void DetourTable::build(Vertex goal, Shadow& s, size_t found)
+void DetourTable::build(Shadow& s, size_t found, DistCache::Table* t)
 {
   s.found = found;
   s.dist.clear();
-  DistCache::Table* t = plain_->cache()->table(goal);
   auto d = [&](Vertex u) { return ++searched_, t->at(u, g_); };
   if (stamp_.size() != static_cast<size_t>(g_.size())) stamp_.assign(g_.size(), 0);
   if (++epoch_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), epoch_ = 1;

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "planner/config.hpp"
+#include "planner/dist_cache.hpp"
 #include "planner/graph.hpp"
 #include "planner/search_types.hpp"
 
@@ -73,16 +74,19 @@ class DetourTable {
   void set_blocked(std::vector<Vertex> blocked);
   bool active() const { return !blocked_.empty(); }
   int32_t get(Vertex goal, Vertex v);
+  // The same with the goal's plain table at hand (an agent's: DistTable::table()).
+  int32_t get(Vertex goal, Vertex v, DistCache::Table* plain);
   // Work so far: vertices the shadow searches have looked at (a BFS per goal: |V| each).
   uint64_t searched() const { return searched_; }
 
  private:
   struct Shadow {
+    Vertex goal = -1;
     size_t found = 0;                          // blocked vertices it accounts for
     std::unordered_map<Vertex, int32_t> dist;  // the shadow's repaired distances
   };
   bool blocked(Vertex v) const;
-  void build(Vertex goal, Shadow& s, size_t found);
+  void build(Shadow& s, size_t found, DistCache::Table* plain);
 
   const Graph& g_;
   std::vector<std::vector<int32_t>> to_blocked_;  // per blocked vertex: |v -> b| (BFS over in-arcs)
@@ -92,7 +96,8 @@ class DetourTable {
   std::unique_ptr<DistTable> own_;  // without `plain`
   DistTable* plain_;
   std::vector<Vertex> blocked_;
-  std::unordered_map<Vertex, Shadow> tables_;
+  std::vector<Shadow> shadows_;
+  std::vector<int32_t> shadow_of_;  // goal vertex -> its entry in shadows_, -1: none
 };
 
 }  // namespace planner
