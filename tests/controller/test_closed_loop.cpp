@@ -311,3 +311,12 @@ TEST(PhysicalBound, TrapezoidAndTriangle)
   // 0.75 m never reaches 1 m/s: peak sqrt(2 * 0.75 * 0.5 / 1.5) = 0.7071 m/s.
   EXPECT_NEAR(rest_to_rest_s(0.75, k), std::sqrt(0.5) / 0.5 + std::sqrt(0.5), 1e-12);
 }
+
+TEST(FailSafe, RunOrderConfigErrors)
+{
+  const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
+  EXPECT_EQ(ctest_util::config_error(net + "run: {order: 2}\n"),
+            "t.yaml: run.order: only with run.port (a SUMO started with --num-clients, which this client joins)");
+  EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 0}\n").rfind("t.yaml: run.order: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 2}\n"), "(no error)");
+}
