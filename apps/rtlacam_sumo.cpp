@@ -23,7 +23,7 @@ int main(int argc, char** argv)
   std::string path, backend, solver, out, policy_file;
   bool gui = false;
   long long max_ticks = 0;
-  int port = 0;
+  int port = 0, order = 0;
   app.add_option("config", path, "scenario YAML (config/<scenario>.yaml)")->required();
   app.add_flag("--gui", gui, "watch it live in sumo-gui (through TraCI)");
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
@@ -33,6 +33,8 @@ int main(int argc, char** argv)
       ->check(CLI::ExistingFile);
   app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
       ->check(CLI::Range(1, 65535));
+  app.add_option("--order", order, "with --port: this client's TraCI order in a SUMO of several clients (sumo --num-clients)")
+      ->check(CLI::Range(1, 1000000));
   app.add_option("--max-ticks", max_ticks, "override run.max_ticks")->check(CLI::PositiveNumber);
   app.add_option("--out", out, "override output.dir");
   cli::add_version(app, "rtlacam-sumo");
@@ -49,6 +51,10 @@ int main(int argc, char** argv)
     if (port > 0) {
       cfg.run.port = port;
       if (backend.empty()) cfg.run.backend = "traci";
+    }
+    if (order > 0) {
+      if (port == 0 && cfg.run.port == 0) throw ConfigError("--order: only with --port (or run.port)");
+      cfg.run.order = order;
     }
     if (max_ticks > 0) cfg.run.max_ticks = max_ticks;
     if (!out.empty()) cfg.output.dir = out;

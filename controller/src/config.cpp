@@ -460,8 +460,8 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
 
   const YAML::Node u = root["run"];
-  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "progress_s", "executor", "window",
-                    "drain", "replan_on_stuck", "stuck_after_s"});
+  r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "order", "progress_s", "executor",
+                    "window", "drain", "replan_on_stuck", "stuck_after_s"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -470,6 +470,10 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "gui_delay_ms", c.run.gui_delay_ms, 0);
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
+  if (u && u["order"]) {
+    r.integer(u, "run", "order", c.run.order, 1, 1000000);
+    if (c.run.port == 0) r.fail("run.order", "only with run.port (a SUMO started with --num-clients, which this client joins)");
+  }
   r.number(u, "run", "progress_s", c.run.progress_s, 0);
   r.choice(u, "run", "executor", c.run.executor, {"lockstep", "adg", "adg-follow"});
   r.integer(u, "run", "window", c.run.window, 1, 1000000);

@@ -12,9 +12,11 @@ namespace controller {
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref, planner::GoalTest test,
-                                                       const std::vector<int>& headings)
+                                                       const std::vector<int>& headings,
+                                                       std::shared_ptr<planner::DistCache> cache)
 {
   planner::SolverOptions opt;
+  opt.dist_cache = std::move(cache);
   opt.seed = p.seed;
   opt.lacam.swap = p.swap;
   opt.lacam.keep_priorities = p.keep_priorities;
@@ -43,8 +45,8 @@ std::unique_ptr<SumoBackend> make_backend(const RunSection& r)
     const std::string why = display_problem();
     if (!why.empty()) throw SumoError("sumo-gui: " + why);
   }
-  if (r.gui) return make_traci_backend("sumo-gui", r.port);
-  if (r.backend == "traci") return make_traci_backend("sumo", r.port);
+  if (r.gui) return make_traci_backend("sumo-gui", r.port, r.order);
+  if (r.backend == "traci") return make_traci_backend("sumo", r.port, r.order);
   return make_libsumo_backend();
 }
 

@@ -132,8 +132,9 @@ void Run::prepare()
     cmd_->use_headings(headings, static_cast<int>(std::lround(cfg_.fleet.turn_s / cfg_.sumo.step_length)));
     start_headings_ = headings;
   }
+  if (!cfg_.planner.rotation_solver()) dist_cache_ = std::make_shared<planner::DistCache>(g);
   try {
-    p_ = make_planner(cfg_.planner, g, ins_.starts, goals, pref_.get(), goal_test, headings);
+    p_ = make_planner(cfg_.planner, g, ins_.starts, goals, pref_.get(), goal_test, headings, dist_cache_);
   } catch (const std::invalid_argument& e) {
     throw ConfigError(cfg_.path + ": planner: " + e.what());
   }
@@ -145,8 +146,10 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck)
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck) {
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
+    val_final_.emplace(g, ins_.starts, goals);
+  }
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
   // With a time budget the search starts an expansion only if its costliest one so far
@@ -260,10 +263,18 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
   // out every step, 0.055 errands/tick on the large warehouse).
   if (rot && slice_ == 0) b = plan_budget();
   if (cfg_.planner.budget_ms > 0) b.ms = std::max(0.0, b.ms - plan_cpu_pending_);
-  if (rot && slice_ > 0 && cfg_.planner.budget_ms > 0)
+  if (rot && slice_ > 0 && cfg_.planner.budget_ms > 0) {
     rot->precompute(b.deadline_from(t0));
-  else
+  } else {
+    // The distance tables stop growing at the step's deadline too (lower bounds past it,
+    // grown by a later step: dist_cache.hpp), and so do the detours around stuck AGVs
+    // (immobile.hpp): after a stuck replan one search expansion of 1000 agents would
+    // otherwise search every goal's detour at once (10 ms and more).
+    const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0;
+    if (bounded) dist_cache_->set_deadline(b.deadline_from(t0));
     p_->search(b);
+    if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+  }
   plan_cpu_step_.push_back(planner::thread_cpu_ms() - c0 + plan_cpu_pending_);
   plan_cpu_pending_ = 0;
   const double ms = ms_since(t0);

@@ -22,6 +22,7 @@
 #include "stuck_replan.hpp"
 #include "executor/adg.hpp"
 #include "executor/delay_model.hpp"
+#include "planner/dist_cache.hpp"
 #include "planner/instance.hpp"
 #include "planner/stop_signal.hpp"
 #include "planner/validator.hpp"
@@ -64,6 +65,9 @@ class Run {
   // driving to, `immobile` AGVs kept in place.
   void stuck_step(executor::Adg& adg, Driver& drv);
   void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
+  // Configurations before C^t are final (ExecutedPlan::settle); with stuck replans the
+  // validator of the final prefix steps over them first (a replan re-validates from there).
+  void settle(size_t t);
   // What a person sees (run_view.cpp): each AGV's state colour once its commands are out
   // (lockstep: per tick from the step it executes; adg: before every SUMO step, from the
   // ADG after the Driver's starts), goal markers when goals change, the congestion counts
@@ -120,6 +124,12 @@ class Run {
   planner::Config errand_goal_;
   std::unique_ptr<planner::RealtimePlanner> p_;
   std::unique_ptr<planner::Validator> val_;
+  // Stuck replans: the validator at the last final configuration C^val_final_at_ (a replan
+  // copies it and checks only the rewritten steps), and the cell solvers' distance tables,
+  // kept from one planner to the next (a fresh planner would redo a BFS per AGV).
+  std::optional<planner::Validator> val_final_;
+  size_t val_final_at_ = 0;
+  std::shared_ptr<planner::DistCache> dist_cache_;
   std::unique_ptr<executor::DelayModel> delays_;
   std::unique_ptr<StuckWatch> stuck_;  // run.replan_on_stuck (adg)
   std::unique_ptr<FleetView> view_;

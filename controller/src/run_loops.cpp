@@ -160,7 +160,7 @@ void Run::loop_adg()
         ++m_.commits;
       }
       // Steps every AGV has finished are final: no replan rewrites them.
-      c_.plan_.settle(c_.plan_.size() - 1 - static_cast<size_t>(adg.steps()) + static_cast<size_t>(adg.min_progress()));
+      settle(c_.plan_.size() - 1 - static_cast<size_t>(adg.steps()) + static_cast<size_t>(adg.min_progress()));
       const double commit_ms = ms_since(t0);
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
@@ -222,7 +222,9 @@ void Run::finish()
       if (write_error.empty()) write_error = e.what();
     }
   };
-  if (sumo_ran) checked([&] { check_sumo_outputs(cfg_, dir_, cfg_.run.backend == "traci" || cfg_.run.gui ? 10.0 : 0.0); });
+  // A SUMO of several clients (run.order) outlives us: it writes its outputs when it ends.
+  if (sumo_ran && cfg_.run.order == 0)
+    checked([&] { check_sumo_outputs(cfg_, dir_, cfg_.run.backend == "traci" || cfg_.run.gui ? 10.0 : 0.0); });
 
   m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);

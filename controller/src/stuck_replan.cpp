@@ -94,11 +94,12 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   // it, and a later occupant of v would wait for it to leave, which it has not: no two
   // agents share a vertex in any C'_t.
   const size_t base = c_.plan_.size() - 1 - static_cast<size_t>(adg.steps());
-  long long last = 0;
+  long long last = 0, first = adg.steps();
   std::vector<long long> prog(n);
-  for (int i = 0; i < n; ++i) last = std::max(last, prog[i] = adg.progress(i));
-  // (Steps before the oldest kept one are before every AGV's progress: unchanged.)
-  const long long t0 = c_.plan_.first() > base ? static_cast<long long>(c_.plan_.first() - base) : 0;
+  for (int i = 0; i < n; ++i) last = std::max(last, prog[i] = adg.progress(i)), first = std::min(first, prog[i]);
+  // Steps up to the slowest AGV's progress are unchanged (so are those before the oldest
+  // kept one): only the last window's steps are rewritten, whatever the run's length.
+  const long long t0 = std::max(first, c_.plan_.first() > base ? static_cast<long long>(c_.plan_.first() - base) : 0);
   for (long long t = t0; t <= last; ++t)
     for (int i = 0; i < n; ++i) c_.plan_.at(base + t)[i] = c_.plan_.at(base + std::min(t, prog[i]))[i];
   c_.plan_.resize(base + static_cast<size_t>(last) + 1);
@@ -145,19 +146,22 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   }
 
   const planner::Config goals = tm_ ? tm_->goals() : ins_.goals;
-  // From the oldest configuration kept (C^0 but in a long lifelong run, whose older part is
-  // final and was checked when committed).
-  val_ = std::make_unique<planner::Validator>(g, c_.plan_.at(c_.plan_.first()), goals);
-  for (size_t t = c_.plan_.first() + 1; t < c_.plan_.size(); ++t)
+  // The cut plan from the last final configuration on (settle(): everything before it was
+  // checked and stays): the validator there, then the rewritten steps.
+  val_ = std::make_unique<planner::Validator>(*val_final_);
+  val_->set_goals(goals);
+  for (size_t t = val_final_at_ + 1; t < c_.plan_.size(); ++t)
     if (!val_->step(c_.plan_.at(t))) throw ControlError("replan: the cut plan is invalid: " + val_->error());
 
-  // A fresh planner from there, the stuck ones immobile.
+  // A fresh planner from there, the stuck ones immobile, on the old one's distance tables.
+  // No search here: the next step's search() has what is left of the step's budget
+  // (Run::step), so a replan costs a step no more than planner.budget_ms.
   replan_expansions_ += p_->expansions();
-  p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{});
+  p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{},
+                    {}, dist_cache_);
   if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
   for (int i = 0; i < n; ++i)
     if (immobile[i]) p_->set_immobile(i, true);
-  p_->search(budget_);
   adg = executor::Adg(at);
   for (const planner::Config& c : steps) adg.append(c);
   for (int i = 0; i < n; ++i) {
@@ -171,6 +175,15 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
     drv.renumber(i, ids);
   }
   ++m_.replans;
+}
+
+void Run::settle(size_t t)
+{
+  if (val_final_)
+    for (; val_final_at_ + 1 < t; ++val_final_at_)
+      if (!val_final_->step(c_.plan_.at(val_final_at_ + 1)))
+        throw ControlError("settled plan step " + std::to_string(val_final_at_ + 1) + " is invalid: " + val_final_->error());
+  c_.plan_.settle(t);
 }
 
 void Run::stuck_step(executor::Adg& adg, Driver& drv)

@@ -42,7 +42,7 @@ std::vector<std::string> absolute_files(std::vector<std::string> args)
 
 class TraciBackend : public ApiBackend {
  public:
-  TraciBackend(std::string binary, int port) : binary_(std::move(binary)), port_(port) {}
+  TraciBackend(std::string binary, int port, int order) : binary_(std::move(binary)), port_(port), order_(order) {}
   ~TraciBackend() override { close(); }
 
   void start(const std::vector<std::string>& args) override
@@ -58,6 +58,7 @@ class TraciBackend : public ApiBackend {
     if (::sigaction(SIGPIPE, nullptr, &old) == 0 && old.sa_handler == SIG_DFL) std::signal(SIGPIPE, SIG_IGN);
     if (port_ > 0) {
       guarded("connect", [&] { api::Simulation::init(port_, kRetries); });
+      if (order_ > 0) guarded("setOrder", [&] { api::Simulation::setOrder(order_); });
       guarded("load", [&] { api::Simulation::load(absolute_files(args)); });
     } else {
       std::vector<std::string> cmd{binary_};
@@ -114,6 +115,7 @@ class TraciBackend : public ApiBackend {
   static constexpr int kRetries = 15;
   std::string binary_;
   int port_ = 0;
+  int order_ = 0;          // TraCI client order (several clients), 0: the only client
   std::string anchor_;     // junction of the pose subscription
   double dt_ = 0;          // step length
   bool requested_ = false;
@@ -121,9 +123,9 @@ class TraciBackend : public ApiBackend {
 
 }  // namespace
 
-std::unique_ptr<SumoBackend> make_traci_backend(const std::string& binary, int port)
+std::unique_ptr<SumoBackend> make_traci_backend(const std::string& binary, int port, int order)
 {
-  return std::make_unique<TraciBackend>(binary, port);
+  return std::make_unique<TraciBackend>(binary, port, order);
 }
 
 }  // namespace controller

@@ -4,7 +4,10 @@ namespace planner {
 
 DistTable::DistTable(const Graph& g, size_t max_tables) : g_(g), cache_(std::make_shared<DistCache>(g, max_tables)) {}
 
-DistTable::DistTable(const Graph& g, std::shared_ptr<DistCache> cache) : g_(g), cache_(std::move(cache)) {}
+DistTable::DistTable(const Graph& g, std::shared_ptr<DistCache> cache)
+    : g_(g), cache_(cache ? std::move(cache) : std::make_shared<DistCache>(g))
+{
+}
 
 DistTable::~DistTable() { unpin_all(); }
 

@@ -93,10 +93,12 @@ std::unique_ptr<RealtimePlanner> make_planner(Solver s, const Graph& g, const Co
   lo.seed = opt.seed;
   std::unique_ptr<RealtimePlanner> p;
   switch (s) {
-    case Solver::RtLacam: p = std::make_unique<RtLacam>(g, starts, goals, lo, opt.pref, std::move(test)); break;
-    case Solver::Naive: p = std::make_unique<NaiveRtLacam>(g, starts, goals, lo, opt.pref, std::move(test)); break;
+    case Solver::RtLacam: p = std::make_unique<RtLacam>(g, starts, goals, lo, opt.pref, std::move(test), opt.dist_cache); break;
+    case Solver::Naive:
+      p = std::make_unique<NaiveRtLacam>(g, starts, goals, lo, opt.pref, std::move(test), opt.dist_cache);
+      break;
     case Solver::Pibt:
-    case Solver::CsPibt: p = std::make_unique<PibtPlanner>(g, starts, goals, lo, opt.pref, std::move(test)); break;
+    case Solver::CsPibt: p = std::make_unique<PibtPlanner>(g, starts, goals, lo, opt.pref, std::move(test), opt.dist_cache); break;
     default: throw std::invalid_argument("solver lacam is not a real-time planner (plan once: run_full_horizon)");
   }
   if (opt.max_dist_tables) p->set_max_dist_tables(opt.max_dist_tables);

@@ -6,8 +6,20 @@
 // off its cell" / "not on its committed path", the 2 m cells with rear-end collisions.
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <thread>
 
 #include "closed_loop_util.hpp"
 #include "controller/config.hpp"
@@ -171,6 +183,112 @@ TEST(FailSafe, CleanLockstepRunEndsAtRest)
   expect_all_at_rest(cfg, m, false);  // scheme S stops in one step, as every lockstep wait does
 }
 
+namespace {
+
+int free_port()
+{
+  const int s = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  ::bind(s, reinterpret_cast<sockaddr*>(&a), sizeof a);
+  socklen_t len = sizeof a;
+  ::getsockname(s, reinterpret_cast<sockaddr*>(&a), &len);
+  ::close(s);
+  return ntohs(a.sin_port);
+}
+
+pid_t spawn(std::vector<std::string> argv, const std::string& log)
+{
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::FILE* f = std::freopen(log.c_str(), "w", stdout);
+    (void)f;
+    ::dup2(::fileno(stdout), 2);
+    std::vector<char*> args;
+    for (std::string& a : argv) args.push_back(a.data());
+    args.push_back(nullptr);
+    ::execvp(args[0], args.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// Waits up to `s` seconds for `pid` to exit (then kills it): its exit status, or -1.
+int reap(pid_t pid, double s)
+{
+  int status = 0;
+  for (int i = 0; i < s * 20; ++i) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  ::kill(pid, SIGKILL);
+  ::waitpid(pid, nullptr, 0);
+  return -1;
+}
+
+// A SUMO that outlives the controller (TraCI, an external sumo of two clients): the
+// controller (order 1) runs until `end` ends it; the second client
+// (scripts/traci_second_client.py, order 2) steps SUMO on for 5 s of SUMO time with nobody
+// driving, then reports. Every AGV that was in the net when the controller detached is still
+// there and none moves from then on; nothing collided.
+void expect_at_rest_5s_after_detaching(Config cfg, const std::function<void(Controller&)>& end, size_t agvs)
+{
+  if (std::system("python3 -c 'import sys, os; sys.path.append(os.environ.get(\"SUMO_HOME\", \"/usr/share/sumo\") + \"/tools\"); import traci' 2>/dev/null") != 0)
+    GTEST_SKIP() << "needs python3 with SUMO's traci (sumo-tools)";
+  const int port = free_port();
+  cfg.sumo.outputs = {false, false, false, false};  // SUMO writes them only when it ends
+  cfg.run.backend = "traci";
+  cfg.run.port = port;
+  cfg.run.order = 1;
+  const std::string dir = cfg.output.dir, detached = dir + "/detached", report = dir + "/second.json";
+  const pid_t sumo = spawn({"sumo", "-n", cfg.sumo.net, "--remote-port", std::to_string(port), "--num-clients", "2"},
+                           dir + "/sumo.log");
+  const pid_t second = spawn({"python3", RTLACAM_SECOND_CLIENT, "--port", std::to_string(port), "--order", "2", "--detached",
+                              detached, "--report", report, "--after-s", "5"},
+                             dir + "/second.log");
+  Controller c(cfg);
+  end(c);
+  const Metrics m = c.run();
+  const double detach_t = m.sim_s + m.end_stop_steps * cfg.sumo.step_length;
+  std::ofstream(detached) << detach_t << "\n";
+  EXPECT_EQ(reap(second, 60), 0) << ctest_util::slurp(dir + "/second.log");
+  reap(sumo, 30);
+  const nlohmann::json r = nlohmann::json::parse(ctest_util::slurp(report));
+  std::printf("error '%s' ended at %.3f s (+%lld stop steps); at %.3f s: %d of %d AGVs present, %d moving, max speed since %.3f; collisions %d\n",
+              m.error.c_str(), m.sim_s, m.end_stop_steps, r["check_t"].get<double>(), r["present_at_check"].get<int>(),
+              r["present_at_detach"].get<int>(), r["moving_at_check"].get<int>(), r["max_speed_after_check"].get<double>(),
+              r["collisions"].get<int>());
+  EXPECT_GE(r["check_t"].get<double>(), detach_t + 5 - 1e-9);
+  EXPECT_EQ(r["present_at_detach"].get<size_t>(), agvs);
+  EXPECT_EQ(r["present_at_check"].get<size_t>(), agvs) << r["gone_after_detach"].dump();
+  EXPECT_EQ(r["moving_at_check"].get<int>(), 0);
+  EXPECT_EQ(r["max_speed_after_check"].get<double>(), 0.0);
+  EXPECT_EQ(r["collisions"].get<int>(), 0) << r["colliding"].dump();
+}
+
+}  // namespace
+
+TEST(FailSafe, ExternalSumoOutlivingTheControllerAfterATickLimitHasNoAgvMoving5sLater)
+{
+  Config cfg = agv_config("outlive_limit", "adg-follow");
+  cfg.run.max_ticks = 12;  // mid-drive
+  expect_at_rest_5s_after_detaching(cfg, [](Controller&) {}, 16);
+}
+
+TEST(FailSafe, ExternalSumoOutlivingTheControllerAfterAnAbortHasNoAgvMoving5sLater)
+{
+  Config cfg = agv_config("outlive_abort", "adg");
+  expect_at_rest_5s_after_detaching(
+      cfg,
+      [](Controller& c) {
+        c.on_tick = [](long long tick, SumoBackend& sumo) {
+          if (tick == 8) sumo.remove("agv3");  // an AGV vanishes: the run ends with an error
+        };
+      },
+      15);
+}
+
 TEST(PhysicalBound, ReportedAndNeverAboveTheMakespan)
 {
   for (const char* ex : {"lockstep", "adg-follow"}) {
@@ -192,4 +310,13 @@ TEST(PhysicalBound, TrapezoidAndTriangle)
   EXPECT_NEAR(rest_to_rest_s(10, k), 2 + 1 + 8.5, 1e-12);
   // 0.75 m never reaches 1 m/s: peak sqrt(2 * 0.75 * 0.5 / 1.5) = 0.7071 m/s.
   EXPECT_NEAR(rest_to_rest_s(0.75, k), std::sqrt(0.5) / 0.5 + std::sqrt(0.5), 1e-12);
+}
+
+TEST(FailSafe, RunOrderConfigErrors)
+{
+  const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
+  EXPECT_EQ(ctest_util::config_error(net + "run: {order: 2}\n"),
+            "t.yaml: run.order: only with run.port (a SUMO started with --num-clients, which this client joins)");
+  EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 0}\n").rfind("t.yaml: run.order: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 2}\n"), "(no error)");
 }

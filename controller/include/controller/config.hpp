@@ -134,6 +134,7 @@ struct RunSection {
   bool gui = false;                  // sumo-gui through TraCI
   double gui_delay_ms = 100;         // sumo-gui's --delay (a watchable pace; 0 = flat out)
   int port = 0;                      // traci: connect to a running SUMO instead of starting one
+  int order = 0;                     // run.port: this client's TraCI order in a SUMO of several clients (sumo --num-clients N); 0: the only one
   double progress_s = 2.0;           // wall seconds between progress lines; 0 = none
   std::string executor = "lockstep"; // lockstep (all AGVs one cell per tick) | adg | adg-follow (executor/)
   int window = 4;                    // adg: committed configurations ahead of the slowest AGV (at most)

@@ -36,11 +36,14 @@ class Run;
 // The solver named by planner.solver on this graph and instance; `pref` orders PIBT's
 // moves (a learned policy), `test` replaces "all at goals" (lifelong runs). Rotation
 // solvers take planner.rotation and each AGV's start heading (`headings`; empty: east).
+// Cell solvers keep their distance tables in `cache` when given (shared with the planner a
+// stuck replan replaces: stuck_replan.hpp).
 std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, const planner::Graph& g,
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref = nullptr,
                                                        planner::GoalTest test = {},
-                                                       const std::vector<int>& headings = {});
+                                                       const std::vector<int>& headings = {},
+                                                       std::shared_ptr<planner::DistCache> cache = nullptr);
 
 // The back end named by run.backend (run.gui: sumo-gui through TraCI).
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r);

@@ -94,6 +94,8 @@ std::unique_ptr<SumoBackend> make_libsumo_backend();
 
 // TraCI: starts `binary` (sumo or sumo-gui, found on PATH) as a child process, or, with
 // port > 0, connects to a SUMO already listening there (start() then ignores args).
-std::unique_ptr<SumoBackend> make_traci_backend(const std::string& binary = "sumo", int port = 0);
+// order > 0: SUMO serves several clients (sumo --num-clients N); this one takes that place
+// in each step's order (TraCI setOrder), and SUMO steps when every client has asked.
+std::unique_ptr<SumoBackend> make_traci_backend(const std::string& binary = "sumo", int port = 0, int order = 0);
 
 }  // namespace controller

@@ -24,7 +24,7 @@ class DistTable {
 
   // A table set of its own; max_tables == 0: keep every table (one-shot instances).
   explicit DistTable(const Graph& g, size_t max_tables = 0);
-  DistTable(const Graph& g, std::shared_ptr<DistCache> cache);
+  DistTable(const Graph& g, std::shared_ptr<DistCache> cache);  // null: a cache of its own
   ~DistTable();
   DistTable(const DistTable&) = delete;
   DistTable& operator=(const DistTable&) = delete;
@@ -40,6 +40,7 @@ class DistTable {
 
   // Distance from v to agent i's goal.
   int32_t get(int agent, Vertex v) { return agent_table_[agent]->at(v, g_); }
+  DistCache::Table* table(int agent) const { return agent_table_[agent]; }  // agent i's goal's table
   // Asks the CPU to start loading agent i's distance of v (no effect on results). A PIBT
   // call reads a few cells around every agent, each agent in its own table: thousands of
   // cache misses, which prefetching them all first overlaps instead of paying one by one.

@@ -39,6 +39,9 @@ struct SolverOptions {
   ActionPreference* pref = nullptr;  // PIBT's move order (cspibt: the learned policy, required)
   // Distance tables kept for goals no agent has any more (lifelong runs); 0: no cap.
   size_t max_dist_tables = 0;
+  // pibt, rtlacam, naive, cspibt: distance tables shared from construction on (a planner
+  // that replaces another on the same graph reuses its BFS work); null: tables of its own.
+  std::shared_ptr<DistCache> dist_cache;
   // Rotation solvers.
   int heading = 0;                   // every robot's heading at the start (0 east .. 3 north; LoRR: east)
   std::vector<int> headings;         // one per robot instead of `heading` (RotationPlanner::set_headings)

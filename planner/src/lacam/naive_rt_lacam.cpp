@@ -17,8 +17,8 @@ LacamOptions without_refine(LacamOptions o)
 }  // namespace
 
 NaiveRtLacam::NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
-                           ActionPreference* pref, GoalTest test)
-    : dist_(g), lacam_(g, dist_, without_refine(opt), pref), current_(starts), g_(g), immobile_(starts.size(), 0)
+                           ActionPreference* pref, GoalTest test, std::shared_ptr<DistCache> cache)
+    : dist_(g, std::move(cache)), lacam_(g, dist_, without_refine(opt), pref), current_(starts), g_(g), immobile_(starts.size(), 0)
 {
   set_goals(goals, std::move(test));
 }

@@ -6,7 +6,7 @@ namespace planner {
 
 Pibt::Pibt(const Graph& g, DistTable& d, bool swap)
     : g_(g), d_(d), swap_(swap), stride_(g.max_degree() + 1), occ_now_(g.size(), -1), occ_next_(g.size(), -1),
-      key_(stride_), detour_(g)
+      key_(stride_), detour_(g, &d)
 {
 }
 
@@ -48,6 +48,8 @@ bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* 
     for (int i = 0; i < n_; ++i)
       if (immobile_[i]) blocked.push_back(from[i]);
     detour_.set_blocked(std::move(blocked));
+    if (cut_off_stamp_.size() != static_cast<size_t>(n_)) cut_off_stamp_.assign(n_, 0), cut_off_.assign(n_, 0);
+    if (++generation_ == 0) std::fill(cut_off_stamp_.begin(), cut_off_stamp_.end(), 0), generation_ = 1;
   }
 
   // Agents fixed by the constraint chain; reject fixes that collide with each other.
@@ -128,8 +130,15 @@ bool Pibt::plan(int32_t i, Rng& rng)
 
 float Pibt::distance(int32_t i, Vertex u)
 {
-  if (!detour_.active() || detour_.get(goals_[i], now_[i]) >= DistTable::kInf) return static_cast<float>(d_.get(i, u));
-  return static_cast<float>(detour_.get(goals_[i], u));
+  if (!detour_.active()) return static_cast<float>(d_.get(i, u));
+  DistCache::Table* t = d_.table(i);
+  // Cut off from its goal by the immobile agents: plain distances (once per agent and call).
+  if (cut_off_stamp_[i] != generation_) {
+    cut_off_stamp_[i] = generation_;
+    cut_off_[i] = detour_.get(goals_[i], now_[i], t) >= DistTable::kInf;
+  }
+  if (cut_off_[i]) return static_cast<float>(d_.get(i, u));
+  return static_cast<float>(detour_.get(goals_[i], u, t));
 }
 
 bool Pibt::pull_impossible(Vertex u, Vertex v_pusher) const

@@ -5,8 +5,8 @@
 namespace planner {
 
 PibtPlanner::PibtPlanner(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt,
-                         ActionPreference* pref, GoalTest test)
-    : dist_(g), pibt_(g, dist_, opt.swap), rng_(opt.seed), current_(starts), keep_priorities_(opt.keep_priorities)
+                         ActionPreference* pref, GoalTest test, std::shared_ptr<DistCache> cache)
+    : dist_(g, std::move(cache)), pibt_(g, dist_, opt.swap), rng_(opt.seed), current_(starts), keep_priorities_(opt.keep_priorities)
 {
   pibt_.set_preference(pref);
   set_goals(goals, std::move(test));

@@ -3,8 +3,8 @@
 namespace planner {
 
 RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
-                 GoalTest test)
-    : dist_(g), lacam_(g, dist_, opt, pref), current_(starts), keep_priorities_(opt.keep_priorities), g_(g)
+                 GoalTest test, std::shared_ptr<DistCache> cache)
+    : dist_(g, std::move(cache)), lacam_(g, dist_, opt, pref), current_(starts), keep_priorities_(opt.keep_priorities), g_(g)
 {
   set_goals(goals, std::move(test));
 }

@@ -2,7 +2,10 @@
 // around it, and clearing the mark restores completeness.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <chrono>
 #include <memory>
+#include <random>
 
 #include "planner/dist_table.hpp"
 #include "planner/lacam/immobile.hpp"
@@ -213,6 +216,115 @@ TEST(Immobile, DetourTableGoesAroundBlockedVertices)
   EXPECT_EQ(dt.get(g.at(4, 0), g.at(3, 1)), 2);
   dt.set_blocked({});
   EXPECT_FALSE(dt.active());
+}
+
+namespace {
+
+// Distances to `goal` without the blocked vertices: one BFS over the in-arcs.
+std::vector<int32_t> bfs_around(const Graph& g, Vertex goal, const std::vector<Vertex>& blocked)
+{
+  std::vector<int32_t> d(g.size(), DistTable::kInf);
+  auto is_blocked = [&](Vertex u) { return std::find(blocked.begin(), blocked.end(), u) != blocked.end(); };
+  if (is_blocked(goal)) return d;
+  std::vector<Vertex> q{goal};
+  d[goal] = 0;
+  for (size_t k = 0; k < q.size(); ++k)
+    for (Vertex u : g.in_neighbors(q[k]))
+      if (d[u] == DistTable::kInf && !is_blocked(u)) d[u] = d[q[k]] + 1, q.push_back(u);
+  return d;
+}
+
+}  // namespace
+
+// The shadow search (immobile.hpp) against a BFS per goal on random grids with walls, one-way
+// arcs included: never above the true detour distance, never below the plain one, and exact
+// once the plain BFS has found every blocked vertex -- and it searches far fewer vertices.
+TEST(Immobile, DetourTableMatchesABfsAroundTheBlockedVertices)
+{
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 60; ++trial) {
+    const int w = 4 + static_cast<int>(rng() % 9), h = 3 + static_cast<int>(rng() % 7);
+    std::vector<bool> free(w * h);
+    for (size_t k = 0; k < free.size(); ++k) free[k] = rng() % 5 != 0;
+    Graph grid = Graph::from_grid(w, h, free);
+    if (grid.size() < 6) continue;
+    Graph g = grid;
+    if (trial % 3 == 2) {  // some arcs one-way (kept strongly connected enough by the reverse of the rest)
+      std::vector<std::pair<Vertex, Vertex>> arcs;
+      for (Vertex u = 0; u < grid.size(); ++u)
+        for (Vertex v : grid.neighbors(u))
+          if (u < v) {
+            arcs.push_back({u, v});
+            if (rng() % 4) arcs.push_back({v, u});
+          }
+      g = Graph::from_arcs(grid.size(), arcs);
+    }
+    std::vector<Vertex> blocked;
+    for (int k = 1 + static_cast<int>(rng() % 4); k > 0; --k) blocked.push_back(static_cast<Vertex>(rng() % g.size()));
+    for (int q = 0; q < 3; ++q) {
+      const Vertex goal = static_cast<Vertex>(rng() % g.size());
+      const std::vector<int32_t> exact = bfs_around(g, goal, blocked);
+      DistTable plain(g);
+      DetourTable dt(g, &plain);
+      dt.set_blocked(blocked);
+      std::vector<Vertex> order(g.size());
+      for (Vertex v = 0; v < g.size(); ++v) order[v] = v;
+      std::shuffle(order.begin(), order.end(), rng);
+      for (Vertex v : order) {
+        const int32_t d = dt.get(goal, v);
+        EXPECT_LE(d, exact[v]) << "trial " << trial << " v " << v;
+        if (exact[v] < DistTable::kInf) {
+          EXPECT_GE(d, plain.from_goal(goal, v)) << "trial " << trial << " v " << v;
+        }
+      }
+      for (Vertex v : order) ASSERT_EQ(dt.get(goal, v), exact[v]) << "trial " << trial << " goal " << goal << " v " << v;
+    }
+  }
+}
+
+// The cost that made a stuck replan blow the step budget at 1000 AGVs: with one stuck AGV,
+// the detours of 300 agents' goals on a warehouse-like grid (shelf rows, aisles) search a
+// fraction of the 300 BFS over the whole grid (one per goal) that they used to be: 12 %
+// here, with the AGV stuck in the main cross aisle that funnels many goals' paths.
+TEST(Immobile, DetoursSearchOnlyTheShadowOfTheBlockedVertex)
+{
+  std::vector<std::string> rows;
+  for (int y = 0; y < 31; ++y) {
+    std::string r(61, '.');
+    if (y % 3 != 0)
+      for (int x = 2; x < 59; ++x)
+        if (x % 10 != 0) r[x] = '@';  // shelves, cut by a cross aisle every 10 columns
+    rows.push_back(r);
+  }
+  Graph g = test::grid(rows);
+  std::mt19937 rng(3);
+  DistTable plain(g);
+  DetourTable dt(g, &plain);
+  dt.set_blocked({g.at(30, 15)});  // a stuck AGV in the middle of the main cross aisle
+  const int agents = 300;
+  for (int a = 0; a < agents; ++a) {
+    const Vertex goal = static_cast<Vertex>(rng() % g.size()), at = static_cast<Vertex>(rng() % g.size());
+    dt.get(goal, at);
+    for (Vertex u : g.neighbors(at)) dt.get(goal, u);
+  }
+  EXPECT_LT(dt.searched(), static_cast<uint64_t>(agents) * g.size() / 5) << dt.searched() << " of " << agents * g.size();
+  EXPECT_GT(dt.searched(), 0u);  // some agents' paths do run through it
+}
+
+// Past the deadline of the plain tables' cache no shadow is searched: the plain distance
+// (a lower bound) until a query before a deadline searches it.
+TEST(Immobile, NoShadowSearchPastTheCachesDeadline)
+{
+  Graph g = test::grid({".....", "....."});
+  DistTable plain(g);
+  DetourTable dt(g, &plain);
+  dt.set_blocked({g.at(2, 0)});
+  plain.cache()->set_deadline(DistCache::Deadline::clock::now() - std::chrono::seconds(1));
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(0, 0)), 4);  // plain: straight through the blocked cell
+  EXPECT_EQ(dt.searched(), 0u);
+  plain.cache()->set_deadline(DistCache::Deadline::max());
+  EXPECT_EQ(dt.get(g.at(4, 0), g.at(0, 0)), 6);  // around it
+  EXPECT_GT(dt.searched(), 0u);
 }
 
 TEST(Immobile, AnAgentOutOfRangeIsAClearError)

@@ -14,7 +14,8 @@ namespace planner {
 class NaiveRtLacam : public RealtimePlanner {
  public:
   NaiveRtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
-               ActionPreference* pref = nullptr, GoalTest test = {});
+               ActionPreference* pref = nullptr, GoalTest test = {},
+               std::shared_ptr<DistCache> cache = nullptr);
 
   Status search(const Budget& b) override;
   const Config& next() override;

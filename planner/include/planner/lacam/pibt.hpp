@@ -72,6 +72,9 @@ class Pibt {
   std::vector<float> key_;          // scratch for sorting candidates
   std::vector<uint8_t> immobile_;   // agent -> 1 if immobile (empty: none)
   DetourTable detour_;              // distances around the immobile agents
+  std::vector<uint32_t> cut_off_stamp_;  // agent -> generate() call cut_off_ was set in
+  std::vector<uint8_t> cut_off_;         // agent -> no path around the immobile agents
+  uint32_t generation_ = 0;
 };
 
 }  // namespace planner

@@ -10,7 +10,8 @@ namespace planner {
 class PibtPlanner : public RealtimePlanner {
  public:
   PibtPlanner(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
-              ActionPreference* pref = nullptr, GoalTest test = {});
+              ActionPreference* pref = nullptr, GoalTest test = {},
+              std::shared_ptr<DistCache> cache = nullptr);
 
   Status search(const Budget& b) override;  // plans the next step once; the budget is not needed
   const Config& next() override { return planned_ ? next_ : current_; }

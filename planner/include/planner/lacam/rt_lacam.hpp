@@ -54,7 +54,8 @@ namespace planner {
 class RtLacam : public RealtimePlanner {
  public:
   RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt = {},
-          ActionPreference* pref = nullptr, GoalTest test = {});
+          ActionPreference* pref = nullptr, GoalTest test = {},
+          std::shared_ptr<DistCache> cache = nullptr);
 
 
   Status search(const Budget& b) override;
