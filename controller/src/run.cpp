@@ -179,9 +179,7 @@ void Run::rules_restart(const planner::Config& at)
   for (const VehiclePose& p : last_poses_) lanes.push_back(p.lane);
   auto g = std::make_unique<planner::Graph>(
       rules_->graph(zone_occ_, cfg_.rules.enforce_closures, rules_->frozen_cells(at, lanes)));
-  std::vector<std::string> lines;
-  const planner::Config eff = rules_->goals(*g, at, goals(), waiting_, m_.ticks * cfg_.run.tick_s, lines);
-  for (const std::string& l : lines) std::fprintf(stderr, "[rtlacam-sumo] %s\n", l.c_str());
+  const planner::Config eff = rule_goals(*g, at);
   planner::GoalTest test;
   if (tm_) test = tasks::lifelong_goal_test(*tm_, at);
   if (p_) replan_expansions_ += p_->expansions();
@@ -194,10 +192,10 @@ void Run::rules_restart(const planner::Config& at)
   ++m_.rules.replans;
 }
 
-planner::Config Run::rule_goals(const planner::Config& at)
+planner::Config Run::rule_goals(const planner::Graph& g, const planner::Config& at)
 {
   std::vector<std::string> lines;
-  const planner::Config eff = rules_->goals(*rules_graph_, at, goals(), waiting_, m_.ticks * cfg_.run.tick_s, lines);
+  const planner::Config eff = rules_->goals(g, at, goals(), waiting_, m_.ticks * cfg_.run.tick_s, lines);
   for (const std::string& l : lines) std::fprintf(stderr, "[rtlacam-sumo] %s\n", l.c_str());
   return eff;
 }
@@ -326,7 +324,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
   if (!ev.empty() || tm_->goals_changed()) {  // goals change without a completion only with station queues
     const double c0 = planner::thread_cpu_ms();
-    p_->set_goals(rules_graph_ ? rule_goals(p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+    p_->set_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
     val_->set_goals(tm_->goals());
     show_goals();
     p_->search(plan_budget());

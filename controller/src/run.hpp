@@ -81,10 +81,11 @@ class Run {
   // Traffic rules (rules.hpp), lockstep: at a tick boundary, closures that began or ended
   // and zones that filled or emptied restart the planner at `cur` on the rules' graph;
   // rules_restart() builds that planner (goals it cannot reach: the AGV waits);
-  // rule_goals() the goals the planner gets from `at` on the current rules graph.
+  // rule_goals() the goals the planner gets from `at` on a rules graph `g` (the current one,
+  // or the one rules_restart() is about to plan on), logging the AGVs that must wait.
   void rules_tick(const planner::Config& cur);
   void rules_restart(const planner::Config& at);
-  planner::Config rule_goals(const planner::Config& at);
+  planner::Config rule_goals(const planner::Graph& g, const planner::Config& at);
   void errand_ticks();  // lifelong: how long each AGV has been on its errand
   void write_congestion();
   // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
