@@ -14,11 +14,17 @@ each other (config/bottleneck.yaml: naive replanning livelocks there, RT-LaCAM f
 
 Also writes `small_oneway`: `small` with one-way picking aisles in alternate directions.
 
+Also writes one member of a warehouse family (aisles x shelf rows as parameters) anywhere:
+scripts/bench_scale.py uses it for its robots-vs-latency table.
+
 Usage: make_warehouse.py  (writes small.*, small_oneway.*, large.*, huge.*, bottleneck.* here; then run ./build.sh)
+       make_warehouse.py --family AISLES ROWS --name NAME --out DIR  (writes DIR/NAME.{nod,edg,add}.xml)
 """
+import argparse
 import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+OUT = HERE  # where write() puts the files (--out)
 
 
 def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, one_way=False):
@@ -67,12 +73,12 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, 
 
 
 def write(name, nodes, edges, stations, fixed_lengths=False):
-    with open(os.path.join(HERE, f"{name}.nod.xml"), "w") as f:
+    with open(os.path.join(OUT, f"{name}.nod.xml"), "w") as f:
         f.write("<nodes>\n")
         for n, (x, y) in nodes.items():
             f.write(f'    <node id="{n}" x="{x:.2f}" y="{y:.2f}" type="unregulated"/>\n')
         f.write("</nodes>\n")
-    with open(os.path.join(HERE, f"{name}.edg.xml"), "w") as f:
+    with open(os.path.join(OUT, f"{name}.edg.xml"), "w") as f:
         f.write("<edges>\n")
         for e, a, b in edges:
             (xa, ya), (xb, yb) = nodes[a], nodes[b]
@@ -83,7 +89,7 @@ def write(name, nodes, edges, stations, fixed_lengths=False):
 
 
 def write_additional(name, stations):
-    with open(os.path.join(HERE, f"{name}.add.xml"), "w") as f:
+    with open(os.path.join(OUT, f"{name}.add.xml"), "w") as f:
         f.write("<additional>\n")
         for elem, sid, lane, pos, kind in stations:
             # A stop covers [pos - 0.5, pos] so its middle snaps to the cell at `pos`.
@@ -118,28 +124,53 @@ def corridor(name, length, sidings, siding_length, bays):
     write(name, nodes, edges, stations)
 
 
-# Small: 4 picking aisles 8 m long between 3 m shelf blocks, 2 pick-up and 2 drop stations.
-warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
-          pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)])
-# Small with one-way picking aisles (alternately up and down; issue 24): the same layout,
-# stations and parking spot (config/small_oneway.yaml, small_oneway_lifelong.yaml).
-warehouse("small_oneway", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
-          pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)], one_way=True)
-# Large: 16 picking aisles, two shelf rows (cross aisles at y = 0, 12, 24),
-# 8 pick-up and 8 drop stations, 4 parking spots.
-large = warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
-                  pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
-                  park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)])
-# Large with a parking lane (issue 24, config/large_warehouse_parking.yaml): the same net and
-# stations, and parking spots on every other cell of both outer picking aisles (20 spots:
-# a spot between two parked AGVs stays free, so one can leave or pass).
-write_additional("large_parking", [st for st in large if st[0] != "parkingArea"] +
-                 [("parkingArea", f"lot{c}_{r}_{pos}", f"c{c}r{r}_c{c}r{r + 1}_0", pos, "parking")
-                  for c in (0, 15) for r in (0, 1) for pos in (2, 4, 6, 8, 10)])
-# Huge (benchmark, 1000 AGVs): 48 picking aisles 10 m long in 7 shelf rows (cross aisles
-# every 10 m), 24 pick-up and 24 drop stations: about 4600 cells.
-warehouse("huge", columns=48, pitch=4, cross_ys=list(range(0, 71, 10)), stub=3,
-          pick_cols=list(range(0, 48, 2)), drop_cols=list(range(1, 48, 2)), park=[])
-# Bottleneck: a 16 m corridor with three 2 m sidings (x = 4, 8, 12); 4 AGVs at each end
-# swap ends (config/bottleneck.yaml).
-corridor("bottleneck", length=16, sidings=[4, 8, 12], siding_length=2, bays=3)
+def family(name, aisles, rows):
+    """One member of the family: `aisles` picking aisles 10 m long at a 4 m pitch in `rows`
+    shelf rows (cross aisles every 10 m), a pick-up stub of 3 m under every even aisle and a
+    drop stub over every odd one, no parking (the huge warehouse is family(48, 7))."""
+    if aisles < 2 or rows < 1:
+        raise SystemExit(f"make_warehouse.py: --family needs AISLES >= 2 and ROWS >= 1, not {aisles} {rows}")
+    return warehouse(name, columns=aisles, pitch=4, cross_ys=list(range(0, 10 * rows + 1, 10)), stub=3,
+                     pick_cols=list(range(0, aisles, 2)), drop_cols=list(range(1, aisles, 2)), park=[])
+
+
+def shipped():
+    # Small: 4 picking aisles 8 m long between 3 m shelf blocks, 2 pick-up and 2 drop stations.
+    warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
+              pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)])
+    # Small with one-way picking aisles (alternately up and down; issue 24): the same layout,
+    # stations and parking spot (config/small_oneway.yaml, small_oneway_lifelong.yaml).
+    warehouse("small_oneway", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
+              pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)], one_way=True)
+    # Large: 16 picking aisles, two shelf rows (cross aisles at y = 0, 12, 24),
+    # 8 pick-up and 8 drop stations, 4 parking spots.
+    large = warehouse("large", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
+                      pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
+                      park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)])
+    # Large with a parking lane (issue 24, config/large_warehouse_parking.yaml): the same net and
+    # stations, and parking spots on every other cell of both outer picking aisles (20 spots:
+    # a spot between two parked AGVs stays free, so one can leave or pass).
+    write_additional("large_parking", [st for st in large if st[0] != "parkingArea"] +
+                     [("parkingArea", f"lot{c}_{r}_{pos}", f"c{c}r{r}_c{c}r{r + 1}_0", pos, "parking")
+                      for c in (0, 15) for r in (0, 1) for pos in (2, 4, 6, 8, 10)])
+    # Huge (benchmark, 1000 AGVs): 48 picking aisles 10 m long in 7 shelf rows (cross aisles
+    # every 10 m), 24 pick-up and 24 drop stations: about 4600 cells.
+    family("huge", 48, 7)
+    # Bottleneck: a 16 m corridor with three 2 m sidings (x = 4, 8, 12); 4 AGVs at each end
+    # swap ends (config/bottleneck.yaml).
+    corridor("bottleneck", length=16, sidings=[4, 8, 12], siding_length=2, bays=3)
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--family", nargs=2, type=int, metavar=("AISLES", "ROWS"),
+                    help="write one member of the warehouse family instead of the shipped scenarios")
+    ap.add_argument("--name", default="family", help="--family: file name stem")
+    ap.add_argument("--out", default=HERE, help="--family: output folder")
+    a = ap.parse_args()
+    if a.family:
+        OUT = a.out
+        os.makedirs(OUT, exist_ok=True)
+        family(a.name, *a.family)
+    else:
+        shipped()

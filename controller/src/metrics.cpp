@@ -50,6 +50,9 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["throughputBound"] = throughput_bound();
     j["lifelong"]["maxErrandTicks"] = max_errand_ticks;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
+    // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
+    j["lifelong"]["freeFlowBound"] = free_flow_bound;
+    j["lifelong"]["errandThroughputOverFreeFlow"] = free_flow_bound > 0 ? errand_throughput() / free_flow_bound : 0.0;
     j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}};
     j["lifelong"]["parking"] = {{"idleAtEnd", idle_at_end}, {"parkedAtEnd", parked_at_end}};
   }

@@ -83,7 +83,18 @@ void Run::prepare()
   m_.agents = ins_.num_agents();
   m_.cells = g.size();
   if (!cfg_.tasks.lifelong()) m_.soc_lb = ins_.soc_lower_bound(g);
-  if (cfg_.tasks.lifelong()) tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
+  if (cfg_.tasks.lifelong()) {
+    tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
+    // The free-flow bound (tasks/free_flow.hpp) prices an errand's shortest path as the
+    // executor would drive it alone: a cell per tick in lockstep, one rest-to-rest trapezoid
+    // of the vType otherwise (bound.hpp). Its own cache: the planner's has a step deadline.
+    tasks::FreeFlowBound::Cost cost;
+    if (cfg_.run.executor != "lockstep")
+      cost = [kin = kinematics(), cell = cfg_.grid.cell_length, tick = cfg_.run.tick_s](int moves) {
+        return rest_to_rest_s(moves * cell, kin) / tick;
+      };
+    tm_->set_free_flow(std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost));
+  }
   // The learned policy (CS-PIBT move order). Its observations are grid windows: the net
   // must be an axis-aligned lattice (gridify then attaches the grid view). The planner
   // tells it the goals (ActionPreference::set_goals), so it starts with none.
@@ -419,8 +430,7 @@ Metrics Run::execute()
   prepare();  // ConfigError propagates: nothing started yet
   c_.plan_.start(ins_.starts);
   // The physical bound (bound.hpp): lockstep moves a cell per tick; the others drive.
-  const Kinematics kin{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
-  alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kin);
+  alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kinematics());
   if (!start_headings_.empty()) alone_->count_turns(c_.map_.graph, start_headings_);  // rotation: turns are steps
   if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
     c_.plan_.bound(cfg_.output.plan_keep > 0 ? static_cast<size_t>(cfg_.output.plan_keep)

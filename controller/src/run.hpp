@@ -55,6 +55,10 @@ class Run {
   std::vector<VehiclePose> poses();
   // The budget of a search that plans a step: budget_, a tick's worth for a rotation solver.
   planner::Budget plan_budget() const;
+  Kinematics kinematics() const  // the vType's, for the physical bounds (bound.hpp)
+  {
+    return {cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
+  }
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
   // Lifelong: the queue and parking counts of metrics.json (Metrics::max_heading ...).

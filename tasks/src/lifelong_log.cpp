@@ -62,6 +62,13 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
 
 void add_task_fields(nlohmann::json& j, const TaskManager& tasks)
 {
+  // The free-flow bound (free_flow.hpp) and the share of it the run reached.
+  if (const FreeFlowBound* ff = tasks.free_flow()) {
+    j["freeFlowBound"] = ff->errands_per_step();
+    j["freeFlowStepsPerErrand"] = ff->errands() > 0 ? ff->steps() / static_cast<double>(ff->errands()) : 0.0;
+    if (j.contains("errandThroughput") && ff->errands_per_step() > 0)
+      j["errandThroughputOverFreeFlow"] = j["errandThroughput"].get<double>() / ff->errands_per_step();
+  }
   if (const auto* pool = dynamic_cast<const TaskPool*>(&tasks)) {
     j["reassign"] = pool->reassigns();
     j["numReassignments"] = pool->reassignments();

@@ -47,6 +47,7 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
   // One distance cache for the task layer, the heading preference and the planner.
   cache_ = std::make_shared<planner::DistCache>(g, opt.max_dist_tables ? opt.max_dist_tables : 2 * starts.size() + 256);
   tasks_.share_dist_cache(cache_);
+  tasks_.set_free_flow(std::make_unique<FreeFlowBound>(cache_));  // a move per step
   tasks_.start(starts);
   // Rotation: PIBT breaks distance ties by the turns a move needs (unless a policy orders moves).
   planner::ActionPreference* pref = opt.solver.pref;

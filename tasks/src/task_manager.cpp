@@ -9,6 +9,7 @@ void TaskManager::start(const planner::Config& positions)
   holding_.assign(positions.size(), -1);
   goals_ = positions;
   now_ = 0;
+  if (free_flow_) free_flow_->start(positions);
   on_start(positions);
   refresh_goals(positions);
 }
@@ -23,6 +24,7 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
     Task& k = slots_[s];
     if (positions[a] != k.next_cell()) continue;
     events.push_back({t, a, k.id, k.next});
+    if (free_flow_) free_flow_->errand(a, k.next_cell());
     ++k.next;
     ++errands_finished_;
     if (k.finished()) {

@@ -89,6 +89,33 @@ void expect_clean_lifelong_run(const Config& cfg, const Controller& c, const Met
   }
   const nlohmann::json mj = read_json(cfg.output.dir + "/metrics.json");
   EXPECT_EQ(mj["mode"], "lifelong");
+  // The free-flow bound (tasks/free_flow.hpp), recomputed here with a BFS of our own: each
+  // AGV alone from its start through its finished errands' cells, a move per tick (lockstep).
+  if (cfg.run.executor == "lockstep" && m.errands_finished > 0) {
+    const planner::Graph& g = c.map().graph;
+    auto moves = [&](planner::Vertex from, planner::Vertex to) {
+      std::vector<int> d(g.size(), -1);
+      std::vector<planner::Vertex> q{from};
+      d[from] = 0;
+      for (size_t h = 0; h < q.size(); ++h)
+        for (planner::Vertex u : g.neighbors(q[h]))
+          if (d[u] < 0) d[u] = d[q[h]] + 1, q.push_back(u);
+      return d[to];
+    };
+    planner::Config last = plan.front();
+    double steps = 0;
+    for (const auto& e : j["events"]) {
+      const int agent = e[1];
+      const planner::Vertex cell = plan[e[0].get<long>()][agent];
+      steps += moves(last[agent], cell);
+      last[agent] = cell;
+    }
+    ASSERT_GT(steps, 0);
+    const double bound = static_cast<double>(m.agents) * static_cast<double>(m.errands_finished) / steps;
+    EXPECT_NEAR(mj["lifelong"]["freeFlowBound"].get<double>(), bound, 1e-9);
+    EXPECT_NEAR(j["freeFlowBound"].get<double>(), bound, 1e-9);
+    EXPECT_LE(m.errand_throughput(), bound + 1e-9);  // nobody beats driving alone
+  }
   EXPECT_EQ(mj["lifelong"]["numErrandFinished"], m.errands_finished);
   ctest_util::expect_no_sumo_collision(cfg.output.dir);
 }

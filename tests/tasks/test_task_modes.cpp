@@ -202,3 +202,45 @@ TEST(LifelongGoal, SomePendingAgentOnItsGoal)
   const auto all = lifelong_goal_test(Config{0, 1}, Config{0, 1}, {1, 1});
   EXPECT_TRUE(all(root));
 }
+
+// The free-flow bound (free_flow.hpp): each agent alone drives start -> its finished errands'
+// cells along shortest paths; the bound is agents / (free-flow steps per errand).
+TEST(FreeFlowBound, PricesEachAgentsErrandSequenceAlongShortestPaths)
+{
+  const auto& g = corridor();
+  auto file = ttest::task_file(g, {{{1, 0}}, {{4, 0}}, {{2, 0}}, {{5, 0}}, {{3, 0}}});
+  RoundRobin rr(file);
+  auto cache = std::make_shared<planner::DistCache>(g);
+  rr.set_free_flow(std::make_unique<FreeFlowBound>(cache));
+  rr.start({0, 5});                      // goals 1 (agent 0) and 4 (agent 1)
+  ASSERT_NE(rr.free_flow(), nullptr);
+  EXPECT_EQ(rr.free_flow()->errands_per_step(), 0.0);  // nothing finished yet
+  // Agent 0 reaches 1 (1 move from 0) after wandering; the bound does not see the detour.
+  rr.update(1, {0, 5});
+  rr.update(2, {1, 5});                  // agent 0: 0 -> 1 = 1 step; next goal 2
+  rr.update(3, {2, 4});                  // agent 0: 1 -> 2 = 1; agent 1: 5 -> 4 = 1
+  EXPECT_EQ(rr.free_flow()->errands(), 3);
+  EXPECT_DOUBLE_EQ(rr.free_flow()->steps(), 3.0);
+  EXPECT_DOUBLE_EQ(rr.free_flow()->errands_per_step(), 2.0 * 3 / 3.0);
+  // Agent 0 -> task 4 (cell 3), agent 1 -> task 3 (cell 5). Their tables' BFS has finished
+  // (the planner grew them): a finished table must still answer exactly.
+  for (planner::Vertex v : {3, 5})
+    for (planner::DistCache::Table* t = cache->table(v); !t->done();) t->pop(g);
+  rr.update(4, {3, 5});                  // 2 -> 3 = 1; 4 -> 5 = 1
+  EXPECT_DOUBLE_EQ(rr.free_flow()->steps(), 5.0);
+  EXPECT_EQ(rr.free_flow()->errands(), 5);
+}
+
+TEST(FreeFlowBound, ACostPricesMovesAsTheExecutorDrivesThem)
+{
+  const auto& g = corridor();
+  auto file = ttest::task_file(g, {{{5, 0}}, {{0, 0}}});
+  RoundRobin rr(file);
+  // E.g. SUMO: a rest-to-rest trapezoid per errand; here 2 steps per move plus 3 per errand.
+  rr.set_free_flow(std::make_unique<FreeFlowBound>(std::make_shared<planner::DistCache>(g),
+                                                   [](int moves) { return 2.0 * moves + 3.0; }));
+  rr.start({0, 5});                      // agent 0 -> 5, agent 1 -> 0
+  rr.update(1, {5, 0});                  // both: 5 moves each
+  EXPECT_DOUBLE_EQ(rr.free_flow()->steps(), 2 * (2.0 * 5 + 3.0));
+  EXPECT_DOUBLE_EQ(rr.free_flow()->errands_per_step(), 2.0 * 2 / 26.0);
+}

@@ -72,6 +72,7 @@ struct Metrics {
   double bound_ticks = 0;
   double makespan_over_bound() const { return bound_ticks > 0 ? makespan / bound_ticks : 0.0; }
   double throughput_bound() const { return bound_ticks > 0 ? tasks_finished / bound_ticks : 0.0; }
+  double free_flow_bound = 0;  // lifelong: errands per tick with every AGV alone (tasks/free_flow.hpp)
 
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;

@@ -18,6 +18,7 @@
 
 #include "planner/config.hpp"
 #include "planner/dist_cache.hpp"
+#include "tasks/free_flow.hpp"
 #include "tasks/lorr_files.hpp"
 #include "tasks/parking.hpp"
 #include "tasks/station_queues.hpp"
@@ -68,6 +69,9 @@ class TaskManager {
   // (cells may be empty: idle agents then only leave reserved cells). Before start().
   void set_queues(const planner::Graph& g, const QueueOptions& options);
   void set_parking(const planner::Graph& g, std::vector<planner::Vertex> cells);
+  // The free-flow bound of the errands this manager sees finished (free_flow.hpp). Before start().
+  void set_free_flow(std::unique_ptr<FreeFlowBound> b) { free_flow_ = std::move(b); }
+  const FreeFlowBound* free_flow() const { return free_flow_.get(); }
   StationQueues* queues() { return queues_.get(); }
   const StationQueues* queues() const { return queues_.get(); }
   const Parking* parking() const { return parking_.get(); }
@@ -113,6 +117,7 @@ class TaskManager {
  private:
   std::unique_ptr<StationQueues> queues_;
   std::unique_ptr<Parking> parking_;
+  std::unique_ptr<FreeFlowBound> free_flow_;
   void refresh_goals(const planner::Config& positions);
 
   long now_ = 0;  // step of the current start()/update(), for the history

@@ -1,0 +1,184 @@
+#!/usr/bin/env python3
+"""SUMO against its grid twin, each over its own free-flow bound (issue 20).
+
+For each warehouse config (lifelong, SUMO), solver and delay probability p, two runs in one
+invocation:
+  - SUMO: the config with physical AGVs (the vType of the *_agv configs), the executor given
+    (default adg-follow), Bernoulli stops of 1-5 s at p per AGV per tick;
+  - its grid twin: rtlacam-lifelong on the same gridified net (rtlacam-gridify --map), the
+    same fleet size, pick-up -> drop tasks between the same stations, the same pool, station
+    queues and priorities, the same executor and delay model at one step per tick.
+Both sides plan with a fixed number of expansions (deterministic decisions; E per SUMO step
+in SUMO, E x steps-per-tick per grid step), so the comparison is about execution, not CPU.
+
+Each side reports its free-flow bound (tasks/free_flow.hpp): every AGV alone on its errand
+sequence along shortest paths, a cell per step on the grid, the vType's rest-to-rest
+trapezoid per errand in SUMO. The issue's target: SUMO's errands/tick over its bound >= 0.8 x
+the twin's errands/step over its bound ("physics may cost time, congestion handling should
+not get worse in SUMO"), and no collapse (last 1000 ticks >= 0.8 x the first 1000).
+
+  scripts/bench_twin.py [--build build] [--configs config/large_warehouse_lifelong.yaml,...]
+                        [--solvers rtlacam,pibt] [--p 0,0.01] [--ticks 5000] [--out DIR]
+"""
+import argparse
+import json
+import os
+import random
+import subprocess
+import sys
+import tempfile
+
+import yaml  # PyYAML
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+os.environ.setdefault("SUMO_HOME", "/usr/share/sumo")
+VTYPE = {"length": 0.8, "width": 0.6, "min_gap": 0.1, "accel": 0.5, "decel": 1.0, "max_speed": 1.0}
+
+
+def absolute(cfg, base):
+    here = os.path.dirname(os.path.join(ROOT, base))
+    for k in ("net", "additional"):
+        if k in cfg["sumo"]:
+            cfg["sumo"][k] = os.path.normpath(os.path.join(here, cfg["sumo"][k]))
+    return cfg
+
+
+def window_rates(events, ticks):
+    first = sum(1 for t, *_ in events if t <= 1000) / min(1000, ticks)
+    last = sum(1 for t, *_ in events if t > ticks - 1000) / min(1000, ticks)
+    return last / first if first else 0.0
+
+
+def sumo_run(a, base, solver, p, out):
+    cfg = absolute(yaml.safe_load(open(os.path.join(ROOT, base))), base)
+    cfg["sumo"]["outputs"] = {"fcd": False, "tripinfo": False, "summary": False, "collision": True}
+    cfg["fleet"]["vtype"] = VTYPE
+    cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": a.expansions})
+    cfg["run"].update({"executor": a.executor, "max_ticks": a.ticks, "progress_s": 0})
+    if a.executor != "lockstep":
+        cfg["run"].setdefault("window", 16)
+    cfg["delays"] = {"kind": "bernoulli", "p": p, "duration_s": [1, 5], "seed": 0} if p > 0 else {"kind": "none"}
+    cfg["output"] = {"dir": out, "congestion": False}
+    with open(out + ".yaml", "w") as f:
+        yaml.safe_dump(cfg, f)
+    r = subprocess.run([os.path.join(a.build, "apps", "rtlacam-sumo"), out + ".yaml"], capture_output=True, text=True)
+    if not os.path.exists(os.path.join(out, "metrics.json")):
+        return None, f"rtlacam-sumo exit {r.returncode}: {r.stderr.strip().splitlines()[-1:]}"
+    m = json.load(open(os.path.join(out, "metrics.json")))
+    ev = json.load(open(os.path.join(out, "lifelong.json")))["events"]
+    ll = m["lifelong"]
+    return {"thr": ll["errandThroughput"], "bound": ll["freeFlowBound"], "ratio": ll["errandThroughputOverFreeFlow"],
+            "trend": window_rates(ev, m["ticks"]), "coll": m["collisions"], "jumps": m["teleports_or_jumps"],
+            "viol": m["violations"], "error": m["error"]}, ""
+
+
+def twin_problem(a, base, work):
+    """The grid twin of a SUMO lifelong config: a LoRR problem on its gridified net."""
+    cfg = absolute(yaml.safe_load(open(os.path.join(ROOT, base))), base)
+    name = os.path.splitext(os.path.basename(base))[0]
+    tw = os.path.join(work, "twin_" + name)
+    for d in ("maps", "agents", "tasks"):
+        os.makedirs(os.path.join(tw, d), exist_ok=True)
+    cmd = [os.path.join(a.build, "apps", "rtlacam-gridify"), cfg["sumo"]["net"], "--map", f"{tw}/maps/{name}.map",
+           "--json", f"{tw}/{name}.grid.json", "-q"]
+    if "additional" in cfg["sumo"]:
+        cmd += ["--additional", cfg["sumo"]["additional"]]
+    subprocess.run(cmd, check=True)
+    j = json.load(open(f"{tw}/{name}.grid.json"))
+    w = j["grid"]["width"]
+    cell = [c["row"] * w + c["col"] for c in j["cells"]]
+    pick = [cell[s["cell"]] for s in j["stations"] if s["kind"] == "pickup"]
+    drop = [cell[s["cell"]] for s in j["stations"] if s["kind"] == "drop"]
+    n = cfg["fleet"]["count"]
+    rnd = random.Random(1)
+    open(f"{tw}/agents/{name}.agents", "w").write(f"{n}\n" + "\n".join(map(str, rnd.sample(cell, n))) + "\n")
+    open(f"{tw}/tasks/{name}.tasks", "w").write("# 2024\n100000\n" + "\n".join(
+        f"{rnd.choice(pick)},{rnd.choice(drop)}" for _ in range(100000)) + "\n")
+    prob = f"{tw}/{name}.json"
+    json.dump({"mapFile": f"maps/{name}.map", "agentFile": f"agents/{name}.agents", "teamSize": n,
+               "taskFile": f"tasks/{name}.tasks", "numTasksReveal": 1.5, "version": "2024 LoRR"}, open(prob, "w"))
+    q = (cfg.get("tasks") or {}).get("queues") or {}
+    keep = (cfg.get("planner") or {}).get("keep_priorities", False)
+    steps_per_tick = round(cfg["run"]["tick_s"] / cfg["sumo"]["step_length"])
+    return prob, q, keep, steps_per_tick
+
+
+def twin_run(a, twin, solver, p, out):
+    prob, q, keep, steps_per_tick = twin
+    cmd = [os.path.join(a.build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(a.ticks),
+           "--budget-ms", "1000", "--budget-expansions", str(a.expansions * steps_per_tick), "--solver", solver,
+           "--quiet", "--out", out + ".log.json", "--executor", a.executor]
+    if not keep:
+        cmd.append("--reset-priorities")
+    if q.get("capacity", 0) > 0:
+        cmd += ["--queue-capacity", str(q["capacity"]), "--queue-length", str(q.get("length", 8))]
+    if p > 0:
+        cmd += ["--delay-kind", "bernoulli", "--delay-p", str(p), "--delay-min", "1", "--delay-max", "5"]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        return None, f"rtlacam-lifelong exit {r.returncode}: {r.stderr.strip().splitlines()[-1:]}"
+    j = json.loads(r.stdout)
+    ev = json.load(open(out + ".log.json"))["events"]
+    return {"thr": j["errandThroughput"], "bound": j.get("freeFlowBound", 0),
+            "ratio": j.get("errandThroughputOverFreeFlow", 0), "trend": window_rates(ev, j["makespan"]),
+            "errors": j["numPlannerErrors"]}, ""
+
+
+def main():
+    ap = argparse.ArgumentParser(description="SUMO vs its grid twin over their free-flow bounds")
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--configs", default="config/large_warehouse_lifelong.yaml,config/huge_warehouse_lifelong.yaml")
+    ap.add_argument("--solvers", default="rtlacam,pibt")
+    ap.add_argument("--p", default="0,0.01", help="Bernoulli stop probabilities per AGV per tick")
+    ap.add_argument("--ticks", type=int, default=5000)
+    ap.add_argument("--expansions", type=int, default=5, help="planner expansions per SUMO step")
+    ap.add_argument("--executor", default="adg-follow", choices=["lockstep", "adg", "adg-follow"])
+    ap.add_argument("--out", help="keep runs here (default: a temporary folder)")
+    a = ap.parse_args()
+    a.build = os.path.abspath(a.build)
+    for app in ("rtlacam-sumo", "rtlacam-lifelong", "rtlacam-gridify"):
+        if not os.access(os.path.join(a.build, "apps", app), os.X_OK):
+            sys.exit(f"bench_twin.py: {a.build}/apps/{app} is not built")
+    try:
+        ps = [float(x) for x in a.p.split(",")]
+    except ValueError:
+        sys.exit(f"bench_twin.py: --p: '{a.p}' is not a comma-separated list of numbers")
+    work = os.path.abspath(a.out) if a.out else tempfile.mkdtemp(prefix="bench_twin_")
+    os.makedirs(work, exist_ok=True)
+    print(f"# bench_twin.py: executor {a.executor}, {a.expansions} expansions per SUMO step, {a.ticks} ticks; files in {work}",
+          flush=True)
+    rows, clean = [], True
+    for base in a.configs.split(","):
+        twin = twin_problem(a, base, work)
+        name = os.path.splitext(os.path.basename(base))[0]
+        for solver in a.solvers.split(","):
+            for p in ps:
+                tag = f"{name}_{solver}_p{p:g}"
+                s, err_s = sumo_run(a, base, solver, p, os.path.join(work, tag))
+                t, err_t = twin_run(a, twin, solver, p, os.path.join(work, "twin_" + tag))
+                for e in (err_s, err_t):
+                    if e:
+                        print(f"# {tag}: {e}", flush=True)
+                        clean = False
+                if s:
+                    clean &= s["coll"] == 0 and s["jumps"] == 0 and s["viol"] == 0
+                rows.append((name, solver, p, s, t))
+                print(f"# {tag}: done", flush=True)
+    print()
+    print("| warehouse | solver | p | SUMO errands/tick | SUMO free-flow bound | SUMO / bound | twin errands/step | "
+          "twin free-flow bound | twin / bound | SUMO share / twin share (target >= 0.8) | SUMO last/first 1000 | "
+          "twin last/first 1000 | collisions | jumps |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    f = lambda v, k, fmt="{:.3f}": fmt.format(v[k]) if v else "-"
+    for name, solver, p, s, t in rows:
+        rel = f"{s['ratio'] / t['ratio']:.2f}" if s and t and t["ratio"] > 0 else "-"
+        print(f"| {name} | {solver} | {p:g} | {f(s, 'thr')} | {f(s, 'bound')} | {f(s, 'ratio')} | {f(t, 'thr')} | "
+              f"{f(t, 'bound')} | {f(t, 'ratio')} | {rel} | {f(s, 'trend', '{:.2f}')} | {f(t, 'trend', '{:.2f}')} | "
+              f"{f(s, 'coll', '{}')} | {f(s, 'jumps', '{}')} |")
+    print()
+    print("all SUMO runs clean (0 collisions, 0 jumps, 0 violations)" if clean else "NOT CLEAN: see the lines above")
+    return 0 if clean else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
