@@ -55,6 +55,12 @@ class Run {
   std::vector<VehiclePose> poses();
   // The budget of a search that plans a step: budget_, a tick's worth for a rotation solver.
   planner::Budget plan_budget() const;
+  // Lifelong: thousands of goal cells over a run; p_ keeps the distance tables in use plus a
+  // few hundred recent ones.
+  void cap_dist_tables()
+  {
+    if (tm_) p_->set_max_dist_tables(2 * ins_.starts.size() + 256);
+  }
   Kinematics kinematics() const  // the vType's, for the physical bounds (bound.hpp)
   {
     return {cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
@@ -141,6 +147,7 @@ class Run {
   std::unique_ptr<Congestion> congestion_;
   std::vector<AgvState> states_;
   std::vector<uint8_t> is_station_;  // lifelong: the task file's errand cells
+  std::vector<int> heading_count_;   // count_queues: AGVs heading to each cell this tick (zeroed after)
   uint64_t replan_expansions_ = 0;     // expansions of the planners replaced by replans
   tasks::LifelongResult life_;
   planner::Budget budget_;

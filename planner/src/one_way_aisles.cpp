@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "planner/blocked.hpp"
+
 namespace planner {
 
 Graph one_way_aisles(const Graph& g)
@@ -23,22 +25,12 @@ Graph one_way_aisles(const Graph& g)
   if (row_index.empty()) throw std::invalid_argument("one_way_aisles: '" + g.name + "' has no aisle between shelves");
   int k = 0;
   for (auto& [y, rank] : row_index) rank = k++;
-  std::vector<std::pair<Vertex, Vertex>> arcs;
-  std::vector<int32_t> cells;
-  std::vector<Point> pos;
-  for (Vertex v = 0; v < g.size(); ++v) {
-    cells.push_back(g.cell_y(v) * W + g.cell_x(v));
-    pos.push_back(g.position(v));
-    for (Vertex u : g.neighbors(v)) {
-      const int x = g.cell_x(v), y = g.cell_y(v), ux = g.cell_x(u);
-      const bool aisle = g.cell_y(u) == y && beside_shelf(x, y) && beside_shelf(ux, y);
-      // An aisle arc is kept in its row's direction only: east (x + 1) on even rows.
-      if (aisle && (ux > x) != (row_index.at(y) % 2 == 0)) continue;
-      arcs.emplace_back(v, u);
-    }
-  }
-  Graph d = Graph::from_arcs(g.size(), arcs, std::move(pos));
-  d.attach_grid(W, H, std::move(cells));
+  // An aisle arc is kept in its row's direction only: east (x + 1) on even rows.
+  Graph d = without_arcs(g, [&](Vertex v, Vertex u) {
+    const int x = g.cell_x(v), y = g.cell_y(v), ux = g.cell_x(u);
+    const bool aisle = g.cell_y(u) == y && beside_shelf(x, y) && beside_shelf(ux, y);
+    return aisle && (ux > x) != (row_index.at(y) % 2 == 0);
+  });
   d.name = g.name + " (one-way aisles)";
   int count = 0;
   d.strong_components(&count);
