@@ -200,6 +200,9 @@ void Run::loop_adg()
   m_.chained = drv.stats().chained;
   m_.followed = drv.stats().followed;
   m_.overshoot_m = drv.stats().overshoot;
+  const DriveStats::Time& t = drv.stats().time;
+  m_.time_cruise = t.cruise, m_.time_accel = t.accel, m_.time_follow = t.follow;
+  m_.time_lane = t.lane, m_.time_end = t.end, m_.time_start_wait = t.start_wait;
 }
 
 void Run::finish()
