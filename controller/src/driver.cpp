@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "controller/sumo_error.hpp"
 
@@ -227,9 +226,6 @@ void Driver::before_step()
     if (rem_[i] > 1e-12 && v * p_.dt > rem_[i] - 1e-9) v = std::max(lo, (rem_[i] - 1e-9) / p_.dt);
     if (rem_[i] <= 1e-12) v = lo;
     st_.overshoot = std::max(st_.overshoot, v * p_.dt - std::max(0.0, rem_[i]));
-    if (v * p_.dt - std::max(0.0, rem_[i]) > 1e-6) std::fprintf(stderr, "OVS %d v %.4f gv %.4f rem %.4f left %.4f room %.4f %s\n", i, v, g.v, rem_[i], left_to_drive(g.dist, g.done), room(i), describe(i).c_str());
-    if (v * p_.dt - std::max(0.0, rem_[i]) > 1e-6) for (int id : g.run) { const auto& a = adg_.action(id); if (a.handover < 0) continue; const auto& h = adg_.action(a.handover); if (h.state == executor::State::Done) continue;
-      std::fprintf(stderr, "   leader %d ahead %.4f v %.4f sure %.4f hd %.4f lane %s  %s\n", h.agent, ahead(h.agent, a.handover), agv_[h.agent].v, sure_travel(h.agent), handover_dist(h.agent, a.handover), agv_[h.agent].lane.c_str(), describe(h.agent).c_str()); }
     // SUMO keeps a speed until it is set again; if it drove something else than our last
     // command, somebody else set it: set ours again.
     cmd_.drive(i, v, std::fabs(g.cmd - g.v) > 1e-9);

@@ -121,6 +121,9 @@ void Run::loop_adg()
   dp.follow = cfg_.run.executor == "adg-follow";
   dp.length = cfg_.fleet.vtype.length;
   dp.margin = cfg_.fleet.vtype.min_gap;
+  dp.sure_travel = cfg_.run.relative_braking;
+  dp.same_step_starts = cfg_.run.same_step_starts;
+  dp.exact_chain = cfg_.run.chain_to_end;
   Driver drv(*cmd_, adg, *delays_, dp);
   auto executed = [&] {
     planner::Config c(ins_.num_agents());
