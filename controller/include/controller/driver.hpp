@@ -13,7 +13,9 @@
 //           started too (a prefix of its remaining actions), so it drives through all
 //           their cells and brakes only for the end of the last one. Not across a turn
 //           that needs rest, and a move onto a new lane (new SUMO route) only once the AGV
-//           is on the commanded lane (SUMO replaces a route from the current edge only);
+//           is on the commanded lane (SUMO replaces a route from the current edge only).
+//           In follow mode a move chains only if braking still stops behind its leader,
+//           measured from the move's end (run.chain_to_end; Commander::move_length);
 //   follow: adg-follow (moving-block following): a move into cell v may start (or chain)
 //           once v's previous occupant has STARTED leaving it (toward another cell: the
 //           plan has no swaps); the stopping point is then
@@ -23,6 +25,15 @@
 //           (exact for a train; at a junction it only adds distance). So the front stays
 //           `margin` (vType min_gap) behind the leader's back, and v is reached only after
 //           the leader's arrival elsewhere, as in Hönig's ADG order;
+//           relative braking (run.relative_braking): once the follower is `margin` behind
+//           the leader's back, the leader's distance counts its sure travel too (braking
+//           at `decel` in whole steps from the speed SUMO reports: no command and no outside
+//           stop brakes harder), and a leader sure to reach its target counts as arrived
+//           for "short of v"; both brake at the same rate, so the gap is least now or at the
+//           end -- trains run at speed one cell apart. A follower that reaches v first
+//           completes its move only after the leader's (after_step: arrivals in ADG order);
+//   passes: (run.same_step_starts) starts and chains are repeated within the step until none
+//           is added, so a queue starts in one step, not one step per AGV;
 //   rotate: the members of a rotation group start together (strictly released, also in
 //           follow mode), drive at the slowest one's pace, cover equal fractions of their
 //           moves (arrive together) and brake together;
