@@ -31,7 +31,7 @@ def yaml_variant(src, executor, p, accel=None, decel=None, window=16, max_ticks=
     """The config `src` with the executor, the delays and the physics replaced."""
     s = open(os.path.join(ROOT, "config", src)).read()
     s = re.sub(r"\ndelays:\n(  .*\n)*", "\n", s)
-    s = re.sub(r"  executor: \w+\n", "", s)
+    s = re.sub(r"  executor: [\w-]+.*\n", "", s)
     s = re.sub(r"  window: \d+\n", "", s)
     s = s.replace("run:\n", f"run:\n  executor: {executor}\n  window: {window}\n")
     if accel is not None:

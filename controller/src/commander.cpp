@@ -332,6 +332,16 @@ void Commander::drive(int i, double speed, bool resend)
   }
 }
 
+double Commander::move_length(int i, planner::Vertex u, planner::Vertex v) const
+{
+  const Agv& a = agv_[i];
+  const gridify::SumoPose target = map_.pose_entering(u, v);
+  if (target.lane == a.pose.lane) return std::max(0.0, target.pos - a.pose.pos);
+  if (map_.cells[u].kind == gridify::CellKind::Junction && connected(lane(a.pose.lane).edge, lane(target.lane).edge))
+    return target.pos;
+  return 0;
+}
+
 double Commander::begin_move(int i, planner::Vertex u, planner::Vertex v)
 {
   Agv& a = agv_[i];

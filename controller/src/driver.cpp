@@ -66,7 +66,7 @@ double Driver::lane_cap(int i) const
 }
 
 Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
-    : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents())
+    : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents()), waiting_start_(adg.num_agents(), 0)
 {
   for (int i = 0; i < adg.num_agents(); ++i) agv_[i].lane = cmd_.pose(i).lane;
 }
@@ -87,21 +87,21 @@ void Driver::begin(int id)
                   !(a.group >= 0 && adg_.action(a.handover).group == a.group);
 }
 
-void Driver::before_step()
+bool Driver::start_moves(int i, bool count)
 {
-  const int n = adg_.num_agents();
-  for (int i = 0; i < n; ++i) {
-    Agv& g = agv_[i];
+  Agv& g = agv_[i];
+  const size_t running = g.run.size();
+  {
     const bool stopped = delays_.stopped(i);
-    st_.delay_steps += stopped;
-    if (stopped) continue;
+    if (count) st_.delay_steps += stopped, waiting_start_[i] = false;
+    if (stopped) return false;
     if (g.run.empty()) {
       const int id = adg_.next_action(i);
-      if (id < 0) continue;
+      if (id < 0) return false;
       const bool follow = p_.follow && adg_.action(id).group < 0;  // rotations: strict
       if (!(follow ? adg_.released_following(id) : adg_.released(id))) {
-        ++st_.dependency_waits;
-        continue;
+        if (count) ++st_.dependency_waits;
+        return false;
       }
       const std::vector<int> group = adg_.group_of(id);
       bool go = true;
@@ -110,7 +110,8 @@ void Driver::before_step()
         go = go && !delays_.stopped(j) && agv_[j].run.empty() &&
              (!cmd_.needs_rest(j, adg_.action(m).from, adg_.action(m).to) || agv_[j].rest_steps > 0);
       }
-      if (!go) continue;
+      waiting_start_[i] = !go;
+      if (!go) return false;
       if (follow)
         adg_.start_following(id);
       else
@@ -134,7 +135,8 @@ void Driver::before_step()
       // toward the cell may not be there yet) -- only as far as braking from the AGV's
       // speed still stops short of it.
       if (p_.follow) {
-        const double to = std::min(room(i), left_to_drive(g.dist, g.done) + gap(a));
+        const double end = left_to_drive(g.dist, g.done) + (p_.exact_chain ? cmd_.move_length(i, a.from, a.to) : 0);
+        const double to = std::min(room(i), end + gap(a, end));
         if (stop_speed(to - 1e-9, p_.decel, p_.dt) < g.v - p_.decel * p_.dt) break;
       }
       if (p_.follow)
@@ -145,8 +147,23 @@ void Driver::before_step()
       ++st_.chained;
     }
   }
+  return g.run.size() != running;
+}
+
+void Driver::before_step()
+{
+  const int n = adg_.num_agents();
+  // Starts in passes: a move released by a start earlier in this step (a leader that began
+  // leaving the cell) starts in the same step, not one SUMO step later per AGV of a queue.
+  for (int i = 0; i < n; ++i) start_moves(i, true);
+  for (bool more = p_.same_step_starts; more;) {
+    more = false;
+    for (int i = 0; i < n; ++i) more = start_moves(i, false) || more;
+  }
   std::vector<double> speed(n, 0.0);
   rem_.assign(n, 0.0);
+  enum class Why : uint8_t { None, Held, Cruise, Follow, End, Lane };
+  std::vector<Why> why(n, Why::None);
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
     double rem = left_to_drive(g.dist, g.done);
@@ -162,11 +179,17 @@ void Driver::before_step()
           held = held || delays_.stopped(j);
           factor = std::min(factor, delays_.factor(j));
         }
+      const double end = rem;
       if (p_.follow) rem = std::min(rem, room(i));
       // Land a nanometre short: SUMO moves a front exactly at a lane's end onto the next
       // edge of its route, which would leave the junction cell's pose.
-      if (!held) v = std::min(p_.max_speed * factor, stop_speed(rem - 1e-9, p_.decel, p_.dt));
-      if (p_.lane_speeds) v = std::min(v, lane_cap(i));
+      const double cruise = p_.max_speed * factor, stop = stop_speed(rem - 1e-9, p_.decel, p_.dt);
+      if (!held) v = std::min(cruise, stop);
+      why[i] = held ? Why::Held : v >= cruise ? Why::Cruise : rem < end ? Why::Follow : Why::End;
+      if (p_.lane_speeds) {
+        const double cap = lane_cap(i);
+        if (cap < v) v = cap, why[i] = Why::Lane;
+      }
     }
     speed[i] = v;
     rem_[i] = rem;
@@ -193,6 +216,13 @@ void Driver::before_step()
     // past it (overshoot counts it if it ever did).
     const double lo = std::max(0.0, g.v - p_.decel * p_.dt), hi = g.v + p_.accel * p_.dt;
     double v = std::clamp(speed[i], lo, std::max(lo, hi));
+    if (why[i] != Why::None && why[i] != Why::Held) {
+      DriveStats::Time& t = st_.time;
+      ++(speed[i] > hi + 1e-12 ? t.accel : why[i] == Why::Cruise ? t.cruise : why[i] == Why::Follow ? t.follow
+                                          : why[i] == Why::Lane ? t.lane : t.end);
+    } else if (g.run.empty() && !delays_.stopped(i) && adg_.next_action(i) >= 0 && waiting_start_[i]) {
+      ++st_.time.start_wait;
+    }
     if (rem_[i] > 1e-12 && v * p_.dt > rem_[i] - 1e-9) v = std::max(lo, (rem_[i] - 1e-9) / p_.dt);
     if (rem_[i] <= 1e-12) v = lo;
     st_.overshoot = std::max(st_.overshoot, v * p_.dt - std::max(0.0, rem_[i]));
@@ -214,7 +244,7 @@ double Driver::ahead(int agent, int action) const
   return -INFINITY;  // not running: cannot happen for a started hand-over
 }
 
-double Driver::gap(const executor::Action& a) const
+double Driver::gap(const executor::Action& a, double end) const
 {
   if (a.handover < 0) return INFINITY;
   const executor::Action& h = adg_.action(a.handover);
@@ -222,8 +252,38 @@ double Driver::gap(const executor::Action& a) const
   // The previous occupant of a.to is leaving it: keep the front `margin` behind its back
   // (measured as if its path went straight on through a.to: exact for a train, and at a
   // junction conservative), and short of a.to until it has arrived (ADG order).
-  const double back = ahead(h.agent, a.handover) - p_.length;
-  return std::min(back - p_.margin, -1e-6);
+  const double now = ahead(h.agent, a.handover) - p_.length - p_.margin;
+  // Relative braking (DriveParams::sure_travel): the leader cannot stop before covering
+  // its sure travel -- every command is >= v - decel dt, and an outside stop brakes no harder
+  // (a body's decel is physics) -- so the follower may count on that much: trains flow at
+  // full speed one cell apart instead of each braking to a stop behind a moving leader.
+  // Both braking from now at the same decel, the gap shrinks at a constant rate until one
+  // stops: its least is now or at the end. So only a follower already `margin` behind the
+  // leader's back (end + now >= 0) may count on it; one that is not (a leader reaching v from
+  // another side, its body projected straight on) waits, as without it.
+  if (!p_.sure_travel || end + now < 0) return std::min(now, -1e-6);
+  const double front = ahead(h.agent, a.handover) + sure_travel(h.agent);
+  // ... and a leader sure to arrive (its front will reach its target) is as good as arrived:
+  // a.to may be entered (to 1e-6 m: a stopping point is aimed a nanometre short, and its
+  // sure travel is a sum of steps). Its completion still waits for the leader's (after_step).
+  const double arrive = p_.sure_travel && front >= handover_dist(h.agent, a.handover) - 1e-6 ? INFINITY : -1e-6;
+  return std::min(front - p_.length - p_.margin, arrive);
+}
+
+double Driver::sure_travel(int i) const
+{
+  const double b = p_.decel * p_.dt;
+  double d = 0;
+  for (double u = agv_[i].v - b; u > 1e-12; u -= b) d += u * p_.dt;
+  return d;
+}
+
+double Driver::handover_dist(int agent, int action) const
+{
+  const Agv& g = agv_[agent];
+  for (size_t k = 0; k < g.run.size(); ++k)
+    if (g.run[k] == action) return g.dist[k];
+  return INFINITY;
 }
 
 double Driver::room(int i) const
@@ -232,7 +292,7 @@ double Driver::room(int i) const
   double room = INFINITY, end = -g.done;  // end: distance from the front to the end of run[k]
   for (size_t k = 0; k < g.run.size(); ++k) {
     end += g.dist[k];
-    room = std::min(room, end + gap(adg_.action(g.run[k])));
+    room = std::min(room, end + gap(adg_.action(g.run[k]), end));
   }
   return room;
 }
@@ -266,7 +326,24 @@ void Driver::after_step(const std::vector<VehiclePose>& poses)
     // moves (cannot happen while SUMO follows its route): no progress; Safety reports it.
     const double at = progress(i, poses[i]);
     if (!std::isnan(at)) g.done = std::max(0.0, at);
-    while (!g.run.empty() && g.done >= g.dist.front() - 2e-9) {
+  }
+  // Arrivals in ADG order: an action into v completes only after v's previous occupant has
+  // arrived elsewhere (may_finish). A follower that reached v first (sure_travel lets it
+  // enter behind a leader sure to arrive) completes once the leader has: passes until
+  // nothing changes (hand-overs form a DAG, so the passes end).
+  for (bool more = true; more;) {
+    more = false;
+    for (int i = 0; i < adg_.num_agents(); ++i) more = arrive(i, poses[i]) || more;
+  }
+}
+
+bool Driver::arrive(int i, const VehiclePose& pose)
+{
+  Agv& g = agv_[i];
+  bool any = false;
+  {
+    while (!g.run.empty() && g.done >= g.dist.front() - 2e-9 && adg_.may_finish(g.run.front())) {
+      any = true;
       g.done = std::max(0.0, g.done - g.dist.front());
       const int id = g.run.front();
       g.run.erase(g.run.begin());
@@ -277,16 +354,17 @@ void Driver::after_step(const std::vector<VehiclePose>& poses)
       if (g.run.empty()) {
         // The last target reached: the front must be on the cell.
         const gridify::SumoPose& want = cmd_.pose(i);
-        const double err = poses[i].lane == want.lane ? std::fabs(poses[i].pos - want.pos) : INFINITY;
+        const double err = pose.lane == want.lane ? std::fabs(pose.pos - want.pos) : INFINITY;
         if (err > 1e-6)
-          throw ControlError("AGV " + cmd_.ids()[i] + " arrived off its cell: lane " + poses[i].lane + " pos " +
-                             std::to_string(poses[i].pos) + ", expected " + want.lane + " " + std::to_string(want.pos));
+          throw ControlError("AGV " + cmd_.ids()[i] + " arrived off its cell: lane " + pose.lane + " pos " +
+                             std::to_string(pose.pos) + ", expected " + want.lane + " " + std::to_string(want.pos));
         st_.max_error = std::max(st_.max_error, err);
         g.done = 0;
         g.rest_steps = 0;
       }
     }
   }
+  return any;
 }
 
 std::vector<std::vector<planner::Vertex>> Driver::allowed() const

@@ -121,6 +121,9 @@ void Run::loop_adg()
   dp.follow = cfg_.run.executor == "adg-follow";
   dp.length = cfg_.fleet.vtype.length;
   dp.margin = cfg_.fleet.vtype.min_gap;
+  dp.sure_travel = cfg_.run.relative_braking;
+  dp.same_step_starts = cfg_.run.same_step_starts;
+  dp.exact_chain = cfg_.run.chain_to_end;
   Driver drv(*cmd_, adg, *delays_, dp);
   auto executed = [&] {
     planner::Config c(ins_.num_agents());
@@ -200,6 +203,9 @@ void Run::loop_adg()
   m_.chained = drv.stats().chained;
   m_.followed = drv.stats().followed;
   m_.overshoot_m = drv.stats().overshoot;
+  const DriveStats::Time& t = drv.stats().time;
+  m_.time_cruise = t.cruise, m_.time_accel = t.accel, m_.time_follow = t.follow;
+  m_.time_lane = t.lane, m_.time_end = t.end, m_.time_start_wait = t.start_wait;
 }
 
 void Run::finish()

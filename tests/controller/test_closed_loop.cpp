@@ -320,3 +320,52 @@ TEST(FailSafe, RunOrderConfigErrors)
   EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 0}\n").rfind("t.yaml: run.order: ", 0), 0u);
   EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 2}\n"), "(no error)");
 }
+
+namespace {
+
+// The shipped small warehouse under adg-follow, deterministic, no delays, with one flow
+// mechanism of the Driver switched off (driver.hpp DriveParams): its makespan, checked run.
+long long follow_makespan(const std::string& name, const std::function<void(Config&)>& off)
+{
+  Config cfg = agv_config(name, "adg-follow");
+  if (off) off(cfg);
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "") << name;
+  EXPECT_TRUE(m.solved) << name;
+  EXPECT_LE(m.overshoot_m, 1e-9) << name;
+  ctest_util::expect_no_sumo_collision(cfg.output.dir);
+  const ctest_util::Kinematics k = ctest_util::fcd_kinematics(cfg.output.dir + "/fcd.xml", cfg.sumo.step_length);
+  EXPECT_LE(k.max_decel, cfg.fleet.vtype.decel + 1e-4) << name;
+  EXPECT_LE(k.max_accel, cfg.fleet.vtype.accel + 1e-4) << name;
+  std::printf("%s: makespan %lld bound %.2f\n", name.c_str(), m.makespan, m.bound_ticks);
+  return m.makespan;
+}
+
+}  // namespace
+
+// Relative braking: followers count on their leader's sure travel, so trains flow instead
+// of braking behind every moving leader -- and still within the vType's decel, no overlap.
+TEST(FollowFlow, RelativeBrakingShortensTheMakespan)
+{
+  const long long on = follow_makespan("flow_rb_on", nullptr);
+  const long long off = follow_makespan("flow_rb_off", [](Config& c) { c.run.relative_braking = false; });
+  EXPECT_LT(on, off);
+}
+
+// Same-step starts: a queue starts together instead of one SUMO step later per AGV.
+TEST(FollowFlow, SameStepStartsShortenTheMakespan)
+{
+  const long long on = follow_makespan("flow_ss_on", nullptr);
+  const long long off = follow_makespan("flow_ss_off", [](Config& c) { c.run.same_step_starts = false; });
+  EXPECT_LT(on, off);
+}
+
+// Chaining measured to the new move's end: a follower keeps moving into a cell its leader
+// is leaving instead of braking for the cell before it.
+TEST(FollowFlow, ChainingToTheMoveEndShortensTheMakespan)
+{
+  const long long on = follow_makespan("flow_ce_on", nullptr);
+  const long long off = follow_makespan("flow_ce_off", [](Config& c) { c.run.chain_to_end = false; });
+  EXPECT_LT(on, off);
+}

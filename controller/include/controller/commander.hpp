@@ -55,6 +55,9 @@ class Commander {
   // rest on u (needs_rest()): the front does not move, only the heading flips.
   double begin_move(int agent, planner::Vertex u, planner::Vertex v);
   bool needs_rest(int agent, planner::Vertex u, planner::Vertex v) const;
+  // What begin_move() would return for a driven move (on the lane, or through a connected
+  // junction), without preparing it; 0 for one it would turn or jump (a lower bound).
+  double move_length(int agent, planner::Vertex u, planner::Vertex v) const;
   // The move u -> v leaves the lane of the commanded pose (a new route): SUMO replaces a
   // route only from the edge the vehicle is on, so a chained move may only do that once the
   // AGV has reached the commanded lane.

@@ -141,6 +141,10 @@ struct RunSection {
   int drain = 0;                     // adg: commit again once fewer than this are left (1..window; 0: window)
   bool replan_on_stuck = true;       // adg: reroute the others around a stuck AGV (stuck_replan.hpp)
   double stuck_after_s = 5.0;        // adg: no progress for this long while it may go = stuck
+  // adg-follow flow (controller/driver.hpp DriveParams; switches for tests and benches):
+  bool relative_braking = true;      // count on a leader's sure travel when following
+  bool same_step_starts = true;      // a move released by another start in a step starts in it
+  bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
 };
 
 // Delays (executor/delay_model.hpp), durations in seconds in the YAML, ticks here.

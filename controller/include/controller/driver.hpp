@@ -13,7 +13,9 @@
 //           started too (a prefix of its remaining actions), so it drives through all
 //           their cells and brakes only for the end of the last one. Not across a turn
 //           that needs rest, and a move onto a new lane (new SUMO route) only once the AGV
-//           is on the commanded lane (SUMO replaces a route from the current edge only);
+//           is on the commanded lane (SUMO replaces a route from the current edge only).
+//           In follow mode a move chains only if braking still stops behind its leader,
+//           measured from the move's end (run.chain_to_end; Commander::move_length);
 //   follow: adg-follow (moving-block following): a move into cell v may start (or chain)
 //           once v's previous occupant has STARTED leaving it (toward another cell: the
 //           plan has no swaps); the stopping point is then
@@ -23,6 +25,15 @@
 //           (exact for a train; at a junction it only adds distance). So the front stays
 //           `margin` (vType min_gap) behind the leader's back, and v is reached only after
 //           the leader's arrival elsewhere, as in Hönig's ADG order;
+//           relative braking (run.relative_braking): once the follower is `margin` behind
+//           the leader's back, the leader's distance counts its sure travel too (braking
+//           at `decel` in whole steps from the speed SUMO reports: no command and no outside
+//           stop brakes harder), and a leader sure to reach its target counts as arrived
+//           for "short of v"; both brake at the same rate, so the gap is least now or at the
+//           end -- trains run at speed one cell apart. A follower that reaches v first
+//           completes its move only after the leader's (after_step: arrivals in ADG order);
+//   passes: (run.same_step_starts) starts and chains are repeated within the step until none
+//           is added, so a queue starts in one step, not one step per AGV;
 //   rotate: the members of a rotation group start together (strictly released, also in
 //           follow mode), drive at the slowest one's pace, cover equal fractions of their
 //           moves (arrive together) and brake together;
@@ -69,6 +80,16 @@ struct DriveParams {
   // leader's back, m.
   bool follow = false;
   double length = 0.8, margin = 0.1;
+  // Relative braking (follow mode): a follower counts on the distance its leader will
+  // still cover braking at `decel` from the speed SUMO reports (no command brakes harder,
+  // nor does an outside stop), and may enter the leader's cell once the leader is sure to
+  // arrive. Off: brick-wall following (the leader could stop dead; the cell waits for its arrival).
+  bool sure_travel = true;
+  // Chaining into a leader's cell measures the stopping point from the end of the new move
+  // (off: from its start, a move short -- a follower then stops at each cell behind a moving leader).
+  bool exact_chain = true;
+  // Starts in passes within one SUMO step (a move released by another start this step starts too).
+  bool same_step_starts = true;
   // Lane speed limits (the net's lane `speed`): an AGV never drives faster than the limit
   // of the lane its front is on, and brakes in time (at `decel`, whole steps) for a slower
   // lane ahead on its running moves (reach_speed()).
@@ -82,6 +103,14 @@ struct DriveStats {
   long long followed = 0;          // moves started while the cell's previous occupant was still leaving it
   double max_error = 0;            // |SUMO front - target| at arrivals, m
   double overshoot = 0;            // most a command ever drove past a stopping point, m (0: never)
+  // Where the time goes: agent-steps of AGVs with a move running, by what bounds the speed
+  // commanded (the first that applies): cruising at full speed, accelerating (accel
+  // limit), braking / held short for a leader (follow room), for a lane's limit, for the end
+  // of its released moves; and agent-steps at rest with a released move not started
+  // (rotation members, rest before a reversal).
+  struct Time {
+    long long cruise = 0, accel = 0, follow = 0, lane = 0, end = 0, start_wait = 0;
+  } time;
 };
 
 // The highest speed for the next step from which braking at `decel` in whole steps of `dt`
@@ -136,6 +165,16 @@ class Driver {
     std::string lane;           // SUMO lane of the front after the last step
   };
   void begin(int action);
+  // Starts agent i's next move if released and chains the released ones after it; true if
+  // any started. count: add to the per-step stats (first pass only).
+  bool start_moves(int i, bool count);
+  // Finishes agent i's running moves its front has reached, in ADG order (may_finish); true if any.
+  bool arrive(int i, const VehiclePose& pose);
+  // Follow mode: the distance agent i's front still covers braking at `decel` in whole steps
+  // from its reported speed (its next command is >= v - decel dt), and the length of its
+  // running `action` (INFINITY if not running).
+  double sure_travel(int i) const;
+  double handover_dist(int agent, int action) const;
   // How far agent's front is past the start of its running `action` (negative: not there yet).
   double ahead(int agent, int action) const;
   // Follow mode: how far agent i's front may still go (its leaders' backs minus margin).
@@ -144,7 +183,8 @@ class Driver {
   double lane_cap(int i) const;
   // How far past the start of action a's target cell the front may go: its leader's back
   // minus margin, short of the cell while the leader has not arrived; INFINITY without one.
-  double gap(const executor::Action& a) const;
+  // end: the front's distance to a's target (relative braking only from a safe gap now).
+  double gap(const executor::Action& a, double end) const;
   // Where SUMO's pose puts agent i's front along its running moves (distance from the
   // start of run[0]); NaN if it is on none of their lanes.
   double progress(int i, const VehiclePose& p) const;
@@ -155,6 +195,7 @@ class Driver {
   DriveParams p_;
   std::vector<Agv> agv_;
   std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
+  std::vector<char> waiting_start_;  // per agent: released, not started (DriveStats::Time)
   DriveStats st_;
 };
 

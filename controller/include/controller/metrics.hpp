@@ -52,6 +52,9 @@ struct Metrics {
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
   ViewStats view;                   // fleet_view.hpp: colour and goal-marker calls, their ms
   double congestion_ms = 0;         // counting + writing congestion.png
+  // adg: agent-steps by what bounds the speed (DriveStats::Time): cruise, accel, follow,
+  // lane, end, start_wait.
+  long long time_cruise = 0, time_accel = 0, time_follow = 0, time_lane = 0, time_end = 0, time_start_wait = 0;
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
   // Traffic rules (rules.hpp), written as metrics.json "rules" when a run has them (also
   // when it only watches lanes: libsumo lockstep runs by default).
