@@ -146,7 +146,7 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck) {
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck && !cfg_.planner.rotation_solver()) {
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
     val_final_.emplace(g, ins_.starts, goals);
   }
@@ -405,6 +405,12 @@ void Run::stop_all()
         sumo_->set_speed(id, physical ? std::max(0.0, v - decel * dt) : 0.0);
       }
       if (!moving) break;
+      // Headings (adg): AGVs standing off their lane's angle keep their heading while the
+      // others brake (SUMO would draw the lane's), a running turn stays where it got to.
+      if (physical && cmd_->headings()) {
+        const std::vector<uint8_t> hold(cmd_->ids().size(), 1);
+        cmd_->orient(&hold);
+      }
       sumo_->step();
       ++m_.end_stop_steps;
     }
@@ -421,7 +427,9 @@ Metrics Run::execute()
   // The physical bound (bound.hpp): lockstep moves a cell per tick; the others drive.
   const Kinematics kin{cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
   alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kin);
-  if (!start_headings_.empty()) alone_->count_turns(c_.map_.graph, start_headings_);  // rotation: turns are steps
+  // Rotation: turns are steps (lockstep), or rest + turn_s each (physics).
+  if (!start_headings_.empty())
+    alone_->count_turns(c_.map_.graph, start_headings_, cfg_.run.executor == "lockstep" ? 0.0 : cfg_.fleet.turn_s);
   if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
     c_.plan_.bound(cfg_.output.plan_keep > 0 ? static_cast<size_t>(cfg_.output.plan_keep)
                                              : std::max<size_t>(64, (size_t{1} << 18) / static_cast<size_t>(ins_.num_agents())),

@@ -53,6 +53,7 @@ struct Metrics {
   ViewStats view;                   // fleet_view.hpp: colour and goal-marker calls, their ms
   double congestion_ms = 0;         // counting + writing congestion.png
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
+  long long turn_steps = 0;         // adg with headings: agent-steps turning toward the next move (driver.hpp)
   // Traffic rules (rules.hpp), written as metrics.json "rules" when a run has them (also
   // when it only watches lanes: libsumo lockstep runs by default).
   struct RuleStats {
