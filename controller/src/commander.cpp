@@ -326,6 +326,7 @@ double Commander::turn_round(Agv& a, const Lane& here, const gridify::SumoPose& 
   sumo_.move_to(a.id, target.lane, turned);
   ++stats_.move_to;
   ++stats_.turns;
+  stats_.flips += heading_.empty();  // with headings it has turned round on the cell already
   return turned;
 }
 

@@ -500,9 +500,17 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("run.tick_s", "at most 10000 SUMO steps per tick (run.tick_s / sumo.step_length = " + Reader::fmt(k) + ")");
 
   check_solver(c);
-  if (!c.planner.rotation_solver() && f["turn_s"])
-    r.fail("fleet.turn_s", "only with a rotation solver (pibt-rot | epibt | wppl): " + c.planner.solver +
-                               "'s AGVs turn with their lanes");
+  if (!c.planner.rotation_solver() && f["turn_s"]) {
+    if (c.run.executor == "lockstep")
+      r.fail("fleet.turn_s", "only with a rotation solver (pibt-rot | epibt | wppl) or run.executor adg | adg-follow: " +
+                                 c.planner.solver + "'s AGVs turn with their lanes in lockstep");
+    // A cell solver under the physical executors: the Driver turns the AGVs on their cells.
+    c.fleet.turn_in_place = true;
+    const double turn_steps = c.fleet.turn_s / c.sumo.step_length;
+    if (std::fabs(turn_steps - std::round(turn_steps)) > 1e-9)
+      r.fail("fleet.turn_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
+    if (c.fleet.turn_s > 3600) r.fail("fleet.turn_s", "must be <= 3600 s, got " + Reader::fmt(c.fleet.turn_s));
+  }
 
   // Delays: seconds -> ticks (rounded up), then executor::check for the ranges.
   const YAML::Node d = root["delays"];

@@ -92,6 +92,9 @@ nlohmann::json Metrics::to_json() const
   j["quarter_turns"] = commands.quarter_turns;
   j["resyncs"] = commands.resyncs;
   j["turns_in_place"] = commands.turns;
+  // Of those, reversals SUMO shows as an instant 180-degree flip of the AGV (no heading:
+  // a cell solver without fleet.turn_s); with headings the AGV has turned first.
+  j["instant_flips"] = commands.flips;
   j["teleports_or_jumps"] = commands.jumps + commands.resyncs;
   j["collisions"] = error.find("overlap") != std::string::npos || error.find("colliding") != std::string::npos ? 1 : 0;
   j["executor"] = {{"mode", executor},

@@ -123,14 +123,18 @@ void Run::prepare()
   }
   // Rotation solvers: AGVs with a heading, the lattice's (planner/heading.hpp), each facing
   // along its start lane.
+  // A cell solver with fleet.turn_s (adg): the same headings, which only the Driver uses.
   std::vector<int> headings;
-  if (cfg_.planner.rotation_solver()) {
+  if (cfg_.fleet.headings(cfg_.planner.rotation_solver())) {
     if (!g.is_grid())
-      throw ConfigError(cfg_.path + ": planner.solver: " + cfg_.planner.solver +
+      throw ConfigError(cfg_.path + ": " +
+                        (cfg_.planner.rotation_solver() ? "planner.solver: " + cfg_.planner.solver
+                                                        : std::string("fleet.turn_s: turning on the cells")) +
                         " needs a net whose cells lie on an axis-aligned lattice ('" + cfg_.sumo.net + "' does not)");
     headings = cmd_->start_headings(ins_.starts);
     cmd_->use_headings(headings, static_cast<int>(std::lround(cfg_.fleet.turn_s / cfg_.sumo.step_length)));
     start_headings_ = headings;
+    if (!cfg_.planner.rotation_solver()) headings.clear();  // the planner plans cells
   }
   if (!cfg_.planner.rotation_solver()) dist_cache_ = std::make_shared<planner::DistCache>(g);
   try {

@@ -179,7 +179,7 @@ void Run::loop_adg()
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
       drv.before_step();
-      if (rot) {
+      if (cmd_->headings()) {
         const std::vector<uint8_t> hold = drv.stopped();
         cmd_->orient(&hold);  // turns animate; AGVs facing off their lane are held at their angle
       }

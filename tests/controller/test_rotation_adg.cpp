@@ -109,7 +109,8 @@ void expect_physical_turns(const Config& c, const Metrics& m)
   if (c.delays.spec.kind == "none") {
     EXPECT_EQ(m.turn_steps, n * m.commands.quarter_turns);
   } else {
-    EXPECT_GE(m.turn_steps, n * m.commands.quarter_turns);
+    // (A turn still running when a lifelong run ends has had fewer steps.)
+    EXPECT_GE(m.turn_steps + (n - 1) * c.fleet.count, n * m.commands.quarter_turns);
   }
   const FcdTurns t = fcd_turns(c.output.dir + "/fcd.xml", n);
   EXPECT_EQ(t.bad, 0);
@@ -179,9 +180,35 @@ TEST(ControllerRotationAdg, ATurnTakesTurnSecondsUnderAdg)
   expect_physical_turns(c, m);
 }
 
+// A cell solver's reversal in an aisle is an instant 180-degree flip in SUMO (counted as
+// instant_flips); given fleet.turn_s under adg-follow its AGVs turn on their cells like the
+// rotation solvers' (two quarter turns of turn_s each), with no flip left.
+TEST(ControllerRotationAdg, CellSolverReversalsAreTurnsInPlaceWithTurnS)
+{
+  auto run = [](bool turn, const std::string& name) {
+    Config c = ctest_util::lifelong_agv_config(name, 300);
+    c.planner.budget_ms = 0;
+    c.planner.expansions = 20;
+    c.fleet.turn_in_place = turn;
+    c.sumo.outputs = {true, false, false, true};
+    c.sumo.extra_args = {"--precision", "6"};
+    Controller ctl(c);
+    const Metrics m = ctl.run();
+    ctest_util::expect_checked_every_step(c, m);
+    EXPECT_GT(m.errands_finished, 5);
+    return std::make_pair(c, m);
+  };
+  const auto [c0, flips] = run(false, "ctl_cell_flip");
+  EXPECT_GT(flips.commands.flips, 0) << "no reversal in 300 ticks: the comparison shows nothing";
+  EXPECT_EQ(flips.commands.quarter_turns, 0);
+  const auto [c1, turns] = run(true, "ctl_cell_turn");
+  EXPECT_EQ(turns.commands.flips, 0);
+  expect_physical_turns(c1, turns);
+}
+
 TEST(ControllerRotationAdg, ConfigAcceptsTheExecutorsAndRefusesTheStuckReplan)
 {
-  const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
+  const std::string sumo = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n", net = sumo + "fleet: {count: 3}\n";
   const Config adg = parse_config(net + "planner: {solver: epibt}\nrun: {executor: adg}\n", "t.yaml", RTLACAM_CONFIGS);
   EXPECT_EQ(adg.run.executor, "adg");
   EXPECT_FALSE(adg.run.replan_on_stuck) << "the stuck replan rebuilds a cell planner";
@@ -189,4 +216,10 @@ TEST(ControllerRotationAdg, ConfigAcceptsTheExecutorsAndRefusesTheStuckReplan)
   EXPECT_EQ(follow.run.executor, "adg-follow");
   EXPECT_EQ(ctest_util::config_error(net + "planner: {solver: pibt-rot}\nrun: {executor: adg, replan_on_stuck: true}\n"),
             "t.yaml: run.replan_on_stuck: only with a cell solver (rtlacam | naive | pibt | cspibt), not pibt-rot");
+  // A cell solver with fleet.turn_s: turns in place under adg, refused in lockstep.
+  EXPECT_TRUE(parse_config(sumo + "fleet: {count: 3, turn_s: 0.5}\nrun: {executor: adg-follow}\n", "t.yaml", RTLACAM_CONFIGS)
+                  .fleet.turn_in_place);
+  EXPECT_FALSE(parse_config(net + "run: {executor: adg-follow}\n", "t.yaml", RTLACAM_CONFIGS).fleet.turn_in_place);
+  EXPECT_EQ(ctest_util::config_error(sumo + "fleet: {count: 3, turn_s: 0.3}\nrun: {executor: adg}\n"),
+            "t.yaml: fleet.turn_s: must be a whole multiple of sumo.step_length (0.125)");
 }

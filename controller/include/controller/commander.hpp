@@ -33,6 +33,7 @@ struct CommandStats {
   double max_error = 0;    // largest position error seen by verify(), metres
   long long angle = 0;     // set_angle calls (moveToXY): AGVs turning or facing off their lane
   long long quarter_turns = 0;  // rotation solvers' turn actions executed (R, C), each turn_s long
+  long long flips = 0;     // of `turns`, those of an AGV without a heading: an instant 180-degree flip in SUMO
   long long total() const { return speed + route + move_to + angle; }
 };
 

@@ -30,7 +30,8 @@
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is
 //           checked against SUMO to 1e-6 m);
-//   turn  : AGVs with headings (rotation solvers, Commander::use_headings): a move only
+//   turn  : AGVs with headings (rotation solvers, or a cell solver given fleet.turn_s;
+//           Commander::use_headings): a move only
 //           starts facing its direction. An AGV at rest whose next action points
 //           elsewhere turns on its cell first, a quarter turn at a time (turn_toward), each
 //           animated over fleet.turn_s (Commander::orient), before its action is released
