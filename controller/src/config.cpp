@@ -275,6 +275,8 @@ void check_solver(const Config& c)
   auto fail = [&](const std::string& key, const std::string& what) { throw ConfigError(c.path + ": " + key + ": " + what); };
   const planner::Solver kind = planner::parse_solver(c.planner.solver);
   if (planner::needs_policy(kind) && c.planner.policy.empty()) fail("planner.solver", "cspibt needs planner.policy (a weights file)");
+  if (c.fleet.turn_in_place && c.run.executor == "lockstep")
+    fail("fleet.turn_s", "with a cell solver only under run.executor adg | adg-follow (the Driver turns the AGVs)");
   if (!planner::plans_rotation(kind)) return;
   if (!c.planner.policy.empty())
     fail("planner.policy", "orders a cell solver's moves; " + c.planner.solver + " plans rotation actions");
