@@ -186,7 +186,7 @@ TEST(ControllerRotationAdg, ATurnTakesTurnSecondsUnderAdg)
 TEST(ControllerRotationAdg, CellSolverReversalsAreTurnsInPlaceWithTurnS)
 {
   auto run = [](bool turn, const std::string& name) {
-    Config c = ctest_util::lifelong_agv_config(name, 300);
+    Config c = ctest_util::lifelong_agv_config(name, 200);
     c.planner.budget_ms = 0;
     c.planner.expansions = 20;
     c.fleet.turn_in_place = turn;
@@ -199,7 +199,7 @@ TEST(ControllerRotationAdg, CellSolverReversalsAreTurnsInPlaceWithTurnS)
     return std::make_pair(c, m);
   };
   const auto [c0, flips] = run(false, "ctl_cell_flip");
-  EXPECT_GT(flips.commands.flips, 0) << "no reversal in 300 ticks: the comparison shows nothing";
+  EXPECT_GT(flips.commands.flips, 0) << "no reversal in 200 ticks: the comparison shows nothing";
   EXPECT_EQ(flips.commands.quarter_turns, 0);
   const auto [c1, turns] = run(true, "ctl_cell_turn");
   EXPECT_EQ(turns.commands.flips, 0);
