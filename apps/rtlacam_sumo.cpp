@@ -20,7 +20,7 @@ using namespace controller;
 int main(int argc, char** argv)
 {
   CLI::App app{"Run a SUMO warehouse scenario with RT-LaCAM commanding every AGV"};
-  std::string path, backend, solver, out, policy_file;
+  std::string path, backend, solver, out, policy_file, executor;
   bool gui = false;
   long long max_ticks = 0;
   int port = 0, order = 0;
@@ -29,6 +29,8 @@ int main(int argc, char** argv)
   app.add_option("--backend", backend, "libsumo (embedded, default) or traci")->check(CLI::IsMember({"libsumo", "traci"}));
   app.add_option("--solver", solver, "override planner.solver: " + planner::solver_names(true))
       ->check(CLI::IsMember(planner::solver_list(true)));
+  app.add_option("--executor", executor, "override run.executor: lockstep | adg | adg-follow")
+      ->check(CLI::IsMember({"lockstep", "adg", "adg-follow"}));
   app.add_option("--policy", policy_file, "override planner.policy: learned policy weights (PIBT tries moves in its order)")
       ->check(CLI::ExistingFile);
   app.add_option("--port", port, "traci: connect to a SUMO already listening on this port (sumo --remote-port)")
@@ -47,6 +49,7 @@ int main(int argc, char** argv)
     if (!backend.empty()) cfg.run.backend = backend;
     if (!solver.empty()) cfg.planner.solver = solver;
     if (!policy_file.empty()) cfg.planner.policy = policy_file;
+    if (!executor.empty()) cfg.run.executor = executor;
     check_solver(cfg);
     if (port > 0) {
       cfg.run.port = port;

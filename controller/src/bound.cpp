@@ -30,10 +30,11 @@ std::vector<double> alone_moves(const std::vector<planner::Config>& plan)
   return b.result();
 }
 
-void AloneBound::count_turns(const planner::Graph& g, std::vector<int> start_headings)
+void AloneBound::count_turns(const planner::Graph& g, std::vector<int> start_headings, double turn_s)
 {
   turns_on_ = &g;
   heading_ = std::move(start_headings);
+  turn_s_ = turn_s;
 }
 
 void AloneBound::add(const planner::Config& c)
@@ -54,6 +55,15 @@ void AloneBound::add(const planner::Config& c)
         t_[i] += planner::quarter_turns(heading_[i], h);
         heading_[i] = h;
       }
+    } else if (turns_on_) {
+      const int h = planner::heading_of_move(*turns_on_, last_[i], v);
+      if (const int q = planner::quarter_turns(heading_[i], h); q > 0) {  // rest, a step at rest, turn
+        t_[i] += rest_to_rest_s(stretch_[i], k_) + k_.dt + q * turn_s_;
+        stretch_[i] = 0;
+      }
+      heading_[i] = h;
+      const gridify::Cell &a = map_->cells[last_[i]], &b = map_->cells[v];
+      stretch_[i] += std::hypot(b.x - a.x, b.y - a.y);
     } else {
       if (v == before_[i] && before_[i] != last_[i]) {  // reverses: rest, turn in place (one step)
         t_[i] += rest_to_rest_s(stretch_[i], k_) + k_.dt;

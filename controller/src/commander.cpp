@@ -234,13 +234,28 @@ void Commander::turn(const std::string& actions)
 {
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     const char act = actions[static_cast<size_t>(i)];
-    if (act != 'R' && act != 'C') continue;
-    Agv& a = agv_[i];
-    a.turn_from = sumo_angle(heading_[i]);
-    a.turn_by = act == 'R' ? 90.0 : -90.0;  // clockwise: SUMO's angle grows
-    heading_[i] = planner::heading_after(heading_[i], act);
-    ++stats_.quarter_turns;
-    a.turn_step = 1;  // the first of turn_steps_ steps runs next
+    if (act == 'R' || act == 'C') begin_turn(i, act);
+  }
+}
+
+void Commander::begin_turn(int i, char act)
+{
+  Agv& a = agv_[i];
+  a.turn_from = sumo_angle(heading_[i]);
+  a.turn_by = act == 'R' ? 90.0 : -90.0;  // clockwise: SUMO's angle grows
+  heading_[i] = planner::heading_after(heading_[i], act);
+  ++stats_.quarter_turns;
+  a.turn_step = 1;  // the first of turn_steps_ steps runs next
+}
+
+int Commander::move_heading(planner::Vertex u, planner::Vertex v) const { return planner::heading_of_move(map_.graph, u, v); }
+
+double Commander::angle(int i)
+{
+  try {
+    return sumo_.angle(agv_[i].id);
+  } catch (const SumoError& e) {
+    failed(i, e);
   }
 }
 
@@ -255,13 +270,15 @@ void Commander::unhold(Agv& a, bool exact)
   a.held = false;
 }
 
-void Commander::orient()
+void Commander::orient(const std::vector<uint8_t>* hold)
 {
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     Agv& a = agv_[i];
     try {
       double angle = 0;
-      if (a.turn_step > 0) {
+      if (a.turn_step > 0 && hold && (*hold)[i]) {
+        angle = a.turn_from + a.turn_by * (a.turn_step - 1) / turn_steps_;  // held where it got to
+      } else if (a.turn_step > 0) {
         angle = a.turn_from + a.turn_by * a.turn_step / turn_steps_;
         a.turn_step = a.turn_step >= turn_steps_ ? 0 : a.turn_step + 1;
       } else if (auto it = lane_heading_.find(a.pose.lane); it == lane_heading_.end() || heading_[i] != it->second) {
@@ -309,6 +326,7 @@ double Commander::turn_round(Agv& a, const Lane& here, const gridify::SumoPose& 
   sumo_.move_to(a.id, target.lane, turned);
   ++stats_.move_to;
   ++stats_.turns;
+  stats_.flips += heading_.empty();  // with headings it has turned round on the cell already
   return turned;
 }
 
@@ -346,6 +364,16 @@ double Commander::begin_move(int i, planner::Vertex u, planner::Vertex v)
 {
   Agv& a = agv_[i];
   try {
+    // With headings, an AGV only drives the way it faces (the Driver turns it first).
+    if (!heading_.empty() && planner::heading_of_move(map_.graph, u, v) != heading_[i])
+      throw ControlError("agent " + std::to_string(i) + " moves " + std::to_string(u) + " -> " + std::to_string(v) +
+                         " facing " + planner::kHeadingLetter[heading_[i]] + ", not that way");
+    if (!heading_.empty() && (a.held || a.held_mm)) {
+      // Held at its heading's angle (it turned on its cell): the move starts from the exact
+      // cell centre, as in command().
+      unhold(a, true);
+      a.held_mm = false;
+    }
     const gridify::SumoPose target = map_.pose_entering(u, v);
     const Lane& here = lane(a.pose.lane);
     double d = 0;

@@ -275,14 +275,14 @@ void check_solver(const Config& c)
   auto fail = [&](const std::string& key, const std::string& what) { throw ConfigError(c.path + ": " + key + ": " + what); };
   const planner::Solver kind = planner::parse_solver(c.planner.solver);
   if (planner::needs_policy(kind) && c.planner.policy.empty()) fail("planner.solver", "cspibt needs planner.policy (a weights file)");
+  if (c.fleet.turn_in_place && c.run.executor == "lockstep")
+    fail("fleet.turn_s", "with a cell solver only under run.executor adg | adg-follow (the Driver turns the AGVs)");
   if (!planner::plans_rotation(kind)) return;
   if (!c.planner.policy.empty())
     fail("planner.policy", "orders a cell solver's moves; " + c.planner.solver + " plans rotation actions");
-  // The AGVs turn on their cells, animated in SUMO step by step: lockstep only (the adg
-  // Driver knows no turn actions yet), a turn a whole number of SUMO steps.
-  if (c.run.executor != "lockstep")
-    fail("run.executor", "'" + c.run.executor + "' runs cell plans; " + c.planner.solver +
-                             " (rotation actions) needs run.executor: lockstep");
+  // The AGVs turn on their cells, animated in SUMO step by step (lockstep: the planned turn
+  // actions; adg, adg-follow: the Driver turns each AGV toward its next move), a turn a whole
+  // number of SUMO steps.
   const double turn_steps = c.fleet.turn_s / c.sumo.step_length;
   if (std::fabs(turn_steps - std::round(turn_steps)) > 1e-9)
     fail("fleet.turn_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
@@ -488,6 +488,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   // (stuck_replan.hpp); measured to give vertex conflicts in the cut plan with following.
   if (c.run.executor == "lockstep" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
     r.fail("run.replan_on_stuck", "only with run.executor: adg or adg-follow");
+  // A stuck replan rebuilds a cell planner around immobile AGVs (stuck_replan.hpp); the
+  // rotation solvers have no immobile agents and the replan no headings: off for them.
+  if (c.planner.rotation_solver() && c.run.replan_on_stuck && c.run.executor != "lockstep") {
+    if (u && u["replan_on_stuck"])
+      r.fail("run.replan_on_stuck", "only with a cell solver (rtlacam | naive | pibt | cspibt), not " + c.planner.solver);
+    c.run.replan_on_stuck = false;
+  }
   // Upper bounds: a tick of 1e300 s overflowed the steps per tick (a crash in lockstep, an
   // idle run under adg); an hour per MAPF step and 10000 SUMO steps per tick are far past
   // any warehouse.
@@ -499,9 +506,17 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("run.tick_s", "at most 10000 SUMO steps per tick (run.tick_s / sumo.step_length = " + Reader::fmt(k) + ")");
 
   check_solver(c);
-  if (!c.planner.rotation_solver() && f["turn_s"])
-    r.fail("fleet.turn_s", "only with a rotation solver (pibt-rot | epibt | wppl): " + c.planner.solver +
-                               "'s AGVs turn with their lanes");
+  if (!c.planner.rotation_solver() && f["turn_s"]) {
+    if (c.run.executor == "lockstep")
+      r.fail("fleet.turn_s", "only with a rotation solver (pibt-rot | epibt | wppl) or run.executor adg | adg-follow: " +
+                                 c.planner.solver + "'s AGVs turn with their lanes in lockstep");
+    // A cell solver under the physical executors: the Driver turns the AGVs on their cells.
+    c.fleet.turn_in_place = true;
+    const double turn_steps = c.fleet.turn_s / c.sumo.step_length;
+    if (std::fabs(turn_steps - std::round(turn_steps)) > 1e-9)
+      r.fail("fleet.turn_s", "must be a whole multiple of sumo.step_length (" + Reader::fmt(c.sumo.step_length) + ")");
+    if (c.fleet.turn_s > 3600) r.fail("fleet.turn_s", "must be <= 3600 s, got " + Reader::fmt(c.fleet.turn_s));
+  }
 
   // Delays: seconds -> ticks (rounded up), then executor::check for the ranges.
   const YAML::Node d = root["delays"];

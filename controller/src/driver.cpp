@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "controller/sumo_error.hpp"
+#include "planner/heading.hpp"
 
 namespace controller {
 
@@ -87,6 +88,29 @@ void Driver::begin(int id)
                   !(a.group >= 0 && adg_.action(a.handover).group == a.group);
 }
 
+bool Driver::faces(int i, int id)
+{
+  if (!cmd_.headings()) return true;
+  Agv& g = agv_[i];
+  if (g.turning) return false;
+  const executor::Action& a = adg_.action(id);
+  const int want = cmd_.move_heading(a.from, a.to);
+  if (want == cmd_.heading(i)) return true;
+  // At rest (reported by SUMO) on its cell: a quarter turn, then the next if need be.
+  if (g.rest_steps > 0) {
+    cmd_.begin_turn(i, planner::turn_toward(cmd_.heading(i), want));
+    g.turning = true;
+  }
+  return false;
+}
+
+std::vector<uint8_t> Driver::stopped() const
+{
+  std::vector<uint8_t> out(agv_.size(), 0);
+  for (size_t i = 0; i < agv_.size(); ++i) out[i] = delays_.stopped(static_cast<int>(i));
+  return out;
+}
+
 bool Driver::start_moves(int i, bool count)
 {
   Agv& g = agv_[i];
@@ -98,6 +122,12 @@ bool Driver::start_moves(int i, bool count)
     if (g.run.empty()) {
       const int id = adg_.next_action(i);
       if (id < 0) return false;
+      // Headings: face the move first -- also while it waits for its release: the turn
+      // keeps the AGV on its own cell.
+      if (!faces(i, id)) {
+        if (count) st_.turn_steps += g.turning;
+        return false;
+      }
       const bool follow = p_.follow && adg_.action(id).group < 0;  // rotations: strict
       if (!(follow ? adg_.released_following(id) : adg_.released(id))) {
         if (count) ++st_.dependency_waits;
@@ -107,7 +137,7 @@ bool Driver::start_moves(int i, bool count)
       bool go = true;
       for (int m : group) {
         const int j = adg_.action(m).agent;
-        go = go && !delays_.stopped(j) && agv_[j].run.empty() &&
+        go = go && !delays_.stopped(j) && agv_[j].run.empty() && (j == i || faces(j, m)) &&
              (!cmd_.needs_rest(j, adg_.action(m).from, adg_.action(m).to) || agv_[j].rest_steps > 0);
       }
       waiting_start_[i] = !go;
@@ -130,6 +160,7 @@ bool Driver::start_moves(int i, bool count)
       if (id < 0 || !(p_.follow ? adg_.chainable_following(id) : adg_.chainable(id))) break;
       const executor::Action& a = adg_.action(id);
       if (cmd_.needs_rest(i, a.from, a.to)) break;
+      if (cmd_.headings() && cmd_.move_heading(a.from, a.to) != cmd_.heading(i)) break;  // a turn: at rest
       if (cmd_.changes_lane(i, a.from, a.to) && g.lane != cmd_.pose(i).lane) break;
       // Following: the new leader's back may pull the stopping point back (a leader chained
       // toward the cell may not be there yet) -- only as far as braking from the AGV's
@@ -320,6 +351,12 @@ void Driver::after_step(const std::vector<VehiclePose>& poses)
     g.v = poses[i].speed;
     if (g.run.empty()) {
       g.rest_steps = g.v > 0 ? 0 : g.rest_steps + 1;
+      // A turn is done once its animation has run and SUMO shows the AGV at the new
+      // heading's angle (closed loop; else orient() sets it again next step).
+      if (g.turning && !cmd_.turning(i)) {
+        const double off = std::remainder(cmd_.angle(i) - Commander::sumo_angle(cmd_.heading(i)), 360.0);
+        g.turning = std::fabs(off) > 1e-3;
+      }
       continue;
     }
     // Progress as SUMO reports it, never the speed we asked for. Off every lane of its

@@ -95,6 +95,9 @@ nlohmann::json Metrics::to_json() const
   j["quarter_turns"] = commands.quarter_turns;
   j["resyncs"] = commands.resyncs;
   j["turns_in_place"] = commands.turns;
+  // Of those, reversals SUMO shows as an instant 180-degree flip of the AGV (no heading:
+  // a cell solver without fleet.turn_s); with headings the AGV has turned first.
+  j["instant_flips"] = commands.flips;
   j["teleports_or_jumps"] = commands.jumps + commands.resyncs;
   j["collisions"] = error.find("overlap") != std::string::npos || error.find("colliding") != std::string::npos ? 1 : 0;
   j["executor"] = {{"mode", executor},
@@ -115,6 +118,7 @@ nlohmann::json Metrics::to_json() const
                    {"overshoot_m", overshoot_m},
                    {"end_stop_steps", end_stop_steps},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
+  if (turn_steps > 0) j["executor"]["turn_steps"] = turn_steps;  // adg with headings only
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   if (rules.active)
     j["rules"] = {{"closure_changes", rules.closure_changes}, {"replans", rules.replans}, {"zone_holds", rules.zone_holds},

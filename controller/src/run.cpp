@@ -133,14 +133,18 @@ void Run::prepare()
   }
   // Rotation solvers: AGVs with a heading, the lattice's (planner/heading.hpp), each facing
   // along its start lane.
+  // A cell solver with fleet.turn_s (adg): the same headings, which only the Driver uses.
   std::vector<int> headings;
-  if (cfg_.planner.rotation_solver()) {
+  if (cfg_.fleet.headings(cfg_.planner.rotation_solver())) {
     if (!g.is_grid())
-      throw ConfigError(cfg_.path + ": planner.solver: " + cfg_.planner.solver +
+      throw ConfigError(cfg_.path + ": " +
+                        (cfg_.planner.rotation_solver() ? "planner.solver: " + cfg_.planner.solver
+                                                        : std::string("fleet.turn_s: turning on the cells")) +
                         " needs a net whose cells lie on an axis-aligned lattice ('" + cfg_.sumo.net + "' does not)");
     headings = cmd_->start_headings(ins_.starts);
     cmd_->use_headings(headings, static_cast<int>(std::lround(cfg_.fleet.turn_s / cfg_.sumo.step_length)));
     start_headings_ = headings;
+    if (!cfg_.planner.rotation_solver()) headings.clear();  // the planner plans cells
   }
   if (!cfg_.planner.rotation_solver()) dist_cache_ = std::make_shared<planner::DistCache>(g);
   try {
@@ -155,7 +159,7 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck) {
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck && !cfg_.planner.rotation_solver()) {
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
     val_final_.emplace(g, ins_.starts, goals);
   }
@@ -417,6 +421,12 @@ void Run::stop_all()
         sumo_->set_speed(id, physical ? std::max(0.0, v - decel * dt) : 0.0);
       }
       if (!moving) break;
+      // Headings (adg): AGVs standing off their lane's angle keep their heading while the
+      // others brake (SUMO would draw the lane's), a running turn stays where it got to.
+      if (physical && cmd_->headings()) {
+        const std::vector<uint8_t> hold(cmd_->ids().size(), 1);
+        cmd_->orient(&hold);
+      }
       sumo_->step();
       ++m_.end_stop_steps;
     }
@@ -432,7 +442,9 @@ Metrics Run::execute()
   c_.plan_.start(ins_.starts);
   // The physical bound (bound.hpp): lockstep moves a cell per tick; the others drive.
   alone_.emplace(cfg_.run.executor == "lockstep" ? nullptr : &c_.map_, kinematics());
-  if (!start_headings_.empty()) alone_->count_turns(c_.map_.graph, start_headings_);  // rotation: turns are steps
+  // Rotation: turns are steps (lockstep), or rest + turn_s each (physics).
+  if (!start_headings_.empty())
+    alone_->count_turns(c_.map_.graph, start_headings_, cfg_.run.executor == "lockstep" ? 0.0 : cfg_.fleet.turn_s);
   if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
     c_.plan_.bound(cfg_.output.plan_keep > 0 ? static_cast<size_t>(cfg_.output.plan_keep)
                                              : std::max<size_t>(64, (size_t{1} << 18) / static_cast<size_t>(ins_.num_agents())),

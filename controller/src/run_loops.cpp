@@ -125,6 +125,11 @@ void Run::loop_adg()
   dp.same_step_starts = cfg_.run.same_step_starts;
   dp.exact_chain = cfg_.run.chain_to_end;
   Driver drv(*cmd_, adg, *delays_, dp);
+  // Rotation solvers: the plan's cells go to the ADG like a cell plan (its turns are waits
+  // there), the Driver turns each AGV toward its next move (driver.hpp). The solver plans
+  // one step per tick, at the tick's first SUMO step, with the tick's budget (as in
+  // lockstep: it cannot spread a step's search over SUMO steps).
+  planner::RotationPlanner* rot = p_->rotation();
   auto executed = [&] {
     planner::Config c(ins_.num_agents());
     for (int i = 0; i < ins_.num_agents(); ++i) c[i] = adg.at(i);
@@ -141,6 +146,7 @@ void Run::loop_adg()
     plan_in_tick_ = 0;
     double ctl = 0;
     for (int s = 0; s < k_; ++s) {
+      slice_ = s;
       auto t0 = Clock::now();
       // Keep the window full. Commits never get ahead of what the ADG honours: any valid
       // plan is honoured, so the window only bounds how far the plan runs ahead. With
@@ -149,13 +155,21 @@ void Run::loop_adg()
       auto progress = [&] { return stuck_ ? stuck_->min_progress(adg) : adg.min_progress(); };
       const int drain = cfg_.run.drain > 0 ? cfg_.run.drain : cfg_.run.window;
       const bool refill = adg.steps() - progress() < drain;
-      while (refill && adg.steps() - progress() < cfg_.run.window && !p_->at_goal()) {
+      int commits = 0;
+      while (refill && adg.steps() - progress() < cfg_.run.window && !p_->at_goal() && !(rot && (s > 0 || commits > 0))) {
         const double c0 = planner::thread_cpu_ms();
         const planner::Config next = p_->next();
-        const bool none = next == p_->current();  // the search has nothing beyond the root yet
+        // The search has nothing beyond the root yet (a rotation step of turns only is a step).
+        const bool none = !rot && next == p_->current();
+        if (rot) {
+          // The actions themselves, checked as in lockstep (forward into the cell ahead).
+          const std::string bad = tasks::check_rotation_step(c_.map_.graph, p_->current(), rot->headings(), rot->actions(), next);
+          if (!bad.empty()) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid rotation step: " + bad);
+        }
         if (!none) p_->commit();
         plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
         if (none) break;
+        ++commits;
         if (!val_->step(next))
           throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
         adg.append(next);
@@ -168,6 +182,10 @@ void Run::loop_adg()
       plan_in_tick_ += commit_ms;
       t0 = Clock::now();
       drv.before_step();
+      if (cmd_->headings()) {
+        const std::vector<uint8_t> hold = drv.stopped();
+        cmd_->orient(&hold);  // turns animate; AGVs facing off their lane are held at their angle
+      }
       show_adg(adg);  // what each AGV does in this step
       const double before_ms = ms_since(t0);
       try {
@@ -206,6 +224,7 @@ void Run::loop_adg()
   const DriveStats::Time& t = drv.stats().time;
   m_.time_cruise = t.cruise, m_.time_accel = t.accel, m_.time_follow = t.follow;
   m_.time_lane = t.lane, m_.time_end = t.end, m_.time_start_wait = t.start_wait;
+  m_.turn_steps = drv.stats().turn_steps;
 }
 
 void Run::finish()

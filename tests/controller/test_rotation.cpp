@@ -167,8 +167,8 @@ TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
   EXPECT_EQ(turn.rfind("t.yaml: fleet.turn_s: only with a rotation solver", 0), 0u) << turn;
   EXPECT_EQ(ctest_util::config_error(sumo + "fleet: {count: 3, turn_s: 0.3}\nplanner: {solver: epibt}\n"),
             "t.yaml: fleet.turn_s: must be a whole multiple of sumo.step_length (0.125)");
-  EXPECT_EQ(err("planner: {solver: epibt}\nrun: {executor: adg}\n"),
-            "t.yaml: run.executor: 'adg' runs cell plans; epibt (rotation actions) needs run.executor: lockstep");
+  EXPECT_EQ(err("planner: {solver: epibt}\nrun: {executor: adg, replan_on_stuck: true}\n"),
+            "t.yaml: run.replan_on_stuck: only with a cell solver (rtlacam | naive | pibt | cspibt), not epibt");
   EXPECT_EQ(err("planner: {solver: lacam}\n").rfind("t.yaml: planner.solver: 'lacam' is not one of", 0), 0u);
   // Accepted: each solver with its own options, and a turn of 0.5 s.
   const Config ok = parse_config(net + "planner: {solver: wppl, rotation: {window: 8, guidance: arrows}}\n", "t.yaml",

@@ -9,7 +9,10 @@
 // between the cells' centres. Waits are dropped: alone, nobody waits. For lockstep (scheme
 // S: one cell per tick, stops in one step) the bound is the longest path in moves, plus,
 // for the rotation solvers, the quarter turns each move needs from the AGV's heading (a
-// turn is a plan step too: count_turns).
+// turn is a plan step too: count_turns). Under physics with headings (adg with a rotation
+// solver) a move in a new direction ends the stretch: the AGV comes to rest, rests one SUMO
+// step (the Driver turns only an AGV SUMO reports at rest) and turns on its cell, turn_s per
+// quarter turn.
 #include <vector>
 
 #include "gridify/cell_map.hpp"
@@ -37,9 +40,10 @@ std::vector<double> alone_moves(const std::vector<planner::Config>& plan);
 class AloneBound {
  public:
   AloneBound(const gridify::CellMap* map, const Kinematics& k) : map_(map), k_(k) {}
-  // Moves mode only (map == nullptr): AGVs with headings on the lattice `g`, facing
-  // `start_headings` (planner/heading.hpp); each move first turns toward its direction.
-  void count_turns(const planner::Graph& g, std::vector<int> start_headings);
+  // AGVs with headings on the lattice `g`, facing `start_headings` (planner/heading.hpp);
+  // each move first turns toward its direction: one step per quarter turn (moves mode), or
+  // rest + turn_s per quarter turn (physics).
+  void count_turns(const planner::Graph& g, std::vector<int> start_headings, double turn_s = 0);
   void add(const planner::Config& c);
   std::vector<double> result() const;
 
@@ -50,6 +54,7 @@ class AloneBound {
   std::vector<double> stretch_, t_;  // metres since the last rest; seconds (or moves) so far
   const planner::Graph* turns_on_ = nullptr;
   std::vector<int> heading_;  // count_turns: each AGV's heading after its last move
+  double turn_s_ = 0;
 };
 
 }  // namespace controller

@@ -12,6 +12,7 @@
 // its route (SUMO would remove it). Reference point: the vehicle FRONT sits on the cell
 // centre; a junction cell is the end of the incoming lane. With speedMode 0 and a step
 // length dividing the tick, SUMO lands every AGV exactly on its cell (verify() checks).
+#include <cstdint>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -32,6 +33,7 @@ struct CommandStats {
   double max_error = 0;    // largest position error seen by verify(), metres
   long long angle = 0;     // set_angle calls (moveToXY): AGVs turning or facing off their lane
   long long quarter_turns = 0;  // rotation solvers' turn actions executed (R, C), each turn_s long
+  long long flips = 0;     // of `turns`, those of an AGV without a heading: an instant 180-degree flip in SUMO
   long long total() const { return speed + route + move_to + angle; }
 };
 
@@ -84,9 +86,19 @@ class Commander {
   bool headings() const { return !heading_.empty(); }
   // At a tick's start, with the executed rotation actions (F, R, C, W per agent).
   void turn(const std::string& actions);
-  // Before every SUMO step.
-  void orient();
+  // One AGV's quarter turn (act R or C), as turn() does for each: the adg Driver turns an
+  // AGV at rest toward its next move's direction.
+  void begin_turn(int agent, char act);
+  // Its turn still animates (orient() has steps of it to run).
+  bool turning(int agent) const { return agv_[agent].turn_step > 0; }
+  // Before every SUMO step. `hold` (adg: AGVs stopped by a delay), per agent: a running
+  // turn stays at the angle it has reached this step instead of going on.
+  void orient(const std::vector<uint8_t>* hold = nullptr);
   int heading(int agent) const { return heading_[agent]; }
+  // The lattice heading of the move u -> v (planner::heading_of_move on the map's graph).
+  int move_heading(planner::Vertex u, planner::Vertex v) const;
+  // SUMO's angle of the AGV now (the closed loop of a turn: the Driver reads where it got to).
+  double angle(int agent);
   // SUMO's angle (0 north, 90 east) of a heading.
   static double sumo_angle(int heading) { return heading == 3 ? 0.0 : 90.0 + 90.0 * heading; }
 

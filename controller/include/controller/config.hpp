@@ -59,9 +59,13 @@ struct FleetSection {
   bool random_starts = true;  // starts: random
   std::vector<CellRef> starts;
   VType vtype;
-  // Seconds per quarter turn of an AGV standing on its cell (rotation solvers only: they
-  // plan turns as actions; a cell solver's AGVs turn with their lanes).
+  // Seconds per quarter turn of an AGV standing on its cell: the rotation solvers plan turns
+  // as actions; a cell solver's AGVs turn with their lanes (a reversal: an instant flip),
+  // unless fleet.turn_s is given under adg / adg-follow (turn_in_place): then the Driver
+  // turns them on their cells toward each move, as for the rotation solvers.
   double turn_s = 1.0;
+  bool turn_in_place = false;
+  bool headings(bool rotation_solver) const { return rotation_solver || turn_in_place; }
 };
 
 // planner.rotation: the options of the rotation solvers (pibt-rot, epibt, wppl), which plan

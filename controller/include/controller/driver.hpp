@@ -40,7 +40,17 @@
 //   stop  : a stopped AGV (DelayModel) brakes at `decel` where it is -- between cells is
 //           safe, the ADG keeps both cells for it until it arrives;
 //   finish: when the front reaches an action's target the action is done (its pose is
-//           checked against SUMO to 1e-6 m).
+//           checked against SUMO to 1e-6 m);
+//   turn  : AGVs with headings (rotation solvers, or a cell solver given fleet.turn_s;
+//           Commander::use_headings): a move only
+//           starts facing its direction. An AGV at rest whose next action points
+//           elsewhere turns on its cell first, a quarter turn at a time (turn_toward), each
+//           animated over fleet.turn_s (Commander::orient), before its action is released
+//           too (it stands on its own cell, which the ADG keeps for it); a turn is done when
+//           SUMO reports the AGV at the new heading's angle, a delay stops it where it got
+//           to, and moves are never chained across a turn. The rotation plan's own turn
+//           steps are waits in cell space: the ADG drops them and the Driver turns exactly
+//           when a move needs it.
 // Closed loop: after every step each AGV's progress along its running moves and its speed
 // are read from SUMO (lane, position, speed), never taken from the speed commanded: an AGV
 // held by anyone else (another TraCI client, a person in the aisle) makes no progress, its
@@ -111,6 +121,7 @@ struct DriveStats {
   struct Time {
     long long cruise = 0, accel = 0, follow = 0, lane = 0, end = 0, start_wait = 0;
   } time;
+  long long turn_steps = 0;        // agent-steps turning on a cell toward the next move (headings)
 };
 
 // The highest speed for the next step from which braking at `decel` in whole steps of `dt`
@@ -137,6 +148,8 @@ class Driver {
   // of one group share cell claims while they rotate.
   std::vector<int> groups() const;
   bool idle() const;  // no AGV running a move
+  // Per agent, 1 while a delay stops it (Commander::orient holds its turn there).
+  std::vector<uint8_t> stopped() const;
   // The ADG was rebuilt (a replan) with agent i's running moves as actions `ids`, in order:
   // a prefix of them (a stuck AGV drops the chained moves it has not begun).
   void renumber(int i, const std::vector<int>& ids)
@@ -162,6 +175,7 @@ class Driver {
     double v = 0;               // speed SUMO reported after the last step
     double cmd = 0;             // speed commanded for the last step
     int rest_steps = 0;         // steps at rest since the last arrival
+    bool turning = false;       // a quarter turn commanded and not yet seen done in SUMO
     std::string lane;           // SUMO lane of the front after the last step
   };
   void begin(int action);
@@ -175,6 +189,9 @@ class Driver {
   // running `action` (INFINITY if not running).
   double sure_travel(int i) const;
   double handover_dist(int agent, int action) const;
+  // Headings: agent i (no running move) faces its next action's direction; if not, it
+  // turns toward it when at rest (and returns false).
+  bool faces(int i, int action);
   // How far agent's front is past the start of its running `action` (negative: not there yet).
   double ahead(int agent, int action) const;
   // Follow mode: how far agent i's front may still go (its leaders' backs minus margin).

@@ -56,6 +56,7 @@ struct Metrics {
   // lane, end, start_wait.
   long long time_cruise = 0, time_accel = 0, time_follow = 0, time_lane = 0, time_end = 0, time_start_wait = 0;
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
+  long long turn_steps = 0;         // adg with headings: agent-steps turning toward the next move (driver.hpp)
   // Traffic rules (rules.hpp), written as metrics.json "rules" when a run has them (also
   // when it only watches lanes: libsumo lockstep runs by default).
   struct RuleStats {
