@@ -373,7 +373,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node p = root["planner"];
   r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine",
-                        "rotation"});
+                        "dive", "rotation"});
   // Every real-time solver; lacam plans once, offline, and cannot follow SUMO.
   const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
@@ -386,6 +386,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.flag(p, "planner", "swap", c.planner.swap);
   r.flag(p, "planner", "keep_priorities", c.planner.keep_priorities);
   r.flag(p, "planner", "refine", c.planner.refine);
+  r.flag(p, "planner", "dive", c.planner.dive);
   if (c.planner.budget_ms == 0 && c.planner.expansions == 0)
     r.fail("planner.budget_ms", "0 needs planner.expansions > 0 (some limit per SUMO step)");
 

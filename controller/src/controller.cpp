@@ -21,6 +21,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.lacam.swap = p.swap;
   opt.lacam.keep_priorities = p.keep_priorities;
   opt.lacam.refine = p.refine;
+  opt.lacam.dive = p.dive;
   opt.pref = pref;
   const planner::Solver kind = planner::parse_solver(p.solver);
   if (planner::plans_rotation(kind)) {

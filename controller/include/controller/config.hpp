@@ -96,6 +96,11 @@ struct PlannerSection {
   bool swap = true;
   bool keep_priorities = true;  // lifelong epochs keep PIBT priorities (planner::LacamOptions)
   bool refine = true;           // RT-LaCAM*: LaCAM* refinement after the first solution (false: the paper)
+  // With refine: PIBT rollouts from the root inserted into the tree (LacamOptions::dive). The
+  // agents follow LaCAM's first solution while refinement runs, and on a warehouse of one-cell
+  // aisles that solution's backtracking costs 3-4x the bound; a rollout is a far cheaper path
+  // (controller/README.md, "Dives").
+  bool dive = true;
   RotationSection rotation;
   bool rotation_solver() const;  // solver plans rotation actions (planner::plans_rotation)
 };
