@@ -160,8 +160,7 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{},
                     {}, dist_cache_);
   if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
-  for (int i = 0; i < n; ++i)
-    if (immobile[i]) p_->set_immobile(i, true);
+  p_->set_immobile(immobile);  // one restart for all (realtime_planner.hpp)
   adg = executor::Adg(at);
   for (const planner::Config& c : steps) adg.append(c);
   for (int i = 0; i < n; ++i) {
@@ -198,8 +197,7 @@ void Run::stuck_step(executor::Adg& adg, Driver& drv)
     if (adds) {
       replan(adg, drv, stuck_->target());
     } else {
-      for (int i = 0; i < ins_.num_agents(); ++i)
-        if (stuck_->immobile()[i] && !stuck_->target()[i]) p_->set_immobile(i, false);
+      p_->set_immobile(stuck_->target());  // the recovered ones mobile, in one restart
       ++m_.replans;
     }
     stuck_->replanned();
