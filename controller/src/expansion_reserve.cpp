@@ -24,8 +24,8 @@ void ExpansionReserve::record(double search_cpu_ms, uint64_t expansions)
 double ExpansionReserve::ms(double budget_ms) const
 {
   if (per_expansion_.empty() || !(budget_ms > 0)) return 0;
-  const double cheapest = *std::min_element(per_expansion_.begin(), per_expansion_.end());
-  return std::min(cheapest, max_share_ * budget_ms);
+  const double dearest = *std::max_element(per_expansion_.begin(), per_expansion_.end());
+  return std::min(dearest, max_share_ * budget_ms);
 }
 
 }  // namespace controller

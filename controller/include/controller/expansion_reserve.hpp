@@ -6,10 +6,12 @@
 // deadline at the step's end, such a step costs the budget plus one expansion (measured on
 // huge_warehouse_agv, 1000 AGVs, 1 ms: 1.3-2.0 ms per step in the ~10 steps after each stuck
 // replan, while the detours were searched). So the tables' deadline is the step's minus one
-// expansion's own work. Estimate: the cheapest expansion of the last `window` steps that
-// expanded (a step's search thread CPU over its expansions; table work only adds to it, so
-// the minimum is the nearest to the plain work), capped at `max_share` of the budget so the
-// tables always grow by some (a search on lower bounds alone would stall).
+// expansion's own work. Estimate: the dearest expansion of the last `window` steps that
+// expanded (a step's search thread CPU over its expansions). Table work inflates it, so it
+// errs on the safe side -- the cheapest one was tried first and left the post-replan steps
+// at 1.1-1.4 ms: an expansion with detours active costs more than the plain ones before
+// the replan. Capped at `max_share` of the budget, so the tables always grow by some (a
+// search on lower bounds alone would stall).
 #include <cstddef>
 #include <cstdint>
 #include <vector>

@@ -54,6 +54,17 @@ void NaiveRtLacam::set_immobile(const std::vector<uint8_t>& immobile)
   solution_.clear();
 }
 
+bool NaiveRtLacam::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+{
+  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
+    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
+                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  current_ = at;
+  set_goals(goals, std::move(test));
+  set_immobile(immobile);
+  return true;
+}
+
 Status NaiveRtLacam::search(const Budget& b)
 {
   if (!solution_.empty()) return Status::Solved;

@@ -53,6 +53,17 @@ void PibtPlanner::set_immobile(const std::vector<uint8_t>& immobile)
   planned_ = false;
 }
 
+bool PibtPlanner::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+{
+  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
+    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
+                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  current_ = at;
+  set_goals(goals, std::move(test));
+  set_immobile(immobile);
+  return true;
+}
+
 Status PibtPlanner::search(const Budget&)
 {
   if (!planned_) {

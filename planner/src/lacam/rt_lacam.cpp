@@ -43,6 +43,19 @@ void RtLacam::set_immobile(const std::vector<uint8_t>& immobile)
   restart(goals);
 }
 
+bool RtLacam::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+{
+  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
+    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
+                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  current_ = at;
+  test_ = std::move(test);
+  for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
+  lacam_.set_immobile(immobile_);
+  restart(goals);
+  return true;
+}
+
 void RtLacam::restart(const Config& goals)
 {
   GoalTest test = relaxed_goal_test(g_, current_, goals, immobile_, test_);

@@ -406,3 +406,38 @@ TEST(Immobile, BatchMarksEqualMarksOneByOneInEveryCellSolver)
     EXPECT_THROW(batch->set_immobile(std::vector<uint8_t>(3, 1)), std::invalid_argument) << batch->name();
   }
 }
+
+TEST(Immobile, RestartAtAMovedConfigurationIsOneRestartAndPlansOnFromThere)
+{
+  // The stuck-AGV replan restarts the planner where the cut plan leaves the agents (moves
+  // it did not plan) with the stuck ones immobile: one restart, where a fresh planner costs
+  // its construction plus a restart per mark. The plan from there is valid, keeps the
+  // stuck ones in place, and once they are free everybody finishes.
+  ThreeStuck c;
+  Config at = c.starts;
+  at[3] = test::at(c.g, {{1, 0}})[0];  // agent 3 moved on behind the planner's back
+  at[5] = test::at(c.g, {{1, 1}})[0];
+  for (Solver s : {Solver::RtLacam, Solver::Naive, Solver::Pibt}) {
+    auto p = make_planner(s, c.g, c.starts, c.goals);
+    for (int k = 0; k < 5; ++k) p->search(Budget::expansion_count(20)), p->commit();  // some plan of its own first
+    const auto* rt = dynamic_cast<const RtLacam*>(p.get());
+    const uint64_t r0 = rt ? rt->restarts() : 0;
+    ASSERT_TRUE(p->restart_at(at, c.goals, {}, c.marks)) << p->name();
+    if (rt) EXPECT_EQ(rt->restarts(), r0 + 1);
+    EXPECT_EQ(p->current(), at) << p->name();
+    Config prev = at;
+    for (int k = 0; k < 60; ++k) {
+      p->search(Budget::expansion_count(20));
+      const Config next = p->next();
+      EXPECT_EQ(Validator::check_transition(c.g, prev, next), "") << p->name() << " step " << k;
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(next[i], c.starts[i]) << p->name() << " step " << k;
+      p->commit();
+      prev = next;
+    }
+    ASSERT_TRUE(p->restart_at(p->current(), c.goals, {}, std::vector<uint8_t>(7, 0)));
+    Drive d = drive(*p, c.g, 400, -1, -1, [&] { return p->at_goal(); });
+    EXPECT_EQ(d.error, "") << p->name();
+    EXPECT_TRUE(p->at_goal()) << p->name();
+    EXPECT_THROW(p->restart_at(Config(3, 0), c.goals, {}, c.marks), std::invalid_argument) << p->name();
+  }
+}

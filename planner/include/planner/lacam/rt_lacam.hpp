@@ -66,6 +66,7 @@ class RtLacam : public RealtimePlanner {
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
   void set_immobile(int agent, bool immobile) override;
   void set_immobile(const std::vector<uint8_t>& immobile) override;  // one restart for all
+  bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
   uint64_t restarts() const { return restarts_; }  // searches restarted at current() so far
 
   const Config& current() const override { return current_; }
