@@ -105,6 +105,7 @@ nlohmann::json Metrics::to_json() const
                    {"commits", commits},
                    {"replans", replans},
                    {"stuck_events", stuck_events},
+                   {"searches_skipped", searches_skipped},
                    {"dependency_waits", dependency_waits},
                    {"lockstep_waits", lockstep_waits},
                    {"delay_agent_ticks", delay_agent_ticks},

@@ -281,10 +281,29 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
     // grown by a later step: dist_cache.hpp), and so do the detours around stuck AGVs
     // (immobile.hpp): after a stuck replan one search expansion of 1000 agents would
     // otherwise search every goal's detour at once (10 ms and more).
+    // They stop one expansion's own work before it (expansion_reserve.hpp): the expansion
+    // that meets the deadline still has that to do.
     const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0;
-    if (bounded) dist_cache_->set_deadline(b.deadline_from(t0));
-    p_->search(b);
-    if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+    // Work charged to this step before its search (a replan, an epoch start, commits) may
+    // have used its budget already: then no search at all, where the search would still run
+    // its one forced expansion (0.7-2 ms at 1000 agents). The next step has its full budget;
+    // never two steps in a row, so the search always progresses.
+    const bool skip = cfg_.planner.budget_ms > 0 && b.ms <= 0 && !skipped_last_;
+    skipped_last_ = skip;
+    if (skip) {
+      ++searches_skipped_;
+    } else {
+      if (bounded) {
+        planner::Budget tb = b;
+        tb.ms = std::max(0.0, b.ms - reserve_.ms(b.ms));
+        dist_cache_->set_deadline(tb.deadline_from(t0));
+      }
+      const double s0 = planner::thread_cpu_ms();
+      const uint64_t e0 = p_->expansions();
+      p_->search(b);
+      reserve_.record(planner::thread_cpu_ms() - s0, p_->expansions() - e0);
+      if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+    }
   }
   plan_cpu_step_.push_back(planner::thread_cpu_ms() - c0 + plan_cpu_pending_);
   plan_cpu_pending_ = 0;

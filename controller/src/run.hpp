@@ -15,6 +15,7 @@
 #include "controller/congestion.hpp"
 #include "controller/controller.hpp"
 #include "controller/driver.hpp"
+#include "controller/expansion_reserve.hpp"
 #include "controller/fleet_view.hpp"
 #include "controller/rule_check.hpp"
 #include "controller/rules.hpp"
@@ -160,6 +161,11 @@ class Run {
   // what planner.budget_ms bounds, told apart from time the thread was preempted.
   planner::LatencySample plan_cpu_step_;
   double plan_cpu_pending_ = 0;  // planner CPU ms spent since the last step's slice
+  // Steps whose budget the work charged to them before the search (a replan, an epoch start)
+  // used up: no search there, not even the forced first expansion (Run::step).
+  uint64_t searches_skipped_ = 0;
+  bool skipped_last_ = false;
+  ExpansionReserve reserve_;  // one expansion's own work, kept from the tables' deadline
   std::vector<VehiclePose> last_poses_;
   // The physical bound over the executed plan's configurations that left memory (all of
   // them at the end): bound.hpp.

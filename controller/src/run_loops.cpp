@@ -254,6 +254,7 @@ void Run::finish()
   m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
   m_.planner_cpu_ms_per_step = Latency::of(plan_cpu_step_);
+  m_.searches_skipped = static_cast<long long>(searches_skipped_);
   m_.planner_ms_per_tick = Latency::of(plan_tick_);
   m_.sumo_ms_per_step = Latency::of(sumo_step_);
   m_.control_ms_per_tick = Latency::of(control_);

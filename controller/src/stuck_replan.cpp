@@ -153,15 +153,16 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   for (size_t t = val_final_at_ + 1; t < c_.plan_.size(); ++t)
     if (!val_->step(c_.plan_.at(t))) throw ControlError("replan: the cut plan is invalid: " + val_->error());
 
-  // A fresh planner from there, the stuck ones immobile, on the old one's distance tables.
-  // No search here: the next step's search() has what is left of the step's budget
-  // (Run::step), so a replan costs a step no more than planner.budget_ms.
-  replan_expansions_ += p_->expansions();
-  p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{},
-                    {}, dist_cache_);
-  if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
-  for (int i = 0; i < n; ++i)
-    if (immobile[i]) p_->set_immobile(i, true);
+  // The planner restarted from there, the stuck ones immobile, in one restart (a fresh
+  // planner where it cannot, on the old one's distance tables). No search here: the next
+  // step's search() has what is left of the step's budget, none if this used it (Run::step).
+  planner::GoalTest test = tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{};
+  if (!p_->restart_at(from, goals, test, immobile)) {
+    replan_expansions_ += p_->expansions();
+    p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), std::move(test), {}, dist_cache_);
+    if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
+    p_->set_immobile(immobile);  // one restart for all (realtime_planner.hpp)
+  }
   adg = executor::Adg(at);
   for (const planner::Config& c : steps) adg.append(c);
   for (int i = 0; i < n; ++i) {
@@ -198,8 +199,7 @@ void Run::stuck_step(executor::Adg& adg, Driver& drv)
     if (adds) {
       replan(adg, drv, stuck_->target());
     } else {
-      for (int i = 0; i < ins_.num_agents(); ++i)
-        if (stuck_->immobile()[i] && !stuck_->target()[i]) p_->set_immobile(i, false);
+      p_->set_immobile(stuck_->target());  // the recovered ones mobile, in one restart
       ++m_.replans;
     }
     stuck_->replanned();

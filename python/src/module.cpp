@@ -162,7 +162,7 @@ PYBIND11_MODULE(_rtlacam, m)
            py::arg("time_ms") = py::none(), py::arg("expansions") = py::none(), "search + next")
       .def("set_goals", [](RealtimePlanner& p, const Config& goals) { p.set_goals(goals); }, py::arg("goals"),
            "new goals: a new search rooted at the current configuration")
-      .def("set_immobile", &RealtimePlanner::set_immobile, py::arg("agent"), py::arg("immobile") = true,
+      .def("set_immobile", static_cast<void (RealtimePlanner::*)(int, bool)>(&RealtimePlanner::set_immobile), py::arg("agent"), py::arg("immobile") = true,
            "mark an agent immobile (never moved; the others route around it) or mobile again")
       .def_property_readonly("current", &RealtimePlanner::current)
       .def_property_readonly("goals", &RealtimePlanner::goals)

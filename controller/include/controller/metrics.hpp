@@ -48,6 +48,7 @@ struct Metrics {
   long long commits = 0;            // configurations the planner committed
   long long replans = 0;            // adg: replans around stuck AGVs and after their recovery
   long long stuck_events = 0;       // adg: AGVs found stuck (then made immobile)
+  long long searches_skipped = 0;   // SUMO steps whose budget went to a replan or epoch start before the search
   std::vector<double> goal_s;       // adg, one-shot: sim time each AGV reached its goal for good (-1: not)
   Latency executor_ms_per_step;     // adg: driver (starts, speeds, arrivals) + safety
   ViewStats view;                   // fleet_view.hpp: colour and goal-marker calls, their ms

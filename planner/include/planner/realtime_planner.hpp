@@ -13,6 +13,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "planner/budget.hpp"
 #include "planner/config.hpp"
@@ -47,6 +48,31 @@ class RealtimePlanner {
   {
     (void)agent, (void)immobile;
     throw std::logic_error("planner " + name() + " has no immobile agents");
+  }
+  // Every agent's mark at once (immobile[i] != 0: agent i immobile): one restart for all the
+  // changes, where a set_immobile(agent, ..) per agent restarts the search (a reset of the
+  // tree and the relaxed goal test, ~0.3 ms at 1000 agents) once per changed agent -- the
+  // stuck-AGV replan marks all its stuck AGVs in one SUMO step. Throws
+  // std::invalid_argument unless immobile.size() is the number of agents. The default
+  // applies the marks one by one.
+  virtual void set_immobile(const std::vector<uint8_t>& immobile)
+  {
+    if (immobile.size() != current().size())
+      throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
+                                  std::to_string(current().size()) + " agents");
+    for (size_t i = 0; i < immobile.size(); ++i) set_immobile(static_cast<int>(i), immobile[i] != 0);
+  }
+  // A new search at `at`, which the agents reached by moves this planner did not plan (the
+  // stuck-AGV replan's cut plan), with new goals, goal test and immobile marks (as above),
+  // in one restart: a fresh planner there costs several restarts' time (its arrays, tables'
+  // pins, priorities: 1-1.7 ms at 1000 agents, measured in the SUMO replan step). Complete
+  // from `at` as a fresh one; it keeps what it learnt (step costs, the random stream, with
+  // LacamOptions::keep_priorities the priorities), so its decisions may differ from a fresh
+  // one's. false: not supported (the caller builds a fresh planner), nothing changed.
+  virtual bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+  {
+    (void)at, (void)goals, (void)test, (void)immobile;
+    return false;
   }
   // Lifelong runs: cap the distance tables kept for goals no agent has now (0 = no cap).
   virtual void set_max_dist_tables(size_t n) { (void)n; }

@@ -1,5 +1,8 @@
 #include "planner/lacam/naive_rt_lacam.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include <algorithm>
 
 #include "planner/lacam/immobile.hpp"
@@ -38,6 +41,28 @@ void NaiveRtLacam::set_immobile(int agent, bool immobile)
   lacam_.set_immobile(immobile_);
   fresh_ = false;      // the next search starts from current_ with the mask
   solution_.clear();   // a path found before may move the agent
+}
+
+void NaiveRtLacam::set_immobile(const std::vector<uint8_t>& immobile)
+{
+  if (immobile.size() != immobile_.size())
+    throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
+                                std::to_string(immobile_.size()) + " agents");
+  for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
+  lacam_.set_immobile(immobile_);
+  fresh_ = false;
+  solution_.clear();
+}
+
+bool NaiveRtLacam::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+{
+  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
+    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
+                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  current_ = at;
+  set_goals(goals, std::move(test));
+  set_immobile(immobile);
+  return true;
 }
 
 Status NaiveRtLacam::search(const Budget& b)

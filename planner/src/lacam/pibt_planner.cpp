@@ -1,5 +1,8 @@
 #include "planner/lacam/pibt_planner.hpp"
 
+#include <stdexcept>
+#include <string>
+
 #include "planner/lacam/immobile.hpp"
 
 namespace planner {
@@ -37,6 +40,28 @@ void PibtPlanner::set_immobile(int agent, bool immobile)
   immobile_[agent] = immobile;
   pibt_.set_immobile(immobile_);
   planned_ = false;  // a step planned before may move the agent
+}
+
+void PibtPlanner::set_immobile(const std::vector<uint8_t>& immobile)
+{
+  if (immobile.size() != current_.size())
+    throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
+                                std::to_string(current_.size()) + " agents");
+  immobile_.assign(immobile.size(), 0);
+  for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
+  pibt_.set_immobile(immobile_);
+  planned_ = false;
+}
+
+bool PibtPlanner::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+{
+  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
+    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
+                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  current_ = at;
+  set_goals(goals, std::move(test));
+  set_immobile(immobile);
+  return true;
 }
 
 Status PibtPlanner::search(const Budget&)

@@ -1,5 +1,8 @@
 #include "planner/lacam/rt_lacam.hpp"
 
+#include <stdexcept>
+#include <string>
+
 namespace planner {
 
 RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
@@ -26,6 +29,33 @@ void RtLacam::set_immobile(int agent, bool immobile)
   restart(goals);
 }
 
+void RtLacam::set_immobile(const std::vector<uint8_t>& immobile)
+{
+  if (immobile.size() != immobile_.size())
+    throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
+                                std::to_string(immobile_.size()) + " agents");
+  std::vector<uint8_t> marks(immobile.size());
+  for (size_t i = 0; i < immobile.size(); ++i) marks[i] = immobile[i] != 0;
+  if (marks == immobile_) return;
+  immobile_ = std::move(marks);
+  lacam_.set_immobile(immobile_);
+  const Config goals = lacam_.goals();
+  restart(goals);
+}
+
+bool RtLacam::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
+{
+  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
+    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
+                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  current_ = at;
+  test_ = std::move(test);
+  for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
+  lacam_.set_immobile(immobile_);
+  restart(goals);
+  return true;
+}
+
 void RtLacam::restart(const Config& goals)
 {
   GoalTest test = relaxed_goal_test(g_, current_, goals, immobile_, test_);
@@ -39,6 +69,7 @@ void RtLacam::restart(const Config& goals)
     lacam_.reset(current_, goals, std::move(test));
   }
   planned_ = promised_ = nullptr;
+  ++restarts_;
 }
 
 Status RtLacam::search(const Budget& b)

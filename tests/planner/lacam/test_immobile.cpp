@@ -341,3 +341,103 @@ TEST(Immobile, AnAgentOutOfRangeIsAClearError)
     EXPECT_THROW(p->set_immobile(-1, true), std::invalid_argument);
   }
 }
+
+// A corridor with three stuck agents (0, 1, 2 in the top lane's middle), the others passing.
+struct ThreeStuck {
+  Graph g = test::grid({"..........", ".........."});
+  Config starts = test::at(g, {{3, 0}, {4, 0}, {6, 0}, {0, 0}, {9, 0}, {0, 1}, {9, 1}});
+  Config goals = test::at(g, {{3, 1}, {4, 1}, {6, 1}, {9, 0}, {0, 0}, {9, 1}, {0, 1}});
+  std::vector<uint8_t> marks{1, 1, 1, 0, 0, 0, 0};
+};
+
+TEST(Immobile, BatchMarksRestartTheSearchOnceForAllAgents)
+{
+  // The stuck-AGV replan marks all its stuck AGVs in one SUMO step: one restart (a tree
+  // reset and a relaxed goal test each, ~0.3 ms at 1000 agents), not one per agent.
+  ThreeStuck c;
+  RtLacam batch(c.g, c.starts, c.goals), single(c.g, c.starts, c.goals);
+  const uint64_t r0 = batch.restarts();
+  batch.set_immobile(c.marks);
+  EXPECT_EQ(batch.restarts(), r0 + 1);
+  batch.set_immobile(c.marks);  // unchanged: no restart
+  EXPECT_EQ(batch.restarts(), r0 + 1);
+  for (int i = 0; i < 3; ++i) single.set_immobile(i, true);
+  EXPECT_EQ(single.restarts(), r0 + 3);
+  // The same planner state either way: the same plan, every step valid, the stuck ones
+  // fixed, and the others through.
+  for (int s = 0; s < 60 && !(batch.at_goal() && single.at_goal()); ++s) {
+    batch.search(Budget::expansion_count(20));
+    single.search(Budget::expansion_count(20));
+    const Config from = batch.current(), next = batch.next();
+    ASSERT_EQ(next, single.next()) << "step " << s;
+    EXPECT_EQ(Validator::check_transition(c.g, from, next), "") << "step " << s;
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(next[i], c.starts[i]) << "step " << s;
+    batch.commit();
+    single.commit();
+  }
+  for (int i = 3; i < 7; ++i) EXPECT_EQ(batch.current()[i], c.goals[i]) << "agent " << i;
+  // Clearing all marks at once: one restart, and everyone finishes (completeness back).
+  const uint64_t r1 = batch.restarts();
+  batch.set_immobile(std::vector<uint8_t>(7, 0));
+  EXPECT_EQ(batch.restarts(), r1 + 1);
+  Drive d = drive(batch, c.g, 300, -1, -1, [&] { return batch.at_goal(); });
+  EXPECT_EQ(d.error, "");
+  EXPECT_TRUE(batch.at_goal());
+}
+
+TEST(Immobile, BatchMarksEqualMarksOneByOneInEveryCellSolver)
+{
+  ThreeStuck c;
+  for (Solver s : {Solver::RtLacam, Solver::Naive, Solver::Pibt}) {
+    auto batch = make_planner(s, c.g, c.starts, c.goals);
+    auto single = make_planner(s, c.g, c.starts, c.goals);
+    batch->set_immobile(c.marks);
+    for (int i = 0; i < 3; ++i) single->set_immobile(i, true);
+    for (int k = 0; k < 40; ++k) {
+      batch->search(Budget::expansion_count(20));
+      single->search(Budget::expansion_count(20));
+      const Config next = batch->next();
+      ASSERT_EQ(next, single->next()) << batch->name() << " step " << k;
+      EXPECT_EQ(Validator::check_transition(c.g, batch->current(), next), "") << batch->name();
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(next[i], c.starts[i]) << batch->name() << " step " << k;
+      batch->commit();
+      single->commit();
+    }
+    EXPECT_THROW(batch->set_immobile(std::vector<uint8_t>(3, 1)), std::invalid_argument) << batch->name();
+  }
+}
+
+TEST(Immobile, RestartAtAMovedConfigurationIsOneRestartAndPlansOnFromThere)
+{
+  // The stuck-AGV replan restarts the planner where the cut plan leaves the agents (moves
+  // it did not plan) with the stuck ones immobile: one restart, where a fresh planner costs
+  // its construction plus a restart per mark. The plan from there is valid, keeps the
+  // stuck ones in place, and once they are free everybody finishes.
+  ThreeStuck c;
+  Config at = c.starts;
+  at[3] = test::at(c.g, {{1, 0}})[0];  // agent 3 moved on behind the planner's back
+  at[5] = test::at(c.g, {{1, 1}})[0];
+  for (Solver s : {Solver::RtLacam, Solver::Naive, Solver::Pibt}) {
+    auto p = make_planner(s, c.g, c.starts, c.goals);
+    for (int k = 0; k < 5; ++k) p->search(Budget::expansion_count(20)), p->commit();  // some plan of its own first
+    const auto* rt = dynamic_cast<const RtLacam*>(p.get());
+    const uint64_t r0 = rt ? rt->restarts() : 0;
+    ASSERT_TRUE(p->restart_at(at, c.goals, {}, c.marks)) << p->name();
+    if (rt) EXPECT_EQ(rt->restarts(), r0 + 1);
+    EXPECT_EQ(p->current(), at) << p->name();
+    Config prev = at;
+    for (int k = 0; k < 60; ++k) {
+      p->search(Budget::expansion_count(20));
+      const Config next = p->next();
+      EXPECT_EQ(Validator::check_transition(c.g, prev, next), "") << p->name() << " step " << k;
+      for (int i = 0; i < 3; ++i) EXPECT_EQ(next[i], c.starts[i]) << p->name() << " step " << k;
+      p->commit();
+      prev = next;
+    }
+    ASSERT_TRUE(p->restart_at(p->current(), c.goals, {}, std::vector<uint8_t>(7, 0)));
+    Drive d = drive(*p, c.g, 400, -1, -1, [&] { return p->at_goal(); });
+    EXPECT_EQ(d.error, "") << p->name();
+    EXPECT_TRUE(p->at_goal()) << p->name();
+    EXPECT_THROW(p->restart_at(Config(3, 0), c.goals, {}, c.marks), std::invalid_argument) << p->name();
+  }
+}

@@ -20,6 +20,8 @@ class PibtPlanner : public RealtimePlanner {
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
   void set_immobile(int agent, bool immobile) override;
+  void set_immobile(const std::vector<uint8_t>& immobile) override;  // one update for all
+  bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }

@@ -65,6 +65,9 @@ class RtLacam : public RealtimePlanner {
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
   void set_immobile(int agent, bool immobile) override;
+  void set_immobile(const std::vector<uint8_t>& immobile) override;  // one restart for all
+  bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
+  uint64_t restarts() const { return restarts_; }  // searches restarted at current() so far
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return lacam_.goals(); }
@@ -94,6 +97,7 @@ class RtLacam : public RealtimePlanner {
   bool keep_priorities_;
   const Graph& g_;
   std::vector<uint8_t> immobile_;        // agent -> 1 while immobile
+  uint64_t restarts_ = 0;
 };
 
 }  // namespace planner
