@@ -339,6 +339,31 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
   count_queues(executed);
+  if (const tasks::Battery* b = tm_->battery()) count_battery(*b);
+}
+
+void Run::count_battery(const tasks::Battery& b)
+{
+  Metrics::BatteryStats& s = m_.battery;
+  const double cap = b.options().capacity_wh;
+  if (!s.active) {
+    s.active = true;
+    s.capacity_wh = cap;
+    s.charging = b.options().charging;
+  }
+  const std::vector<double>& q = b.charges();
+  for (int a : b.emptied())
+    std::fprintf(stderr, "[rtlacam-sumo] warning: t=%.1f s: %s ran empty (fleet.battery: charge 0 of %g Wh)\n",
+                   m_.ticks * cfg_.run.tick_s, cmd_->ids()[a].c_str(), cap);
+  for (double c : q) s.min_charge = std::min(s.min_charge, c / cap);
+  s.ran_empty = b.ran_empty();
+  s.errands = b.errands();
+  s.charging_share = b.agent_ticks() > 0 ? static_cast<double>(b.charging_ticks()) / b.agent_ticks() : 0.0;
+  if (m_.ticks % cfg_.fleet.battery.sample_ticks == 0 && !q.empty()) {
+    double lo = q[0], hi = q[0], sum = 0;
+    for (double c : q) lo = std::min(lo, c), hi = std::max(hi, c), sum += c;
+    s.samples.push_back({m_.ticks, lo / cap, sum / q.size() / cap, hi / cap});
+  }
 }
 
 void Run::count_queues(const planner::Config& executed)
