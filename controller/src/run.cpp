@@ -84,6 +84,13 @@ void Run::prepare()
   m_.cells = g.size();
   if (!cfg_.tasks.lifelong()) m_.soc_lb = ins_.soc_lower_bound(g);
   if (cfg_.tasks.lifelong()) tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
+  if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
+    for (size_t i = 0; i < b->chargers().size(); ++i)
+      if (!b->dead_end(static_cast<int>(i)))
+        std::fprintf(stderr,
+                     "[rtlacam-sumo] warning: fleet.battery: chargingStation '%s' is not at a dead end: traffic can push a "
+                     "charging AGV off it (charging pauses meanwhile)\n",
+                     b->chargers()[i].id.c_str());
   // The learned policy (CS-PIBT move order). Its observations are grid windows: the net
   // must be an axis-aligned lattice (gridify then attaches the grid view). The planner
   // tells it the goals (ActionPreference::set_goals), so it starts with none.

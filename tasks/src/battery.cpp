@@ -13,28 +13,34 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
   for (size_t i = 0; i < chargers_.size(); ++i)
     if (charger_of_[chargers_[i].cell] < 0) charger_of_[chargers_[i].cell] = static_cast<int>(i);
   claimed_by_.assign(chargers_.size(), -1);
-  // Dead-end corridors: from each charger along cells of at most two neighbours (either
-  // way); if that walk meets exactly one junction, the corridor is a dead end.
   reserved_.assign(g.size(), 0);
-  auto around = [&](planner::Vertex v) {
-    std::vector<planner::Vertex> out(g.neighbors(v).begin(), g.neighbors(v).end());
-    for (planner::Vertex u : g.in_neighbors(v))
+  dead_end_.assign(chargers_.size(), 0);
+  for (size_t i = 0; i < chargers_.size(); ++i) {
+    reserved_[chargers_[i].cell] = 1;
+    const std::vector<planner::Vertex> corridor = dead_end_corridor(g, chargers_[i].cell);
+    dead_end_[i] = !corridor.empty();
+    for (planner::Vertex v : corridor) reserved_[v] = 1;
+  }
+}
+
+std::vector<planner::Vertex> dead_end_corridor(const planner::Graph& g, planner::Vertex v)
+{
+  auto around = [&](planner::Vertex x) {  // neighbours either way (a one-way aisle is still a corridor)
+    std::vector<planner::Vertex> out(g.neighbors(x).begin(), g.neighbors(x).end());
+    for (planner::Vertex u : g.in_neighbors(x))
       if (std::find(out.begin(), out.end(), u) == out.end()) out.push_back(u);
     return out;
   };
-  for (const Charger& c : chargers_) {
-    reserved_[c.cell] = 1;
-    if (around(c.cell).size() > 2) continue;
-    std::vector<planner::Vertex> corridor{c.cell}, mouths;
-    for (size_t i = 0; i < corridor.size(); ++i)
-      for (planner::Vertex u : around(corridor[i])) {
-        if (std::find(corridor.begin(), corridor.end(), u) != corridor.end()) continue;
-        if (around(u).size() <= 2) corridor.push_back(u);
-        else if (std::find(mouths.begin(), mouths.end(), u) == mouths.end()) mouths.push_back(u);
-      }
-    if (mouths.size() == 1)
-      for (planner::Vertex v : corridor) reserved_[v] = 1;
-  }
+  if (around(v).size() > 2) return {};
+  std::vector<planner::Vertex> corridor{v}, mouths;
+  for (size_t i = 0; i < corridor.size(); ++i)
+    for (planner::Vertex u : around(corridor[i])) {
+      if (std::find(corridor.begin(), corridor.end(), u) != corridor.end()) continue;
+      if (around(u).size() <= 2) corridor.push_back(u);
+      else if (std::find(mouths.begin(), mouths.end(), u) == mouths.end()) mouths.push_back(u);
+    }
+  if (mouths.size() != 1) return {};
+  return corridor;
 }
 
 int Battery::nearest_free(planner::Vertex from)

@@ -147,14 +147,27 @@ void TaskManager::set_battery(const planner::Graph& g, BatteryOptions options, s
 {
   battery_ = std::make_unique<Battery>(g, options, std::move(chargers), std::move(xy));
   reserved_.assign(g.size(), 0);
+  // Agents waiting for a charger idle for long: off the errand stations and their dead ends,
+  // where the traffic to the stations would push them about (and drain them) the whole time.
+  station_cells_.assign(g.size(), 0);
+  for (const std::vector<planner::Vertex>& t : file_->tasks)
+    for (planner::Vertex v : t) {
+      if (station_cells_[v]) continue;
+      station_cells_[v] = 1;
+      for (planner::Vertex u : dead_end_corridor(g, v)) station_cells_[u] = 1;
+    }
   if (!parking_) parking_ = std::make_unique<Parking>(g, std::vector<planner::Vertex>{});
 }
 
 bool TaskManager::send_to_charge(const planner::Config& positions)
 {
-  bool any = false;
+  // The lowest charge first: when chargers are short, the agent nearest to empty gets one.
+  std::vector<int> order;
   for (int a = 0; a < num_agents(); ++a)
-    if (holding_[a] < 0 && !battery_->charging(a)) any = battery_->consider(a, positions[a]) || any;
+    if (holding_[a] < 0 && !battery_->charging(a) && battery_->wants(a)) order.push_back(a);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return battery_->charge(a) < battery_->charge(b); });
+  bool any = false;
+  for (int a : order) any = battery_->consider(a, positions[a]) || any;
   return any;
 }
 
@@ -174,8 +187,8 @@ void TaskManager::refresh_goals(const planner::Config& positions)
     std::vector<char> idle(num_agents());
     for (int a = 0; a < num_agents(); ++a) idle[a] = (holding_[a] < 0 && !charging(a)) || unplaced[a];
     const std::vector<uint8_t>* reserved = queues_ ? &queues_->reserved_cells() : nullptr;
-    if (battery_) {  // an idle agent must not stand on a charger (or in its dead end) either
-      for (size_t v = 0; v < reserved_.size(); ++v) reserved_[v] = battery_->reserved(v) || (reserved && (*reserved)[v]);
+    if (battery_) {  // an idle agent must not stand on a charger or a station (or in their dead ends) either
+      for (size_t v = 0; v < reserved_.size(); ++v) reserved_[v] = battery_->reserved(v) || station_cells_[v] || (reserved && (*reserved)[v]);
       reserved = &reserved_;
     }
     parking_->apply(idle, positions, reserved, goals_);

@@ -26,6 +26,10 @@
 
 namespace tasks {
 
+// The corridor (cells of at most two neighbours, either way) that joins `v` to the rest of
+// `g` through exactly one junction, `v` included; empty when `v` is not at such a dead end.
+std::vector<planner::Vertex> dead_end_corridor(const planner::Graph& g, planner::Vertex v);
+
 struct BatteryOptions {
   double capacity_wh = 100;
   double initial = 1.0;      // fraction of capacity at the start, every agent
@@ -66,6 +70,9 @@ class Battery {
   // A charger and, at a dead end, the corridor cells that lead to it: an idle agent resting
   // there would block the way in (the TaskManager's parking keeps idle agents off them).
   bool reserved(planner::Vertex v) const { return reserved_[v] != 0; }
+  // Charger i stands at a dead end; else traffic may push a charging agent off it (it then
+  // gains nothing until it is back).
+  bool dead_end(int i) const { return dead_end_[i] != 0; }
 
   const BatteryOptions& options() const { return options_; }
   const std::vector<Charger>& chargers() const { return chargers_; }
@@ -87,6 +94,7 @@ class Battery {
   std::vector<std::pair<double, double>> xy_;
   std::vector<int> charger_of_;  // per vertex: charger index, -1
   std::vector<uint8_t> reserved_;  // per vertex: a charger or its dead-end corridor
+  std::vector<char> dead_end_;     // per charger
   std::vector<int> claimed_by_;  // per charger: agent, -1
   std::vector<double> charge_;
   std::vector<int> claim_;       // per agent: charger index, -1

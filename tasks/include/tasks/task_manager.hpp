@@ -130,7 +130,8 @@ class TaskManager {
   std::unique_ptr<StationQueues> queues_;
   std::unique_ptr<Parking> parking_;
   std::unique_ptr<Battery> battery_;
-  std::vector<uint8_t> reserved_;  // queues' reserved cells and the chargers (battery on)
+  std::vector<uint8_t> reserved_;  // queues' reserved cells, the chargers and the stations (battery on)
+  std::vector<uint8_t> station_cells_;  // battery on: errand cells and their dead-end corridors
   // Sends agents without a task that are low to charge; true if any went.
   bool send_to_charge(const planner::Config& positions);
   void refresh_goals(const planner::Config& positions);
