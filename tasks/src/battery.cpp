@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace tasks {
 
@@ -10,6 +11,9 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
     : g_(g), options_(options), chargers_(std::move(chargers)), xy_(std::move(xy)), charger_of_(g.size(), -1),
       seen_(g.size(), 0)
 {
+  if (xy_.size() != static_cast<size_t>(g.size())) throw std::invalid_argument("Battery: one cell centre per vertex needed");
+  for (const Charger& c : chargers_)
+    if (c.cell < 0 || c.cell >= g.size()) throw std::invalid_argument("Battery: charger '" + c.id + "' is not a vertex");
   for (size_t i = 0; i < chargers_.size(); ++i)
     if (charger_of_[chargers_[i].cell] < 0) charger_of_[chargers_[i].cell] = static_cast<int>(i);
   claimed_by_.assign(chargers_.size(), -1);

@@ -48,7 +48,8 @@ struct Charger {
 
 class Battery {
  public:
-  // `xy`: per vertex, the cell centre in metres (distances and turns); `chargers` may be
+  // `xy`: per vertex, the cell centre in metres (distances and turns; std::invalid_argument
+  // if it has another size, or a charger is no vertex); `chargers` may be
   // empty only with options.charging false.
   Battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
           std::vector<std::pair<double, double>> xy);
