@@ -17,7 +17,7 @@ Also writes `small_oneway`: `small` with one-way picking aisles in alternate dir
 Also writes one member of a warehouse family (aisles x shelf rows as parameters) anywhere:
 scripts/bench_scale.py uses it for its robots-vs-latency table.
 
-Usage: make_warehouse.py  (writes small.*, small_oneway.*, large.*, huge.*, bottleneck.* here; then run ./build.sh)
+Usage: make_warehouse.py  (writes small.*, small_charging.*, small_oneway.*, large.*, huge.*, bottleneck.* here; then run ./build.sh)
        make_warehouse.py --family AISLES ROWS --name NAME --out DIR  (writes DIR/NAME.{nod,edg,add}.xml)
 """
 import argparse
@@ -27,10 +27,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = HERE  # where write() puts the files (--out)
 
 
-def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, one_way=False):
+def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, one_way=False,
+              charge_below=(), charge_above=()):
     """one_way: the picking aisles are single one-way edges, alternately up (even columns)
     and down (odd columns); cross aisles and station stubs stay two-way (a stub is a dead
-    end, which a one-way edge could not leave)."""
+    end, which a one-way edge could not leave). charge_below / charge_above: columns with a
+    dead-end charger stub below the bottom / above the top cross aisle, a chargingStation
+    at its end (a charging AGV there blocks no aisle)."""
     nodes, edges = {}, []
     top = cross_ys[-1]
     for c in range(columns):
@@ -61,6 +64,14 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, 
         nodes[f"drop{c}"] = (c * pitch, top + stub)
         aisle(f"c{c}r{last}", f"drop{c}")
         stations.append(("busStop", f"drop{c}", f"c{c}r{last}_drop{c}_0", stub, "drop"))
+    for c in charge_below:                    # charger stubs (fleet.battery)
+        nodes[f"chgB{c}"] = (c * pitch, -stub)
+        aisle(f"c{c}r0", f"chgB{c}")
+        stations.append(("chargingStation", f"charger_b{c}", f"c{c}r0_chgB{c}_0", stub, "charging"))
+    for c in charge_above:
+        nodes[f"chgT{c}"] = (c * pitch, top + stub)
+        aisle(f"c{c}r{last}", f"chgT{c}")
+        stations.append(("chargingStation", f"charger_t{c}", f"c{c}r{last}_chgT{c}_0", stub, "charging"))
     for k, (c, r, pos) in enumerate(park):    # parking spots inside the outer picking aisles
         lane = f"c{c}r{r}_c{c}r{r + 1}_0" if not one_way or c % 2 == 0 else f"c{c}r{r + 1}_c{c}r{r}_0"
         stations.append(("parkingArea", f"park{k}", lane, pos, "parking"))
@@ -94,6 +105,8 @@ def write_additional(name, stations):
         for elem, sid, lane, pos, kind in stations:
             # A stop covers [pos - 0.5, pos] so its middle snaps to the cell at `pos`.
             extra = ' roadsideCapacity="1"' if elem == "parkingArea" else ""
+            if elem == "chargingStation":  # 7.2 kW at SUMO's default efficiency: 1.9 Wh per second
+                extra = ' power="7200" efficiency="0.95"'
             f.write(f'    <{elem} id="{sid}" lane="{lane}" startPos="{pos - 0.5:.2f}" endPos="{pos:.2f}"{extra}>\n')
             f.write(f'        <param key="kind" value="{kind}"/>\n')
             f.write(f"    </{elem}>\n")
@@ -138,6 +151,10 @@ def shipped():
     # Small: 4 picking aisles 8 m long between 3 m shelf blocks, 2 pick-up and 2 drop stations.
     warehouse("small", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
               pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)])
+    # Small with chargers (issue 24, config/small_charging_lifelong.yaml): `small` plus four
+    # dead-end charger stubs, below the outer picking aisles and above the inner ones.
+    warehouse("small_charging", columns=4, pitch=4, cross_ys=[0, 8], stub=2,
+              pick_cols=[1, 2], drop_cols=[0, 3], park=[(0, 0, 3)], charge_below=[0, 3], charge_above=[1, 2])
     # Small with one-way picking aisles (alternately up and down; issue 24): the same layout,
     # stations and parking spot (config/small_oneway.yaml, small_oneway_lifelong.yaml).
     warehouse("small_oneway", columns=4, pitch=4, cross_ys=[0, 8], stub=2,

@@ -342,7 +342,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node f = root["fleet"];
   if (!f) r.fail("fleet", "missing (required: at least fleet.count)");
-  r.keys(f, "fleet", {"count", "seed", "starts", "vtype", "turn_s"});
+  r.keys(f, "fleet", {"count", "seed", "starts", "vtype", "turn_s", "battery"});
   r.get(f, "fleet", "seed", c.fleet.seed, "a non-negative integer");
   r.cells(f, "fleet", "starts", c.fleet.random_starts, c.fleet.starts);
   if (f["count"]) {
@@ -366,6 +366,25 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(v, "fleet.vtype", "decel", c.fleet.vtype.decel, 0, true);
   r.number(v, "fleet.vtype", "max_speed", c.fleet.vtype.max_speed, 0, true);
   r.number(f, "fleet", "turn_s", c.fleet.turn_s, 0, true);
+  if (const YAML::Node b = f["battery"]) {
+    FleetSection::Battery& x = c.fleet.battery;
+    if (!b.IsMap()) r.fail("fleet.battery", "expected a mapping {capacity_wh, per_m_wh, per_turn_wh, threshold, target, ...}");
+    r.keys(b, "fleet.battery", {"capacity_wh", "initial", "per_m_wh", "per_turn_wh", "threshold", "target", "charge_w", "charging",
+                                "sample_ticks"});
+    x.on = true;
+    r.number(b, "fleet.battery", "capacity_wh", x.capacity_wh, 0, true);
+    r.number(b, "fleet.battery", "per_m_wh", x.per_m_wh, 0);
+    r.number(b, "fleet.battery", "per_turn_wh", x.per_turn_wh, 0);
+    if (b["charge_w"]) r.number(b, "fleet.battery", "charge_w", x.charge_w, 0, true);
+    r.flag(b, "fleet.battery", "charging", x.charging);
+    r.integer(b, "fleet.battery", "sample_ticks", x.sample_ticks, 1, 1000000);
+    for (auto [k, v] : {std::pair<const char*, double*>{"initial", &x.initial}, {"threshold", &x.threshold}, {"target", &x.target}}) {
+      r.number(b, "fleet.battery", k, *v, 0, true);
+      if (*v > 1) r.fail(std::string("fleet.battery.") + k, "is a fraction of capacity_wh: must be in (0, 1], got " + Reader::fmt(*v));
+    }
+    if (x.threshold >= x.target)
+      r.fail("fleet.battery.threshold", "must be < target (" + Reader::fmt(x.target) + "), got " + Reader::fmt(x.threshold));
+  }
   if (c.fleet.vtype.length + c.fleet.vtype.min_gap > c.grid.cell_length + 1e-9)
     r.fail("fleet.vtype", "length + min_gap (" + Reader::fmt(c.fleet.vtype.length + c.fleet.vtype.min_gap) +
                               ") exceeds grid.cell_length (" + Reader::fmt(c.grid.cell_length) +
@@ -395,6 +414,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
                       "pool_size", "k_nearest", "reassign", "queues", "parking", "log"});
   r.choice(t, "tasks", "mode", c.tasks.mode, {"one_shot", "lifelong"});
   r.get(t, "tasks", "seed", c.tasks.seed, "a non-negative integer");
+  if (c.fleet.battery.on && !c.tasks.lifelong()) r.fail("fleet.battery", "only with tasks.mode: lifelong (charging errands are lifelong work)");
   if (!c.tasks.lifelong()) {
     for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "reassign",
                           "queues", "parking", "log"})

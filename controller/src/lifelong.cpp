@@ -49,6 +49,32 @@ std::vector<planner::Vertex> parking_cells(const Config& cfg, const gridify::Cel
   return out;
 }
 
+std::vector<tasks::Charger> chargers(const Config& cfg, const gridify::CellMap& map)
+{
+  const FleetSection::Battery& b = cfg.fleet.battery;
+  std::vector<tasks::Charger> out;
+  for (const gridify::Dropped& d : map.dropped)
+    if (d.kind == "station" && d.reason.rfind("<chargingStation>", 0) == 0)
+      throw ConfigError(cfg.path + ": fleet.battery: chargingStation '" + d.id + "' is on a lane gridify dropped (" + d.reason + ")");
+  for (const gridify::Station& s : map.stations) {
+    if (s.element != "chargingStation") continue;
+    const double w = s.power >= 0 ? s.power : b.charge_w;
+    if (w < 0)
+      throw ConfigError(cfg.path + ": fleet.battery: chargingStation '" + s.id +
+                        "' has no power attribute and fleet.battery.charge_w is not set");
+    for (const tasks::Charger& c : out)
+      if (c.cell == s.cell)
+        throw ConfigError(cfg.path + ": fleet.battery: chargingStations '" + c.id + "' and '" + s.id + "' are on one cell (" +
+                          std::to_string(s.cell) + "): one AGV charges on a cell");
+    out.push_back({s.cell, w * s.efficiency * cfg.run.tick_s / 3600.0, s.id});
+  }
+  if (out.empty() && b.charging)
+    throw ConfigError(cfg.path + ": fleet.battery: charging is on, but " +
+                      (cfg.sumo.additional.empty() ? std::string("there is no sumo.additional with a chargingStation")
+                                                   : "sumo.additional has no chargingStation"));
+  return out;
+}
+
 std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const gridify::CellMap& map)
 {
   const TasksSection& t = cfg.tasks;
@@ -85,6 +111,20 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
   q.admission = t.queue_admission;
   tm->set_queues(map.graph, q);
   if (t.parking) tm->set_parking(map.graph, parking_cells(cfg, map));
+  if (cfg.fleet.battery.on) {
+    const FleetSection::Battery& b = cfg.fleet.battery;
+    tasks::BatteryOptions o;
+    o.capacity_wh = b.capacity_wh;
+    o.initial = b.initial;
+    o.per_m_wh = b.per_m_wh;
+    o.per_turn_wh = b.per_turn_wh;
+    o.threshold = b.threshold;
+    o.target = b.target;
+    o.charging = b.charging;
+    std::vector<std::pair<double, double>> xy;
+    for (const gridify::Cell& c : map.cells) xy.emplace_back(c.x, c.y);
+    tm->set_battery(map.graph, o, chargers(cfg, map), std::move(xy));
+  }
   return tm;
 }
 

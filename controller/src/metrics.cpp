@@ -56,6 +56,13 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}};
     j["lifelong"]["parking"] = {{"idleAtEnd", idle_at_end}, {"parkedAtEnd", parked_at_end}};
   }
+  if (battery.active) {
+    nlohmann::json samples = nlohmann::json::array();
+    for (const BatteryStats::Sample& x : battery.samples) samples.push_back({{"tick", x.tick}, {"min", x.min}, {"mean", x.mean}, {"max", x.max}});
+    j["battery"] = {{"capacity_wh", battery.capacity_wh}, {"charging", battery.charging}, {"charging_errands", battery.errands},
+                    {"ran_empty", battery.ran_empty}, {"charging_share", battery.charging_share},
+                    {"min_charge", battery.min_charge}, {"samples", samples}};
+  }
   j["bound_ticks"] = bound_ticks;
   if (mode != "lifelong") j["makespan_over_bound"] = makespan_over_bound();
   j["solved"] = solved;

@@ -94,6 +94,13 @@ void Run::prepare()
       };
     tm_->set_free_flow(std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost));
   }
+  if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
+    for (size_t i = 0; i < b->chargers().size(); ++i)
+      if (!b->dead_end(static_cast<int>(i)))
+        std::fprintf(stderr,
+                     "[rtlacam-sumo] warning: fleet.battery: chargingStation '%s' is not at a dead end: traffic can push a "
+                     "charging AGV off it (charging pauses meanwhile)\n",
+                     b->chargers()[i].id.c_str());
   // The learned policy (CS-PIBT move order). Its observations are grid windows: the net
   // must be an axis-aligned lattice (gridify then attaches the grid view). The planner
   // tells it the goals (ActionPreference::set_goals), so it starts with none.
@@ -371,6 +378,31 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
   count_queues(executed);
+  if (const tasks::Battery* b = tm_->battery()) count_battery(*b);
+}
+
+void Run::count_battery(const tasks::Battery& b)
+{
+  Metrics::BatteryStats& s = m_.battery;
+  const double cap = b.options().capacity_wh;
+  if (!s.active) {
+    s.active = true;
+    s.capacity_wh = cap;
+    s.charging = b.options().charging;
+  }
+  const std::vector<double>& q = b.charges();
+  for (int a : b.emptied())
+    std::fprintf(stderr, "[rtlacam-sumo] warning: t=%.1f s: %s ran empty (fleet.battery: charge 0 of %g Wh)\n",
+                   m_.ticks * cfg_.run.tick_s, cmd_->ids()[a].c_str(), cap);
+  for (double c : q) s.min_charge = std::min(s.min_charge, c / cap);
+  s.ran_empty = b.ran_empty();
+  s.errands = b.errands();
+  s.charging_share = b.agent_ticks() > 0 ? static_cast<double>(b.charging_ticks()) / b.agent_ticks() : 0.0;
+  if (m_.ticks % cfg_.fleet.battery.sample_ticks == 0 && !q.empty()) {
+    double lo = q[0], hi = q[0], sum = 0;
+    for (double c : q) lo = std::min(lo, c), hi = std::max(hi, c), sum += c;
+    s.samples.push_back({m_.ticks, lo / cap, sum / q.size() / cap, hi / cap});
+  }
 }
 
 void Run::count_queues(const planner::Config& executed)

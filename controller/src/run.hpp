@@ -70,6 +70,8 @@ class Run {
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
   // Lifelong: the queue and parking counts of metrics.json (Metrics::max_heading ...).
   void count_queues(const planner::Config& executed);
+  // Lifelong with fleet.battery: the battery metrics, a warning for each AGV run empty.
+  void count_battery(const tasks::Battery& b);
   void progress_line(const planner::Config& executed);
   // adg, after each SUMO step: the stuck-AGV watch (stuck_replan.hpp) and, when the set
   // of immobile AGVs changes, replan(): new planner and ADG from where the AGVs are and are

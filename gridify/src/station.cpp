@@ -46,6 +46,13 @@ void tag_stations(CellMap& map, const NetFile& net, const std::string& path)
     st.element = element;
     st.kind = default_kind(element);
     if (poi && n.attribute("type")) st.kind = src.str(n, "type");
+    if (element == "chargingStation") {
+      if (n.attribute("power")) st.power = src.num(n, "power");
+      st.efficiency = src.num_or(n, "efficiency", 0.95);  // SUMO's default
+      if (st.power < 0 && n.attribute("power")) throw src.error(n, "<chargingStation id='" + st.id + "'>: power must be >= 0");
+      if (st.efficiency <= 0 || st.efficiency > 1)
+        throw src.error(n, "<chargingStation id='" + st.id + "'>: efficiency must be in (0, 1]");
+    }
     for (pugi::xml_node p : n.children("param"))
       if (std::string(p.attribute("key").value()) == "kind") st.kind = src.str(p, "value");
 

@@ -9,7 +9,19 @@ void RoundRobin::on_start(const planner::Config&)
 
 void RoundRobin::on_finished(int agent, const Task& task)
 {
+  if (needs_charge(agent)) {
+    deferred_.resize(num_agents(), -1);
+    deferred_[agent] = task.id + num_agents();
+    return;
+  }
   give(agent, add_task(make_task(task.id + num_agents())));
+}
+
+void RoundRobin::on_charged(int agent)
+{
+  if (agent >= static_cast<int>(deferred_.size()) || deferred_[agent] < 0) return;
+  give(agent, add_task(make_task(deferred_[agent])));
+  deferred_[agent] = -1;
 }
 
 std::vector<TaskManager::Upcoming> RoundRobin::upcoming() const

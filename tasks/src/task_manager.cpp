@@ -10,6 +10,7 @@ void TaskManager::start(const planner::Config& positions)
   goals_ = positions;
   now_ = 0;
   if (free_flow_) free_flow_->start(positions);
+  if (battery_) battery_->step(positions);  // the start charges
   on_start(positions);
   refresh_goals(positions);
 }
@@ -18,6 +19,7 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
 {
   std::vector<Event> events;
   now_ = t;
+  const std::vector<int> charged = battery_ ? battery_->step(positions) : std::vector<int>{};
   for (int a = 0; a < num_agents(); ++a) {
     const int s = holding_[a];
     if (s < 0) continue;
@@ -33,13 +35,17 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       holding_[a] = -1;
       assignments_.push_back({t, a, -1});
       drop(s);
+      // Low: to a charger before the next task (a round-robin agent gets it there).
+      if (battery_) battery_->consider(a, positions[a]);
       on_finished(a, done);
     }
   }
+  if (battery_) send_to_charge(positions);
+  for (int a : charged) on_charged(a);
   goals_changed_ = false;
-  if (!events.empty() || queues_ || parking_) {
+  if (!events.empty() || queues_ || parking_ || battery_) {
     const planner::Config before = goals_;
-    if (!events.empty()) after_step(positions);
+    if (!events.empty() || !charged.empty()) after_step(positions);
     refresh_goals(positions);
     goals_changed_ = !events.empty() || goals_ != before;
     // An agent that just reached a queue or parking goal: the epoch waited for it.
@@ -138,10 +144,39 @@ void TaskManager::set_parking(const planner::Graph& g, std::vector<planner::Vert
   parking_ = std::make_unique<Parking>(g, std::move(cells));
 }
 
+void TaskManager::set_battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
+                              std::vector<std::pair<double, double>> xy)
+{
+  battery_ = std::make_unique<Battery>(g, options, std::move(chargers), std::move(xy));
+  reserved_.assign(g.size(), 0);
+  // Agents waiting for a charger idle for long: off the errand stations and their dead ends,
+  // where the traffic to the stations would push them about (and drain them) the whole time.
+  station_cells_.assign(g.size(), 0);
+  for (const std::vector<planner::Vertex>& t : file_->tasks)
+    for (planner::Vertex v : t) {
+      if (station_cells_[v]) continue;
+      station_cells_[v] = 1;
+      for (planner::Vertex u : dead_end_corridor(g, v)) station_cells_[u] = 1;
+    }
+  if (!parking_) parking_ = std::make_unique<Parking>(g, std::vector<planner::Vertex>{});
+}
+
+bool TaskManager::send_to_charge(const planner::Config& positions)
+{
+  // The lowest charge first: when chargers are short, the agent nearest to empty gets one.
+  std::vector<int> order;
+  for (int a = 0; a < num_agents(); ++a)
+    if (holding_[a] < 0 && !battery_->charging(a) && battery_->wants(a)) order.push_back(a);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return battery_->charge(a) < battery_->charge(b); });
+  bool any = false;
+  for (int a : order) any = battery_->consider(a, positions[a]) || any;
+  return any;
+}
+
 void TaskManager::refresh_goals(const planner::Config& positions)
 {
   for (int a = 0; a < num_agents(); ++a)
-    goals_[a] = holding_[a] >= 0 ? slots_[holding_[a]].next_cell() : positions[a];
+    goals_[a] = holding_[a] >= 0 ? slots_[holding_[a]].next_cell() : charging(a) ? battery_->goal(a) : positions[a];
   std::vector<char> unplaced(num_agents(), 0);
   if (queues_) {
     std::vector<planner::Vertex> errand(num_agents(), -1);
@@ -152,8 +187,13 @@ void TaskManager::refresh_goals(const planner::Config& positions)
   if (parking_) {
     // Idle agents, and busy ones beyond their station's queue, wait parked.
     std::vector<char> idle(num_agents());
-    for (int a = 0; a < num_agents(); ++a) idle[a] = holding_[a] < 0 || unplaced[a];
-    parking_->apply(idle, positions, queues_ ? &queues_->reserved_cells() : nullptr, goals_);
+    for (int a = 0; a < num_agents(); ++a) idle[a] = (holding_[a] < 0 && !charging(a)) || unplaced[a];
+    const std::vector<uint8_t>* reserved = queues_ ? &queues_->reserved_cells() : nullptr;
+    if (battery_) {  // an idle agent must not stand on a charger or a station (or in their dead ends) either
+      for (size_t v = 0; v < reserved_.size(); ++v) reserved_[v] = battery_->reserved(v) || station_cells_[v] || (reserved && (*reserved)[v]);
+      reserved = &reserved_;
+    }
+    parking_->apply(idle, positions, reserved, goals_);
   }
 }
 

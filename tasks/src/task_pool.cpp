@@ -84,7 +84,7 @@ void TaskPool::steal_rounds(const planner::Config& positions)
 {
   std::vector<int> agents;
   for (int a = 0; a < num_agents(); ++a)
-    if (holding_[a] < 0) agents.push_back(a);
+    if (assignable(a)) agents.push_back(a);
   // Each steal strictly shortens the stolen task's first leg, so this ends; the round
   // limit only bounds the work of one step.
   for (int round = 0; round < 8 && !agents.empty(); ++round) {
@@ -125,7 +125,7 @@ void TaskPool::assign_free(const planner::Config& positions)
 {
   std::vector<int> agents, cols;
   for (int a = 0; a < num_agents(); ++a)
-    if (holding_[a] < 0) agents.push_back(a);
+    if (assignable(a)) agents.push_back(a);
   if (agents.empty()) return;
   for (int s : live_slots())
     if (slot(s).agent < 0) cols.push_back(s);

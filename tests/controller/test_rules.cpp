@@ -368,3 +368,73 @@ TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
   // same 300 ticks without the rules: 180 (the dead-end station stubs hold AGVs too).
   EXPECT_LE(m.max_errand_ticks, 250);
 }
+
+TEST(Rules, AgvsOnCellsBeingClosedLeaveThemByTheEvacuationArcs)
+{
+  // Three AGVs deep inside aisle c1 (cells 2, 4 and 6 of its 7) when a closure of the whole
+  // aisle begins, for 60 s. The planner's graph keeps the arcs out of the closed cells and,
+  // inside them, the arcs one step nearer the way out (planner/blocked.hpp): all three
+  // leave, nobody enters, and every AGV is on its goal long before the aisle reopens. With
+  // only the arcs out kept, those not beside a junction could not move until it reopened.
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c1r0_c1r1_0, pos: 2}
+    - {lane: c1r0_c1r1_0, pos: 4}
+    - {lane: c1r0_c1r1_0, pos: 6}
+tasks:
+  mode: one_shot
+  goals:
+    - {lane: c0r0_c0r1_0, pos: 4}
+    - {lane: c2r0_c2r1_0, pos: 4}
+    - {lane: c3r0_c3r1_0, pos: 4}
+)";
+  Config cfg = rules_config("evacuate", agents, "", "rules:\n  closures:\n    - {edges: [c1r0_c1r1, c1r1_c1r0], end: 60}\n");
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  const std::vector<planner::Vertex> closed = aisle_cells(c.map(), kAisleC1);
+  EXPECT_EQ(entries(c.plan(), closed, 0, 60), 0);
+  ASSERT_GT(c.plan().size(), 8u);
+  for (planner::Vertex v : c.plan()[8]) EXPECT_FALSE(in(closed, v)) << "an AGV still in the closed aisle at tick 8";
+  EXPECT_LT(m.ticks, 40);  // nobody waited for the reopening
+  EXPECT_EQ(m.rules.max_closed, 7);
+}
+
+TEST(Rules, AnOccupiedZoneLeavesThePlannersGraphAfterEntrantsWait)
+{
+  // Zone: aisle c1, its junction c1r0 and the stub to pick1 below it. agv0 parks at pick1
+  // (its goal, the stub's dead end), in no one's way but inside the zone. agv1's shortest
+  // way (13 moves) runs down aisle c1 through the zone; round by aisle c0 it takes 15. The
+  // admission holds agv1 at the zone's entry; after Rules::kBlockAfter ticks held, the
+  // zone's entry arcs leave the planner's graph and agv1 goes round. Without that the
+  // planner sends it into the zone again at every restart and admit() holds it for good.
+  const std::string add = additional(
+      "zone_block", R"(  <poly id="z_c1" type="rtlacam.zone" shape="3.5,-2.5 4.5,-2.5 4.5,7.5 3.5,7.5"/>
+)");
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c0r0_c1r0_0, pos: 3}
+    - {lane: c2r1_c1r1_0, pos: 2}
+tasks:
+  mode: one_shot
+  goals:
+    - pick1
+    - {lane: c1r0_c0r0_0, pos: 3}
+)";
+  Config cfg = rules_config("zone_block", agents, add, "");
+  cfg.run.max_ticks = 100;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  std::vector<planner::Vertex> zone = aisle_cells(c.map(), kAisleC1);
+  zone.push_back(c.map().junction_cell("c1r0"));
+  for (const planner::Config& q : c.plan()) {
+    EXPECT_LE(std::count_if(q.begin(), q.end(), [&](planner::Vertex v) { return in(zone, v); }), 1);
+    EXPECT_FALSE(in(zone, q[1])) << "agv1 went through the occupied zone";
+  }
+  EXPECT_GE(m.rules.zone_holds, Rules::kBlockAfter);  // it was held, then routed round
+  EXPECT_LE(m.rules.zone_holds, 2 * Rules::kBlockAfter);
+  EXPECT_LT(m.ticks, 40);
+}

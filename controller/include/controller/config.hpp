@@ -66,6 +66,16 @@ struct FleetSection {
   double turn_s = 1.0;
   bool turn_in_place = false;
   bool headings(bool rotation_solver) const { return rotation_solver || turn_in_place; }
+  // fleet.battery (lifelong only; tasks/battery.hpp): on when the key is present.
+  // Fractions of capacity_wh: initial, threshold, target. Chargers: the chargingStations of
+  // sumo.additional, each at its `power` x `efficiency` (charge_w where it has no power).
+  struct Battery {
+    bool on = false;
+    double capacity_wh = 100, initial = 1.0, per_m_wh = 0, per_turn_wh = 0, threshold = 0.3, target = 0.9;
+    double charge_w = -1;    // -1: every chargingStation must give its power
+    bool charging = true;    // false: drain only (no charging errands)
+    int sample_ticks = 10;   // metrics.json battery.samples: min/mean/max charge every this many ticks
+  } battery;
 };
 
 // planner.rotation: the options of the rotation solvers (pibt-rot, epibt, wppl), which plan

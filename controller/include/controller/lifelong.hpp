@@ -20,8 +20,13 @@ std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const g
 // sumo.additional; a parkingArea on a lane gridify dropped is an error naming it.
 std::vector<planner::Vertex> parking_cells(const Config& cfg, const gridify::CellMap& map);
 
+// fleet.battery: the chargingStations of sumo.additional as chargers (power x efficiency x
+// tick_s per tick); errors name a station without power, one on a dropped lane, two on one
+// cell, and charging on with no station.
+std::vector<tasks::Charger> chargers(const Config& cfg, const gridify::CellMap& map);
+
 // tasks.assignment: roundrobin, or pool with tasks.assigner and tasks.pool_size; then
-// tasks.queues (station queues at the errand cells) and tasks.parking.
+// tasks.queues (station queues at the errand cells), tasks.parking and fleet.battery.
 std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
                                                       std::shared_ptr<const tasks::TaskFile> file);
 

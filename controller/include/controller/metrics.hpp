@@ -89,6 +89,22 @@ struct Metrics {
   int max_heading = 0;
   long long queued_ticks = 0;
   int idle_at_end = 0, parked_at_end = 0;
+  // fleet.battery (tasks/battery.hpp), metrics.json "battery": charging errands begun,
+  // AGVs whose charge reached 0 (must be 0), the share of AGV-ticks spent charging on a
+  // charger, the lowest charge any AGV had (fraction), and every sample_ticks ticks the
+  // fleet's min / mean / max charge (fractions of capacity).
+  struct BatteryStats {
+    bool active = false, charging = true;
+    double capacity_wh = 0;
+    long long errands = 0;
+    int ran_empty = 0;
+    double charging_share = 0, min_charge = 1;
+    struct Sample {
+      long long tick;
+      double min, mean, max;
+    };
+    std::vector<Sample> samples;
+  } battery;
   double throughput() const { return ticks > 0 ? static_cast<double>(tasks_finished) / ticks : 0.0; }
   double errand_throughput() const { return ticks > 0 ? static_cast<double>(errands_finished) / ticks : 0.0; }
 

@@ -18,6 +18,9 @@ struct Station {
   std::string kind;
   std::string element;  // parkingArea, busStop, ...
   planner::Vertex cell = -1;
+  // chargingStation: its `power` (W) and `efficiency` as SUMO reads them; power -1 when the
+  // attribute is absent (the run then uses fleet.battery.charge_w).
+  double power = -1, efficiency = 1;
 };
 
 struct CellMap;

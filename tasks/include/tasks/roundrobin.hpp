@@ -1,6 +1,10 @@
 #pragma once
 // RoundRobin (LoRR 2023): agent i holds tasks i, i+N, i+2N, ... of the task file (cyclic),
 // one at a time; no scheduler. With one-errand tasks (the 2023 files) a task is an errand.
+// An agent that needs charge after a task (battery.hpp) gets its next one when it leaves the
+// charger.
+#include <vector>
+
 #include "tasks/task_manager.hpp"
 
 namespace tasks {
@@ -15,6 +19,10 @@ class RoundRobin : public TaskManager {
  protected:
   void on_start(const planner::Config& positions) override;
   void on_finished(int agent, const Task& task) override;
+  void on_charged(int agent) override;
+
+ private:
+  std::vector<long> deferred_;  // per agent: its next task's id while it charges, -1
 };
 
 }  // namespace tasks

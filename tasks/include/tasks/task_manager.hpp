@@ -11,7 +11,8 @@
 // task (it then counts as arrived). Goals change only inside start() and update().
 // Optional, set before start(): station queues (an agent not admitted at its errand's
 // station waits on a queue cell: station_queues.hpp) and parking (an idle agent goes to a
-// parking cell: parking.hpp).
+// parking cell: parking.hpp) and a battery (an agent low between tasks goes to charge:
+// battery.hpp; while it charges it holds no task and the mode gives it none).
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,7 @@
 #include "planner/dist_cache.hpp"
 #include "tasks/free_flow.hpp"
 #include "tasks/lorr_files.hpp"
+#include "tasks/battery.hpp"
 #include "tasks/parking.hpp"
 #include "tasks/station_queues.hpp"
 #include "tasks/task.hpp"
@@ -63,7 +65,9 @@ class TaskManager {
   // reserved cell (one left standing in a dead-end station would block it); not an idle
   // agent that just stays where it stood. Reaching a queue or parking goal completes
   // nothing, so update() reports it as a change of goals (a new epoch, goals_changed()).
-  bool awaited(int agent) const { return busy(agent) || (parking_ && parking_->sent(agent)); }
+  bool awaited(int agent) const { return busy(agent) || charging(agent) || (parking_ && parking_->sent(agent)); }
+  // On a charging errand: heading for its charger or standing on it.
+  bool charging(int agent) const { return battery_ && battery_->charging(agent); }
 
   // Station queues at every errand cell of the task file (options.on()), and parking
   // (cells may be empty: idle agents then only leave reserved cells). Before start().
@@ -72,6 +76,11 @@ class TaskManager {
   // The free-flow bound of the errands this manager sees finished (free_flow.hpp). Before start().
   void set_free_flow(std::unique_ptr<FreeFlowBound> b) { free_flow_ = std::move(b); }
   const FreeFlowBound* free_flow() const { return free_flow_.get(); }
+  // Batteries and charging errands (battery.hpp). Idle agents then keep off the chargers
+  // (parking's reserved-cell rule). Before start().
+  void set_battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
+                   std::vector<std::pair<double, double>> xy);
+  const Battery* battery() const { return battery_.get(); }
   StationQueues* queues() { return queues_.get(); }
   const StationQueues* queues() const { return queues_.get(); }
   const Parking* parking() const { return parking_.get(); }
@@ -96,6 +105,13 @@ class TaskManager {
   virtual void on_start(const planner::Config& positions) = 0;
   virtual void on_finished(int agent, const Task& task) = 0;
   virtual void after_step(const planner::Config& positions) { (void)positions; }
+  // `agent` left its charger (battery.hpp): free for work again. after_step() follows in
+  // the same update, so a matching mode needs nothing here.
+  virtual void on_charged(int agent) { (void)agent; }
+  // On a charging errand, or low and waiting for a charger to come free (battery.hpp).
+  bool needs_charge(int agent) const { return battery_ && (battery_->charging(agent) || battery_->wants(agent)); }
+  // Free for a task: holds none and needs no charge.
+  bool assignable(int agent) const { return holding_[agent] < 0 && !needs_charge(agent); }
 
   // Task storage: slots hold live tasks; holding_[agent] indexes a slot or is -1.
   int add_task(Task t);                // returns its slot
@@ -118,6 +134,11 @@ class TaskManager {
   std::unique_ptr<StationQueues> queues_;
   std::unique_ptr<Parking> parking_;
   std::unique_ptr<FreeFlowBound> free_flow_;
+  std::unique_ptr<Battery> battery_;
+  std::vector<uint8_t> reserved_;  // queues' reserved cells, the chargers and the stations (battery on)
+  std::vector<uint8_t> station_cells_;  // battery on: errand cells and their dead-end corridors
+  // Sends agents without a task that are low to charge; true if any went.
+  bool send_to_charge(const planner::Config& positions);
   void refresh_goals(const planner::Config& positions);
 
   long now_ = 0;  // step of the current start()/update(), for the history

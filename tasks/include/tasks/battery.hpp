@@ -1,0 +1,112 @@
+#pragma once
+// Battery: each agent's charge, drained by driving, and the charging errands that keep it
+// above empty (issue 24, "charging"; Open-RMF's battery model, openTCS's charging orders).
+//
+// Drain: `per_m_wh` for every metre between the centres of consecutive cells and
+// `per_turn_wh` for every change of direction (a reversal counts as one turn); standing
+// costs nothing. The drain is counted on the positions the task layer sees at each step's
+// end, so it is the same for every executor and for the grid runner.
+//
+// Charging errand: an agent below `threshold` (fraction of capacity) that holds no task
+// claims the nearest unclaimed charger (breadth-first along arcs), heads there and stands
+// on it, gaining the charger's rate per step, until it reaches `target`; then it releases
+// the charger and is free for work again. The low charge is acted on only between tasks,
+// so `threshold` must cover the longest task plus the way to a charger (an open task is
+// never abandoned half-carried). With no charger free, the agent waits idle (taking no
+// task) and retries at every step. An agent whose charge reaches 0 counts as run empty (once); the model
+// does not stop it, the metric says the fleet was mis-sized (it must stay 0).
+//
+// TaskManager owns one (TaskManager::set_battery) and excludes charging agents from
+// assignment (tasks/task_manager.hpp).
+#include <string>
+#include <vector>
+
+#include "planner/config.hpp"
+#include "planner/graph.hpp"
+
+namespace tasks {
+
+// The corridor (cells of at most two neighbours, either way) that joins `v` to the rest of
+// `g` through exactly one junction, `v` included; empty when `v` is not at such a dead end.
+std::vector<planner::Vertex> dead_end_corridor(const planner::Graph& g, planner::Vertex v);
+
+struct BatteryOptions {
+  double capacity_wh = 100;
+  double initial = 1.0;      // fraction of capacity at the start, every agent
+  double per_m_wh = 0;       // drain per metre driven
+  double per_turn_wh = 0;    // drain per change of direction
+  double threshold = 0.3;    // below this fraction an agent between tasks goes to charge
+  double target = 0.9;       // it leaves the charger at this fraction
+  bool charging = true;      // false: drain only (no charging errands)
+};
+
+struct Charger {
+  planner::Vertex cell = -1;
+  double wh_per_step = 0;  // energy one step on it adds (power x efficiency x step time)
+  std::string id;
+};
+
+class Battery {
+ public:
+  // `xy`: per vertex, the cell centre in metres (distances and turns; std::invalid_argument
+  // if it has another size, or a charger is no vertex); `chargers` may be
+  // empty only with options.charging false.
+  Battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
+          std::vector<std::pair<double, double>> xy);
+
+  // The end of one step: agents now stand on `positions`. Drains the moves since the last
+  // call, charges agents standing on their claimed charger, releases those at target.
+  // Returns the agents that finished charging in this step.
+  std::vector<int> step(const planner::Config& positions);
+
+  // Agent a holds no task: send it to charge if it is low. Returns true while it charges.
+  bool consider(int a, planner::Vertex at);
+  bool charging(int a) const { return a < static_cast<int>(claim_.size()) && claim_[a] >= 0; }
+  // The claimed charger's cell (charging(a) only).
+  planner::Vertex goal(int a) const { return chargers_[claim_[a]].cell; }
+  bool low(int a) const { return charge_[a] < options_.threshold * options_.capacity_wh; }
+  // Low with charging on: it takes no task until it has charged.
+  bool wants(int a) const { return options_.charging && low(a); }
+  bool is_charger(planner::Vertex v) const { return charger_of_[v] >= 0; }
+  // A charger and, at a dead end, the corridor cells that lead to it: an idle agent resting
+  // there would block the way in (the TaskManager's parking keeps idle agents off them).
+  bool reserved(planner::Vertex v) const { return reserved_[v] != 0; }
+  // Charger i stands at a dead end; else traffic may push a charging agent off it (it then
+  // gains nothing until it is back).
+  bool dead_end(int i) const { return dead_end_[i] != 0; }
+
+  const BatteryOptions& options() const { return options_; }
+  const std::vector<Charger>& chargers() const { return chargers_; }
+  double charge(int a) const { return charge_[a]; }  // Wh
+  const std::vector<double>& charges() const { return charge_; }
+  int ran_empty() const { return ran_empty_; }
+  bool empty(int a) const { return empty_[a] != 0; }
+  const std::vector<int>& emptied() const { return emptied_; }  // agents that ran empty in the last step()
+  long long errands() const { return errands_; }              // charging errands begun
+  long long charging_ticks() const { return charging_ticks_; }  // agent-steps standing on a charger gaining charge
+  long long agent_ticks() const { return agent_ticks_; }       // agent-steps counted
+
+ private:
+  int nearest_free(planner::Vertex from);  // a charger index, -1: none free
+
+  const planner::Graph& g_;
+  BatteryOptions options_;
+  std::vector<Charger> chargers_;
+  std::vector<std::pair<double, double>> xy_;
+  std::vector<int> charger_of_;  // per vertex: charger index, -1
+  std::vector<uint8_t> reserved_;  // per vertex: a charger or its dead-end corridor
+  std::vector<char> dead_end_;     // per charger
+  std::vector<int> claimed_by_;  // per charger: agent, -1
+  std::vector<double> charge_;
+  std::vector<int> claim_;       // per agent: charger index, -1
+  std::vector<char> empty_;
+  std::vector<int> emptied_;
+  std::vector<double> dir_x_, dir_y_;  // per agent: direction of its last move (0, 0: none yet)
+  planner::Config last_;
+  std::vector<int> seen_;
+  int stamp_ = 0;
+  int ran_empty_ = 0;
+  long long errands_ = 0, charging_ticks_ = 0, agent_ticks_ = 0;
+};
+
+}  // namespace tasks

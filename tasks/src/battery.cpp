@@ -1,0 +1,121 @@
+#include "tasks/battery.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace tasks {
+
+Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
+                 std::vector<std::pair<double, double>> xy)
+    : g_(g), options_(options), chargers_(std::move(chargers)), xy_(std::move(xy)), charger_of_(g.size(), -1),
+      seen_(g.size(), 0)
+{
+  if (xy_.size() != static_cast<size_t>(g.size())) throw std::invalid_argument("Battery: one cell centre per vertex needed");
+  for (const Charger& c : chargers_)
+    if (c.cell < 0 || c.cell >= g.size()) throw std::invalid_argument("Battery: charger '" + c.id + "' is not a vertex");
+  for (size_t i = 0; i < chargers_.size(); ++i)
+    if (charger_of_[chargers_[i].cell] < 0) charger_of_[chargers_[i].cell] = static_cast<int>(i);
+  claimed_by_.assign(chargers_.size(), -1);
+  reserved_.assign(g.size(), 0);
+  dead_end_.assign(chargers_.size(), 0);
+  for (size_t i = 0; i < chargers_.size(); ++i) {
+    reserved_[chargers_[i].cell] = 1;
+    const std::vector<planner::Vertex> corridor = dead_end_corridor(g, chargers_[i].cell);
+    dead_end_[i] = !corridor.empty();
+    for (planner::Vertex v : corridor) reserved_[v] = 1;
+  }
+}
+
+std::vector<planner::Vertex> dead_end_corridor(const planner::Graph& g, planner::Vertex v)
+{
+  auto around = [&](planner::Vertex x) {  // neighbours either way (a one-way aisle is still a corridor)
+    std::vector<planner::Vertex> out(g.neighbors(x).begin(), g.neighbors(x).end());
+    for (planner::Vertex u : g.in_neighbors(x))
+      if (std::find(out.begin(), out.end(), u) == out.end()) out.push_back(u);
+    return out;
+  };
+  if (around(v).size() > 2) return {};
+  std::vector<planner::Vertex> corridor{v}, mouths;
+  for (size_t i = 0; i < corridor.size(); ++i)
+    for (planner::Vertex u : around(corridor[i])) {
+      if (std::find(corridor.begin(), corridor.end(), u) != corridor.end()) continue;
+      if (around(u).size() <= 2) corridor.push_back(u);
+      else if (std::find(mouths.begin(), mouths.end(), u) == mouths.end()) mouths.push_back(u);
+    }
+  if (mouths.size() != 1) return {};
+  return corridor;
+}
+
+int Battery::nearest_free(planner::Vertex from)
+{
+  ++stamp_;
+  std::vector<planner::Vertex> open{from};
+  seen_[from] = stamp_;
+  for (size_t i = 0; i < open.size(); ++i) {
+    const planner::Vertex v = open[i];
+    if (const int c = charger_of_[v]; c >= 0 && claimed_by_[c] < 0) return c;
+    for (planner::Vertex u : g_.neighbors(v))
+      if (seen_[u] != stamp_) {
+        seen_[u] = stamp_;
+        open.push_back(u);
+      }
+  }
+  return -1;
+}
+
+std::vector<int> Battery::step(const planner::Config& positions)
+{
+  const int n = static_cast<int>(positions.size());
+  std::vector<int> done;
+  if (last_.empty()) {  // the first call: the start configuration, nothing driven yet
+    last_ = positions;
+    charge_.assign(n, options_.initial * options_.capacity_wh);
+    claim_.assign(n, -1);
+    empty_.assign(n, 0);
+    dir_x_.assign(n, 0);
+    dir_y_.assign(n, 0);
+    return done;
+  }
+  agent_ticks_ += n;
+  emptied_.clear();
+  for (int a = 0; a < n; ++a) {
+    const planner::Vertex u = last_[a], v = positions[a];
+    if (u != v) {
+      const double dx = xy_[v].first - xy_[u].first, dy = xy_[v].second - xy_[u].second;
+      const double len = std::hypot(dx, dy);
+      double wh = options_.per_m_wh * len;
+      // A turn: the heading changes by more than 45 degrees from the last move's.
+      if ((dir_x_[a] != 0 || dir_y_[a] != 0) && len > 0 && (dx * dir_x_[a] + dy * dir_y_[a]) < std::cos(M_PI / 4) * len)
+        wh += options_.per_turn_wh;
+      if (len > 0) dir_x_[a] = dx / len, dir_y_[a] = dy / len;
+      charge_[a] -= wh;
+      if (charge_[a] <= 0 && !empty_[a]) empty_[a] = 1, ++ran_empty_, emptied_.push_back(a);
+      charge_[a] = std::max(0.0, charge_[a]);
+    } else if (claim_[a] >= 0 && chargers_[claim_[a]].cell == v) {
+      ++charging_ticks_;
+      charge_[a] = std::min(options_.capacity_wh, charge_[a] + chargers_[claim_[a]].wh_per_step);
+      if (charge_[a] >= options_.target * options_.capacity_wh - 1e-9) {
+        claimed_by_[claim_[a]] = -1;
+        claim_[a] = -1;
+        done.push_back(a);
+      }
+    }
+  }
+  last_ = positions;
+  return done;
+}
+
+bool Battery::consider(int a, planner::Vertex at)
+{
+  if (charging(a)) return true;
+  if (!options_.charging || !low(a)) return false;
+  const int c = nearest_free(at);
+  if (c < 0) return false;  // every charger taken: wait idle, try again next step
+  claim_[a] = c;
+  claimed_by_[c] = a;
+  ++errands_;
+  return true;
+}
+
+}  // namespace tasks

@@ -1,0 +1,125 @@
+// Battery (tasks/battery.hpp): drain per metre and per turn, and the charging errand as the
+// task layer runs it (TaskManager: a low agent between tasks goes to the nearest free
+// charger, takes no task while it charges, and gets its next one at the target). Positions
+// are moved by hand, so every charge is exact. The SUMO runs: tests/controller/test_charging.cpp.
+#include <gtest/gtest.h>
+
+#include "tasks/battery.hpp"
+#include "tasks/roundrobin.hpp"
+#include "tasks/task_pool.hpp"
+#include "tasks/greedy_assigner.hpp"
+#include "tasks_test_util.hpp"
+
+using namespace tasks;
+using planner::Config;
+using planner::Vertex;
+
+namespace {
+
+std::vector<std::pair<double, double>> centres(const planner::Graph& g)
+{
+  std::vector<std::pair<double, double>> xy;
+  for (Vertex v = 0; v < g.size(); ++v) xy.emplace_back(g.cell_x(v), g.cell_y(v));
+  return xy;
+}
+
+}  // namespace
+
+TEST(Battery, DrainsPerMetreAndPerTurn)
+{
+  const planner::Graph g = ttest::grid({"...", "...", "..."});
+  BatteryOptions o;
+  o.capacity_wh = 100;
+  o.per_m_wh = 1;
+  o.per_turn_wh = 0.5;
+  Battery b(g, o, {}, centres(g));
+  // Right, right (straight on), down (a turn), left (a turn), right (a reversal: a turn).
+  const std::vector<std::pair<int, int>> path{{0, 0}, {1, 0}, {2, 0}, {2, 1}, {1, 1}, {2, 1}};
+  double expected = 100;
+  const std::vector<double> cost{0, 1, 1, 1.5, 1.5, 1.5};
+  for (size_t k = 0; k < path.size(); ++k) {
+    b.step({g.at(path[k].first, path[k].second)});
+    expected -= cost[k];
+    EXPECT_DOUBLE_EQ(b.charge(0), expected) << "after step " << k;
+  }
+  b.step({g.at(2, 1)});  // standing costs nothing
+  EXPECT_DOUBLE_EQ(b.charge(0), expected);
+  EXPECT_EQ(b.ran_empty(), 0);
+}
+
+TEST(Battery, ALowAgentChargesBetweenTasksAndGetsItsNextTaskAtTheTarget)
+{
+  // A corridor y = 0 with a dead-end charger below its left end.
+  const planner::Graph g = ttest::grid({".....", ".####"});
+  auto file = ttest::task_file(g, {{{4, 0}, {0, 0}}});
+  for (bool charging : {true, false}) {
+    RoundRobin rr(file);
+    BatteryOptions o;
+    o.capacity_wh = 10;
+    o.per_m_wh = 1;
+    o.threshold = 0.3;
+    o.target = 0.8;
+    o.charging = charging;
+    rr.set_battery(g, o, {{g.at(0, 1), 2.0, "c"}}, centres(g));
+    rr.start({g.at(0, 0)});
+    long t = 0;
+    auto go = [&](int x, int y) { rr.update(++t, {g.at(x, y)}); };
+    for (int x = 1; x <= 4; ++x) go(x, 0);  // errand 1 at (4, 0): 6 Wh left
+    for (int x = 3; x >= 0; --x) go(x, 0);  // errand 2 at (0, 0): 2 Wh left, below 3
+    EXPECT_EQ(rr.tasks_finished(), 1);
+    EXPECT_DOUBLE_EQ(rr.battery()->charge(0), 2.0);
+    if (!charging) {  // drain only: straight on to the next task
+      EXPECT_TRUE(rr.busy(0));
+      EXPECT_EQ(rr.goals()[0], g.at(4, 0));
+      EXPECT_EQ(rr.battery()->errands(), 0);
+      continue;
+    }
+    // The charging errand: no task meanwhile, the charger is its goal and it is awaited.
+    EXPECT_FALSE(rr.busy(0));
+    EXPECT_TRUE(rr.charging(0));
+    EXPECT_TRUE(rr.awaited(0));
+    EXPECT_EQ(rr.goals()[0], g.at(0, 1));
+    EXPECT_EQ(rr.battery()->errands(), 1);
+    go(0, 1);  // 1 Wh; then 2 Wh a step on the charger: 3, 5, 7, 9 >= 8
+    for (double q : {3.0, 5.0, 7.0}) {
+      go(0, 1);
+      EXPECT_DOUBLE_EQ(rr.battery()->charge(0), q);
+      EXPECT_TRUE(rr.charging(0));
+      EXPECT_FALSE(rr.busy(0));
+    }
+    go(0, 1);
+    EXPECT_DOUBLE_EQ(rr.battery()->charge(0), 9.0);
+    EXPECT_FALSE(rr.charging(0));
+    EXPECT_TRUE(rr.busy(0));  // its next task, handed out as it left the charger
+    EXPECT_EQ(rr.goals()[0], g.at(4, 0));
+    EXPECT_EQ(rr.battery()->charging_ticks(), 4);
+    EXPECT_EQ(rr.battery()->ran_empty(), 0);
+  }
+}
+
+TEST(Battery, APoolGivesNoTaskToALowAgentAndIdleAgentsKeepOffTheCharger)
+{
+  const planner::Graph g = ttest::grid({".....", ".####"});
+  auto file = ttest::task_file(g, {{{4, 0}}});
+  TaskPool pool(file, g, 1, std::make_unique<GreedyAssigner>());
+  BatteryOptions o;
+  o.capacity_wh = 10;
+  o.initial = 0.2;  // below the threshold from the start
+  o.per_m_wh = 1;
+  pool.set_battery(g, o, {{g.at(0, 1), 5.0, "c"}}, centres(g));
+  // Agent 0 starts on the charger, agent 1 beside it.
+  pool.start({g.at(0, 1), g.at(1, 0)});
+  pool.update(1, {g.at(0, 1), g.at(1, 0)});
+  // Both are low: the charger goes to the nearer one (agent 0, on it), the other waits
+  // without a task; the pool's task stays unassigned.
+  EXPECT_TRUE(pool.charging(0));
+  EXPECT_FALSE(pool.charging(1));
+  EXPECT_FALSE(pool.busy(0));
+  EXPECT_FALSE(pool.busy(1));
+  pool.update(2, {g.at(0, 1), g.at(1, 0)});  // 2 + 5 = 7 Wh: not yet at 8
+  pool.update(3, {g.at(0, 1), g.at(1, 0)});  // 10 Wh: done, free for the task
+  EXPECT_FALSE(pool.charging(0));
+  EXPECT_TRUE(pool.charging(1));  // the charger came free: agent 1's turn
+  EXPECT_TRUE(pool.busy(0));
+  EXPECT_EQ(pool.goals()[1], g.at(0, 1));
+}
