@@ -52,8 +52,12 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   pending_.clear();
   pending_next_ = 0;
   pending_prev_ = nullptr;
-  gen_ = Gen::none;  // a paused expansion belonged to the old tree
-  progressed_ = false;
+  // A paused expansion belonged to the old tree. If none of that tree's expansions had ended,
+  // the new tree's first one ends in its call: resets (goal changes) cannot keep every
+  // expansion from ending.
+  may_pause_ = !(gen_ != Gen::none && !ended_);
+  ended_ = false;
+  gen_ = Gen::none;
   refine_iterations_ = guide_iterations_ = 0;
   lns_failures_ = 0;
   debt_ = 0;
@@ -189,7 +193,7 @@ Status Lacam::expand()
 // (resumable): PIBT's agents, then the successor's lookup, priorities and order, all O(N).
 Status Lacam::finish_expansion()
 {
-  const bool pausable = opt_.resumable && progressed_ && pause_at_ != Clock::time_point::max();
+  const bool pausable = opt_.resumable && may_pause_ && pause_at_ != Clock::time_point::max();
   const Clock::time_point at = pausable ? pause_at_ : Clock::time_point::max();
   last_step_ = Step::partial;
   int units = 0;  // of this call; the clock is read every kTailEvery
@@ -205,7 +209,7 @@ Status Lacam::finish_expansion()
     if (r == Pibt::Gen::paused) return status_;
     if (r == Pibt::Gen::failed) {  // the fixed agents collide, or PIBT failed: no successor
       gen_ = Gen::none;
-      progressed_ = true;
+      ended_ = may_pause_ = true;
       last_step_ = Step::expansion;
       return status_;
     }
@@ -224,7 +228,7 @@ Status Lacam::finish_expansion()
       if (opt_.refine) link(H, known);
       open_.push_back(known);  // revisit: its next constraint yields another successor
       gen_ = Gen::none;
-      progressed_ = true;
+      ended_ = may_pause_ = true;
       last_step_ = Step::expansion;
       return status_;
     }
@@ -249,7 +253,7 @@ Status Lacam::finish_expansion()
   explored_.insert(h);
   open_.push_back(h);
   gen_ = Gen::none;
-  progressed_ = true;
+  ended_ = may_pause_ = true;
   last_step_ = Step::expansion;
   return status_;
 }
@@ -314,7 +318,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
         }
       } else if (!first) {
         // A resumable expansion stops at the deadline itself: no reserve for it.
-        if (reserving && !(opt_.resumable && progressed_)) {
+        if (reserving && !(opt_.resumable && may_pause_)) {
           const double r = std::max(b.reserve_ms, max_unit_ms_);
           if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >=
               deadline)

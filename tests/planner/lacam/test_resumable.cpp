@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "planner/lacam/lacam.hpp"
+#include "planner/lacam/naive_rt_lacam.hpp"
 #include "planner/lacam/rt_lacam.hpp"
 #include "planner/movingai.hpp"
 #include "planner/validator.hpp"
@@ -103,8 +104,7 @@ TEST(Resumable, ResumedGenerationEqualsOneShotGeneration)
   EXPECT_GT(paused_generations, 20);
 }
 
-// RT-LaCAM with a zero wall-clock budget (every expansion after the first paused at every
-// chance, the agents rerooting onto nodes meanwhile) builds full-horizon LaCAM's tree: the
+// RT-LaCAM with a zero wall-clock budget (every expansion paused at every chance, the agents rerooting onto nodes meanwhile) builds full-horizon LaCAM's tree: the
 // same expansions, and the same configuration for every node in creation order.
 TEST(Resumable, PausedExpansionsBuildLacamsTree)
 {
@@ -145,19 +145,26 @@ TEST(Resumable, PausedExpansionsBuildLacamsTree)
 }
 
 // reset() drops a paused expansion: the new search makes only legal successors (no stale
-// reservation of the dropped one) and solves its instance.
+// reservation of the dropped one) and solves its instance. A tree whose every expansion was
+// dropped unended makes the next tree's first expansion end in its call.
 TEST(Resumable, ResetDropsAPausedExpansion)
 {
   const Inst in = big();
   DistTable d(in.g);
   Lacam lacam(in.g, d);
   lacam.reset(in.s, in.t);
-  lacam.search(Budget::time_ms(0));  // the first expansion always ends
-  EXPECT_FALSE(lacam.expansion_paused());
   lacam.search(Budget::time_ms(0));
   ASSERT_TRUE(lacam.expansion_paused());
   lacam.reset(in.t, in.s);  // another search: start and goals swapped
   EXPECT_FALSE(lacam.expansion_paused());
+  lacam.search(Budget::time_ms(0));
+  EXPECT_FALSE(lacam.expansion_paused()) << "the first expansion after a dropped unended one must end";
+  EXPECT_EQ(lacam.explored(), 2u);
+  lacam.search(Budget::time_ms(0));
+  EXPECT_TRUE(lacam.expansion_paused());
+  lacam.reset(in.t, in.s);  // this tree had an ended expansion: the next may pause at once
+  lacam.search(Budget::time_ms(0));
+  EXPECT_TRUE(lacam.expansion_paused());
   ASSERT_EQ(lacam.search(Budget::unlimited()), Status::Solved);
   std::string why;
   EXPECT_TRUE(lacam.check_tree(&why)) << why;
@@ -168,6 +175,19 @@ TEST(Resumable, ResetDropsAPausedExpansion)
     const int n = lacam.num_agents();
     Config a(h->parent->C, h->parent->C + n), b(h->C, h->C + n);
     ASSERT_EQ(Validator::check_transition(in.g, a, b), "") << "node " << id;
+  }
+}
+
+// Naive RT-LaCAM resets every iteration: its expansions never pause (the agents move in
+// every iteration however small the budget).
+TEST(Resumable, NaiveRtLacamNeverPauses)
+{
+  const Inst in = big();
+  NaiveRtLacam naive(in.g, in.s, in.t);
+  for (int step = 0; step < 5; ++step) {
+    naive.search(Budget::time_ms(0));
+    EXPECT_NE(naive.next(), naive.current()) << "step " << step;
+    naive.commit();
   }
 }
 
@@ -237,8 +257,7 @@ TEST(Resumable, SetImmobileRestartsAPausedGeneration)
 }
 
 // The work of one timed call is bounded: with a zero budget, a call plans at most
-// Pibt::kCheckEvery top-level agents (after the first expansion, which always ends). With
-// resumability off each call plans all N.
+// Pibt::kCheckEvery top-level agents. With resumability off each call plans all N.
 TEST(Resumable, IterationWorkIsBounded)
 {
   const Inst in = big();
@@ -252,7 +271,7 @@ TEST(Resumable, IterationWorkIsBounded)
     for (int step = 0; step < 400 && !rt.at_goal(); ++step) {
       const uint64_t a0 = rt.lacam().agents_planned();
       rt.search(Budget::time_ms(0));
-      if (step > 0) most = std::max(most, rt.lacam().agents_planned() - a0), ++calls;
+      most = std::max(most, rt.lacam().agents_planned() - a0), ++calls;
       rt.next();
       rt.commit();
     }

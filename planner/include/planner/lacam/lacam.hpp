@@ -135,8 +135,10 @@ struct LacamOptions {
   // A LaCAM expansion before the first solution may stop at a timed search()'s deadline
   // and go on in the next call (Pibt::start/resume): at N = 1000 one PIBT call is more
   // than a 0.1 ms iteration. The agents wait meanwhile (top() stays the expanded node); the
-  // tree is the same as with one-shot expansions. The first expansion after reset() always
-  // ends in its call (a planner that resets every iteration still moves). Off: one-shot.
+  // tree is the same as with one-shot expansions. A reset() drops a paused expansion; when no
+  // expansion of the dropped tree had ended, the new tree's first one ends in its call, so
+  // that resets (lifelong goal changes) cannot stall the agents. Off: one-shot (naive
+  // RT-LaCAM, which resets every iteration).
   bool resumable = true;
 };
 
@@ -367,7 +369,8 @@ class Lacam {
   int32_t* gen_order_ = nullptr;
   uint64_t gen_hash_ = 0;
   int gen_k_ = 0;
-  bool progressed_ = false;      // an expansion of this tree has ended (pausing is allowed)
+  bool may_pause_ = true;        // the running expansion may stop at a deadline
+  bool ended_ = false;           // an expansion of this tree has ended
   Clock::time_point pause_at_ = Clock::time_point::max();  // the running search()'s deadline
   double gen_cpu_ms_ = 0;        // CPU of the expansion's earlier pieces
   uint64_t agents_planned_ = 0;
