@@ -196,8 +196,10 @@ Status Lacam::finish_expansion()
   const bool pausable = opt_.resumable && may_pause_ && pause_at_ != Clock::time_point::max();
   const Clock::time_point at = pausable ? pause_at_ : Clock::time_point::max();
   last_step_ = Step::partial;
+  // The insertion is one step while it is one chunk or two (small N).
+  const bool tail_pausable = pausable && n_ > kTailChunk;
   int units = 0;  // of this call; the clock is read every kTailEvery
-  auto stop = [&] { return pausable && ++units % kTailEvery == 0 && Clock::now() >= at; };
+  auto stop = [&] { return tail_pausable && ++units % kTailEvery == 0 && Clock::now() >= at; };
   if (gen_ == Gen::generating) {
     if (!pibt_.pending()) {  // cancelled by set_immobile(): again, from the same draws
       rng_ = gen_rng_;
@@ -213,7 +215,7 @@ Status Lacam::finish_expansion()
       last_step_ = Step::expansion;
       return status_;
     }
-    if (pausable && Clock::now() >= at) {
+    if (tail_pausable && Clock::now() >= at) {
       gen_ = Gen::lookup;
       return status_;
     }
