@@ -61,6 +61,11 @@ int main(int argc, char** argv)
                "keep the cutoff before the first solution too: an expansion after the first of an iteration starts "
                "only while the costliest one so far fits (--no-reserve: the paper's loop, which starts one until the "
                "cutoff)");
+  bool resumable = LacamOptions{}.resumable;
+  app.add_flag("--resumable,!--no-resumable", resumable,
+               "a LaCAM expansion may stop at the cutoff and go on in the next iteration, the agents waiting meanwhile "
+               "(lacam.hpp; the tree is the same); --no-resumable: one expansion always ends in its iteration")
+      ->capture_default_str();
   app.add_flag("--refine,!--no-refine", refine,
                "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
       ->capture_default_str();
@@ -135,6 +140,7 @@ int main(int argc, char** argv)
     lopt.scatter_dive_passes = scatter_dive_passes;
     lopt.dive = dive;
     lopt.scatter_first = scatter_first;
+    lopt.resumable = resumable;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (reserve) ropt.per_iteration.reserve_ms = 1e-6;  // on; the costliest expansion so far sets it
@@ -203,6 +209,7 @@ int main(int argc, char** argv)
     j["cutoff_ms"] = cutoff_ms;
     j["budget_expansions"] = budget_expansions;
     j["reserve"] = reserve;
+    j["resumable"] = resumable;
     j["swap"] = !no_swap;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;

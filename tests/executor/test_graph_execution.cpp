@@ -28,7 +28,7 @@ Outcome run(const planner::Graph& g, const planner::Instance& ins, const DelaySp
   planner::RtLacam p(g, ins.starts, ins.goals);
   GraphExecution ex(p, d, o);
   planner::Validator val(g, ins.starts, ins.goals);
-  const planner::Budget b{0, 20};
+  const planner::Budget b = planner::Budget::expansion_count(1);  // one expansion per call (a 0 ms budget now pauses it: resumable)
   Outcome out;
   for (long long t = 0; t < max_ticks && !ex.finished(); ++t) {
     ex.tick(b);

@@ -52,6 +52,12 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   pending_.clear();
   pending_next_ = 0;
   pending_prev_ = nullptr;
+  // A paused expansion belonged to the old tree. If none of that tree's expansions had ended,
+  // the new tree's first one ends in its call: resets (goal changes) cannot keep every
+  // expansion from ending.
+  may_pause_ = !(gen_ != Gen::none && !ended_);
+  ended_ = false;
+  gen_ = Gen::none;
   refine_iterations_ = guide_iterations_ = 0;
   lns_failures_ = 0;
   debt_ = 0;
@@ -100,19 +106,16 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
 HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities,
                        const int32_t* root_order)
 {
-  HNode* h = nodes_.alloc(1);
-  *h = HNode{};
-  Vertex* c = configs_.alloc(n_);
-  std::copy(C, C + n_, c);
-  float* prio = priorities_.alloc(n_);
-  int32_t* order = orders_.alloc(n_);
+  float* prio = nullptr;
+  int32_t* order = nullptr;
+  HNode* h = alloc_node(C, &prio, &order);
   if (parent) {
-    next_priorities(c, n_, dist_, parent->priorities, prio);
+    next_priorities(h->C, n_, dist_, parent->priorities, prio);
     std::copy(parent->order, parent->order + n_, order);
     sort_by_priority(prio, n_, order);
   } else {
     if (root_priorities) std::copy(root_priorities, root_priorities + n_, prio);
-    else init_priorities(c, n_, dist_, prio);
+    else init_priorities(h->C, n_, dist_, prio);
     if (root_order) {  // the same total order as initial_order's sort, from a near-sorted start
       std::copy(root_order, root_order + n_, order);
       sort_by_priority(prio, n_, order);
@@ -120,9 +123,24 @@ HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const floa
       initial_order(prio, n_, order);
     }
   }
+  add_node(h, parent, hash);
+  return h;
+}
+
+HNode* Lacam::alloc_node(const Vertex* C, float** prio, int32_t** order)
+{
+  HNode* h = nodes_.alloc(1);
+  *h = HNode{};
+  Vertex* c = configs_.alloc(n_);
+  std::copy(C, C + n_, c);
   h->C = c;
-  h->priorities = prio;
-  h->order = order;
+  h->priorities = *prio = priorities_.alloc(n_);
+  h->order = *order = orders_.alloc(n_);
+  return h;
+}
+
+void Lacam::add_node(HNode* h, HNode* parent, uint64_t hash)
+{
   h->parent = parent;
   h->hash = hash;
   h->id = static_cast<uint32_t>(all_.size());
@@ -130,7 +148,6 @@ HNode* Lacam::new_node(const Vertex* C, HNode* parent, uint64_t hash, const floa
   *root = Constraint{};
   h->push(root);
   all_.push_back(h);
-  return h;
 }
 
 bool Lacam::is_goal(const HNode* h) const
@@ -142,6 +159,7 @@ Status Lacam::expand()
 {
   if (refining_) return refine_expand();
   if (status_ != Status::Searching) return status_;
+  if (gen_ != Gen::none) return finish_expansion();  // a paused expansion goes on first
   if (open_.empty()) return status_ = Status::NoSolution;
   if (opt_.scatter_first && scatter_started_ && scatter_step()) return status_;  // SUO first (lacam3's order)
   HNode* H = open_.back();
@@ -162,17 +180,83 @@ Status Lacam::expand()
   grow_lowlevel(H, L);
   last_step_ = Step::expansion;
 
-  if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
-  const uint64_t hash = config_hash(scratch_.data(), n_);
-  if (HNode* known = explored_.find(scratch_.data(), hash)) {
-    if (opt_.refine) link(H, known);
-    open_.push_back(known);  // revisit: its next constraint yields another successor
-  } else {
-    HNode* h = new_node(scratch_.data(), H, hash);
-    if (opt_.refine) link(H, h);
-    explored_.insert(h);
-    open_.push_back(h);
+  gen_rng_ = rng_;
+  pibt_.start(H->C, H->order, L);
+  gen_ = Gen::generating;
+  gen_h_ = H;
+  gen_l_ = L;
+  gen_cpu_ms_ = 0;
+  return finish_expansion();
+}
+
+// The rest of an expansion, in steps that can each stop at the running call's deadline
+// (resumable): PIBT's agents, then the successor's lookup, priorities and order, all O(N).
+Status Lacam::finish_expansion()
+{
+  const bool pausable = opt_.resumable && may_pause_ && pause_at_ != Clock::time_point::max();
+  const Clock::time_point at = pausable ? pause_at_ : Clock::time_point::max();
+  last_step_ = Step::partial;
+  // The insertion is one step while it is one chunk or two (small N).
+  const bool tail_pausable = pausable && n_ > kTailChunk;
+  int units = 0;  // of this call; the clock is read every kTailEvery
+  auto stop = [&] { return tail_pausable && ++units % kTailEvery == 0 && Clock::now() >= at; };
+  if (gen_ == Gen::generating) {
+    if (!pibt_.pending()) {  // cancelled by set_immobile(): again, from the same draws
+      rng_ = gen_rng_;
+      pibt_.start(gen_h_->C, gen_h_->order, gen_l_);
+    }
+    const uint64_t p0 = pibt_.plans();
+    const Pibt::Gen r = pibt_.resume(rng_, at);
+    agents_planned_ += pibt_.plans() - p0;
+    if (r == Pibt::Gen::paused) return status_;
+    if (r == Pibt::Gen::failed) {  // the fixed agents collide, or PIBT failed: no successor
+      gen_ = Gen::none;
+      ended_ = may_pause_ = true;
+      last_step_ = Step::expansion;
+      return status_;
+    }
+    if (tail_pausable && Clock::now() >= at) {
+      gen_ = Gen::lookup;
+      return status_;
+    }
+    units = 1;
+    gen_ = Gen::lookup;
   }
+  HNode* H = gen_h_;
+  if (gen_ == Gen::lookup) {
+    const Vertex* C = pibt_.result();  // kept until the next start()
+    gen_hash_ = config_hash(C, n_);
+    if (HNode* known = explored_.find(C, gen_hash_)) {
+      if (opt_.refine) link(H, known);
+      open_.push_back(known);  // revisit: its next constraint yields another successor
+      gen_ = Gen::none;
+      ended_ = may_pause_ = true;
+      last_step_ = Step::expansion;
+      return status_;
+    }
+    gen_node_ = alloc_node(C, &gen_prio_, &gen_order_);
+    gen_ = Gen::priorities, gen_k_ = 0;
+  }
+  if (gen_ == Gen::priorities) {
+    for (; gen_k_ < n_; gen_k_ += kTailChunk) {
+      if (stop()) return status_;
+      next_priorities(gen_node_->C, gen_k_, std::min(n_, gen_k_ + kTailChunk), dist_, H->priorities, gen_prio_);
+    }
+    std::copy(H->order, H->order + n_, gen_order_);
+    gen_ = Gen::order, gen_k_ = 0;
+  }
+  for (; gen_k_ < n_; gen_k_ += kTailChunk) {  // Gen::order: new_node's sort, in pieces
+    if (stop()) return status_;
+    insert_by_priority(gen_prio_, gen_order_, gen_k_, std::min(n_, gen_k_ + kTailChunk));
+  }
+  HNode* h = gen_node_;
+  add_node(h, H, gen_hash_);
+  if (opt_.refine) link(H, h);
+  explored_.insert(h);
+  open_.push_back(h);
+  gen_ = Gen::none;
+  ended_ = may_pause_ = true;
+  last_step_ = Step::expansion;
   return status_;
 }
 
@@ -223,6 +307,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
     if (done >= b.expansions) return status_;
   }
   bool first = true;
+  pause_at_ = deadline;  // a LaCAM expansion may stop here (resumable)
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
     // Refinement is never forced: not even one step starts unless it fits. Before the first
     // solution one expansion always runs (progress), the next ones as the paper's loop or,
@@ -234,7 +319,8 @@ Status Lacam::search(const Budget& b, bool until_solved)
           break;
         }
       } else if (!first) {
-        if (reserving) {
+        // A resumable expansion stops at the deadline itself: no reserve for it.
+        if (reserving && !(opt_.resumable && may_pause_)) {
           const double r = std::max(b.reserve_ms, max_unit_ms_);
           if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >=
               deadline)
@@ -249,14 +335,16 @@ Status Lacam::search(const Budget& b, bool until_solved)
     left_ = b.expansions - done;
     last_step_ = Step::none;
     expand();
+    if (last_step_ == Step::partial) units_ = 0;  // an expansion counts once, when it ends
     done += units_;
     if (timed_) {
       const double c = thread_cpu_ms();
       const double dc = c - cpu_last;
       cpu_last = c;
-      if (last_step_ == Step::expansion) expand_cost_.record(1, dc);
+      if (last_step_ == Step::partial) gen_cpu_ms_ += dc;  // the expansion's cost is learnt whole
+      if (last_step_ == Step::expansion) expand_cost_.record(1, dc + gen_cpu_ms_), gen_cpu_ms_ = 0;
       else if (last_step_ == Step::lns) lns_cost_.record(last_units_, dc);
-      max_unit_ms_ = std::max(max_unit_ms_, dc / static_cast<double>(units_));
+      max_unit_ms_ = std::max(max_unit_ms_, dc / static_cast<double>(std::max<uint64_t>(units_, 1)));
     }
     if (done >= b.expansions) {
       if (b.expansions != Budget{}.expansions) debt_ = done - b.expansions;
@@ -264,6 +352,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
     }
     if (stalled_) break;
   }
+  pause_at_ = Clock::time_point::max();  // expand() called alone never pauses
   return status_;
 }
 

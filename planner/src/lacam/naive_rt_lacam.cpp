@@ -10,10 +10,11 @@
 namespace planner {
 namespace {
 
-// Naive RT-LaCAM restarts every iteration: nothing to refine.
+// Naive RT-LaCAM restarts every iteration: nothing to refine, nor to resume.
 LacamOptions without_refine(LacamOptions o)
 {
   o.refine = false;
+  o.resumable = false;
   return o;
 }
 

@@ -17,6 +17,7 @@ void Pibt::set_goals(const Config& goals)
     if (now_[i] >= 0) occ_now_[now_[i]] = -1;
     if (next_[i] >= 0) occ_next_[next_[i]] = -1;
   }
+  pending_ = false;
   goals_ = goals;
   if (pref_) pref_->set_goals(goals);
   n_ = static_cast<int>(goals.size());
@@ -27,48 +28,90 @@ void Pibt::set_goals(const Config& goals)
 
 bool Pibt::generate(const Vertex* from, const int32_t* order, const Constraint* c, Vertex* to, Rng& rng)
 {
-  // Undo the previous call's reservations: O(N), no O(V) clearing.
-  for (int i = 0; i < n_; ++i) {
-    if (now_[i] >= 0 && occ_now_[now_[i]] == i) occ_now_[now_[i]] = -1;
-    if (next_[i] >= 0) occ_next_[next_[i]] = -1;
-  }
-  for (int i = 0; i < n_; ++i) {
-    now_[i] = from[i];
-    next_[i] = -1;
-    occ_now_[from[i]] = i;
-  }
-  // The candidates' distances, all agents at once (DistTable::prefetch).
-  for (int i = 0; i < n_; ++i) {
-    d_.prefetch(i, from[i]);
-    for (Vertex u : g_.neighbors(from[i])) d_.prefetch(i, u);
-  }
-  if (pref_) pref_->prepare(from, n_);
-  if (!immobile_.empty()) {  // immobile agents never move: their cells are fixed obstacles
-    std::vector<Vertex> blocked;
-    for (int i = 0; i < n_; ++i)
-      if (immobile_[i]) blocked.push_back(from[i]);
-    detour_.set_blocked(std::move(blocked));
-    if (cut_off_stamp_.size() != static_cast<size_t>(n_)) cut_off_stamp_.assign(n_, 0), cut_off_.assign(n_, 0);
-    if (++generation_ == 0) std::fill(cut_off_stamp_.begin(), cut_off_stamp_.end(), 0), generation_ = 1;
-  }
-
-  // Agents fixed by the constraint chain; reject fixes that collide with each other.
-  for (; c && c->depth > 0; c = c->parent) {
-    const int32_t i = c->who;
-    const Vertex v = c->where;
-    if (occ_next_[v] >= 0) return false;                     // vertex conflict
-    const int32_t j = occ_now_[v];
-    if (j >= 0 && j != i && next_[j] == from[i]) return false;  // swap conflict
-    next_[i] = v;
-    occ_next_[v] = i;
-  }
-
-  for (int k = 0; k < n_; ++k) {
-    const int32_t i = order[k];
-    if (next_[i] < 0 && !plan(i, rng)) return false;
-  }
+  start(from, order, c);
+  if (resume(rng) != Gen::done) return false;
   std::copy(next_.begin(), next_.end(), to);
   return true;
+}
+
+void Pibt::start(const Vertex* from, const int32_t* order, const Constraint* c)
+{
+  from_ = from;
+  order_ = order;
+  chain_ = c;
+  phase_ = Phase::undo;
+  k_ = 0;
+  pending_ = true;
+}
+
+// Every phase is a loop over agents (or constraints) with a cursor kept in members, so that
+// it can stop between two of them. The clock is read every `every` units of this call.
+Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
+{
+  const bool timed = deadline != Clock::time_point::max();
+  int units = 0;  // of this call: the first every - 1 are always done
+  auto stop = [&](int every) { return timed && ++units % every == 0 && Clock::now() >= deadline; };
+  const Vertex* from = from_;
+  if (phase_ == Phase::undo) {
+    // Undo the previous call's reservations: O(N), no O(V) clearing.
+    for (; k_ < n_; ++k_) {
+      if (stop(kSetupEvery)) return Gen::paused;
+      const int i = k_;
+      if (now_[i] >= 0 && occ_now_[now_[i]] == i) occ_now_[now_[i]] = -1;
+      if (next_[i] >= 0) occ_next_[next_[i]] = -1;
+    }
+    phase_ = Phase::place, k_ = 0;
+  }
+  if (phase_ == Phase::place) {
+    for (; k_ < n_; ++k_) {
+      if (stop(kSetupEvery)) return Gen::paused;
+      const int i = k_;
+      now_[i] = from[i];
+      next_[i] = -1;
+      occ_now_[from[i]] = i;
+      // The candidates' distances, ahead of plan() (DistTable::prefetch).
+      d_.prefetch(i, from[i]);
+      for (Vertex u : g_.neighbors(from[i])) d_.prefetch(i, u);
+    }
+    // O(N) in one piece, but only with a preference or immobile agents.
+    if (pref_) pref_->prepare(from, n_);
+    if (!immobile_.empty()) {  // immobile agents never move: their cells are fixed obstacles
+      std::vector<Vertex> blocked;
+      for (int i = 0; i < n_; ++i)
+        if (immobile_[i]) blocked.push_back(from[i]);
+      detour_.set_blocked(std::move(blocked));
+      if (cut_off_stamp_.size() != static_cast<size_t>(n_)) cut_off_stamp_.assign(n_, 0), cut_off_.assign(n_, 0);
+      if (++generation_ == 0) std::fill(cut_off_stamp_.begin(), cut_off_stamp_.end(), 0), generation_ = 1;
+    }
+    phase_ = Phase::chain;
+  }
+  if (phase_ == Phase::chain) {
+    // Agents fixed by the constraint chain; reject fixes that collide with each other.
+    for (; chain_ && chain_->depth > 0; chain_ = chain_->parent) {
+      if (stop(kSetupEvery)) return Gen::paused;
+      const int32_t i = chain_->who;
+      const Vertex v = chain_->where;
+      const int32_t j = occ_now_[v];
+      if (occ_next_[v] >= 0 || (j >= 0 && j != i && next_[j] == from[i])) {  // vertex / swap conflict
+        pending_ = false;
+        return Gen::failed;
+      }
+      next_[i] = v;
+      occ_next_[v] = i;
+    }
+    phase_ = Phase::plan, k_ = 0;
+  }
+  for (; k_ < n_; ++k_) {
+    if (stop(kCheckEvery)) return Gen::paused;
+    const int32_t i = order_[k_];
+    ++plans_;
+    if (next_[i] < 0 && !plan(i, rng)) {
+      pending_ = false;
+      return Gen::failed;
+    }
+  }
+  pending_ = false;
+  return Gen::done;
 }
 
 bool Pibt::plan(int32_t i, Rng& rng)

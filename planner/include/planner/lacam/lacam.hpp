@@ -132,6 +132,14 @@ struct LacamOptions {
   // SUO before the first solution (lacam3's order; counts against the iterations' budget).
   // It changes PIBT and so the tree: the first solution is then not LaCAM's.
   bool scatter_first = false;
+  // A LaCAM expansion before the first solution may stop at a timed search()'s deadline
+  // and go on in the next call (Pibt::start/resume): at N = 1000 one PIBT call is more
+  // than a 0.1 ms iteration. The agents wait meanwhile (top() stays the expanded node); the
+  // tree is the same as with one-shot expansions. A reset() drops a paused expansion; when no
+  // expansion of the dropped tree had ended, the new tree's first one ends in its call, so
+  // that resets (lifelong goal changes) cannot stall the agents. Off: one-shot (naive
+  // RT-LaCAM, which resets every iteration).
+  bool resumable = true;
 };
 
 class Lacam {
@@ -212,6 +220,11 @@ class Lacam {
   bool reversible(const HNode* a, const HNode* b) const;
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
+  // A LaCAM expansion stopped at a deadline, to go on in the next search() (resumable).
+  bool expansion_paused() const { return gen_ != Gen::none; }
+  // Top-level agents PIBT has handled in LaCAM expansions before the first solution, since
+  // construction (tests: the work of one call).
+  uint64_t agents_planned() const { return agents_planned_; }
   // CPU ms of the costliest expansion of the last search() with a reserve (Budget::reserve_ms).
   double max_expansion_ms() const { return max_unit_ms_; }
   // Predicted CPU ms of one expansion, and ms per (time step x agent) of an LNS window
@@ -223,6 +236,7 @@ class Lacam {
   uint64_t expansions_at_solution() const { return solved_expansions_; }
   size_t explored_at_solution() const { return solved_explored_; }
   size_t explored() const { return explored_.size(); }
+  const HNode* node(size_t id) const { return all_[id]; }  // by creation index (tests)
   size_t open_size() const { return open_.size(); }
 
   // Tree invariants (for tests): the root has no parent, the parent pointers of every
@@ -232,6 +246,9 @@ class Lacam {
  private:
   HNode* new_node(const Vertex* C, HNode* parent, uint64_t hash, const float* root_priorities = nullptr,
                   const int32_t* root_order = nullptr);
+  // new_node() in two halves around the priorities and order (filled by the caller).
+  HNode* alloc_node(const Vertex* C, float** prio, int32_t** order);
+  void add_node(HNode* h, HNode* parent, uint64_t hash);
   bool is_goal(const HNode* h) const;
   bool soc_on() const { return opt_.refine && opt_.objective == Objective::soc && !goal_test_; }
   bool price_step();  // soc: prices the goal's tree path node by node; true when done
@@ -248,6 +265,7 @@ class Lacam {
   void rebase(HNode* new_root, HNode* old_root, bool explicit_costs);
   void push_if_promising(HNode* h);
   void grow_lowlevel(HNode* H, const Constraint* L);
+  Status finish_expansion();               // resumes the pending generation, inserts its successor
   bool lns_step(int window);                // one LnsRefiner step; an improved window goes to pending_
   bool insert_step();                       // inserts pending_ while it fits; true when done
   void guide_step();                        // scatter work, else a dive step (lacam_guide.cpp)
@@ -305,7 +323,7 @@ class Lacam {
   Clock::time_point deadline_ = Clock::time_point::max();
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
-  enum class Step { expansion, lns, guide, prepare, insert, price, none };
+  enum class Step { expansion, lns, guide, prepare, insert, price, partial, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
@@ -336,6 +354,26 @@ class Lacam {
   std::vector<uint8_t> immobile_;  // set_immobile()
   bool lns_wanted_ = true;         // opt_.lns as constructed (off while agents are immobile)
   std::vector<Vertex> moves_;  // scratch: children of a constraint
+  // A resumable expansion (LacamOptions::resumable): the node and constraint it expands,
+  // and its step: PIBT placing agents, then the successor's lookup, its new node's
+  // priorities and its order (hash, lookup, priorities and sort are O(N) each too).
+  enum class Gen { none, generating, lookup, priorities, order };
+  static constexpr int kTailChunk = 64;  // agents per step of priorities / order
+  static constexpr int kTailEvery = 2;   // such steps per clock reading
+  Gen gen_ = Gen::none;
+  HNode* gen_h_ = nullptr;
+  const Constraint* gen_l_ = nullptr;
+  Rng gen_rng_;                  // rng_ at the generation's start (a cancelled one restarts from it)
+  HNode* gen_node_ = nullptr;    // the new node being filled (not in the tree yet)
+  float* gen_prio_ = nullptr;
+  int32_t* gen_order_ = nullptr;
+  uint64_t gen_hash_ = 0;
+  int gen_k_ = 0;
+  bool may_pause_ = true;        // the running expansion may stop at a deadline
+  bool ended_ = false;           // an expansion of this tree has ended
+  Clock::time_point pause_at_ = Clock::time_point::max();  // the running search()'s deadline
+  double gen_cpu_ms_ = 0;        // CPU of the expansion's earlier pieces
+  uint64_t agents_planned_ = 0;
 };
 
 }  // namespace planner

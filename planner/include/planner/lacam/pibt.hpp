@@ -10,10 +10,19 @@
 // is what lets LaCAM (and so RT-LaCAM) solve dense warehouse aisles. On a directed graph
 // (one-way arcs) a partner is pulled only over an arc into the vacated vertex; every other
 // move PIBT makes is to an out-neighbour, so its configurations are legal there too.
+//
+// Resumable generation: one call plans all N agents (0.2-1 ms at N = 1000), more than a
+// 0.1 ms iteration. start() does the O(N) set-up and fixes the constraint's agents; resume()
+// plans the top-level agents in priority order and may stop at a deadline between two of
+// them (one top-level plan(), with its priority-inheritance chain, is the smallest unit);
+// the next resume() goes on where it stopped. The random draws are the same, in the same
+// order, as in one generate() call, so the successor is the same. set_goals() and
+// set_immobile() cancel a paused generation (pending() turns false).
 #include <cstdint>
 #include <vector>
 
 #include "planner/action_preference.hpp"
+#include "planner/budget.hpp"
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
 #include "planner/lacam/hnode.hpp"
@@ -34,7 +43,11 @@ class Pibt {
   // Immobile agents (immobile.hpp; per agent, 1 = immobile, empty = none): never moved,
   // never pushed (their only candidate is staying), never pulled by a swap. Kept across
   // set_goals().
-  void set_immobile(const std::vector<uint8_t>& immobile) { immobile_ = immobile; }
+  void set_immobile(const std::vector<uint8_t>& immobile)
+  {
+    immobile_ = immobile;
+    pending_ = false;  // a paused generation set up its detours for the old mask
+  }
   bool swap() const { return swap_; }
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
@@ -44,6 +57,22 @@ class Pibt {
   // priority first); `c` (may be null) fixes some agents. Returns false when the fixed
   // agents collide or PIBT cannot place a top-level agent.
   bool generate(const Vertex* from, const int32_t* order, const Constraint* c, Vertex* to, Rng& rng);
+
+  // generate() in pieces: start() only records the call; resume() does its work -- undo the
+  // last call's reservations, place the agents at `from`, fix the constraint's agents, plan
+  // the others -- until the successor is made (done: it is result()), the fixed agents
+  // collide or PIBT cannot place a top-level agent (failed), or `deadline` has passed
+  // (paused). The clock is read every kSetupEvery agents while setting up, every
+  // kCheckEvery top-level plan() calls after; each resume() does at least that much.
+  // `from`, `order` and the constraints must stay valid until the generation ends.
+  enum class Gen { done, failed, paused };
+  void start(const Vertex* from, const int32_t* order, const Constraint* c);
+  Gen resume(Rng& rng, Clock::time_point deadline = Clock::time_point::max());
+  bool pending() const { return pending_; }  // started, and neither ended nor cancelled
+  const Vertex* result() const { return next_.data(); }  // after resume() returned done
+  uint64_t plans() const { return plans_; }  // top-level agents handled, over all calls (tests)
+  static constexpr int kCheckEvery = 8;
+  static constexpr int kSetupEvery = 64;
 
  private:
   bool plan(int32_t i, Rng& rng);  // funcPIBT
@@ -75,6 +104,15 @@ class Pibt {
   std::vector<uint32_t> cut_off_stamp_;  // agent -> generate() call cut_off_ was set in
   std::vector<uint8_t> cut_off_;         // agent -> no path around the immobile agents
   uint32_t generation_ = 0;
+  // The generation in progress (start() .. resume() done / failed) and its cursor.
+  enum class Phase { undo, place, chain, plan };
+  const Vertex* from_ = nullptr;
+  const int32_t* order_ = nullptr;
+  const Constraint* chain_ = nullptr;
+  Phase phase_ = Phase::plan;
+  int k_ = 0;               // next agent (undo, place) or index into order_ (plan)
+  bool pending_ = false;
+  uint64_t plans_ = 0;
 };
 
 }  // namespace planner

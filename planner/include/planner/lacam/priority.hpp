@@ -16,24 +16,34 @@ inline void init_priorities(const Vertex* C, int n, DistTable& D, float* prio)
   for (int i = 0; i < n; ++i) prio[i] = static_cast<float>(D.get(i, C[i])) / static_cast<float>(n);
 }
 
-inline void next_priorities(const Vertex* C, int n, DistTable& D, const float* parent, float* prio)
+// Agents [begin, end) only (a resumable expansion computes a node's priorities in pieces).
+inline void next_priorities(const Vertex* C, int begin, int end, DistTable& D, const float* parent, float* prio)
 {
-  for (int i = 0; i < n; ++i)
+  for (int i = begin; i < end; ++i)
     prio[i] = D.get(i, C[i]) != 0 ? parent[i] + 1.0f : parent[i] - static_cast<float>(static_cast<int>(parent[i]));
 }
 
-// Sorts `order` (a permutation of 0..n-1) by descending priority. Insertion sort: the
-// caller passes the parent's order, which is nearly sorted already, so this is ~O(n).
-inline void sort_by_priority(const float* prio, int n, int32_t* order)
+inline void next_priorities(const Vertex* C, int n, DistTable& D, const float* parent, float* prio)
+{
+  next_priorities(C, 0, n, D, parent, prio);
+}
+
+// Insertion sort's steps [begin, end): order[begin, end) go into the sorted order[0, begin).
+// Steps [1, n) sort it all; a resumable expansion makes them in pieces.
+inline void insert_by_priority(const float* prio, int32_t* order, int begin, int end)
 {
   auto before = [prio](int32_t a, int32_t b) { return prio[a] > prio[b] || (prio[a] == prio[b] && a < b); };
-  for (int k = 1; k < n; ++k) {
+  for (int k = std::max(begin, 1); k < end; ++k) {
     int32_t a = order[k];
     int j = k;
     for (; j > 0 && before(a, order[j - 1]); --j) order[j] = order[j - 1];
     order[j] = a;
   }
 }
+
+// Sorts `order` (a permutation of 0..n-1) by descending priority. Insertion sort: the
+// caller passes the parent's order, which is nearly sorted already, so this is ~O(n).
+inline void sort_by_priority(const float* prio, int n, int32_t* order) { insert_by_priority(prio, order, 1, n); }
 
 inline void initial_order(const float* prio, int n, int32_t* order)
 {
