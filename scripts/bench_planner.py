@@ -3,7 +3,7 @@
 
 For each map, agent count and scen 1..K it runs, in the same process session:
   - full-horizon LaCAM with swap (the baseline), and without swap (vanilla),
-  - RT-LaCAM at cutoffs 0.01 .. 100 ms: the paper's planner (rtlacam-bench --no-refine
+  - RT-LaCAM at cutoffs 0.01 .. 100 ms: the paper's planner (rtlacam-bench --no-refine --no-resumable
     --no-reserve: no LaCAM* refinement, expansions until the cutoff as the paper's loop),
 and prints one table row per instance: LaCAM's first-solution time, RT-LaCAM's total
 planning time as a ratio of it, whether RT-LaCAM built the identical tree (same
@@ -26,7 +26,7 @@ SETS = [
     ("warehouse-10-20-10-2-1", [100, 200, 400, 600]),
 ]
 CUTOFFS = [0.01, 0.1, 1, 10, 100]
-PAPER = ["--no-refine", "--no-reserve"]  # the paper's RT-LaCAM (the CLI's rtlacam is RT-LaCAM*)
+PAPER = ["--no-refine", "--no-reserve", "--no-resumable"]  # the paper's RT-LaCAM (the CLI's rtlacam is RT-LaCAM*)
 
 
 def run(binary, m, k, n, solver, timeout, extra=()):

@@ -4,7 +4,7 @@
 # plus pibt and full-horizon lacam once per instance. One JSON line per run is appended to
 # <out>/results.jsonl; runs already there are skipped (an interrupted sweep resumes).
 # Then scripts/plot_fig2.py draws <out>/fig2.png and <out>/fig2.md.
-# rtlacam and naive run the paper's planner: rtlacam-bench --no-refine --no-reserve (RT-LaCAM
+# rtlacam and naive run the paper's planner: rtlacam-bench --no-refine --no-reserve --no-resumable (RT-LaCAM
 # without LaCAM* refinement, expanding until the cutoff as the paper's loop). --star runs
 # RT-LaCAM* instead (rtlacam-bench's defaults) into out/fig2-star, for the second figure.
 #
@@ -132,7 +132,7 @@ agents_for() {  # default agent counts per map
 
 # The planner behind rtlacam / naive (part of each run's key, so the two never mix).
 if [[ $STAR == 1 ]]; then PLANNER=star; PLANNER_ARGS=""; : "${OUT_DIR:=$ROOT/out/fig2-star}"
-else PLANNER=paper; PLANNER_ARGS="--no-refine --no-reserve"; : "${OUT_DIR:=$ROOT/out/fig2}"; fi
+else PLANNER=paper; PLANNER_ARGS="--no-refine --no-reserve --no-resumable"; : "${OUT_DIR:=$ROOT/out/fig2}"; fi
 
 DATA="$ROOT/data/movingai"
 [[ -x "$BENCH" ]] || { echo "paper_fig2.sh: bench binary '$BENCH' not found or not executable (build it, or pass --bench)" >&2; exit 2; }

@@ -6,7 +6,7 @@
 # trained on scens 1..20; policy/README.md). One JSON line per run is appended to
 # <out>/results.jsonl; runs already there are skipped (an interrupted sweep resumes). Then
 # scripts/plot_fig3.py draws <out>/fig3.png and <out>/fig3.md. The rtlacam series run the
-# paper's planner (rtlacam-bench --no-refine --no-reserve), not the CLI's default RT-LaCAM*.
+# paper's planner (rtlacam-bench --no-refine --no-reserve --no-resumable), not the CLI's default RT-LaCAM*.
 #
 #   scripts/paper_fig3.sh                          # default sweep, ~10 min on 2 cores
 #   scripts/paper_fig3.sh --out-dir docs/fig3run   # elsewhere
@@ -120,7 +120,7 @@ done
 source "$(dirname "${BASH_SOURCE[0]}")/lib/sweep.sh"
 pending_runs "$ALL" "$RESULTS" "$TODO"
 
-echo "fig3 sweep: rtlacam series = the paper's RT-LaCAM (rtlacam-bench --no-refine --no-reserve)"
+echo "fig3 sweep: rtlacam series = the paper's RT-LaCAM (rtlacam-bench --no-refine --no-reserve --no-resumable)"
 echo "fig3 sweep: $MAP, N [$AGENTS], scens [$SCENS], series [$SOLVERS], cutoff ${CUTOFF} ms, timeout ${TIMEOUT}s, seed $SEED"
 echo "fig3 sweep: $TOTAL runs, $SKIPPED already in $RESULTS, $PENDING to do with $JOBS parallel jobs"
 if [[ $DRY == 1 ]]; then cut -d' ' -f2- "$TODO"; exit 0; fi
@@ -135,7 +135,7 @@ run_one() {
               --timeout-s "$TIMEOUT" --cutoff-ms "$CUTOFF" --seed "$SEED" --json)
   [[ "$series" == *-policy || "$series" == cspibt ]] && args+=(--policy "$POLICY")
   [[ "$solver" == cspibt || "$solver" == pibt ]] && steps=$PIBT_MAX_STEPS
-  [[ "$solver" == rtlacam ]] && args+=(--no-refine --no-reserve)  # the paper's RT-LaCAM
+  [[ "$solver" == rtlacam ]] && args+=(--no-refine --no-reserve --no-resumable)  # the paper's RT-LaCAM
   args+=(--max-steps "$steps")
   bench_record "\"run_key\":\"$key\",\"series\":\"$series\",\"scen_k\":$k,\"timeout_s\":$TIMEOUT,\"max_steps\":$steps" "${args[@]}"
   local done

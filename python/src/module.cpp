@@ -193,6 +193,7 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.seed = seed;
           opt.pref = pref;
           opt.lacam.refine = opt.lacam.scatter = refine;  // as rtlacam-bench: RT-LaCAM* unless refine=False
+          opt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           return make_planner(parse_solver(solver), g, starts, goals, opt);
         },
@@ -201,7 +202,7 @@ PYBIND11_MODULE(_rtlacam, m)
         py::keep_alive<0, 6>(),
         "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan "
         "rotation actions on a grid, every robot facing east at the start); refine=False: the paper's RT-LaCAM "
-        "(rtlacam-bench --no-refine), else RT-LaCAM* as the CLI; objective: what refinement lowers, 'soc' "
+        "(rtlacam-bench --no-refine --no-resumable), else RT-LaCAM* as the CLI; objective: what refinement lowers, 'soc' "
         "(standard sum of costs) or 'loss' (sum of loss), as rtlacam-bench --objective");
 
   m.def("run",
@@ -217,6 +218,7 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.seed = seed;
           sopt.lacam.seed = seed;  // run_full_horizon (lacam) reads it there
           sopt.lacam.refine = sopt.lacam.scatter = refine;  // as rtlacam-bench (lacam: executes its first solution either way)
+          sopt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
