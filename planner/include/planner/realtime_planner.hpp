@@ -57,9 +57,7 @@ class RealtimePlanner {
   // applies the marks one by one.
   virtual void set_immobile(const std::vector<uint8_t>& immobile)
   {
-    if (immobile.size() != current().size())
-      throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
-                                  std::to_string(current().size()) + " agents");
+    check_marks(immobile, current().size());
     for (size_t i = 0; i < immobile.size(); ++i) set_immobile(static_cast<int>(i), immobile[i] != 0);
   }
   // A new search at `at`, which the agents reached by moves this planner did not plan (the
@@ -99,6 +97,22 @@ class RealtimePlanner {
   {
     search(b);
     return next();
+  }
+
+ protected:
+  // The size checks of the batch calls above, one message each for every planner.
+  static void check_marks(const std::vector<uint8_t>& immobile, size_t agents)
+  {
+    if (immobile.size() != agents)
+      throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
+                                  std::to_string(agents) + " agents");
+  }
+  static void check_restart(const Config& at, const Config& goals, const std::vector<uint8_t>& immobile, size_t agents)
+  {
+    if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != agents)
+      throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " +
+                                  std::to_string(goals.size()) + " goals, " + std::to_string(immobile.size()) +
+                                  " marks for " + std::to_string(agents) + " agents");
   }
 };
 

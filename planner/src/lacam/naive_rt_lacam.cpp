@@ -46,9 +46,7 @@ void NaiveRtLacam::set_immobile(int agent, bool immobile)
 
 void NaiveRtLacam::set_immobile(const std::vector<uint8_t>& immobile)
 {
-  if (immobile.size() != immobile_.size())
-    throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
-                                std::to_string(immobile_.size()) + " agents");
+  check_marks(immobile, immobile_.size());
   for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
   lacam_.set_immobile(immobile_);
   fresh_ = false;
@@ -57,9 +55,7 @@ void NaiveRtLacam::set_immobile(const std::vector<uint8_t>& immobile)
 
 bool NaiveRtLacam::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
 {
-  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
-    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
-                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  check_restart(at, goals, immobile, current_.size());
   current_ = at;
   set_goals(goals, std::move(test));
   set_immobile(immobile);

@@ -44,9 +44,7 @@ void PibtPlanner::set_immobile(int agent, bool immobile)
 
 void PibtPlanner::set_immobile(const std::vector<uint8_t>& immobile)
 {
-  if (immobile.size() != current_.size())
-    throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
-                                std::to_string(current_.size()) + " agents");
+  check_marks(immobile, current_.size());
   immobile_.assign(immobile.size(), 0);
   for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
   pibt_.set_immobile(immobile_);
@@ -55,9 +53,7 @@ void PibtPlanner::set_immobile(const std::vector<uint8_t>& immobile)
 
 bool PibtPlanner::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
 {
-  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
-    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
-                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  check_restart(at, goals, immobile, current_.size());
   current_ = at;
   set_goals(goals, std::move(test));
   set_immobile(immobile);

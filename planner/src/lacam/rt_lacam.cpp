@@ -31,9 +31,7 @@ void RtLacam::set_immobile(int agent, bool immobile)
 
 void RtLacam::set_immobile(const std::vector<uint8_t>& immobile)
 {
-  if (immobile.size() != immobile_.size())
-    throw std::invalid_argument("set_immobile: " + std::to_string(immobile.size()) + " marks for " +
-                                std::to_string(immobile_.size()) + " agents");
+  check_marks(immobile, immobile_.size());
   std::vector<uint8_t> marks(immobile.size());
   for (size_t i = 0; i < immobile.size(); ++i) marks[i] = immobile[i] != 0;
   if (marks == immobile_) return;
@@ -45,9 +43,7 @@ void RtLacam::set_immobile(const std::vector<uint8_t>& immobile)
 
 bool RtLacam::restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile)
 {
-  if (at.size() != goals.size() || immobile.size() != goals.size() || at.size() != current_.size())
-    throw std::invalid_argument("restart_at: " + std::to_string(at.size()) + " positions, " + std::to_string(goals.size()) +
-                                " goals, " + std::to_string(immobile.size()) + " marks for " + std::to_string(current_.size()) + " agents");
+  check_restart(at, goals, immobile, current_.size());
   current_ = at;
   test_ = std::move(test);
   for (size_t i = 0; i < immobile.size(); ++i) immobile_[i] = immobile[i] != 0;
