@@ -10,9 +10,11 @@ invocation:
     queues and priorities, the same executor and delay model at one step per tick.
 Both sides plan with a fixed number of expansions (deterministic decisions; E per SUMO step
 in SUMO, E x steps-per-tick per grid step), so the comparison is about execution, not CPU.
-Rotation solvers (pibt-rot, epibt, wppl; `epibt-age` is epibt with planner.rotation.priority
-distance) turn in fleet.turn_s (one tick) in SUMO and in one step (--action-model rotation) in the
-twin, with the controller's planner.rotation defaults on both sides; the twin has no delay model for rotation plans, so their p > 0 twin rows stay empty.
+Rotation solvers (pibt-rot, epibt, wppl) turn in fleet.turn_s (one tick) in SUMO and in one
+step (--action-model rotation) in the twin, with the controller's planner.rotation defaults on
+both sides; a row "SOLVER+OPTION" changes one (+arrows: guidance arrows; +distance, +age:
+epibt's priority). The twin has no delay model for rotation plans: their p > 0 twin rows stay
+empty.
 
 Each side reports its free-flow bound (tasks/free_flow.hpp): every AGV alone on its errand
 sequence along shortest paths, a cell per step on the grid, the vType's rest-to-rest
@@ -36,14 +38,23 @@ import yaml  # PyYAML
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 os.environ.setdefault("SUMO_HOME", "/usr/share/sumo")
 ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation actions
-# Variants: a row name -> (solver, planner.rotation options in SUMO). The twin mirrors the
-# controller's planner.rotation defaults (controller/config.hpp), not rtlacam-lifelong's
-# LoRR defaults: guidance none, back_last on, epibt priority age.
-VARIANTS = {"epibt-distance": ("epibt", {"priority": "distance"})}
+# Variants of a rotation solver: "SOLVER+OPTION+..." with OPTION one of arrows (guidance
+# arrows), distance / age (epibt's priority). The twin mirrors the controller's
+# planner.rotation defaults (controller/config.hpp), not rtlacam-lifelong's LoRR defaults:
+# guidance none, back_last on, epibt priority age.
+VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "distance": ("priority", "distance"), "age": ("priority", "age")}
 
 
 def variant(name):
-    return VARIANTS.get(name, (name, {}))
+    """(solver, planner.rotation options) of a row name."""
+    solver, *opts = name.split("+")
+    rot = {}
+    for o in opts:
+        if o not in VARIANT_OPTIONS or solver not in ROTATION:
+            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl")
+        k, v = VARIANT_OPTIONS[o]
+        rot[k] = v
+    return solver, rot
 
 
 def twin_rotation_args(solver, rot):

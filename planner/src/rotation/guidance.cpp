@@ -66,6 +66,32 @@ std::vector<int32_t> cheap_components(const Graph& g, const Guidance& gd, uint16
   return comp;
 }
 
+// Per row (rows: true) or column: whether it is an "even" lane of the field. The lanes are
+// the rows (columns) that hold a move along them, numbered in order, and they alternate by
+// that number, so aisles any distance apart alternate: by coordinate parity, a warehouse
+// with an aisle every 4th column would get all of them one way, and the repair would then
+// make every arc cheap (no guidance left). The count starts at the first lane's own parity,
+// so a map whose every row and column is a lane (LoRR's and most MovingAI maps) gets the
+// parity field unchanged.
+std::vector<char> lane_parity(const Graph& g, bool rows)
+{
+  const int n = rows ? g.height() : g.width();
+  std::vector<char> lane(static_cast<size_t>(n), 0), even(static_cast<size_t>(n), 0);
+  const int o = rows ? 0 : 1;  // east: along a row; south: along a column
+  for (Vertex v = 0; v < g.size(); ++v)
+    if (ahead(g, v, o) >= 0) lane[static_cast<size_t>(rows ? g.cell_y(v) : g.cell_x(v))] = 1;
+  int k = -1;
+  for (int i = 0; i < n; ++i) {
+    if (!lane[static_cast<size_t>(i)]) {
+      even[static_cast<size_t>(i)] = i % 2 == 0;  // no move along it: its field is never read
+      continue;
+    }
+    k = k < 0 ? i % 2 : k + 1;
+    even[static_cast<size_t>(i)] = k % 2 == 0;
+  }
+  return even;
+}
+
 void check_cost(long c, const std::string& what)
 {
   if (c < 1 || c > Guidance::kMaxCost)
@@ -97,10 +123,12 @@ Guidance arrow_guidance(const Graph& g, int along, int against, int turn)
   Guidance gd;
   gd.turn = static_cast<uint16_t>(turn);
   gd.forward.assign(static_cast<size_t>(g.size()) * 4, static_cast<uint16_t>(along));
+  const std::vector<char> east = lane_parity(g, true), south = lane_parity(g, false);
   for (Vertex v = 0; v < g.size(); ++v)
     for (int o = 0; o < 4; ++o) {
-      // Rows: even y east (o 0), odd y west; columns: even x south (o 1), odd x north.
-      const bool with = o % 2 == 0 ? (o == 0) == (g.cell_y(v) % 2 == 0) : (o == 1) == (g.cell_x(v) % 2 == 0);
+      // Rows: "even" lanes east (o 0), odd ones west; columns: even south (o 1), odd north.
+      const bool with = o % 2 == 0 ? (o == 0) == static_cast<bool>(east[static_cast<size_t>(g.cell_y(v))])
+                                   : (o == 1) == static_cast<bool>(south[static_cast<size_t>(g.cell_x(v))]);
       if (!with) gd.forward[static_cast<size_t>(v) * 4 + o] = static_cast<uint16_t>(against);
     }
   if (against <= along) return gd;

@@ -156,6 +156,36 @@ TEST(Guidance, ArrowFieldKeepsEveryStateReachingEveryGoalOnCheapConnectedLanes)
   EXPECT_THROW(planner::arrow_guidance(d, 1, Guidance::kMaxCost + 1, 1), std::invalid_argument);
 }
 
+// Aisles four columns apart (a gridified SUMO warehouse: cross aisles on rows 0 and 4,
+// picking aisles on columns 0, 4, 8, 12). By coordinate parity every aisle would point
+// south and the repair would have made them all cheap both ways; numbered as lanes they
+// alternate, and the field keeps one cheap direction per aisle.
+TEST(Guidance, ArrowFieldAlternatesBetweenAislesAnyDistanceApart)
+{
+  const Graph g = test::grid({".............", ".@@@.@@@.@@@.", ".@@@.@@@.@@@.", ".@@@.@@@.@@@.", "............."});
+  const Guidance gd = planner::arrow_guidance(g, 1, 4, 2);
+  EXPECT_TRUE(planner::cheap_arcs_strongly_connected(g, gd, 1));
+  for (int x : {4, 8}) {  // the inner aisles (the outer ones close the loop: the repair may touch them)
+    const Vertex v = g.at(x, 2);
+    ASSERT_GE(v, 0);
+    const bool south = (x / 4) % 2 == 0;  // aisle 0 south, 1 north, ...
+    EXPECT_EQ(gd.forward_cost(v, 1), south ? 1 : 4) << "aisle at x " << x << " facing south";
+    EXPECT_EQ(gd.forward_cost(v, 3), south ? 4 : 1) << "aisle at x " << x << " facing north";
+  }
+  EXPECT_EQ(gd.forward_cost(g.at(6, 0), 0), 1);  // row 0 east
+  EXPECT_EQ(gd.forward_cost(g.at(6, 0), 2), 4);
+  EXPECT_EQ(gd.forward_cost(g.at(6, 4), 2), 1);  // row 4 (the next lane) west
+  EXPECT_EQ(gd.forward_cost(g.at(6, 4), 0), 4);
+  // Every row and column a lane: the parity field (even y east, even x south), so LoRR's
+  // maps keep the field they were measured with.
+  const Graph full = random_grid(9, 7, 0, 3);
+  const Guidance pf = planner::arrow_guidance(full, 1, 4, 2);
+  for (Vertex v = 0; v < full.size(); ++v) {
+    EXPECT_EQ(pf.forward_cost(v, 0), full.cell_y(v) % 2 == 0 ? 1 : 4) << v;
+    EXPECT_EQ(pf.forward_cost(v, 1), full.cell_x(v) % 2 == 0 ? 1 : 4) << v;
+  }
+}
+
 TEST(Guidance, FileRoundTripsAndErrorsNameFileAndLine)
 {
   const Graph g = random_grid(6, 5, 10, 9);

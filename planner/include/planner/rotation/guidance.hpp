@@ -10,8 +10,11 @@
 //
 // Sources:
 //  - arrow_guidance(): a one-way-lane field that needs no offline optimisation. Rows
-//    alternate east / west (even y east), columns alternate south / north (even x south):
-//    a forward move along its lane's arrow costs `along`, against it `against`. Then the
+//    alternate east / west, columns alternate south / north: a forward move along its
+//    lane's arrow costs `along`, against it `against`. Rows (columns) are numbered among
+//    those that hold a move along them, from the first one's parity, so aisles several
+//    cells apart alternate too (a gridified warehouse with an aisle every 4th column); on
+//    a map whose every row and column holds a move this is even y east, even x south. Then the
 //    cheap arcs (cells joined by an `along` move) are repaired until they are strongly
 //    connected per connected component of the map: while they are not, every costly arc
 //    between two of their strongly connected components becomes cheap. Dead ends and
