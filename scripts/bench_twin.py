@@ -12,8 +12,8 @@ Both sides plan with a fixed number of expansions (deterministic decisions; E pe
 in SUMO, E x steps-per-tick per grid step), so the comparison is about execution, not CPU.
 Rotation solvers (pibt-rot, epibt, wppl) turn in fleet.turn_s (one tick) in SUMO and in one
 step (--action-model rotation) in the twin, with the controller's planner.rotation defaults on
-both sides; a row "SOLVER+OPTION" changes one (+arrows: guidance arrows; +distance, +age:
-epibt's priority). The twin has no delay model for rotation plans: their p > 0 twin rows stay
+both sides; a row "SOLVER+OPTION" changes one (+arrows, +unguided: guidance arrows, none;
++distance, +age: epibt's priority). The twin has no delay model for rotation plans: their p > 0 twin rows stay
 empty.
 
 Each side reports its free-flow bound (tasks/free_flow.hpp): every AGV alone on its errand
@@ -38,11 +38,12 @@ import yaml  # PyYAML
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 os.environ.setdefault("SUMO_HOME", "/usr/share/sumo")
 ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation actions
-# Variants of a rotation solver: "SOLVER+OPTION+..." with OPTION one of arrows (guidance
-# arrows), distance / age (epibt's priority). The twin mirrors the controller's
-# planner.rotation defaults (controller/config.hpp), not rtlacam-lifelong's LoRR defaults:
-# guidance none, back_last on, epibt priority age.
-VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "distance": ("priority", "distance"), "age": ("priority", "age")}
+# Variants of a rotation solver: "SOLVER+OPTION+..." with OPTION one of arrows / unguided
+# (guidance arrows / none), distance / age (epibt's priority). The twin mirrors the
+# controller's planner.rotation defaults (controller/config.hpp): guidance arrows for pibt-rot
+# and epibt, none for wppl; back_last on; epibt priority age (rtlacam-lifelong: distance).
+VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "none"), "distance": ("priority", "distance"),
+                   "age": ("priority", "age")}
 
 
 def variant(name):
@@ -58,7 +59,7 @@ def variant(name):
 
 
 def twin_rotation_args(solver, rot):
-    args = ["--action-model", "rotation", "--guidance", rot.get("guidance", "none")]
+    args = ["--action-model", "rotation", "--guidance", rot.get("guidance", "none" if solver == "wppl" else "arrows")]
     if solver == "epibt":
         args += ["--epibt-priority", rot.get("priority", "age")]
     else:
@@ -87,6 +88,7 @@ def sumo_run(a, base, solver, p, out):
     cfg["fleet"]["vtype"] = VTYPE
     solver, rot = variant(solver)
     cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": a.expansions})
+    cfg["planner"].pop("rotation", None)  # the row's options only, as in the twin
     if rot:
         cfg["planner"]["rotation"] = rot
     cfg["run"].update({"executor": a.executor, "max_ticks": a.ticks, "progress_s": 0})

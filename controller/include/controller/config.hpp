@@ -82,7 +82,9 @@ struct FleetSection {
 // forward / turn / wait actions for AGVs with a heading (planner/solver.hpp).
 struct RotationSection {
   bool back_last = true;            // pibt-rot, wppl: RotationPibt::set_back_last
-  std::string guidance = "none";    // none | arrows (planner/rotation/guidance.hpp)
+  // none | arrows (planner/rotation/guidance.hpp); default arrows for pibt-rot and epibt
+  // (parse_config), none for wppl.
+  std::string guidance = "none";
   std::vector<int> guidance_costs = {1, 3, 1};  // arrows: along, against, turn
   bool traffic_flow = true;         // epibt: congestion-aware guide paths (traffic_flow.hpp)
   int depth = 3;                    // epibt: actions per operation (3..5)
