@@ -129,8 +129,6 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
   if (cfg.rules.watch_lanes == 1 && !lockstep) fail("rules.watch_lanes", "only with run.executor: lockstep");
   const bool watch = lockstep && (cfg.rules.watch_lanes == 1 || (cfg.rules.watch_lanes < 0 && cfg.run.backend == "libsumo"));
   if (!closures.empty() || !zones.empty()) {
-    if (!lockstep)
-      fail("rules", "closures and one-at-a-time zones need run.executor: lockstep (not yet with " + cfg.run.executor + ")");
     if (cfg.planner.rotation_solver())
       fail("rules", "closures and one-at-a-time zones need a cell solver (rtlacam | naive | pibt | cspibt): " +
                         cfg.planner.solver + " refuses the directed graph they make");
@@ -365,6 +363,20 @@ planner::Config Rules::goals(const planner::Graph& g, const planner::Config& at,
       lines.push_back(when + id + " waits: its goal (cell " + std::to_string(goals[i]) + ") is cut off by closed cells");
   }
   return eff;
+}
+
+int Rules::count_held(const std::vector<int>& gated, const planner::Config& at)
+{
+  if (zone_held_.size() != zones_.size()) zone_held_.assign(zones_.size(), 0);
+  const std::vector<uint8_t> occ = occupied(at);
+  std::vector<uint8_t> held(zones_.size(), 0);
+  int n = 0;
+  for (int z : gated)
+    if (z >= 0) held[z] = 1, ++n;
+  for (size_t z = 0; z < zones_.size(); ++z)
+    if (held[z]) ++zone_held_[z];
+    else if (!occ[z]) zone_held_[z] = 0;  // empty again: the count starts over with the next occupant
+  return n;
 }
 
 int Rules::admit(const planner::Config& cur, planner::Config& next)

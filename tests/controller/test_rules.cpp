@@ -294,10 +294,10 @@ TEST(Rules, BadRulesAreOneLineErrors)
   e = ctest_util::config_error("sumo: {net: ../sumo_scenarios/small.net.xml}\nfleet: {count: 2}\n"
                                "rules:\n  zones:\n    - {id: z}\n");
   EXPECT_NE(e.find("rules.zones[0]: a zone with no cells"), std::string::npos) << e;
-  Config adg = rules_config("bad7", kAround, "", "rules:\n  closures:\n    - {edges: [c1r0_c1r1]}\n");
+  Config adg = rules_config("bad7", kAround, "", "rules: {watch_lanes: true}\n");
   adg.run.executor = "adg";
   e = error(adg);
-  EXPECT_NE(e.find("rules: closures and one-at-a-time zones need run.executor: lockstep"), std::string::npos) << e;
+  EXPECT_NE(e.find("rules.watch_lanes: only with run.executor: lockstep"), std::string::npos) << e;
 }
 
 TEST(Rules, AClosureThatIsolatesAGoalIsNamedAndTheAgvWaits)
@@ -437,4 +437,148 @@ tasks:
   EXPECT_GE(m.rules.zone_holds, Rules::kBlockAfter);  // it was held, then routed round
   EXPECT_LE(m.rules.zone_holds, 2 * Rules::kBlockAfter);
   EXPECT_LT(m.ticks, 40);
+}
+
+// The physical executor (run.executor: adg-follow, the *_agv configs' default): a closure
+// that begins while the AGVs drive replans from the observed state (the stuck-AGV replan
+// path, Run::replan with the rules' new graph): the moves in progress finish (agv2 is
+// driving into the aisle at 1 s: RuleCheck excuses that one entry), nobody enters the
+// closed aisle after, agv0 (goal inside) waits for the reopening. Safety and RuleCheck
+// check every SUMO step; with the closure not enforced RuleCheck stops the run.
+TEST(Rules, AdgFollowClosureReplansFromTheObservedState)
+{
+  const std::string rules = 
+      "rules:\n  closures:\n    - {edges: [c1r0_c1r1, c1r1_c1r0], begin: 1, end: 25}\n";
+  Config cfg = rules_config("adg_closure", kAround, "", rules);
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(m.rules.closure_changes, 2);  // closed at 1 s, reopened at 25 s
+  EXPECT_EQ(m.rules.max_closed, 7);
+  EXPECT_GE(m.rules.replans, 2);
+  EXPECT_GT(m.rules.waits, 0);  // agv0 waited for its goal
+  ASSERT_EQ(m.goal_s.size(), 3u);
+  EXPECT_GE(m.goal_s[0], 25.0);  // on its goal (inside the aisle) only after it reopened
+
+  Config off = rules_config("adg_closure_off", kAround, "", rules + "  enforce_closures: false\n");
+  off.run.executor = "adg-follow";
+  Controller co(off);
+  const Metrics mo = co.run();
+  EXPECT_NE(mo.error.find("entered closed cell"), std::string::npos) << mo.error;
+  EXPECT_EQ(mo.violations, 1);
+}
+
+// adg-follow with AGVs inside the aisle when its closure begins (1 s, all driving): the
+// replan starts where their moves in progress end, on closed cells; they leave by the
+// evacuation arcs and nobody waits for the reopening.
+TEST(Rules, AdgFollowAgvsOnCellsBeingClosedLeave)
+{
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c1r0_c1r1_0, pos: 2}
+    - {lane: c1r0_c1r1_0, pos: 4}
+    - {lane: c1r0_c1r1_0, pos: 6}
+tasks:
+  mode: one_shot
+  goals:
+    - {lane: c0r0_c0r1_0, pos: 4}
+    - {lane: c2r0_c2r1_0, pos: 4}
+    - {lane: c3r0_c3r1_0, pos: 4}
+)";
+  Config cfg = rules_config("adg_evacuate", agents, "", "rules:\n  closures:\n    - {edges: [c1r0_c1r1, c1r1_c1r0], begin: 1, end: 60}\n");
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_LT(m.ticks, 40);  // nobody waited for the reopening
+}
+
+// adg-follow and a one-at-a-time zone: the Driver's zone mutex (Driver::set_zones) keeps the
+// second AGV out while the first is inside or driving in. Without it both go down aisle c1
+// together and RuleCheck stops the run.
+TEST(Rules, AdgFollowZoneMutexHoldsOneAgvAtATime)
+{
+  const std::string add = additional(
+      "adg_zone", R"(  <poly id="z_c1" type="rtlacam.zone" shape="3.5,0.5 4.5,0.5 4.5,7.5 3.5,7.5"/>
+)");
+  Config cfg = rules_config("adg_zone", kBothDown, add, "");
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_GT(m.rules.zone_holds, 0);  // someone was held at the entry
+
+  Config off = rules_config("adg_zone_off", kBothDown, add, "rules: {enforce_zones: false}\n");
+  off.run.executor = "adg-follow";
+  Controller co(off);
+  const Metrics mo = co.run();
+  EXPECT_NE(mo.error.find("zone 'z_c1'"), std::string::npos) << mo.error;
+  EXPECT_NE(mo.error.find("holds two AGVs"), std::string::npos) << mo.error;
+}
+
+// adg-follow, a zone whose occupant parks in it (pick1, its goal): the mutex holds agv1 at
+// the entry; after Rules::kBlockAfter ticks the replan takes the zone's entry arcs out of the
+// planner's graph and agv1 goes round (without that it would wait for good).
+TEST(Rules, AdgFollowAnOccupiedZoneIsRoutedAroundAfterEntrantsWait)
+{
+  const std::string add = additional(
+      "adg_zone_block", R"(  <poly id="z_c1" type="rtlacam.zone" shape="3.5,-2.5 4.5,-2.5 4.5,7.5 3.5,7.5"/>
+)");
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c0r0_c1r0_0, pos: 3}
+    - {lane: c2r1_c1r1_0, pos: 2}
+tasks:
+  mode: one_shot
+  goals:
+    - pick1
+    - {lane: c1r0_c0r0_0, pos: 3}
+)";
+  Config cfg = rules_config("adg_zone_block", agents, add, "");
+  cfg.run.executor = "adg-follow";
+  cfg.run.max_ticks = 100;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_GE(m.rules.replans, 2);  // the start, then the zone routed around
+  EXPECT_LT(m.ticks, 60);
+}
+
+// The shipped examples under adg-follow: 16 AGVs, the rerouter closure of aisle c1 (10-40 s)
+// and the zone on the top cross aisle (lifelong: also the YAML closure 100-160 s).
+TEST(Rules, ShippedExamplesRunCleanUnderAdgFollow)
+{
+  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules.yaml");
+  cfg.output.dir = test::temp_dir("rules_shipped_adg");
+  cfg.run.progress_s = 0;
+  cfg.run.executor = "adg-follow";
+  cfg.planner.budget_ms = 0;
+  cfg.planner.expansions = 200;
+  cfg.sumo.outputs = {false, false, false, true};
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(m.rules.closure_changes, 2);
+  EXPECT_GT(m.ticks, 40);  // someone's goal was in the closed aisle
+
+  Config life = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules_lifelong.yaml");
+  life.output.dir = test::temp_dir("rules_shipped_lifelong_adg");
+  life.run.progress_s = 0;
+  life.run.executor = "adg-follow";
+  life.run.max_ticks = 300;
+  life.planner.budget_ms = 0;
+  life.planner.expansions = 50;
+  life.sumo.outputs = {false, false, false, true};
+  Controller cl(life);
+  const Metrics ml = cl.run();
+  EXPECT_EQ(ml.error, "");
+  EXPECT_EQ(ml.violations, 0);
+  EXPECT_EQ(ml.commands.jumps + ml.commands.resyncs, 0);
+  EXPECT_EQ(ml.rules.checks, ml.ticks * life.steps_per_tick());
+  ctest_util::expect_no_sumo_collision(life.output.dir);
+  EXPECT_EQ(ml.rules.closure_changes, 4);  // 10, 40, 100, 160 s
+  EXPECT_GT(ml.errands_finished, 20);
 }

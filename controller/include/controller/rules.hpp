@@ -117,6 +117,10 @@ class Rules {
   // Holds AGVs so that every zone has at most one AGV over `cur` and `next` together (the
   // one already inside, else the entrant that waited longest). Returns how many were held.
   int admit(const planner::Config& cur, planner::Config& next);
+  // The same count under adg (the Driver's zone mutex does the holding): `gated` per agent,
+  // the zone whose mutex held it this tick (-1: none), `at` where the ADG has them. Returns
+  // how many were held.
+  int count_held(const std::vector<int>& gated, const planner::Config& at);
 
  private:
   std::vector<uint8_t> cells_of_lanes(const std::vector<std::string>& lanes) const;
