@@ -125,16 +125,17 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
       zones.push_back(std::move(z));
     }
   }
-  const bool lockstep = cfg.run.executor == "lockstep";
-  if (cfg.rules.watch_lanes == 1 && !lockstep) fail("rules.watch_lanes", "only with run.executor: lockstep");
-  const bool watch = lockstep && (cfg.rules.watch_lanes == 1 || (cfg.rules.watch_lanes < 0 && cfg.run.backend == "libsumo"));
+  const bool rotation = cfg.planner.rotation_solver();
+  if (cfg.rules.watch_lanes == 1 && rotation)
+    fail("rules.watch_lanes", "needs a cell solver (rtlacam | naive | pibt | cspibt), not " + cfg.planner.solver);
+  // By default (-1) lockstep runs on libsumo watch; adg runs only when asked (a poll of every
+  // lane per tick is not free on a large net).
+  const bool watch = !rotation && (cfg.rules.watch_lanes == 1 || (cfg.rules.watch_lanes < 0 &&
+                                                                   cfg.run.backend == "libsumo" && cfg.run.executor == "lockstep"));
   if (!closures.empty() || !zones.empty()) {
     if (cfg.planner.rotation_solver())
       fail("rules", "closures and one-at-a-time zones need a cell solver (rtlacam | naive | pibt | cspibt): " +
                         cfg.planner.solver + " refuses the directed graph they make");
-  }
-  if (watch && cfg.planner.rotation_solver()) {
-    // The rotation solvers cannot take a closed graph; nothing to watch for them.
   }
 
   // Zones: cells, not a cut, not two one-shot goals.

@@ -249,6 +249,9 @@ void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
   planner::Config at(ins_.num_agents());
   for (int i = 0; i < ins_.num_agents(); ++i) at[i] = adg.at(i);
   if (changed) {
+    std::vector<std::string> edges;  // SUMO refuses routes through these now
+    for (const std::string& l : rules_->lanes_closed()) edges.push_back(l.substr(0, l.rfind('_')));
+    cmd_->avoid_edges(std::move(edges));
     ++m_.rules.closure_changes;
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
     std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed\n", t, rules_->num_closed());

@@ -160,7 +160,12 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
     // The rules' new graph (rules.hpp), built from where the moves in progress end: AGVs
     // whose moves end on cells just closed leave them by the evacuation arcs.
     zone_occ_ = cfg_.rules.enforce_zones ? rules_->blocked_zones(from) : std::vector<uint8_t>(rules_->zones().size(), 0);
-    auto rg = std::make_unique<planner::Graph>(rules_->graph(zone_occ_, cfg_.rules.enforce_closures));
+    // Frozen (watched lanes SUMO closed): the lane each AGV's front is on when its moves in
+    // progress end -- the Commander's pose is the last running move's target.
+    std::vector<std::string> lanes(n);
+    for (int i = 0; i < n; ++i) lanes[i] = cmd_->pose(i).lane;
+    auto rg = std::make_unique<planner::Graph>(
+        rules_->graph(zone_occ_, cfg_.rules.enforce_closures, rules_->frozen_cells(from, lanes)));
     const planner::Config eff = rule_goals(*rg, from);
     replan_expansions_ += p_->expansions();
     // The old planner goes first (it still refers to the old graph), then the old graph.

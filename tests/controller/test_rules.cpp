@@ -294,10 +294,10 @@ TEST(Rules, BadRulesAreOneLineErrors)
   e = ctest_util::config_error("sumo: {net: ../sumo_scenarios/small.net.xml}\nfleet: {count: 2}\n"
                                "rules:\n  zones:\n    - {id: z}\n");
   EXPECT_NE(e.find("rules.zones[0]: a zone with no cells"), std::string::npos) << e;
-  Config adg = rules_config("bad7", kAround, "", "rules: {watch_lanes: true}\n");
-  adg.run.executor = "adg";
-  e = error(adg);
-  EXPECT_NE(e.find("rules.watch_lanes: only with run.executor: lockstep"), std::string::npos) << e;
+  Config rot = rules_config("bad7", kAround, "", "rules: {watch_lanes: true}\n");
+  rot.planner.solver = "pibt-rot";
+  e = error(rot);
+  EXPECT_NE(e.find("rules.watch_lanes: needs a cell solver (rtlacam | naive | pibt | cspibt), not pibt-rot"), std::string::npos) << e;
 }
 
 TEST(Rules, AClosureThatIsolatesAGoalIsNamedAndTheAgvWaits)
@@ -467,6 +467,38 @@ TEST(Rules, AdgFollowClosureReplansFromTheObservedState)
   const Metrics mo = co.run();
   EXPECT_NE(mo.error.find("entered closed cell"), std::string::npos) << mo.error;
   EXPECT_EQ(mo.violations, 1);
+}
+
+// adg-follow and a closure over TraCI (another client disallows the AGVs' class on both
+// lanes of aisle c1 at tick 3, allows it again at tick 25): the lane watch sees it at the
+// tick boundary and the replan routes around it from the observed state; AGVs on those
+// lanes wait where their moves in progress end (SUMO refuses every route from them).
+// Without the watch SUMO refuses a route the plan needs.
+TEST(Rules, AdgFollowLanePermissionChangedOverTraciReplans)
+{
+  auto close_c1 = [](long long tick, SumoBackend&) {
+    if (tick == 3)
+      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"passenger"});
+    if (tick == 25)
+      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
+  };
+  Config cfg = rules_config("adg_traci", kAround, "", "rules: {watch_lanes: true}\n");
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  c.on_tick = close_c1;
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(m.rules.closure_changes, 2);
+  EXPECT_GE(m.rules.replans, 2);
+  ASSERT_EQ(m.goal_s.size(), 3u);
+  EXPECT_GE(m.goal_s[0], 25.0);
+
+  Config off = rules_config("adg_traci_off", kAround, "", "rules: {watch_lanes: false}\n");
+  off.run.executor = "adg-follow";
+  Controller co(off);
+  co.on_tick = close_c1;
+  const Metrics mo = co.run();
+  EXPECT_NE(mo.error.find("Route replacement failed"), std::string::npos) << mo.error;
 }
 
 // adg-follow with AGVs inside the aisle when its closure begins (1 s, all driving): the
