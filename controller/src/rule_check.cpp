@@ -19,7 +19,7 @@ void RuleCheck::check(const std::vector<VehiclePose>& poses, const std::vector<s
   // Nothing closed and no zone: nothing to violate (every libsumo run watches lanes). The
   // next check with something closed starts afresh: at a tick boundary every AGV stands on
   // its cell, and none crosses half a cell within one SUMO step.
-  if (rules_.num_closed() == 0 && rules_.zones().empty()) {
+  if (!rules_.anything_closed() && rules_.zones().empty()) {
     last_.clear();
     return;
   }
@@ -39,6 +39,9 @@ void RuleCheck::check(const std::vector<VehiclePose>& poses, const std::vector<s
       if (v >= 0 && v != u && closed[v] && (u < 0 || !closed[u]) && !excused(i, v))
         throw ControlError(when + ids[i] + " entered closed cell " + std::to_string(v) + " (" + poses[i].lane +
                            ", closed by " + rules_.closed_by(v) + ")");
+      if (v >= 0 && u >= 0 && v != u && rules_.arc_closed(u, v) && !excused(i, v))
+        throw ControlError(when + ids[i] + " drove cell " + std::to_string(u) + " -> " + std::to_string(v) + " (" +
+                           poses[i].lane + ") against a one-direction closure (" + rules_.arc_closed_by(u, v) + ")");
     }
   last_ = at;
   const std::vector<Zone>& zones = rules_.zones();

@@ -232,7 +232,8 @@ void Run::rules_tick(const planner::Config& cur)
     cmd_->avoid_edges(std::move(edges));
     ++m_.rules.closure_changes;
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
-    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed\n", t, rules_->num_closed());
+    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
+                 rules_->num_closed(), rules_->closed_arcs().size());
     rules_restart(cur);
   } else if (cfg_.rules.enforce_zones && rules_->blocked_zones(cur) != zone_occ_) {
     rules_restart(cur);
@@ -254,7 +255,8 @@ void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
     cmd_->avoid_edges(std::move(edges));
     ++m_.rules.closure_changes;
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
-    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed\n", t, rules_->num_closed());
+    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
+                 rules_->num_closed(), rules_->closed_arcs().size());
   }
   // (enforce_closures off: the planner keeps its graph, RuleCheck sees what follows.)
   const bool regraph = (changed && cfg_.rules.enforce_closures) ||

@@ -119,7 +119,7 @@ class Run {
   bool proven_unsolvable() const
   {
     if (tm_ || !p_ || !p_->exhausted()) return false;
-    return !rules_ || (rules_->num_closed() == 0 && std::find(zone_occ_.begin(), zone_occ_.end(), 1) == zone_occ_.end());
+    return !rules_ || (!rules_->anything_closed() && std::find(zone_occ_.begin(), zone_occ_.end(), 1) == zone_occ_.end());
   }
 
   const Config& cfg_;

@@ -8,6 +8,8 @@
 //     may be driving when a closure begins, and a moving AGV cannot stop on a cell
 //     boundary: the targets of its moves then in progress count as its cells (excuse());
 //     the excuse ends when it leaves them;
+//   - no AGV drives along an arc closed one way (one lane of a two-way aisle closed): the
+//     cell nearest its front changes from u to v with u -> v closed (excuse() as above);
 //   - no one-at-a-time zone holds two AGVs: at most one front is nearest a cell of a zone.
 // A violation is a ControlError (like every Safety violation: exit 3, metrics.json error)
 // naming the AGVs, the cell or zone, what closed it and the time.

@@ -38,6 +38,7 @@
 // an AGV parked in it would cut every route between them.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "controller/config.hpp"
@@ -86,6 +87,12 @@ class Rules {
   const std::vector<uint8_t>& closed() const { return closed_; }
   int num_closed() const { return num_closed_; }
   std::string closed_by(planner::Vertex v) const;  // what closes it ("" if open)
+  // One-direction closures: the arcs u -> v closed now (one lane of a two-way aisle).
+  using Arc = std::pair<planner::Vertex, planner::Vertex>;
+  const std::vector<Arc>& closed_arcs() const { return closed_arcs_; }  // sorted
+  bool arc_closed(planner::Vertex u, planner::Vertex v) const;
+  std::string arc_closed_by(planner::Vertex u, planner::Vertex v) const;  // "" if open
+  bool anything_closed() const { return num_closed_ > 0 || !closed_arcs_.empty(); }
 
   const std::vector<Zone>& zones() const { return zones_; }
   const std::vector<std::vector<int>>& zones_of() const { return zone_of_; }  // cell -> zone indices
@@ -123,7 +130,12 @@ class Rules {
   int count_held(const std::vector<int>& gated, const planner::Config& at);
 
  private:
+  // Closed lanes -> the cells they close: the interior cells of an aisle all of whose lanes
+  // are closed, and a junction cell whose every aisle lane is closed.
   std::vector<uint8_t> cells_of_lanes(const std::vector<std::string>& lanes) const;
+  // Closed lanes -> the arcs they close: along a closed lane of a two-way aisle whose other
+  // lane is open, from its first junction cell to its last.
+  std::vector<Arc> arcs_of_lanes(const std::vector<std::string>& lanes) const;
 
   const gridify::CellMap& map_;
   std::vector<Closure> closures_;
@@ -134,6 +146,8 @@ class Rules {
   std::vector<uint8_t> closed_;
   std::vector<int> closer_;  // cell -> closure index, -2: a watched lane, -1: open
   int num_closed_ = 0;
+  std::vector<Arc> closed_arcs_;  // sorted
+  std::vector<int> arc_closer_;   // per closed arc: closure index, -2: a watched lane
   std::vector<uint8_t> waiting_;          // agent -> waiting for a closure (for the lines)
   std::vector<long long> zone_wait_;      // agent -> ticks held at a zone entry
   std::vector<int> zone_held_;            // zone -> ticks in a row an entrant was held
