@@ -9,33 +9,54 @@
 //     once per tick on the lanes gridify mapped (rules.watch_lanes). SUMO itself then
 //     refuses routes over it, so AGVs on such a lane wait there (frozen_cells());
 //   - YAML: rules.closures [{lanes, edges, cells, begin, end}].
-//   A closed lane closes the interior cells of its aisle (both directions share them); a
-//   junction cell is closed when every aisle lane at it is closed. SUMO 1.15's rerouter does
-//   not show its closures in Lane.getAllowed (measured), hence the file is read instead.
+//   Closing every lane of an aisle (both of a two-way one) closes its interior cells; a
+//   junction cell is closed when every aisle lane at it is closed. Closing one lane of a
+//   two-way aisle (one edge: a closingReroute of one edge, a permission changed on one lane,
+//   `lanes:` naming one direction) closes only that direction: the arcs along it, from its
+//   first junction cell to its last (closed_arcs()); the cells stay usable the other way.
+//   SUMO 1.15's rerouter does not show its closures in Lane.getAllowed (measured), hence the
+//   file is read instead.
 // One-at-a-time zones: a set of cells (an <poly type="rtlacam.zone"> in sumo.additional:
 //   the cells whose centre lies inside; or rules.zones [{id, lanes, edges, cells}]) holding
 //   at most one AGV at any time.
 //
-// How the controller keeps them (lockstep, run_loops.cpp):
+// How the controller keeps them:
 //   - the planner plans on graph(): no arc into a closed cell (planner/blocked.hpp: AGVs on
-//     a cell being closed leave it or wait), and no arc from outside into a zone whose
-//     occupant keeps others waiting (blocked_zones()); a change of either restarts the
-//     planner at the current configuration (a new epoch), so the search never carries a
-//     tree built on another graph;
+//     a cell being closed leave it or wait), no arc closed one way, and no arc from outside
+//     into a zone whose occupant keeps others waiting (blocked_zones()); a change of either
+//     restarts the planner (a new epoch), so the search never carries a tree built on
+//     another graph. Lockstep restarts it at the current configuration; adg / adg-follow
+//     (Run::rules_tick_adg) replan from the observed state with the stuck-AGV replan
+//     (stuck_replan.hpp, Run::replan with regraph): the committed plan is cut at each
+//     AGV's progress, the moves in progress finish (a moving AGV cannot stop on a cell
+//     boundary: one driving into a cell as it closes gets there, then leaves like one that
+//     stood on it; RuleCheck excuses that entry), and the planner on the new graph starts
+//     where they end, the stuck AGVs still immobile;
 //   - an AGV whose goal it cannot reach on that graph (its goal closed or cut off, or in an
 //     occupied zone) waits: its planner goal becomes the nearest reachable cell that is
 //     open, outside every zone and nobody's goal (goals()); one line names it when a
 //     closure is the cause; a one-shot run is solved only once every AGV is on its real goal;
-//   - admit(): the step the planner committed may still take two AGVs into a free zone at
-//     once; all but one are held (with whoever would move into a held AGV's cell), and the
-//     planner restarts from the configuration executed.
+//   - lockstep, admit(): the step the planner committed may still take two AGVs into a free
+//     zone at once; all but one are held (with whoever would move into a held AGV's cell),
+//     and the planner restarts from the configuration executed;
+//   - adg / adg-follow, the Driver's zone mutex (Driver::set_zones): a move into a zone
+//     starts only while no other AGV stands in it for the ADG or runs a move into it; held
+//     entrants are counted (count_held()) like admit()'s, so after kBlockAfter ticks the
+//     zone leaves the planner's graph (a replan) until it empties. The mutex only delays
+//     starts; the ADG's order and the dependency DAG are unchanged.
 // Safety checks both independently on SUMO's poses (rule_check.hpp).
 //
-// Completeness: while cells are closed or zones occupied the planner is a fresh RT-LaCAM on
-// a smaller directed graph per change, with no guarantee across changes; a closure that
-// ends and zones that empty restore the real graph and goals, and so RT-LaCAM's
-// completeness from there (rt_lacam.hpp). A zone that cuts the net into pieces is refused:
-// an AGV parked in it would cut every route between them.
+// Completeness: while cells or arcs are closed or zones occupied the planner is a fresh
+// RT-LaCAM on a smaller directed graph per change, complete for the instance on that graph
+// when every AGV's goal there (its real goal, or its waiting cell) is reachable
+// (rt_lacam.hpp), with no guarantee across changes. A one-direction closure leaves the
+// aisle's cells usable the other way, so the graph stays strongly connected unless that
+// lane was the only way into or out of some cells (a two-way dead-end stub: its far cells
+// can then be entered but not left, or left but not entered; the AGVs whose goals it cuts
+// off wait, as for closed cells). A closure that ends and zones that empty restore the real
+// graph and goals, and so RT-LaCAM's completeness from there (rt_lacam.hpp; under adg with
+// the ADG's deadlock freedom, as after the last stuck replan). A zone that cuts the net into
+// pieces is refused: an AGV parked in it would cut every route between them.
 #include <memory>
 #include <string>
 #include <utility>
@@ -67,7 +88,8 @@ class Rules {
   // From the config and sumo.additional; nullptr when there is nothing to keep (no closure,
   // no zone, no lanes to watch). Bad input throws ConfigError (one line naming the object):
   // an unknown lane or edge, end < begin, a zone with no cells or one that cuts the net, two
-  // one-shot goals in one zone, rules with an executor or solver that cannot keep them.
+  // one-shot goals in one zone, rules with a solver that cannot keep them (rotation), the
+  // lane watch with a rotation solver.
   // `goals`: one-shot goals (empty for lifelong), checked against every closure: one whose
   // cells close or cut off a goal is reported in `warnings` (the AGV will wait).
   // `starts`: no zone may hold two of them either.
