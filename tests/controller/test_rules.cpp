@@ -667,3 +667,47 @@ tasks:
     EXPECT_NE(mo.error.find("against a one-direction closure (rules.closures[0])"), std::string::npos) << mo.error;
   }
 }
+
+// The same one-direction closure from SUMO: another TraCI client disallows the AGVs' class on
+// the up lane of aisle c1 only. The lane watch closes that direction's arcs, not the cells:
+// agv0 still goes down the aisle, agv1 goes round. Without the watch SUMO refuses the route
+// the plan needs up the aisle.
+TEST(Rules, OneLanePermissionChangedOverTraciClosesOneDirection)
+{
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c0r1_c1r1_0, pos: 3}
+    - {lane: c2r0_c1r0_0, pos: 3}
+tasks:
+  mode: one_shot
+  goals:
+    - {lane: c1r0_c2r0_0, pos: 2}
+    - {lane: c1r1_c0r1_0, pos: 2}
+)";
+  auto close_up = [](long long tick, SumoBackend&) {
+    if (tick == 0) libsumo::Lane::setDisallowed("c1r0_c1r1_0", {"passenger"});
+  };
+  for (const char* executor : {"lockstep", "adg-follow"}) {
+    SCOPED_TRACE(executor);
+    Config cfg = rules_config(std::string("one_lane_traci_") + executor, agents, "", "rules: {watch_lanes: true}\n");
+    cfg.run.executor = executor;
+    Controller c(cfg);
+    c.on_tick = close_up;
+    const Metrics m = c.run();
+    expect_clean(cfg, c, m);
+    EXPECT_EQ(m.rules.closure_changes, 1);
+    EXPECT_EQ(m.rules.max_closed, 0);  // the cells stay open the other way
+    const std::vector<planner::Vertex> aisle = aisle_cells(c.map(), kAisleC1);
+    bool down = false;  // agv0 drove down the aisle
+    for (const planner::Config& q : c.plan()) down = down || in(aisle, q[0]);
+    EXPECT_TRUE(down);
+
+    Config off = rules_config(std::string("one_lane_traci_off_") + executor, agents, "", "rules: {watch_lanes: false}\n");
+    off.run.executor = executor;
+    Controller co(off);
+    co.on_tick = close_up;
+    const Metrics mo = co.run();
+    EXPECT_NE(mo.error.find("Route replacement failed"), std::string::npos) << mo.error;
+  }
+}
