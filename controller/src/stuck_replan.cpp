@@ -159,7 +159,9 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   if (regraph) {
     // The rules' new graph (rules.hpp), built from where the moves in progress end: AGVs
     // whose moves end on cells just closed leave them by the evacuation arcs.
-    zone_occ_ = cfg_.rules.enforce_zones ? rules_->blocked_zones(from) : std::vector<uint8_t>(rules_->zones().size(), 0);
+    // Zones blocked as Run::rules_tick_adg sees them (where the ADG has the AGVs: one whose
+    // move out of a zone runs still holds it), so the next tick compares like with like.
+    zone_occ_ = cfg_.rules.enforce_zones ? rules_->blocked_zones(at) : std::vector<uint8_t>(rules_->zones().size(), 0);
     // Frozen (watched lanes SUMO closed): the lane each AGV's front is on when its moves in
     // progress end -- the Commander's pose is the last running move's target.
     std::vector<std::string> lanes(n);
