@@ -3,14 +3,17 @@
 
 For each warehouse, four runs of rtlacam-sumo in the same invocation, identical but for the
 rules: off (no closure, no zone, no lane watch), closure (a picking aisle closed over
-[20 %, 50 %) of the run, as a YAML event), zone (a cross aisle as a one-at-a-time zone), both.
+[20 %, 50 %) of the run, as a YAML event), one-way closure (only its first direction's lane
+closed over the same window: the cells stay open the other way), zone (a cross aisle as a
+one-at-a-time zone), both (closure and zone). --executor runs them all under lockstep, adg or
+adg-follow (default: the config's).
 The planner has a fixed number of expansions per SUMO step (deterministic decisions, so the
 rules alone make the difference). Prints errands per tick, the ratio to "off", the longest
 any AGV spent on one errand, and the rule counters; every run must end clean (0 violations,
 0 jumps / re-syncs; the script says so).
 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
-                         [--skip-large]
+                         [--skip-large] [--executor lockstep|adg|adg-follow]
 """
 import argparse
 import json
@@ -34,7 +37,7 @@ WAREHOUSES = [
 ]
 
 
-def run(build, base, out, ticks, expansions, rules):
+def run(build, base, out, ticks, expansions, rules, executor=None):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
     for k in ("net", "additional"):
@@ -45,6 +48,8 @@ def run(build, base, out, ticks, expansions, rules):
     cfg["planner"]["expansions"] = expansions
     cfg["run"]["max_ticks"] = ticks
     cfg["run"]["progress_s"] = 0
+    if executor:
+        cfg["run"]["executor"] = executor
     cfg["output"] = {"dir": out, "congestion": False}
     cfg["rules"] = rules
     path = out + ".yaml"
@@ -64,10 +69,12 @@ def main():
     ap.add_argument("--large-ticks", type=int, default=500)
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--skip-large", action="store_true")
+    ap.add_argument("--executor", choices=["lockstep", "adg", "adg-follow"])
     a = ap.parse_args()
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
     clean = True
+    print(f"executor: {a.executor or 'as in the config'}")
     print("| warehouse | rules | ticks | errands/tick | vs off | max ticks on one errand | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:
@@ -75,24 +82,26 @@ def main():
             continue
         ticks = getattr(a, tick_opt)
         closure_rule = [{"edges": closure, "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]
+        one_way_rule = [{"edges": closure[:1], "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]
         zone_rule = None
         for z in zones:  # a zone holding no two random starts
             m, err = run(build, base, os.path.join(tmp, "probe"), 1, a.expansions,
-                         {"sumo": False, "watch_lanes": False, "zones": [{"id": "z", "edges": z}]})
+                         {"sumo": False, "watch_lanes": False, "zones": [{"id": "z", "edges": z}]}, a.executor)
             if m is not None:
                 zone_rule = [{"id": "z", "edges": z}]
                 break
         if zone_rule is None:
             print(f"# {name}: every candidate zone holds two starts: {err}", file=sys.stderr)
             return 1
-        variants = [("off", {}), ("closure", {"closures": closure_rule}), ("zone", {"zones": zone_rule}),
+        variants = [("off", {}), ("closure", {"closures": closure_rule}),
+                    ("one-way closure (" + closure[0] + ")", {"closures": one_way_rule}), ("zone", {"zones": zone_rule}),
                     ("both", {"closures": closure_rule, "zones": zone_rule})]
         base_rate = None
         for label, extra in variants:
             rules = {"sumo": False, "watch_lanes": False}
             rules.update(extra)
-            out = os.path.join(tmp, name.split()[0] + "_" + label)
-            m, err = run(build, base, out, ticks, a.expansions, rules)
+            out = os.path.join(tmp, name.split()[0] + "_" + label.split()[0])
+            m, err = run(build, base, out, ticks, a.expansions, rules, a.executor)
             if m is None:
                 print(f"# {name} {label}: {err}", file=sys.stderr)
                 return 1

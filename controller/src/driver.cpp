@@ -67,7 +67,8 @@ double Driver::lane_cap(int i) const
 }
 
 Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& delays, const DriveParams& p)
-    : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents()), waiting_start_(adg.num_agents(), 0)
+    : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents()), waiting_start_(adg.num_agents(), 0),
+      gated_(adg.num_agents(), -1)
 {
   for (int i = 0; i < adg.num_agents(); ++i) agv_[i].lane = cmd_.pose(i).lane;
 }
@@ -77,6 +78,7 @@ void Driver::begin(int id)
   const executor::Action& a = adg_.action(id);
   Agv& g = agv_[a.agent];
   g.run.push_back(id);
+  gated_[a.agent] = -1;
   const gridify::SumoPose from = cmd_.pose(a.agent);
   g.dist.push_back(cmd_.begin_move(a.agent, a.from, a.to));
   g.target.push_back(cmd_.pose(a.agent));
@@ -86,6 +88,26 @@ void Driver::begin(int id)
   g.from.push_back(turned ? gridify::SumoPose{to.lane, to.pos - g.dist.back()} : from);
   st_.followed += a.handover >= 0 && adg_.action(a.handover).state != executor::State::Done &&
                   !(a.group >= 0 && adg_.action(a.handover).group == a.group);
+}
+
+bool Driver::zone_free(int i, planner::Vertex from, planner::Vertex to)
+{
+  if (!zone_of_) return true;
+  const std::vector<std::vector<int>>& zo = *zone_of_;
+  auto in = [&](planner::Vertex v, int z) { return std::find(zo[v].begin(), zo[v].end(), z) != zo[v].end(); };
+  for (int z : zo[to]) {
+    if (in(from, z)) continue;  // already inside: it holds the zone
+    for (int j = 0; j < adg_.num_agents(); ++j) {
+      if (j == i) continue;
+      bool holds = in(adg_.at(j), z);
+      for (int id : agv_[j].run) holds = holds || in(adg_.action(id).to, z);
+      if (holds) {
+        gated_[i] = z;
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 bool Driver::faces(int i, int id)
@@ -138,7 +160,8 @@ bool Driver::start_moves(int i, bool count)
       for (int m : group) {
         const int j = adg_.action(m).agent;
         go = go && !delays_.stopped(j) && agv_[j].run.empty() && (j == i || faces(j, m)) &&
-             (!cmd_.needs_rest(j, adg_.action(m).from, adg_.action(m).to) || agv_[j].rest_steps > 0);
+             (!cmd_.needs_rest(j, adg_.action(m).from, adg_.action(m).to) || agv_[j].rest_steps > 0) &&
+             zone_free(j, adg_.action(m).from, adg_.action(m).to);
       }
       waiting_start_[i] = !go;
       if (!go) return false;
@@ -160,6 +183,7 @@ bool Driver::start_moves(int i, bool count)
       if (id < 0 || !(p_.follow ? adg_.chainable_following(id) : adg_.chainable(id))) break;
       const executor::Action& a = adg_.action(id);
       if (cmd_.needs_rest(i, a.from, a.to)) break;
+      if (!zone_free(i, a.from, a.to)) break;
       if (cmd_.headings() && cmd_.move_heading(a.from, a.to) != cmd_.heading(i)) break;  // a turn: at rest
       if (cmd_.changes_lane(i, a.from, a.to) && g.lane != cmd_.pose(i).lane) break;
       // Following: the new leader's back may pull the stopping point back (a leader chained
@@ -186,6 +210,7 @@ void Driver::before_step()
   const int n = adg_.num_agents();
   // Starts in passes: a move released by a start earlier in this step (a leader that began
   // leaving the cell) starts in the same step, not one SUMO step later per AGV of a queue.
+  std::fill(gated_.begin(), gated_.end(), -1);
   for (int i = 0; i < n; ++i) start_moves(i, true);
   for (bool more = p_.same_step_starts; more;) {
     more = false;

@@ -125,18 +125,17 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
       zones.push_back(std::move(z));
     }
   }
-  const bool lockstep = cfg.run.executor == "lockstep";
-  if (cfg.rules.watch_lanes == 1 && !lockstep) fail("rules.watch_lanes", "only with run.executor: lockstep");
-  const bool watch = lockstep && (cfg.rules.watch_lanes == 1 || (cfg.rules.watch_lanes < 0 && cfg.run.backend == "libsumo"));
+  const bool rotation = cfg.planner.rotation_solver();
+  if (cfg.rules.watch_lanes == 1 && rotation)
+    fail("rules.watch_lanes", "needs a cell solver (rtlacam | naive | pibt | cspibt), not " + cfg.planner.solver);
+  // By default (-1) lockstep runs on libsumo watch; adg runs only when asked (a poll of every
+  // lane per tick is not free on a large net).
+  const bool watch = !rotation && (cfg.rules.watch_lanes == 1 || (cfg.rules.watch_lanes < 0 &&
+                                                                   cfg.run.backend == "libsumo" && cfg.run.executor == "lockstep"));
   if (!closures.empty() || !zones.empty()) {
-    if (!lockstep)
-      fail("rules", "closures and one-at-a-time zones need run.executor: lockstep (not yet with " + cfg.run.executor + ")");
     if (cfg.planner.rotation_solver())
       fail("rules", "closures and one-at-a-time zones need a cell solver (rtlacam | naive | pibt | cspibt): " +
                         cfg.planner.solver + " refuses the directed graph they make");
-  }
-  if (watch && cfg.planner.rotation_solver()) {
-    // The rotation solvers cannot take a closed graph; nothing to watch for them.
   }
 
   // Zones: cells, not a cut, not two one-shot goals.
@@ -177,8 +176,12 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
   for (const Closure& c : rules->closures_) {
     std::vector<uint8_t> closed = rules->cells_of_lanes(c.lanes);
     for (planner::Vertex v : c.cells) closed[v] = 1;
+    std::vector<Arc> arcs = rules->arcs_of_lanes(c.lanes);
+    std::sort(arcs.begin(), arcs.end());
+    const planner::Graph open = planner::without_arcs(
+        g, [&](planner::Vertex u, planner::Vertex v) { return std::binary_search(arcs.begin(), arcs.end(), Arc{u, v}); });
     int n = 0;
-    const std::vector<int> comp = g.strong_components(&n, &closed);
+    const std::vector<int> comp = open.strong_components(&n, &closed);
     std::vector<int> size(n, 0);
     for (int k : comp)
       if (k >= 0) ++size[k];
@@ -212,6 +215,8 @@ std::vector<uint8_t> Rules::cells_of_lanes(const std::vector<std::string>& lanes
   std::unordered_set<std::string> shut(lanes.begin(), lanes.end());
   for (const std::string& l : shut) {
     const gridify::Aisle& a = map_.aisles[map_.lane_aisle.at(l).first];
+    // One lane of a two-way aisle: only its direction closes (arcs_of_lanes()).
+    if (!shut.count(a.lane_ab) || (!a.lane_ba.empty() && !shut.count(a.lane_ba))) continue;
     for (size_t k = 1; k + 1 < a.cells.size(); ++k) closed[a.cells[k]] = 1;
   }
   // A junction cell closes with the last open aisle lane at it.
@@ -229,14 +234,41 @@ std::vector<uint8_t> Rules::cells_of_lanes(const std::vector<std::string>& lanes
   return closed;
 }
 
+std::vector<Rules::Arc> Rules::arcs_of_lanes(const std::vector<std::string>& lanes) const
+{
+  std::vector<Arc> out;
+  std::unordered_set<std::string> shut(lanes.begin(), lanes.end());
+  for (const std::string& l : shut) {
+    const gridify::Aisle& a = map_.aisles[map_.lane_aisle.at(l).first];
+    if (a.lane_ba.empty() || (shut.count(a.lane_ab) && shut.count(a.lane_ba))) continue;  // cells close
+    const bool ab = l == a.lane_ab;
+    for (size_t k = 0; k + 1 < a.cells.size(); ++k)
+      out.push_back(ab ? Arc{a.cells[k], a.cells[k + 1]} : Arc{a.cells[k + 1], a.cells[k]});
+  }
+  return out;
+}
+
+bool Rules::arc_closed(planner::Vertex u, planner::Vertex v) const
+{
+  return std::binary_search(closed_arcs_.begin(), closed_arcs_.end(), Arc{u, v});
+}
+
+std::string Rules::arc_closed_by(planner::Vertex u, planner::Vertex v) const
+{
+  const auto it = std::lower_bound(closed_arcs_.begin(), closed_arcs_.end(), Arc{u, v});
+  if (it == closed_arcs_.end() || *it != Arc{u, v}) return "";
+  const int c = arc_closer_[it - closed_arcs_.begin()];
+  return c == -2 ? "a lane SUMO closed for the AGVs' class" : closures_[c].what;
+}
+
 bool Rules::update(double t, SumoBackend* sumo)
 {
-  std::vector<std::string> lanes;  // closed lanes now
   std::vector<int> who(map_.graph.size(), -1);
-  std::vector<std::string> by_lane;
+  std::vector<std::pair<Arc, int>> arcs;  // one-direction closures: arc, closer
   for (size_t c = 0; c < closures_.size(); ++c) {
     const Closure& cl = closures_[c];
     if (t < cl.begin || t >= cl.end) continue;
+    for (const Arc& a : arcs_of_lanes(cl.lanes)) arcs.push_back({a, static_cast<int>(c)});
     const std::vector<uint8_t> cells = cells_of_lanes(cl.lanes);
     for (planner::Vertex v = 0; v < static_cast<planner::Vertex>(cells.size()); ++v)
       if (cells[v] && who[v] < 0) who[v] = static_cast<int>(c);
@@ -253,11 +285,22 @@ bool Rules::update(double t, SumoBackend* sumo)
         lanes_closed_.push_back(l);
     }
   if (!lanes_closed_.empty()) {
+    for (const Arc& a : arcs_of_lanes(lanes_closed_)) arcs.push_back({a, -2});
     const std::vector<uint8_t> cells = cells_of_lanes(lanes_closed_);
     for (planner::Vertex v = 0; v < static_cast<planner::Vertex>(cells.size()); ++v)
       if (cells[v] && who[v] < 0) who[v] = -2;
   }
   bool changed = lanes_closed_ != lanes_before;  // (the routes must avoid the new set)
+  // Closed arcs (first closer named); two closures of the same lane's two directions in
+  // different closures leave both directions' arcs closed, the cells open: still no way in.
+  std::stable_sort(arcs.begin(), arcs.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Arc> closed_arcs;
+  std::vector<int> arc_closer;
+  for (const auto& [a, c] : arcs)
+    if (closed_arcs.empty() || closed_arcs.back() != a) closed_arcs.push_back(a), arc_closer.push_back(c);
+  changed = changed || closed_arcs != closed_arcs_;
+  closed_arcs_ = std::move(closed_arcs);
+  arc_closer_ = std::move(arc_closer);
   num_closed_ = 0;
   for (size_t v = 0; v < who.size(); ++v) {
     const uint8_t c = who[v] != -1;
@@ -303,10 +346,12 @@ planner::Graph Rules::graph(const std::vector<uint8_t>& occupied, bool closures,
 {
   const planner::Graph& g = map_.graph;
   const bool any_closed = closures && num_closed_ > 0;
+  const bool any_arcs = closures && !closed_arcs_.empty();
   const bool any_occupied = std::find(occupied.begin(), occupied.end(), 1) != occupied.end();
   const bool any_frozen = closures && std::find(frozen.begin(), frozen.end(), 1) != frozen.end();
   auto none = [](planner::Vertex, planner::Vertex) { return false; };
   planner::Graph b = any_closed ? planner::blocked_graph(g, closed_) : planner::without_arcs(g, none);
+  if (any_arcs) b = planner::without_arcs(b, [&](planner::Vertex u, planner::Vertex v) { return arc_closed(u, v); });
   if (any_frozen) b = planner::without_arcs(b, [&](planner::Vertex u, planner::Vertex) { return frozen[u] != 0; });
   if (!any_occupied) return b;
   // Into an occupied zone from outside it: nobody but its occupant may be in it.
@@ -350,7 +395,7 @@ planner::Config Rules::goals(const planner::Graph& g, const planner::Config& at,
   }
   // Lines: an AGV starts or stops waiting because of a closure.
   for (size_t i = 0; i < n; ++i) {
-    const bool for_closure = waiting[i] && num_closed_ > 0;
+    const bool for_closure = waiting[i] && (num_closed_ > 0 || !closed_arcs_.empty());
     if (for_closure == static_cast<bool>(waiting_[i])) continue;
     waiting_[i] = for_closure;
     char when[48];
@@ -365,6 +410,20 @@ planner::Config Rules::goals(const planner::Graph& g, const planner::Config& at,
       lines.push_back(when + id + " waits: its goal (cell " + std::to_string(goals[i]) + ") is cut off by closed cells");
   }
   return eff;
+}
+
+int Rules::count_held(const std::vector<int>& gated, const planner::Config& at)
+{
+  if (zone_held_.size() != zones_.size()) zone_held_.assign(zones_.size(), 0);
+  const std::vector<uint8_t> occ = occupied(at);
+  std::vector<uint8_t> held(zones_.size(), 0);
+  int n = 0;
+  for (int z : gated)
+    if (z >= 0) held[z] = 1, ++n;
+  for (size_t z = 0; z < zones_.size(); ++z)
+    if (held[z]) ++zone_held_[z];
+    else if (!occ[z]) zone_held_[z] = 0;  // empty again: the count starts over with the next occupant
+  return n;
 }
 
 int Rules::admit(const planner::Config& cur, planner::Config& next)

@@ -166,10 +166,8 @@ void Run::prepare()
   }
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
-  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck && !cfg_.planner.rotation_solver()) {
+  if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck && !cfg_.planner.rotation_solver())
     stuck_ = std::make_unique<StuckWatch>(ins_.num_agents(), cfg_.run.stuck_after_s, cfg_.sumo.step_length);
-    val_final_.emplace(g, ins_.starts, goals);
-  }
   budget_ = planner::Budget{cfg_.planner.budget_ms > 0 ? cfg_.planner.budget_ms : planner::Budget{}.ms,
                             cfg_.planner.expansions > 0 ? cfg_.planner.expansions : planner::Budget{}.expansions};
   // With a time budget the search starts an expansion only if its costliest one so far
@@ -189,6 +187,8 @@ void Run::prepare()
     // Only watched lanes: the planner stays the one built above until one closes.
     if (rules_->configured()) rules_restart(ins_.starts);
   }
+  // adg: the replans (stuck AGVs, rules) re-validate the cut plan from the final prefix.
+  if (stuck_ || (rules_ && cfg_.run.executor != "lockstep")) val_final_.emplace(g, ins_.starts, goals);
 }
 
 void Run::rules_restart(const planner::Config& at)
@@ -232,10 +232,38 @@ void Run::rules_tick(const planner::Config& cur)
     cmd_->avoid_edges(std::move(edges));
     ++m_.rules.closure_changes;
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
-    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed\n", t, rules_->num_closed());
+    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
+                 rules_->num_closed(), rules_->closed_arcs().size());
     rules_restart(cur);
   } else if (cfg_.rules.enforce_zones && rules_->blocked_zones(cur) != zone_occ_) {
     rules_restart(cur);
+  }
+  for (uint8_t w : waiting_) m_.rules.waits += w;
+}
+
+void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
+{
+  const double t = m_.ticks * cfg_.run.tick_s;
+  const auto t0 = Clock::now();
+  const bool changed = rules_->update(t, sumo_.get());
+  m_.rules.poll_ms += ms_since(t0);
+  planner::Config at(ins_.num_agents());
+  for (int i = 0; i < ins_.num_agents(); ++i) at[i] = adg.at(i);
+  if (changed) {
+    std::vector<std::string> edges;  // SUMO refuses routes through these now
+    for (const std::string& l : rules_->lanes_closed()) edges.push_back(l.substr(0, l.rfind('_')));
+    cmd_->avoid_edges(std::move(edges));
+    ++m_.rules.closure_changes;
+    m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
+    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
+                 rules_->num_closed(), rules_->closed_arcs().size());
+  }
+  // (enforce_closures off: the planner keeps its graph, RuleCheck sees what follows.)
+  const bool regraph = (changed && cfg_.rules.enforce_closures) ||
+                       (cfg_.rules.enforce_zones && rules_->blocked_zones(at) != zone_occ_);
+  if (regraph) {
+    const std::vector<uint8_t> none(ins_.num_agents(), 0);
+    replan(adg, drv, stuck_ ? stuck_->immobile() : none, true);
   }
   for (uint8_t w : waiting_) m_.rules.waits += w;
 }

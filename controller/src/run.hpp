@@ -77,7 +77,12 @@ class Run {
   // of immobile AGVs changes, replan(): new planner and ADG from where the AGVs are and are
   // driving to, `immobile` AGVs kept in place.
   void stuck_step(executor::Adg& adg, Driver& drv);
-  void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile);
+  // regraph: the rules' graph changed (a closure began or ended, a zone is routed around or
+  // free again): the planner is rebuilt on the new one, from the same place.
+  void replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile, bool regraph = false);
+  // Traffic rules under adg, at a tick boundary: closures that began or ended and zones
+  // whose blocking changed replan() from the observed state on the new rules graph.
+  void rules_tick_adg(executor::Adg& adg, Driver& drv);
   // Configurations before C^t are final (ExecutedPlan::settle); with stuck replans the
   // validator of the final prefix steps over them first (a replan re-validates from there).
   void settle(size_t t);
@@ -114,7 +119,7 @@ class Run {
   bool proven_unsolvable() const
   {
     if (tm_ || !p_ || !p_->exhausted()) return false;
-    return !rules_ || (rules_->num_closed() == 0 && std::find(zone_occ_.begin(), zone_occ_.end(), 1) == zone_occ_.end());
+    return !rules_ || (!rules_->anything_closed() && std::find(zone_occ_.begin(), zone_occ_.end(), 1) == zone_occ_.end());
   }
 
   const Config& cfg_;

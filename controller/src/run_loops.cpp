@@ -125,6 +125,7 @@ void Run::loop_adg()
   dp.same_step_starts = cfg_.run.same_step_starts;
   dp.exact_chain = cfg_.run.chain_to_end;
   Driver drv(*cmd_, adg, *delays_, dp);
+  if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) drv.set_zones(&rules_->zones_of());
   // Rotation solvers: the plan's cells go to the ADG like a cell plan (its turns are waits
   // there), the Driver turns each AGV toward its next move (driver.hpp). The solver plans
   // one step per tick, at the tick's first SUMO step, with the tick's budget (as in
@@ -136,7 +137,8 @@ void Run::loop_adg()
     return c;
   };
   for (;;) {
-    if (!tm_ && p_->at_goal() && adg.done()) {
+    // (An AGV waiting for a closed goal is not on its goal: rules.hpp.)
+    if (!tm_ && p_->at_goal() && adg.done() && std::find(waiting_.begin(), waiting_.end(), 1) == waiting_.end()) {
       m_.solved = true;
       break;
     }
@@ -144,6 +146,13 @@ void Run::loop_adg()
     if (c_.on_tick) c_.on_tick(m_.ticks, *sumo_);
     delays_->tick(m_.ticks);
     plan_in_tick_ = 0;
+    if (rules_) {  // closures that began or ended, zones to route around: a replan (rules.hpp)
+      const auto t0 = Clock::now();
+      const double c0 = planner::thread_cpu_ms();
+      rules_tick_adg(adg, drv);
+      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+      plan_in_tick_ += ms_since(t0);
+    }
     double ctl = 0;
     for (int s = 0; s < k_; ++s) {
       slice_ = s;
@@ -213,6 +222,7 @@ void Run::loop_adg()
     m_.followed = drv.stats().followed;
     m_.overshoot_m = drv.stats().overshoot;
     const planner::Config now = executed();
+    if (rules_ && drv.zone_gated()) m_.rules.zone_holds += rules_->count_held(drv.gated(), now);
     count_tick(now);
     if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
     progress_line(now);

@@ -17,7 +17,7 @@ StuckWatch::StuckWatch(int n, double stuck_after_s, double dt)
 }
 
 bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses,
-                         const executor::DelayModel& delays)
+                         const executor::DelayModel& delays, const std::vector<int>& gated)
 {
   // Who holds somebody up: the owner of an undone hand-over another AGV's next move waits on.
   std::vector<uint8_t> blocks(n_, 0);
@@ -35,7 +35,7 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     const int id = adg.next_action(i);
     // Running with its cell handed over (adg-follow: not just following a leader that is still
     // leaving it -- that one waits on the leader, which is watched itself), or released.
-    const bool may_go = id >= 0 && (adg.may_finish(id) || adg.released(id));
+    const bool may_go = id >= 0 && (adg.may_finish(id) || adg.released(id)) && gated[i] < 0;
     stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
     if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
     if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9 && blocks[i]) target_[i] = 1;
@@ -80,10 +80,9 @@ std::string StuckWatch::describe() const
 }
 
 // The replan itself: a new planner and ADG from where the AGVs are and are driving to.
-void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile)
+void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& immobile, bool regraph)
 {
   const int n = ins_.num_agents();
-  const planner::Graph& g = c_.map_.graph;
   planner::Config at(n);
   for (int i = 0; i < n; ++i) at[i] = adg.at(i);
 
@@ -157,12 +156,45 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
   // planner where it cannot, on the old one's distance tables). No search here: the next
   // step's search() has what is left of the step's budget, none if this used it (Run::step).
   planner::GoalTest test = tm_ ? tasks::lifelong_goal_test(*tm_, from) : planner::GoalTest{};
-  if (!p_->restart_at(from, goals, test, immobile)) {
+  if (regraph) {
+    // The rules' new graph (rules.hpp), built from where the moves in progress end: AGVs
+    // whose moves end on cells just closed leave them by the evacuation arcs.
+    // Zones blocked as Run::rules_tick_adg sees them (where the ADG has the AGVs: one whose
+    // move out of a zone runs still holds it), so the next tick compares like with like.
+    zone_occ_ = cfg_.rules.enforce_zones ? rules_->blocked_zones(at) : std::vector<uint8_t>(rules_->zones().size(), 0);
+    // Frozen (watched lanes SUMO closed): the lane each AGV's front is on when its moves in
+    // progress end -- the Commander's pose is the last running move's target.
+    std::vector<std::string> lanes(n);
+    for (int i = 0; i < n; ++i) lanes[i] = cmd_->pose(i).lane;
+    auto rg = std::make_unique<planner::Graph>(
+        rules_->graph(zone_occ_, cfg_.rules.enforce_closures, rules_->frozen_cells(from, lanes)));
+    const planner::Config eff = rule_goals(*rg, from);
     replan_expansions_ += p_->expansions();
-    p_ = make_planner(cfg_.planner, g, from, goals, pref_.get(), std::move(test), {}, dist_cache_);
-    if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
-    p_->set_immobile(immobile);  // one restart for all (realtime_planner.hpp)
+    // The old planner goes first (it still refers to the old graph), then the old graph.
+    p_ = make_planner(cfg_.planner, *rg, from, eff, pref_.get(), std::move(test), {});
+    rules_graph_ = std::move(rg);
+    cap_dist_tables();
+    if (std::find(immobile.begin(), immobile.end(), 1) != immobile.end()) p_->set_immobile(immobile);
+    ++m_.rules.replans;
+  } else {
+    // With rules the planner stays on their graph, with the goals it can reach there.
+    const planner::Config eff = rules_graph_ ? rule_goals(*rules_graph_, from) : goals;
+    if (!p_->restart_at(from, eff, test, immobile)) {
+      replan_expansions_ += p_->expansions();
+      p_ = make_planner(cfg_.planner, rules_graph_ ? *rules_graph_ : c_.map_.graph, from, eff, pref_.get(),
+                        std::move(test), {}, rules_graph_ ? nullptr : dist_cache_);
+      if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
+      p_->set_immobile(immobile);  // one restart for all (realtime_planner.hpp)
+    }
   }
+  // Moves in progress cannot stop on a cell boundary: a cell closed under one is no entry
+  // into a closed cell for RuleCheck (rule_check.hpp).
+  if (regraph && rule_check_)
+    for (int i = 0; i < n; ++i) {
+      std::vector<planner::Vertex> cells;
+      for (int id : mid[i]) cells.push_back(adg.action(id).to);
+      rule_check_->excuse(i, std::move(cells));
+    }
   adg = executor::Adg(at);
   for (const planner::Config& c : steps) adg.append(c);
   for (int i = 0; i < n; ++i) {
@@ -175,7 +207,7 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
     }
     drv.renumber(i, ids);
   }
-  ++m_.replans;
+  if (!regraph) ++m_.replans;
 }
 
 void Run::settle(size_t t)
@@ -189,7 +221,7 @@ void Run::settle(size_t t)
 
 void Run::stuck_step(executor::Adg& adg, Driver& drv)
 {
-  if (stuck_ && stuck_->observe(adg, last_poses_, *delays_)) {
+  if (stuck_ && stuck_->observe(adg, last_poses_, *delays_, drv.gated())) {
     if (cfg_.run.progress_s > 0)
       std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: replan (%s)\n", sumo_->time(), stuck_->describe().c_str());
     // Only recoveries: the committed plan keeps them in place, which stays valid -- the

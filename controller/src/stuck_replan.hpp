@@ -45,8 +45,10 @@ class StuckWatch {
   StuckWatch(int n, double stuck_after_s, double dt);
 
   // After a SUMO step: stall timers, new stuck AGVs, recoveries. Returns true when the
-  // immobile set should change: replan() now with target().
-  bool observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses, const executor::DelayModel& delays);
+  // immobile set should change: replan() now with target(). `gated`: per agent, >= 0 while a
+  // zone's mutex holds its next move (Driver::gated): waiting for a rule, not stuck.
+  bool observe(const executor::Adg& adg, const std::vector<VehiclePose>& poses, const executor::DelayModel& delays,
+               const std::vector<int>& gated);
   const std::vector<uint8_t>& target() const { return target_; }  // the immobile set to replan with
   const std::vector<uint8_t>& immobile() const { return immobile_; }
   void replanned();  // replan() done: target() is the immobile set now

@@ -294,10 +294,10 @@ TEST(Rules, BadRulesAreOneLineErrors)
   e = ctest_util::config_error("sumo: {net: ../sumo_scenarios/small.net.xml}\nfleet: {count: 2}\n"
                                "rules:\n  zones:\n    - {id: z}\n");
   EXPECT_NE(e.find("rules.zones[0]: a zone with no cells"), std::string::npos) << e;
-  Config adg = rules_config("bad7", kAround, "", "rules:\n  closures:\n    - {edges: [c1r0_c1r1]}\n");
-  adg.run.executor = "adg";
-  e = error(adg);
-  EXPECT_NE(e.find("rules: closures and one-at-a-time zones need run.executor: lockstep"), std::string::npos) << e;
+  Config rot = rules_config("bad7", kAround, "", "rules: {watch_lanes: true}\n");
+  rot.planner.solver = "pibt-rot";
+  e = error(rot);
+  EXPECT_NE(e.find("rules.watch_lanes: needs a cell solver (rtlacam | naive | pibt | cspibt), not pibt-rot"), std::string::npos) << e;
 }
 
 TEST(Rules, AClosureThatIsolatesAGoalIsNamedAndTheAgvWaits)
@@ -437,4 +437,277 @@ tasks:
   EXPECT_GE(m.rules.zone_holds, Rules::kBlockAfter);  // it was held, then routed round
   EXPECT_LE(m.rules.zone_holds, 2 * Rules::kBlockAfter);
   EXPECT_LT(m.ticks, 40);
+}
+
+// The physical executor (run.executor: adg-follow, the *_agv configs' default): a closure
+// that begins while the AGVs drive replans from the observed state (the stuck-AGV replan
+// path, Run::replan with the rules' new graph): the moves in progress finish (agv2 is
+// driving into the aisle at 1 s: RuleCheck excuses that one entry), nobody enters the
+// closed aisle after, agv0 (goal inside) waits for the reopening. Safety and RuleCheck
+// check every SUMO step; with the closure not enforced RuleCheck stops the run.
+TEST(Rules, AdgFollowClosureReplansFromTheObservedState)
+{
+  const std::string rules = 
+      "rules:\n  closures:\n    - {edges: [c1r0_c1r1, c1r1_c1r0], begin: 1, end: 25}\n";
+  Config cfg = rules_config("adg_closure", kAround, "", rules);
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(m.rules.closure_changes, 2);  // closed at 1 s, reopened at 25 s
+  EXPECT_EQ(m.rules.max_closed, 7);
+  EXPECT_GE(m.rules.replans, 2);
+  EXPECT_GT(m.rules.waits, 0);  // agv0 waited for its goal
+  ASSERT_EQ(m.goal_s.size(), 3u);
+  EXPECT_GE(m.goal_s[0], 25.0);  // on its goal (inside the aisle) only after it reopened
+
+  Config off = rules_config("adg_closure_off", kAround, "", rules + "  enforce_closures: false\n");
+  off.run.executor = "adg-follow";
+  Controller co(off);
+  const Metrics mo = co.run();
+  EXPECT_NE(mo.error.find("entered closed cell"), std::string::npos) << mo.error;
+  EXPECT_EQ(mo.violations, 1);
+}
+
+// adg-follow and a closure over TraCI (another client disallows the AGVs' class on both
+// lanes of aisle c1 at tick 3, allows it again at tick 25): the lane watch sees it at the
+// tick boundary and the replan routes around it from the observed state; AGVs on those
+// lanes wait where their moves in progress end (SUMO refuses every route from them).
+// Without the watch SUMO refuses a route the plan needs.
+TEST(Rules, AdgFollowLanePermissionChangedOverTraciReplans)
+{
+  auto close_c1 = [](long long tick, SumoBackend&) {
+    if (tick == 3)
+      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"passenger"});
+    if (tick == 25)
+      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
+  };
+  Config cfg = rules_config("adg_traci", kAround, "", "rules: {watch_lanes: true}\n");
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  c.on_tick = close_c1;
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(m.rules.closure_changes, 2);
+  EXPECT_GE(m.rules.replans, 2);
+  ASSERT_EQ(m.goal_s.size(), 3u);
+  EXPECT_GE(m.goal_s[0], 25.0);
+
+  Config off = rules_config("adg_traci_off", kAround, "", "rules: {watch_lanes: false}\n");
+  off.run.executor = "adg-follow";
+  Controller co(off);
+  co.on_tick = close_c1;
+  const Metrics mo = co.run();
+  EXPECT_NE(mo.error.find("Route replacement failed"), std::string::npos) << mo.error;
+}
+
+// adg-follow with AGVs inside the aisle when its closure begins (1 s, all driving): the
+// replan starts where their moves in progress end, on closed cells; they leave by the
+// evacuation arcs and nobody waits for the reopening.
+TEST(Rules, AdgFollowAgvsOnCellsBeingClosedLeave)
+{
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c1r0_c1r1_0, pos: 2}
+    - {lane: c1r0_c1r1_0, pos: 4}
+    - {lane: c1r0_c1r1_0, pos: 6}
+tasks:
+  mode: one_shot
+  goals:
+    - {lane: c0r0_c0r1_0, pos: 4}
+    - {lane: c2r0_c2r1_0, pos: 4}
+    - {lane: c3r0_c3r1_0, pos: 4}
+)";
+  Config cfg = rules_config("adg_evacuate", agents, "", "rules:\n  closures:\n    - {edges: [c1r0_c1r1, c1r1_c1r0], begin: 1, end: 60}\n");
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_LT(m.ticks, 40);  // nobody waited for the reopening
+}
+
+// adg-follow and a one-at-a-time zone: the Driver's zone mutex (Driver::set_zones) keeps the
+// second AGV out while the first is inside or driving in. Without it both go down aisle c1
+// together and RuleCheck stops the run.
+TEST(Rules, AdgFollowZoneMutexHoldsOneAgvAtATime)
+{
+  const std::string add = additional(
+      "adg_zone", R"(  <poly id="z_c1" type="rtlacam.zone" shape="3.5,0.5 4.5,0.5 4.5,7.5 3.5,7.5"/>
+)");
+  Config cfg = rules_config("adg_zone", kBothDown, add, "");
+  cfg.run.executor = "adg-follow";
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_GT(m.rules.zone_holds, 0);  // someone was held at the entry
+
+  Config off = rules_config("adg_zone_off", kBothDown, add, "rules: {enforce_zones: false}\n");
+  off.run.executor = "adg-follow";
+  Controller co(off);
+  const Metrics mo = co.run();
+  EXPECT_NE(mo.error.find("zone 'z_c1'"), std::string::npos) << mo.error;
+  EXPECT_NE(mo.error.find("holds two AGVs"), std::string::npos) << mo.error;
+}
+
+// adg-follow, a zone whose occupant parks in it (pick1, its goal): the mutex holds agv1 at
+// the entry; after Rules::kBlockAfter ticks the replan takes the zone's entry arcs out of the
+// planner's graph and agv1 goes round (without that it would wait for good).
+TEST(Rules, AdgFollowAnOccupiedZoneIsRoutedAroundAfterEntrantsWait)
+{
+  const std::string add = additional(
+      "adg_zone_block", R"(  <poly id="z_c1" type="rtlacam.zone" shape="3.5,-2.5 4.5,-2.5 4.5,7.5 3.5,7.5"/>
+)");
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c0r0_c1r0_0, pos: 3}
+    - {lane: c2r1_c1r1_0, pos: 2}
+tasks:
+  mode: one_shot
+  goals:
+    - pick1
+    - {lane: c1r0_c0r0_0, pos: 3}
+)";
+  Config cfg = rules_config("adg_zone_block", agents, add, "");
+  cfg.run.executor = "adg-follow";
+  cfg.run.max_ticks = 100;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_GE(m.rules.replans, 2);  // the start, then the zone routed around
+  EXPECT_LT(m.ticks, 60);
+}
+
+// The shipped examples under adg-follow: 16 AGVs, the rerouter closure of aisle c1 (10-40 s)
+// and the zone on the top cross aisle (lifelong: also the YAML closure 100-160 s).
+TEST(Rules, ShippedExamplesRunCleanUnderAdgFollow)
+{
+  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules.yaml");
+  cfg.output.dir = test::temp_dir("rules_shipped_adg");
+  cfg.run.progress_s = 0;
+  cfg.run.executor = "adg-follow";
+  cfg.planner.budget_ms = 0;
+  cfg.planner.expansions = 200;
+  cfg.sumo.outputs = {false, false, false, true};
+  Controller c(cfg);
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(m.rules.closure_changes, 2);
+  EXPECT_GT(m.ticks, 40);  // someone's goal was in the closed aisle
+
+  Config life = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules_lifelong.yaml");
+  life.output.dir = test::temp_dir("rules_shipped_lifelong_adg");
+  life.run.progress_s = 0;
+  life.run.executor = "adg-follow";
+  life.run.max_ticks = 300;
+  life.planner.budget_ms = 0;
+  life.planner.expansions = 50;
+  life.sumo.outputs = {false, false, false, true};
+  Controller cl(life);
+  const Metrics ml = cl.run();
+  EXPECT_EQ(ml.error, "");
+  EXPECT_EQ(ml.violations, 0);
+  EXPECT_EQ(ml.commands.jumps + ml.commands.resyncs, 0);
+  EXPECT_EQ(ml.rules.checks, ml.ticks * life.steps_per_tick());
+  ctest_util::expect_no_sumo_collision(life.output.dir);
+  EXPECT_EQ(ml.rules.closure_changes, 4);  // 10, 40, 100, 160 s
+  EXPECT_GT(ml.errands_finished, 20);
+}
+
+// One-direction closures: rules.closures naming one lane of the two-way aisle c1 (up,
+// c1r0 -> c1r1) close only that direction's arcs; its cells stay open the other way. agv0
+// goes down aisle c1 (the open direction, 8 moves; round by c0 or c2, 12); agv1's shortest
+// way runs up it (the closed direction) and goes round. Against the same run with the whole
+// aisle closed, agv0 arrives sooner; with the closure not enforced RuleCheck stops agv1.
+TEST(Rules, OneDirectionClosureKeepsTheAisleOpenTheOtherWay)
+{
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c0r1_c1r1_0, pos: 3}
+    - {lane: c2r0_c1r0_0, pos: 3}
+tasks:
+  mode: one_shot
+  goals:
+    - {lane: c1r0_c2r0_0, pos: 2}
+    - {lane: c1r1_c0r1_0, pos: 2}
+)";
+  for (const char* executor : {"lockstep", "adg-follow"}) {
+    SCOPED_TRACE(executor);
+    const std::string one = "rules:\n  closures:\n    - {lanes: [c1r0_c1r1_0]}\n";
+    Config cfg = rules_config(std::string("one_way_") + executor, agents, "", one);
+    cfg.run.executor = executor;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    expect_clean(cfg, c, m);
+    EXPECT_EQ(m.rules.max_closed, 0);  // no cell closed
+
+    Config whole = rules_config(std::string("one_way_whole_") + executor, agents, "",
+                                "rules:\n  closures:\n    - {lanes: [c1r0_c1r1_0, c1r1_c1r0_0]}\n");
+    whole.run.executor = executor;
+    Controller cw(whole);
+    const Metrics mw = cw.run();
+    expect_clean(whole, cw, mw);
+    EXPECT_EQ(mw.rules.max_closed, 7);
+    if (std::string(executor) == "lockstep") {  // goal_s: adg only; lockstep: the executed plan
+      const planner::Vertex g0 = c.map().locate("c1r0_c2r0_0", 2);
+      EXPECT_LT(first_at(c.plan(), 0, g0) + 2, first_at(cw.plan(), 0, g0));
+    } else {
+      ASSERT_EQ(m.goal_s.size(), 2u);
+      ASSERT_EQ(mw.goal_s.size(), 2u);
+      EXPECT_LT(m.goal_s[0] + 2.0, mw.goal_s[0]);
+    }
+
+    Config off = rules_config(std::string("one_way_off_") + executor, agents, "", one + "  enforce_closures: false\n");
+    off.run.executor = executor;
+    Controller co(off);
+    const Metrics mo = co.run();
+    EXPECT_NE(mo.error.find("agv1 drove cell"), std::string::npos) << mo.error;
+    EXPECT_NE(mo.error.find("against a one-direction closure (rules.closures[0])"), std::string::npos) << mo.error;
+  }
+}
+
+// The same one-direction closure from SUMO: another TraCI client disallows the AGVs' class on
+// the up lane of aisle c1 only. The lane watch closes that direction's arcs, not the cells:
+// agv0 still goes down the aisle, agv1 goes round. Without the watch SUMO refuses the route
+// the plan needs up the aisle.
+TEST(Rules, OneLanePermissionChangedOverTraciClosesOneDirection)
+{
+  const char* agents = R"(
+fleet:
+  starts:
+    - {lane: c0r1_c1r1_0, pos: 3}
+    - {lane: c2r0_c1r0_0, pos: 3}
+tasks:
+  mode: one_shot
+  goals:
+    - {lane: c1r0_c2r0_0, pos: 2}
+    - {lane: c1r1_c0r1_0, pos: 2}
+)";
+  auto close_up = [](long long tick, SumoBackend&) {
+    if (tick == 0) libsumo::Lane::setDisallowed("c1r0_c1r1_0", {"passenger"});
+  };
+  for (const char* executor : {"lockstep", "adg-follow"}) {
+    SCOPED_TRACE(executor);
+    Config cfg = rules_config(std::string("one_lane_traci_") + executor, agents, "", "rules: {watch_lanes: true}\n");
+    cfg.run.executor = executor;
+    Controller c(cfg);
+    c.on_tick = close_up;
+    const Metrics m = c.run();
+    expect_clean(cfg, c, m);
+    EXPECT_EQ(m.rules.closure_changes, 1);
+    EXPECT_EQ(m.rules.max_closed, 0);  // the cells stay open the other way
+    const std::vector<planner::Vertex> aisle = aisle_cells(c.map(), kAisleC1);
+    bool down = false;  // agv0 drove down the aisle
+    for (const planner::Config& q : c.plan()) down = down || in(aisle, q[0]);
+    EXPECT_TRUE(down);
+
+    Config off = rules_config(std::string("one_lane_traci_off_") + executor, agents, "", "rules: {watch_lanes: false}\n");
+    off.run.executor = executor;
+    Controller co(off);
+    co.on_tick = close_up;
+    const Metrics mo = co.run();
+    EXPECT_NE(mo.error.find("Route replacement failed"), std::string::npos) << mo.error;
+  }
 }

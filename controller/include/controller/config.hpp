@@ -188,7 +188,7 @@ struct OutputSection {
 // Warehouse traffic rules (rules.hpp): closures and one-at-a-time zones from the YAML; the
 // SUMO forms (rerouter closingReroute intervals, rtlacam.zone polygons) come from
 // sumo.additional (rules.sumo), lane permissions changed over TraCI from polling
-// (rules.watch_lanes). Lockstep and cell solvers only.
+// (rules.watch_lanes). Cell solvers only; every executor (lockstep, adg, adg-follow).
 struct RuleClosure {
   std::string key;  // rules.closures[i]
   std::vector<std::string> lanes, edges;
@@ -205,7 +205,7 @@ struct RuleZone {
 
 struct RulesSection {
   bool sumo = true;          // read rerouters / zone polygons of sumo.additional
-  int watch_lanes = -1;      // poll the AGV lanes' permissions every tick; -1: with libsumo only
+  int watch_lanes = -1;      // poll the AGV lanes' permissions every tick; -1: lockstep with libsumo only
   std::vector<RuleClosure> closures;
   std::vector<RuleZone> zones;
   bool enforce_closures = true;  // false: the planner ignores closures (Safety still checks them)

@@ -164,6 +164,17 @@ class Driver {
   // group and hand-over): appended to a Safety error.
   std::string describe(int i) const;
   const DriveStats& stats() const { return st_; }
+  // One-at-a-time zones (controller/rules.hpp), the ADG side: `zone_of` (cell -> zone
+  // indices; outlives the Driver, nullptr: none) makes every start and chain of a move into
+  // a zone the AGV is not in wait while another AGV stands in that zone for the ADG (its
+  // move out not yet done) or runs a move into it -- a mutex per zone, taken when the move
+  // in starts and given back when the move out is done (so at most one front is ever near a
+  // zone's cells). A move waiting for it is not stuck (stuck_replan.hpp); the planner hears
+  // of long waits through gated() (Rules::count_held) and then routes around the zone.
+  void set_zones(const std::vector<std::vector<int>>* zone_of) { zone_of_ = zone_of; }
+  // Per agent, the zone whose mutex held its next move in the last before_step(), -1 if none.
+  const std::vector<int>& gated() const { return gated_; }
+  bool zone_gated() const { return zone_of_ != nullptr; }
 
  private:
   struct Agv {
@@ -184,6 +195,8 @@ class Driver {
   bool start_moves(int i, bool count);
   // Finishes agent i's running moves its front has reached, in ADG order (may_finish); true if any.
   bool arrive(int i, const VehiclePose& pose);
+  // The zone mutex (set_zones): may agent i move from -> to now? Records gated_[i] if not.
+  bool zone_free(int i, planner::Vertex from, planner::Vertex to);
   // Follow mode: the distance agent i's front still covers braking at `decel` in whole steps
   // from its reported speed (its next command is >= v - decel dt), and the length of its
   // running `action` (INFINITY if not running).
@@ -214,6 +227,8 @@ class Driver {
   std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
   std::vector<char> waiting_start_;  // per agent: released, not started (DriveStats::Time)
   DriveStats st_;
+  const std::vector<std::vector<int>>* zone_of_ = nullptr;
+  std::vector<int> gated_;
 };
 
 }  // namespace controller

@@ -9,35 +9,57 @@
 //     once per tick on the lanes gridify mapped (rules.watch_lanes). SUMO itself then
 //     refuses routes over it, so AGVs on such a lane wait there (frozen_cells());
 //   - YAML: rules.closures [{lanes, edges, cells, begin, end}].
-//   A closed lane closes the interior cells of its aisle (both directions share them); a
-//   junction cell is closed when every aisle lane at it is closed. SUMO 1.15's rerouter does
-//   not show its closures in Lane.getAllowed (measured), hence the file is read instead.
+//   Closing every lane of an aisle (both of a two-way one) closes its interior cells; a
+//   junction cell is closed when every aisle lane at it is closed. Closing one lane of a
+//   two-way aisle (one edge: a closingReroute of one edge, a permission changed on one lane,
+//   `lanes:` naming one direction) closes only that direction: the arcs along it, from its
+//   first junction cell to its last (closed_arcs()); the cells stay usable the other way.
+//   SUMO 1.15's rerouter does not show its closures in Lane.getAllowed (measured), hence the
+//   file is read instead.
 // One-at-a-time zones: a set of cells (an <poly type="rtlacam.zone"> in sumo.additional:
 //   the cells whose centre lies inside; or rules.zones [{id, lanes, edges, cells}]) holding
 //   at most one AGV at any time.
 //
-// How the controller keeps them (lockstep, run_loops.cpp):
+// How the controller keeps them:
 //   - the planner plans on graph(): no arc into a closed cell (planner/blocked.hpp: AGVs on
-//     a cell being closed leave it or wait), and no arc from outside into a zone whose
-//     occupant keeps others waiting (blocked_zones()); a change of either restarts the
-//     planner at the current configuration (a new epoch), so the search never carries a
-//     tree built on another graph;
+//     a cell being closed leave it or wait), no arc closed one way, and no arc from outside
+//     into a zone whose occupant keeps others waiting (blocked_zones()); a change of either
+//     restarts the planner (a new epoch), so the search never carries a tree built on
+//     another graph. Lockstep restarts it at the current configuration; adg / adg-follow
+//     (Run::rules_tick_adg) replan from the observed state with the stuck-AGV replan
+//     (stuck_replan.hpp, Run::replan with regraph): the committed plan is cut at each
+//     AGV's progress, the moves in progress finish (a moving AGV cannot stop on a cell
+//     boundary: one driving into a cell as it closes gets there, then leaves like one that
+//     stood on it; RuleCheck excuses that entry), and the planner on the new graph starts
+//     where they end, the stuck AGVs still immobile;
 //   - an AGV whose goal it cannot reach on that graph (its goal closed or cut off, or in an
 //     occupied zone) waits: its planner goal becomes the nearest reachable cell that is
 //     open, outside every zone and nobody's goal (goals()); one line names it when a
 //     closure is the cause; a one-shot run is solved only once every AGV is on its real goal;
-//   - admit(): the step the planner committed may still take two AGVs into a free zone at
-//     once; all but one are held (with whoever would move into a held AGV's cell), and the
-//     planner restarts from the configuration executed.
+//   - lockstep, admit(): the step the planner committed may still take two AGVs into a free
+//     zone at once; all but one are held (with whoever would move into a held AGV's cell),
+//     and the planner restarts from the configuration executed;
+//   - adg / adg-follow, the Driver's zone mutex (Driver::set_zones): a move into a zone
+//     starts only while no other AGV stands in it for the ADG or runs a move into it; held
+//     entrants are counted (count_held()) like admit()'s, so after kBlockAfter ticks the
+//     zone leaves the planner's graph (a replan) until it empties. The mutex only delays
+//     starts; the ADG's order and the dependency DAG are unchanged.
 // Safety checks both independently on SUMO's poses (rule_check.hpp).
 //
-// Completeness: while cells are closed or zones occupied the planner is a fresh RT-LaCAM on
-// a smaller directed graph per change, with no guarantee across changes; a closure that
-// ends and zones that empty restore the real graph and goals, and so RT-LaCAM's
-// completeness from there (rt_lacam.hpp). A zone that cuts the net into pieces is refused:
-// an AGV parked in it would cut every route between them.
+// Completeness: while cells or arcs are closed or zones occupied the planner is a fresh
+// RT-LaCAM on a smaller directed graph per change, complete for the instance on that graph
+// when every AGV's goal there (its real goal, or its waiting cell) is reachable
+// (rt_lacam.hpp), with no guarantee across changes. A one-direction closure leaves the
+// aisle's cells usable the other way, so the graph stays strongly connected unless that
+// lane was the only way into or out of some cells (a two-way dead-end stub: its far cells
+// can then be entered but not left, or left but not entered; the AGVs whose goals it cuts
+// off wait, as for closed cells). A closure that ends and zones that empty restore the real
+// graph and goals, and so RT-LaCAM's completeness from there (rt_lacam.hpp; under adg with
+// the ADG's deadlock freedom, as after the last stuck replan). A zone that cuts the net into
+// pieces is refused: an AGV parked in it would cut every route between them.
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "controller/config.hpp"
@@ -66,7 +88,8 @@ class Rules {
   // From the config and sumo.additional; nullptr when there is nothing to keep (no closure,
   // no zone, no lanes to watch). Bad input throws ConfigError (one line naming the object):
   // an unknown lane or edge, end < begin, a zone with no cells or one that cuts the net, two
-  // one-shot goals in one zone, rules with an executor or solver that cannot keep them.
+  // one-shot goals in one zone, rules with a solver that cannot keep them (rotation), the
+  // lane watch with a rotation solver.
   // `goals`: one-shot goals (empty for lifelong), checked against every closure: one whose
   // cells close or cut off a goal is reported in `warnings` (the AGV will wait).
   // `starts`: no zone may hold two of them either.
@@ -86,6 +109,12 @@ class Rules {
   const std::vector<uint8_t>& closed() const { return closed_; }
   int num_closed() const { return num_closed_; }
   std::string closed_by(planner::Vertex v) const;  // what closes it ("" if open)
+  // One-direction closures: the arcs u -> v closed now (one lane of a two-way aisle).
+  using Arc = std::pair<planner::Vertex, planner::Vertex>;
+  const std::vector<Arc>& closed_arcs() const { return closed_arcs_; }  // sorted
+  bool arc_closed(planner::Vertex u, planner::Vertex v) const;
+  std::string arc_closed_by(planner::Vertex u, planner::Vertex v) const;  // "" if open
+  bool anything_closed() const { return num_closed_ > 0 || !closed_arcs_.empty(); }
 
   const std::vector<Zone>& zones() const { return zones_; }
   const std::vector<std::vector<int>>& zones_of() const { return zone_of_; }  // cell -> zone indices
@@ -117,9 +146,18 @@ class Rules {
   // Holds AGVs so that every zone has at most one AGV over `cur` and `next` together (the
   // one already inside, else the entrant that waited longest). Returns how many were held.
   int admit(const planner::Config& cur, planner::Config& next);
+  // The same count under adg (the Driver's zone mutex does the holding): `gated` per agent,
+  // the zone whose mutex held it this tick (-1: none), `at` where the ADG has them. Returns
+  // how many were held.
+  int count_held(const std::vector<int>& gated, const planner::Config& at);
 
  private:
+  // Closed lanes -> the cells they close: the interior cells of an aisle all of whose lanes
+  // are closed, and a junction cell whose every aisle lane is closed.
   std::vector<uint8_t> cells_of_lanes(const std::vector<std::string>& lanes) const;
+  // Closed lanes -> the arcs they close: along a closed lane of a two-way aisle whose other
+  // lane is open, from its first junction cell to its last.
+  std::vector<Arc> arcs_of_lanes(const std::vector<std::string>& lanes) const;
 
   const gridify::CellMap& map_;
   std::vector<Closure> closures_;
@@ -130,6 +168,8 @@ class Rules {
   std::vector<uint8_t> closed_;
   std::vector<int> closer_;  // cell -> closure index, -2: a watched lane, -1: open
   int num_closed_ = 0;
+  std::vector<Arc> closed_arcs_;  // sorted
+  std::vector<int> arc_closer_;   // per closed arc: closure index, -2: a watched lane
   std::vector<uint8_t> waiting_;          // agent -> waiting for a closure (for the lines)
   std::vector<long long> zone_wait_;      // agent -> ticks held at a zone entry
   std::vector<int> zone_held_;            // zone -> ticks in a row an entrant was held
