@@ -4,13 +4,16 @@
 For each warehouse, four runs of rtlacam-sumo in the same invocation, identical but for the
 rules: off (no closure, no zone, no lane watch), closure (a picking aisle closed over
 [20 %, 50 %) of the run, as a YAML event), zone (a cross aisle as a one-at-a-time zone), both.
+Then one-way versus two-way aisles on the large layout: config/large_warehouse_lifelong.yaml
+against config/large_oneway_lifelong.yaml (the same layout, stations, starts and tasks, its
+picking aisles one-way in alternate directions; sumo_scenarios/make_warehouse.py), rules off.
 The planner has a fixed number of expansions per SUMO step (deterministic decisions, so the
 rules alone make the difference). Prints errands per tick, the ratio to "off", the longest
-any AGV spent on one errand, and the rule counters; every run must end clean (0 violations,
+any AGV spent on one errand, and the rule counters; every run must end clean (0 collisions, 0 violations,
 0 jumps / re-syncs; the script says so).
 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
-                         [--skip-large]
+                         [--skip-large] [--skip-one-way]
 """
 import argparse
 import json
@@ -61,9 +64,10 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
     ap.add_argument("--ticks", type=int, default=1000)
-    ap.add_argument("--large-ticks", type=int, default=500)
+    ap.add_argument("--large-ticks", type=int, default=1000)
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--skip-large", action="store_true")
+    ap.add_argument("--skip-one-way", action="store_true")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
@@ -100,11 +104,27 @@ def main():
             base_rate = rate if base_rate is None else base_rate
             r = m.get("rules", {})
             jr = m["teleports_or_jumps"]
-            clean = clean and m["violations"] == 0 and jr == 0 and not m["error"]
+            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
             what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zones" in extra else "")
             print(f"| {name} | {what} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
                   f"{m['lifelong']['maxErrandTicks']} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
                   f"{r.get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
+    if not a.skip_one_way:  # the same layout with one-way picking aisles, rules off
+        base_rate = None
+        for label, base in [("two-way aisles", "config/large_warehouse_lifelong.yaml"),
+                            ("one-way aisles", "config/large_oneway_lifelong.yaml")]:
+            out = os.path.join(tmp, "large_" + label.split()[0])
+            m, err = run(build, base, out, a.large_ticks, a.expansions, {"sumo": False, "watch_lanes": False})
+            if m is None:
+                print(f"# large {label}: {err}", file=sys.stderr)
+                return 1
+            rate = m["lifelong"]["errandThroughput"]
+            base_rate = rate if base_rate is None else base_rate
+            jr = m["teleports_or_jumps"]
+            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            print(f"| large (200 AGVs) | {label}, rules off | {m['ticks']} | {rate:.3f} | "
+                  f"{rate / base_rate if base_rate else 0:.2f} | {m['lifelong']['maxErrandTicks']} | 0 | 0 | "
+                  f"{m.get('rules', {}).get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
     print("all runs clean (0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 

@@ -12,6 +12,8 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
       seen_(g.size(), 0)
 {
   if (xy_.size() != static_cast<size_t>(g.size())) throw std::invalid_argument("Battery: one cell centre per vertex needed");
+  if (options_.critical < 0 || options_.critical >= options_.threshold)
+    throw std::invalid_argument("Battery: critical must be in [0, threshold)");
   for (const Charger& c : chargers_)
     if (c.cell < 0 || c.cell >= g.size()) throw std::invalid_argument("Battery: charger '" + c.id + "' is not a vertex");
   for (size_t i = 0; i < chargers_.size(); ++i)

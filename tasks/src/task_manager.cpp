@@ -40,14 +40,17 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       on_finished(a, done);
     }
   }
+  const bool handed = hand_back(positions);
   if (battery_) send_to_charge(positions);
   for (int a : charged) on_charged(a);
   goals_changed_ = false;
-  if (!events.empty() || queues_ || parking_ || battery_) {
+  const bool rematch = handed || rematch_;
+  rematch_ = false;
+  if (!events.empty() || queues_ || parking_ || battery_ || rematch) {
     const planner::Config before = goals_;
-    if (!events.empty() || !charged.empty()) after_step(positions);
+    if (!events.empty() || !charged.empty() || rematch) after_step(positions);
     refresh_goals(positions);
-    goals_changed_ = !events.empty() || goals_ != before;
+    goals_changed_ = !events.empty() || handed || goals_ != before;
     // An agent that just reached a queue or parking goal: the epoch waited for it.
     at_goal_.resize(num_agents(), 0);
     for (int a = 0; a < num_agents(); ++a) {
@@ -112,6 +115,40 @@ void TaskManager::release(int agent)
   holding_[agent] = -1;
   assignments_.push_back({now_, agent, -1});
   --tasks_assigned_;  // counts tasks handed out for good, not matching rounds
+}
+
+void TaskManager::drop_task(int agent)
+{
+  const int s = holding_[agent];
+  if (s < 0) return;
+  release(agent);
+  on_dropped(agent, s);
+}
+
+bool TaskManager::hand_back(const planner::Config& positions)
+{
+  bool any = false;
+  for (int a = 0; a < num_agents(); ++a) {
+    if (holding_[a] < 0) continue;
+    if (battery_ && battery_->critical(a)) {
+      // Charge first: the task would take it to empty (battery.hpp).
+      drop_task(a);
+      ++dropped_for_charge_;
+      battery_->consider(a, positions[a]);  // no charger free: send_to_charge() retries
+      any = true;
+    } else if (reach_ && reassigns_for_closures() && !reach_->reaches(positions[a], slots_[holding_[a]].next_cell())) {
+      drop_task(a);
+      ++reassigned_for_closure_;
+      any = true;
+    }
+  }
+  return any;
+}
+
+void TaskManager::set_open_graph(const planner::Graph* open)
+{
+  reach_ = open ? std::make_unique<Reachability>(*open) : nullptr;
+  rematch_ = true;
 }
 
 void TaskManager::drop(int s)

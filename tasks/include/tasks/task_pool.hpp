@@ -12,6 +12,8 @@
 // With station queues (TaskManager::set_queues) a task is handed out only while each of
 // its stations holds fewer tasks than the admission limit (admissible()): the rest of the
 // fleet stays idle (parked) instead of queueing at saturated stations.
+// A task handed back (task_manager.hpp: a critical charge, a closure) is matched again from
+// its next errand, opened or not; no agent is matched to an errand it cannot reach.
 #include <memory>
 
 #include "planner/dist_table.hpp"
@@ -25,6 +27,7 @@ class TaskPool : public TaskManager {
   TaskPool(std::shared_ptr<const TaskFile> file, const planner::Graph& g, int pool_size,
            std::unique_ptr<TaskAssigner> assigner, bool reassign = false);
   std::string mode() const override { return "pool"; }
+  bool reassigns_for_closures() const override { return true; }
   const TaskAssigner& assigner() const { return *assigner_; }
   bool reassigns() const { return reassign_; }
   long reassignments() const { return reassignments_; }  // tasks that changed agent
@@ -50,7 +53,6 @@ class TaskPool : public TaskManager {
   // `cols` (ascending task id), keeps the oldest whose every remaining errand station
   // holds fewer than the limit of held tasks with an errand left there; assigned ones stay.
   std::vector<int> admissible(const std::vector<int>& cols) const;
-  static constexpr int64_t kForbidden = int64_t{1} << 40;
   int chain_length(const Task& t);
 
   planner::DistTable dist_;  // per errand cell, lazily (true graph distances, LRU-capped)
