@@ -13,7 +13,10 @@ any AGV spent on one errand, and the rule counters; every run must end clean (0 
 0 jumps / re-syncs; the script says so).
 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
-                         [--skip-large] [--skip-one-way]
+                         [--skip-large] [--skip-one-way] [--skip-small] [--queues]
+
+--queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
+(the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
 import argparse
 import json
@@ -37,6 +40,9 @@ WAREHOUSES = [
 ]
 
 
+QUEUES = False
+
+
 def run(build, base, out, ticks, expansions, rules):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
@@ -50,6 +56,9 @@ def run(build, base, out, ticks, expansions, rules):
     cfg["run"]["progress_s"] = 0
     cfg["output"] = {"dir": out, "congestion": False}
     cfg["rules"] = rules
+    if QUEUES:
+        cfg["tasks"]["queues"] = {"capacity": 1, "length": 8}
+        cfg["planner"]["keep_priorities"] = True
     path = out + ".yaml"
     with open(path, "w") as f:
         yaml.safe_dump(cfg, f)
@@ -68,14 +77,18 @@ def main():
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--skip-large", action="store_true")
     ap.add_argument("--skip-one-way", action="store_true")
+    ap.add_argument("--skip-small", action="store_true")
+    ap.add_argument("--queues", action="store_true")
     a = ap.parse_args()
+    global QUEUES
+    QUEUES = a.queues
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
     clean = True
     print("| warehouse | rules | ticks | errands/tick | vs off | max ticks on one errand | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:
-        if a.skip_large and "large" in name:
+        if (a.skip_large and "large" in name) or (a.skip_small and "small" in name):
             continue
         ticks = getattr(a, tick_opt)
         closure_rule = [{"edges": closure, "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]

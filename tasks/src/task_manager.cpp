@@ -1,6 +1,7 @@
 #include "tasks/task_manager.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace tasks {
 
@@ -196,6 +197,25 @@ void TaskManager::set_battery(const planner::Graph& g, BatteryOptions options, s
       for (planner::Vertex u : dead_end_corridor(g, v)) station_cells_[u] = 1;
     }
   if (!parking_) parking_ = std::make_unique<Parking>(g, std::vector<planner::Vertex>{});
+}
+
+void TaskManager::set_grid_battery(const planner::Graph& g, BatteryOptions options,
+                                   const std::vector<planner::Vertex>& chargers, double charge_w)
+{
+  if (const std::string why = battery_problem(options); !why.empty()) throw std::invalid_argument(why);
+  if (!g.is_grid()) throw std::invalid_argument("chargers: a battery needs a grid map (cell centres)");
+  if (options.charging && chargers.empty()) throw std::invalid_argument("chargers: charging is on, but no charger cell is given");
+  if (options.charging && !(charge_w > 0)) throw std::invalid_argument("charge_w: must be > 0 with charging on");
+  std::vector<Charger> cs;
+  for (planner::Vertex v : chargers) {
+    if (v < 0 || v >= g.size()) throw std::invalid_argument("chargers: cell " + std::to_string(v) + " is not on the map");
+    for (const Charger& c : cs)
+      if (c.cell == v) throw std::invalid_argument("chargers: cell " + std::to_string(v) + " is given twice: one agent charges on a cell");
+    cs.push_back({v, charge_w / 3600.0, "charger" + std::to_string(cs.size())});
+  }
+  std::vector<std::pair<double, double>> xy;
+  for (planner::Vertex v = 0; v < g.size(); ++v) xy.emplace_back(g.cell_x(v), g.cell_y(v));
+  set_battery(g, options, std::move(cs), std::move(xy));
 }
 
 bool TaskManager::send_to_charge(const planner::Config& positions)

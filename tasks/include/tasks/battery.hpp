@@ -45,6 +45,10 @@ struct BatteryOptions {
   bool charging = true;      // false: drain only (no charging errands)
 };
 
+// The first bad field of `o` as "key: what is wrong" ("" when fine), with the YAML key
+// names (fleet.battery.*): the apps prefix their option names.
+std::string battery_problem(const BatteryOptions& o);
+
 struct Charger {
   planner::Vertex cell = -1;
   double wh_per_step = 0;  // energy one step on it adds (power x efficiency x step time)
@@ -85,6 +89,7 @@ class Battery {
   const BatteryOptions& options() const { return options_; }
   const std::vector<Charger>& chargers() const { return chargers_; }
   double charge(int a) const { return charge_[a]; }  // Wh
+  double min_charge() const { return min_fraction_; }  // the lowest any agent had, fraction of capacity
   const std::vector<double>& charges() const { return charge_; }
   int ran_empty() const { return ran_empty_; }
   bool empty(int a) const { return empty_[a] != 0; }
@@ -113,6 +118,7 @@ class Battery {
   std::vector<int> seen_;
   int stamp_ = 0;
   int ran_empty_ = 0;
+  double min_fraction_ = 1;
   long long errands_ = 0, charging_ticks_ = 0, agent_ticks_ = 0;
 };
 

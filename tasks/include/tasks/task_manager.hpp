@@ -88,6 +88,11 @@ class TaskManager {
   // (parking's reserved-cell rule). Before start().
   void set_battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
                    std::vector<std::pair<double, double>> xy);
+  // The same on a grid (rtlacam-lifelong, Python): cell centres at the grid coordinates (1 m
+  // apart), a charger on each of `chargers`, `charge_w` watts for 1 s steps, no losses.
+  // std::invalid_argument "key: what" (battery_problem's keys, or "chargers" / "charge_w").
+  void set_grid_battery(const planner::Graph& g, BatteryOptions options, const std::vector<planner::Vertex>& chargers,
+                        double charge_w);
   const Battery* battery() const { return battery_.get(); }
   // Closures at run time (controller/rules.hpp): `open` is the net without the arcs into
   // closed cells, nullptr when nothing is closed; it must outlive its use (until the next
