@@ -42,9 +42,9 @@ def test_lifelong_bad_input():
 
 
 def test_lifelong_battery_charging_keeps_agents_above_empty():
-    # rtlacam-lifelong's --battery-* on the grid: half a charge emptied in 100 moves; eight
+    # rtlacam-lifelong's --battery-* on the grid: half a charge emptied in 200 moves; eight
     # chargers. With charging nobody runs empty; drain only, agents do.
-    battery = dict(capacity_wh=100, initial=0.5, per_m_wh=0.5, threshold=0.3, critical=0.1, target=0.9,
+    battery = dict(capacity_wh=100, initial=0.5, per_m_wh=0.25, threshold=0.4, critical=0.25, target=0.9,
                    charge_w=36000)
     g = rtlacam.load_map(os.path.join(os.path.dirname(PROBLEM), "maps", "random-32-32-20.map"))
     chargers = list(range(0, g.size, g.size // 8))[:8]
