@@ -68,7 +68,7 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     clean, base = True, None
     for label, battery in variants:
-        m = run(build, os.path.join(tmp, label.replace(" ", "_")), a.ticks, a.expansions, a.agvs, battery)
+        m = run(build, os.path.join(tmp, label.replace(" ", "_").replace(",", "")), a.ticks, a.expansions, a.agvs, battery)
         rate = m["lifelong"]["errandThroughput"]
         base = rate if base is None else base
         b = m.get("battery", {})

@@ -138,7 +138,7 @@ def main():
             print(f"| large (200 AGVs) | {label}, rules off | {m['ticks']} | {rate:.3f} | "
                   f"{rate / base_rate if base_rate else 0:.2f} | {m['lifelong']['maxErrandTicks']} | 0 | 0 | "
                   f"{m.get('rules', {}).get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
-    print("all runs clean (0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 
 
