@@ -14,7 +14,11 @@ any AGV spent on one errand, and the rule counters; every run must end clean (0 
 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
                          [--skip-large] [--skip-one-way] [--skip-small] [--queues]
+                         [--station-closure]
 
+--station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
+(its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
+AGV waits), against no closure; prints the tasks handed back.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
@@ -28,6 +32,9 @@ import tempfile
 import yaml  # PyYAML
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+# The stub of one pick-up station per warehouse (--station-closure).
+STATION_STUB = {"small": ["c1r0_pick1", "pick1_c1r0"], "large": ["c0r0_pick0", "pick0_c0r0"]}
 
 # name, config, ticks option, closure edges, candidate zone edges (the first whose cells hold
 # no two random starts is used: a zone may hold one AGV only, from the start on)
@@ -69,6 +76,37 @@ def run(build, base, out, ticks, expansions, rules):
     return m, p.stderr
 
 
+def station_closure(a, build, tmp):
+    clean = True
+    print("| warehouse | station closure | ticks | errands/tick | vs no closure | max ticks on one errand | tasks handed back | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, base, tick_opt, _, _ in WAREHOUSES:
+        key = name.split()[0]
+        if (a.skip_large and key == "large") or (a.skip_small and key == "small"):
+            continue
+        ticks = getattr(a, tick_opt)
+        closure = [{"edges": STATION_STUB[key], "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]
+        base_rate = None
+        for label, extra in [("none", {}), ("reassign", {"closures": closure, "reassign": True}),
+                             ("wait (reassign off)", {"closures": closure, "reassign": False})]:
+            rules = {"sumo": False, "watch_lanes": False}
+            rules.update(extra)
+            out = os.path.join(tmp, key + "_station_" + label.split()[0])
+            m, err = run(build, base, out, ticks, a.expansions, rules)
+            if m is None:
+                print(f"# {name} {label}: {err}", file=sys.stderr)
+                return 1
+            rate = m["lifelong"]["errandThroughput"]
+            base_rate = rate if base_rate is None else base_rate
+            jr = m["teleports_or_jumps"]
+            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            print(f"| {name} | {label} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
+                  f"{m['lifelong']['maxErrandTicks']} | {m['lifelong'].get('reassignedForClosure', 0)} | "
+                  f"{m['violations']} | {jr} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -79,12 +117,15 @@ def main():
     ap.add_argument("--skip-one-way", action="store_true")
     ap.add_argument("--skip-small", action="store_true")
     ap.add_argument("--queues", action="store_true")
+    ap.add_argument("--station-closure", action="store_true")
     a = ap.parse_args()
     global QUEUES
     QUEUES = a.queues
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
     clean = True
+    if a.station_closure:
+        return station_closure(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | max ticks on one errand | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:
