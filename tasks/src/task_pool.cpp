@@ -40,11 +40,28 @@ void TaskPool::on_start(const planner::Config& positions)
 
 void TaskPool::on_finished(int, const Task&)
 {
-  add_task(make_task(next_id_++));
+  // Tasks revealed past pool_size during a closure (top_up) are used up first.
+  if (static_cast<int>(live_slots().size()) < pool_size_) add_task(make_task(next_id_++));
+}
+
+void TaskPool::top_up(const planner::Config& positions)
+{
+  if (!closures()) return;
+  std::vector<int> live = live_slots();
+  auto reachable = [&](const Task& t) {
+    for (planner::Vertex p : positions)
+      if (can_reach(p, t.next_cell())) return true;
+    return false;
+  };
+  int usable = 0;
+  for (int s : live) usable += reachable(slot(s));
+  for (int n = static_cast<int>(live.size()); usable < pool_size_ && n < 2 * pool_size_; ++n)
+    usable += reachable(slot(add_task(make_task(next_id_++))));
 }
 
 void TaskPool::after_step(const planner::Config& positions)
 {
+  top_up(positions);
   if (reassign_) steal_rounds(positions);
   else assign_free(positions);
 }

@@ -114,3 +114,31 @@ TEST(ClosureTasks, ARoundRobinAgentKeepsItsOwnTaskAndWaits)
   EXPECT_TRUE(rr.busy(0));
   EXPECT_EQ(rr.reassigned_for_closure(), 0);
 }
+
+TEST(ClosureTasks, TasksNobodyCanReachDoNotFillThePool)
+{
+  // Pool of one: the revealed task is cut off; the pool reveals the next one, which the agent
+  // can reach, and after the closure it is back to one live task at a time.
+  Corridor c;
+  auto file = ttest::task_file(c.g, {{{6, 0}}, {{0, 0}}, {{2, 0}}});
+  TaskPool pool(file, c.g, 1, std::make_unique<GreedyAssigner>());
+  Config at{c.g.at(1, 0)};
+  pool.start(at);
+  pool.set_open_graph(&c.closed);
+  pool.update(1, at);
+  ASSERT_TRUE(pool.busy(0));  // not idle behind the cut-off task
+  EXPECT_EQ(pool.goals()[0], c.g.at(0, 0));
+  EXPECT_EQ(pool.revealed(), 2);
+  at[0] = c.g.at(0, 0);
+  pool.update(2, at);  // done: the cut-off task is still live, so finishing reveals none
+  EXPECT_EQ(pool.tasks_finished(), 1);
+  EXPECT_EQ(pool.revealed(), 3);  // top_up: (6, 0) is still unreachable, so (2, 0) comes
+  ASSERT_TRUE(pool.busy(0));
+  EXPECT_EQ(pool.goals()[0], c.g.at(2, 0));
+  pool.set_open_graph(nullptr);  // reopened: (2, 0) done, then (6, 0), nothing new beyond one live
+  at[0] = c.g.at(2, 0);
+  pool.update(3, at);
+  ASSERT_TRUE(pool.busy(0));
+  EXPECT_EQ(pool.goals()[0], c.g.at(6, 0));
+  EXPECT_EQ(pool.revealed(), 3);
+}

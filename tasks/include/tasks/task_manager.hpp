@@ -135,6 +135,7 @@ class TaskManager {
   virtual void on_dropped(int agent, int s) { (void)agent, (void)s; }
   // Can an agent at `from` reach errand cell `to` (always, when nothing is closed)?
   bool can_reach(planner::Vertex from, planner::Vertex to) const { return !reach_ || reach_->reaches(from, to); }
+  bool closures() const { return reach_ != nullptr; }  // set_open_graph gave a graph
   // On a charging errand, or low and waiting for a charger to come free (battery.hpp).
   bool needs_charge(int agent) const { return battery_ && (battery_->charging(agent) || battery_->wants(agent)); }
   // Free for a task: holds none and needs no charge.

@@ -13,7 +13,10 @@
 // its stations holds fewer tasks than the admission limit (admissible()): the rest of the
 // fleet stays idle (parked) instead of queueing at saturated stations.
 // A task handed back (task_manager.hpp: a critical charge, a closure) is matched again from
-// its next errand, opened or not; no agent is matched to an errand it cannot reach.
+// its next errand, opened or not; no agent is matched to an errand it cannot reach. While
+// closures cut errands off, tasks no agent can reach do not count against pool_size: the
+// pool reveals more (up to 2 x pool_size live), else a long closure of one station fills the
+// pool with its tasks and idles the fleet; it shrinks back as tasks finish after the closure.
 #include <memory>
 
 #include "planner/dist_table.hpp"
@@ -48,6 +51,7 @@ class TaskPool : public TaskManager {
 
  private:
   void assign_free(const planner::Config& positions);
+  void top_up(const planner::Config& positions);  // closures: reveal past the tasks nobody can reach
   void steal_rounds(const planner::Config& positions);  // assign_free with reassignment
   // Admission (station queues on, QueueOptions::admission): of the unassigned tasks among
   // `cols` (ascending task id), keeps the oldest whose every remaining errand station
