@@ -4,6 +4,7 @@
 // planner::InputError messages, and described in the run's JSON (describe).
 //   SolverCli  --solver, --seed, --policy and every solver's options (planner/solver.hpp)
 //   ExecCli    --executor and the delay model (executor/; grid4 only)
+//   BatteryCli --battery-* and --chargers: batteries and charging errands (tasks/battery.hpp)
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -21,6 +22,8 @@
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_runner.hpp"
+#include "tasks/lorr_files.hpp"
+#include "tasks/task_manager.hpp"
 
 namespace cli {
 
@@ -233,6 +236,65 @@ struct ExecCli {
     opt.graph_execution = true;
     opt.exec = exec;
     opt.delays = delays;
+  }
+};
+
+// The model and options of the SUMO controller's fleet.battery (controller/README.md), on
+// the grid: cells 1 m apart, 1 s steps, chargers at the cells of --chargers (the
+// agents-file format: a count, then cell ids), each giving --battery-charge-w watts.
+// Any of these options turns the battery on.
+struct BatteryCli {
+  tasks::BatteryOptions o;
+  double charge_w = 7200 * 0.95;  // the shipped chargingStations' power x efficiency
+  std::string chargers_file;
+  bool no_charging = false;
+  std::vector<CLI::Option*> opts;
+
+  void bind(CLI::App& app)
+  {
+    opts.push_back(app.add_option("--battery-capacity-wh", o.capacity_wh, "battery: capacity (Wh)")->capture_default_str());
+    opts.push_back(app.add_option("--battery-initial", o.initial, "battery: charge at the start, fraction of capacity")->capture_default_str());
+    opts.push_back(app.add_option("--battery-per-m-wh", o.per_m_wh, "battery: drain per metre (a cell)")->capture_default_str());
+    opts.push_back(app.add_option("--battery-per-turn-wh", o.per_turn_wh, "battery: drain per change of direction")->capture_default_str());
+    opts.push_back(app.add_option("--battery-threshold", o.threshold,
+                                  "battery: below it, between tasks, an agent goes to charge (fraction)")->capture_default_str());
+    opts.push_back(app.add_option("--battery-critical", o.critical,
+                                  "battery: below it mid-task an agent hands its task back and charges (fraction, < threshold; 0 = off)")
+                       ->capture_default_str());
+    opts.push_back(app.add_option("--battery-target", o.target, "battery: an agent leaves the charger at this fraction")->capture_default_str());
+    opts.push_back(app.add_option("--battery-charge-w", charge_w, "battery: each charger's power (W; 1 s steps)")->capture_default_str());
+    opts.push_back(app.add_flag("--battery-no-charging", no_charging, "battery: drain only, no charging errands"));
+    opts.push_back(app.add_option("--chargers", chargers_file, "battery: charger cells (the agents-file format: a count, then cell ids)"));
+  }
+
+  bool on() const
+  {
+    for (const CLI::Option* x : opts)
+      if (x->count() > 0) return true;
+    return false;
+  }
+
+  // Sets the battery of `tm` (before start) when on(). Throws InputError naming the option.
+  void apply(const planner::Graph& g, tasks::TaskManager& tm) const
+  {
+    if (!on()) return;
+    tasks::BatteryOptions b = o;
+    b.charging = !no_charging;
+    std::vector<planner::Vertex> cells;
+    if (!chargers_file.empty()) {
+      const planner::Config c = tasks::load_lorr_agents(chargers_file, g);
+      cells.assign(c.begin(), c.end());
+    }
+    try {
+      tm.set_grid_battery(g, b, cells, charge_w);
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      const std::string key = what.substr(0, what.find(':'));
+      const std::string opt = key == "chargers" ? "--chargers" : "--battery-" + key;
+      std::string name = opt;
+      for (char& ch : name) ch = ch == '_' ? '-' : ch;
+      throw planner::InputError(name + what.substr(key.size()));
+    }
   }
 };
 

@@ -41,6 +41,7 @@ int main(int argc, char** argv)
   bool quiet = false;
   cli::SolverCli sc;  // --solver, --seed, --policy and every solver's options
   cli::ExecCli xc;    // --executor and the delays
+  cli::BatteryCli bc; // --battery-*, --chargers
   app.add_option("--problem", problem_file, "LoRR problem JSON")->required();
   app.add_option("--steps", steps, "steps to simulate (default: the instance's simulation_time)");
   app.add_option("--agents", agents, "use only the first N agents of the team (default: teamSize)")->check(CLI::PositiveNumber);
@@ -102,6 +103,7 @@ int main(int argc, char** argv)
   app.add_flag("--quiet", quiet, "no progress lines");
   sc.bind(app);
   xc.bind(app);
+  bc.bind(app);
   cli::add_version(app, "rtlacam-lifelong");
   RTLACAM_PARSE(app, argc, argv);
   planner::install_stop_handlers();  // SIGINT / SIGTERM: stop stepping, write the log, exit 130 / 143
@@ -127,6 +129,7 @@ int main(int argc, char** argv)
       const planner::Config cells = load_lorr_agents(parking_file, g);
       tm->set_parking(g, std::vector<planner::Vertex>(cells.begin(), cells.end()));
     }
+    bc.apply(g, *tm);
 
     LifelongOptions opt;
     sc.apply(app, g, starts.size(), action_model == "rotation", opt.solver);

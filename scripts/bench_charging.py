@@ -1,10 +1,11 @@
 #!/usr/bin/env python3
 """Lifelong throughput with batteries and charging errands (issue 24; tasks/battery.hpp).
 
-Three runs of rtlacam-sumo on config/small_charging_lifelong.yaml in the same invocation,
+Four runs of rtlacam-sumo on config/small_charging_lifelong.yaml in the same invocation,
 identical but for the battery: none (no fleet.battery: the baseline), charging (the config's
-battery, AGVs charge below the threshold), drain only (fleet.battery.charging: false: the
-same drain, no charging errands). The planner has a fixed number of expansions per SUMO step
+battery, AGVs charge below the threshold between tasks and, below fleet.battery.critical,
+mid-task), charging without the critical level (critical: 0), drain only
+(fleet.battery.charging: false: the same drain, no charging errands). The planner has a fixed number of expansions per SUMO step
 (deterministic decisions). Prints errands per tick and the ratio to the baseline, the
 charging errands, the charging share of AGV-ticks, the lowest charge and the AGVs that ran
 empty; every run must end clean (0 violations, 0 jumps / re-syncs; the script says so), and
@@ -60,24 +61,25 @@ def main():
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_charging_")
     shipped = yaml.safe_load(open(os.path.join(ROOT, BASE)))["fleet"]["battery"]
-    variants = [("no battery", None), ("charging", dict(shipped)), ("drain only", dict(shipped, charging=False))]
+    variants = [("no battery", None), ("charging", dict(shipped)), ("charging, critical off", dict(shipped, critical=0)),
+                ("drain only", dict(shipped, charging=False))]
     print(f"# {BASE}, {a.agvs} AGVs, {a.ticks} ticks, {a.expansions} expansions per SUMO step; battery {shipped}")
-    print("| battery | errands/tick | vs no battery | charging errands | charging share | min charge | ran empty | violations | jumps+resyncs |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| battery | errands/tick | vs no battery | charging errands | dropped mid-task | charging share | min charge | ran empty | max ticks on one errand | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     clean, base = True, None
     for label, battery in variants:
-        m = run(build, os.path.join(tmp, label.replace(" ", "_")), a.ticks, a.expansions, a.agvs, battery)
+        m = run(build, os.path.join(tmp, label.replace(" ", "_").replace(",", "")), a.ticks, a.expansions, a.agvs, battery)
         rate = m["lifelong"]["errandThroughput"]
         base = rate if base is None else base
         b = m.get("battery", {})
         jr = m["teleports_or_jumps"]
-        clean = clean and m["violations"] == 0 and jr == 0 and not m["error"]
+        clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
         if label == "charging":
             clean = clean and b["ran_empty"] == 0
         print(f"| {label} | {rate:.3f} | {rate / base if base else 0:.2f} | {b.get('charging_errands', '-')} | "
-              f"{b.get('charging_share', 0):.3f} | {b.get('min_charge', 1):.3f} | {b.get('ran_empty', '-')} | "
-              f"{m['violations']} | {jr} |", flush=True)
-    print("all runs clean (0 violations, 0 jumps/re-syncs, no error; none ran empty with charging)" if clean
+              f"{b.get('dropped_mid_task', '-')} | {b.get('charging_share', 0):.3f} | {b.get('min_charge', 1):.3f} | "
+              f"{b.get('ran_empty', '-')} | {m['lifelong']['maxErrandTicks']} | {m['violations']} | {jr} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error; none ran empty with charging)" if clean
           else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 

@@ -7,13 +7,23 @@ rules: off (no closure, no zone, no lane watch), closure (a picking aisle closed
 closed over the same window: the cells stay open the other way), zone (a cross aisle as a
 one-at-a-time zone), both (closure and zone). --executor runs them all under lockstep, adg or
 adg-follow (default: the config's).
+Then one-way versus two-way aisles on the large layout: config/large_warehouse_lifelong.yaml
+against config/large_oneway_lifelong.yaml (the same layout, stations, starts and tasks, its
+picking aisles one-way in alternate directions; sumo_scenarios/make_warehouse.py), rules off.
 The planner has a fixed number of expansions per SUMO step (deterministic decisions, so the
 rules alone make the difference). Prints errands per tick, the ratio to "off", the longest
-any AGV spent on one errand, and the rule counters; every run must end clean (0 violations,
+any AGV spent on one errand, and the rule counters; every run must end clean (0 collisions, 0 violations,
 0 jumps / re-syncs; the script says so).
 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
-                         [--skip-large] [--executor lockstep|adg|adg-follow]
+                         [--skip-large] [--skip-one-way] [--skip-small] [--queues]
+                         [--station-closure] [--executor lockstep|adg|adg-follow]
+
+--station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
+(its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
+AGV waits), against no closure; prints the tasks handed back.
+--queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
+(the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
 import argparse
 import json
@@ -26,6 +36,9 @@ import yaml  # PyYAML
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
+# The stub of one pick-up station per warehouse (--station-closure).
+STATION_STUB = {"small": ["c1r0_pick1", "pick1_c1r0"], "large": ["c0r0_pick0", "pick0_c0r0"]}
+
 # name, config, ticks option, closure edges, candidate zone edges (the first whose cells hold
 # no two random starts is used: a zone may hold one AGV only, from the start on)
 WAREHOUSES = [
@@ -37,7 +50,11 @@ WAREHOUSES = [
 ]
 
 
-def run(build, base, out, ticks, expansions, rules, executor=None):
+QUEUES = False
+EXECUTOR = None  # --executor: every run under it (None: the config's)
+
+
+def run(build, base, out, ticks, expansions, rules):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
     for k in ("net", "additional"):
@@ -48,10 +65,13 @@ def run(build, base, out, ticks, expansions, rules, executor=None):
     cfg["planner"]["expansions"] = expansions
     cfg["run"]["max_ticks"] = ticks
     cfg["run"]["progress_s"] = 0
-    if executor:
-        cfg["run"]["executor"] = executor
+    if EXECUTOR:
+        cfg["run"]["executor"] = EXECUTOR
     cfg["output"] = {"dir": out, "congestion": False}
     cfg["rules"] = rules
+    if QUEUES:
+        cfg["tasks"]["queues"] = {"capacity": 1, "length": 8}
+        cfg["planner"]["keep_priorities"] = True
     path = out + ".yaml"
     with open(path, "w") as f:
         yaml.safe_dump(cfg, f)
@@ -62,23 +82,61 @@ def run(build, base, out, ticks, expansions, rules, executor=None):
     return m, p.stderr
 
 
+def station_closure(a, build, tmp):
+    clean = True
+    print("| warehouse | station closure | ticks | errands/tick | vs no closure | max ticks on one errand | tasks handed back | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, base, tick_opt, _, _ in WAREHOUSES:
+        key = name.split()[0]
+        if (a.skip_large and key == "large") or (a.skip_small and key == "small"):
+            continue
+        ticks = getattr(a, tick_opt)
+        closure = [{"edges": STATION_STUB[key], "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]
+        base_rate = None
+        for label, extra in [("none", {}), ("reassign", {"closures": closure, "reassign": True}),
+                             ("wait (reassign off)", {"closures": closure, "reassign": False})]:
+            rules = {"sumo": False, "watch_lanes": False}
+            rules.update(extra)
+            out = os.path.join(tmp, key + "_station_" + label.split()[0])
+            m, err = run(build, base, out, ticks, a.expansions, rules)
+            if m is None:
+                print(f"# {name} {label}: {err}", file=sys.stderr)
+                return 1
+            rate = m["lifelong"]["errandThroughput"]
+            base_rate = rate if base_rate is None else base_rate
+            jr = m["teleports_or_jumps"]
+            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            print(f"| {name} | {label} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
+                  f"{m['lifelong']['maxErrandTicks']} | {m['lifelong'].get('reassignedForClosure', 0)} | "
+                  f"{m['violations']} | {jr} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
     ap.add_argument("--ticks", type=int, default=1000)
-    ap.add_argument("--large-ticks", type=int, default=500)
+    ap.add_argument("--large-ticks", type=int, default=1000)
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--skip-large", action="store_true")
+    ap.add_argument("--skip-one-way", action="store_true")
+    ap.add_argument("--skip-small", action="store_true")
+    ap.add_argument("--queues", action="store_true")
+    ap.add_argument("--station-closure", action="store_true")
     ap.add_argument("--executor", choices=["lockstep", "adg", "adg-follow"])
     a = ap.parse_args()
+    global QUEUES, EXECUTOR
+    QUEUES, EXECUTOR = a.queues, a.executor
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
     clean = True
-    print(f"executor: {a.executor or 'as in the config'}")
+    if a.station_closure:
+        return station_closure(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | max ticks on one errand | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:
-        if a.skip_large and "large" in name:
+        if (a.skip_large and "large" in name) or (a.skip_small and "small" in name):
             continue
         ticks = getattr(a, tick_opt)
         closure_rule = [{"edges": closure, "begin": round(0.2 * ticks), "end": round(0.5 * ticks)}]
@@ -86,7 +144,7 @@ def main():
         zone_rule = None
         for z in zones:  # a zone holding no two random starts
             m, err = run(build, base, os.path.join(tmp, "probe"), 1, a.expansions,
-                         {"sumo": False, "watch_lanes": False, "zones": [{"id": "z", "edges": z}]}, a.executor)
+                         {"sumo": False, "watch_lanes": False, "zones": [{"id": "z", "edges": z}]})
             if m is not None:
                 zone_rule = [{"id": "z", "edges": z}]
                 break
@@ -101,7 +159,7 @@ def main():
             rules = {"sumo": False, "watch_lanes": False}
             rules.update(extra)
             out = os.path.join(tmp, name.split()[0] + "_" + label.split()[0])
-            m, err = run(build, base, out, ticks, a.expansions, rules, a.executor)
+            m, err = run(build, base, out, ticks, a.expansions, rules)
             if m is None:
                 print(f"# {name} {label}: {err}", file=sys.stderr)
                 return 1
@@ -109,12 +167,28 @@ def main():
             base_rate = rate if base_rate is None else base_rate
             r = m.get("rules", {})
             jr = m["teleports_or_jumps"]
-            clean = clean and m["violations"] == 0 and jr == 0 and not m["error"]
+            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
             what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zones" in extra else "")
             print(f"| {name} | {what} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
                   f"{m['lifelong']['maxErrandTicks']} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
                   f"{r.get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
-    print("all runs clean (0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    if not a.skip_one_way:  # the same layout with one-way picking aisles, rules off
+        base_rate = None
+        for label, base in [("two-way aisles", "config/large_warehouse_lifelong.yaml"),
+                            ("one-way aisles", "config/large_oneway_lifelong.yaml")]:
+            out = os.path.join(tmp, "large_" + label.split()[0])
+            m, err = run(build, base, out, a.large_ticks, a.expansions, {"sumo": False, "watch_lanes": False})
+            if m is None:
+                print(f"# large {label}: {err}", file=sys.stderr)
+                return 1
+            rate = m["lifelong"]["errandThroughput"]
+            base_rate = rate if base_rate is None else base_rate
+            jr = m["teleports_or_jumps"]
+            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            print(f"| large (200 AGVs) | {label}, rules off | {m['ticks']} | {rate:.3f} | "
+                  f"{rate / base_rate if base_rate else 0:.2f} | {m['lifelong']['maxErrandTicks']} | 0 | 0 | "
+                  f"{m.get('rules', {}).get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 
 

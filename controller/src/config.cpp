@@ -369,8 +369,8 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   if (const YAML::Node b = f["battery"]) {
     FleetSection::Battery& x = c.fleet.battery;
     if (!b.IsMap()) r.fail("fleet.battery", "expected a mapping {capacity_wh, per_m_wh, per_turn_wh, threshold, target, ...}");
-    r.keys(b, "fleet.battery", {"capacity_wh", "initial", "per_m_wh", "per_turn_wh", "threshold", "target", "charge_w", "charging",
-                                "sample_ticks"});
+    r.keys(b, "fleet.battery", {"capacity_wh", "initial", "per_m_wh", "per_turn_wh", "threshold", "critical", "target", "charge_w",
+                                "charging", "sample_ticks"});
     x.on = true;
     r.number(b, "fleet.battery", "capacity_wh", x.capacity_wh, 0, true);
     r.number(b, "fleet.battery", "per_m_wh", x.per_m_wh, 0);
@@ -384,6 +384,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     }
     if (x.threshold >= x.target)
       r.fail("fleet.battery.threshold", "must be < target (" + Reader::fmt(x.target) + "), got " + Reader::fmt(x.threshold));
+    if (b["critical"]) {
+      r.number(b, "fleet.battery", "critical", x.critical, 0);
+      if (x.critical >= x.threshold)
+        r.fail("fleet.battery.critical", "must be < threshold (" + Reader::fmt(x.threshold) + "), got " + Reader::fmt(x.critical));
+    } else {
+      x.critical = std::min(x.critical, x.threshold / 2);  // the default stays below a low threshold
+    }
   }
   if (c.fleet.vtype.length + c.fleet.vtype.min_gap > c.grid.cell_length + 1e-9)
     r.fail("fleet.vtype", "length + min_gap (" + Reader::fmt(c.fleet.vtype.length + c.fleet.vtype.min_gap) +
@@ -620,7 +627,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   // Rules (rules.hpp): closures and one-at-a-time zones.
   const YAML::Node ru = root["rules"];
-  r.keys(ru, "rules", {"sumo", "watch_lanes", "closures", "zones", "enforce_closures", "enforce_zones"});
+  r.keys(ru, "rules", {"sumo", "watch_lanes", "closures", "zones", "enforce_closures", "enforce_zones", "reassign"});
   r.flag(ru, "rules", "sumo", c.rules.sumo);
   if (ru && ru.IsMap() && ru["watch_lanes"]) {
     bool w = false;
@@ -629,6 +636,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
   r.flag(ru, "rules", "enforce_closures", c.rules.enforce_closures);
   r.flag(ru, "rules", "enforce_zones", c.rules.enforce_zones);
+  r.flag(ru, "rules", "reassign", c.rules.reassign);
   auto names = [&](const YAML::Node& n, const std::string& key, const char* k, std::vector<std::string>& out) {
     if (!n[k]) return;
     const YAML::Node l = n[k];

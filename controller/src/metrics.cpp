@@ -49,6 +49,7 @@ nlohmann::json Metrics::to_json() const
   if (mode == "lifelong") {
     j["lifelong"]["throughputBound"] = throughput_bound();
     j["lifelong"]["maxErrandTicks"] = max_errand_ticks;
+    j["lifelong"]["reassignedForClosure"] = reassigned_for_closure;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
     // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
     j["lifelong"]["freeFlowBound"] = free_flow_bound;
@@ -60,6 +61,7 @@ nlohmann::json Metrics::to_json() const
     nlohmann::json samples = nlohmann::json::array();
     for (const BatteryStats::Sample& x : battery.samples) samples.push_back({{"tick", x.tick}, {"min", x.min}, {"mean", x.mean}, {"max", x.max}});
     j["battery"] = {{"capacity_wh", battery.capacity_wh}, {"charging", battery.charging}, {"charging_errands", battery.errands},
+                    {"dropped_mid_task", battery.dropped_mid_task},
                     {"ran_empty", battery.ran_empty}, {"charging_share", battery.charging_share},
                     {"min_charge", battery.min_charge}, {"samples", samples}};
   }

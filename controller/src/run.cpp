@@ -184,6 +184,7 @@ void Run::prepare()
     m_.rules.active = true;
     rules_->update(0, nullptr);
     m_.rules.max_closed = rules_->num_closed();
+    closure_tasks();
     // Only watched lanes: the planner stays the one built above until one closes.
     if (rules_->configured()) rules_restart(ins_.starts);
   }
@@ -212,6 +213,17 @@ void Run::rules_restart(const planner::Config& at)
   ++m_.rules.replans;
 }
 
+void Run::closure_tasks()
+{
+  if (!tm_ || !cfg_.rules.enforce_closures || !cfg_.rules.reassign) return;
+  // Zones are left open here: an occupied zone empties soon, a closure lasts.
+  std::unique_ptr<planner::Graph> g;
+  if (rules_->anything_closed())  // cells, or arcs closed one way
+    g = std::make_unique<planner::Graph>(rules_->graph(std::vector<uint8_t>(rules_->zones().size(), 0), true));
+  tm_->set_open_graph(g.get());  // the next tm_->update() hands back what they cut off
+  open_graph_ = std::move(g);
+}
+
 planner::Config Run::rule_goals(const planner::Graph& g, const planner::Config& at)
 {
   std::vector<std::string> lines;
@@ -234,6 +246,7 @@ void Run::rules_tick(const planner::Config& cur)
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
     std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
                  rules_->num_closed(), rules_->closed_arcs().size());
+    closure_tasks();
     rules_restart(cur);
   } else if (cfg_.rules.enforce_zones && rules_->blocked_zones(cur) != zone_occ_) {
     rules_restart(cur);
@@ -257,6 +270,7 @@ void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
     m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
     std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
                  rules_->num_closed(), rules_->closed_arcs().size());
+    closure_tasks();
   }
   // (enforce_closures off: the planner keeps its graph, RuleCheck sees what follows.)
   const bool regraph = (changed && cfg_.rules.enforce_closures) ||
@@ -405,8 +419,9 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   errand_ticks();
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
+  m_.reassigned_for_closure = tm_->reassigned_for_closure();
   count_queues(executed);
-  if (const tasks::Battery* b = tm_->battery()) count_battery(*b);
+  if (const tasks::Battery* b = tm_->battery()) count_battery(*b), m_.battery.dropped_mid_task = tm_->dropped_for_charge();
 }
 
 void Run::count_battery(const tasks::Battery& b)

@@ -103,6 +103,9 @@ class Run {
   // or the one rules_restart() is about to plan on), logging the AGVs that must wait.
   void rules_tick(const planner::Config& cur);
   void rules_restart(const planner::Config& at);
+  // Lifelong: the net without the arcs into closed cells, for the task layer (an errand a
+  // closure cuts off goes back to the pool: tasks/task_manager.hpp).
+  void closure_tasks();
   planner::Config rule_goals(const planner::Graph& g, const planner::Config& at);
   void errand_ticks();  // lifelong: how long each AGV has been on its errand
   void write_congestion();
@@ -139,6 +142,7 @@ class Run {
   // The planner's graph while rules_ exist (declared before p_: it outlives the planner).
   std::unique_ptr<planner::Graph> rules_graph_;
   std::vector<uint8_t> zone_occ_, waiting_;  // zones the planner's graph blocks; agents waiting
+  std::unique_ptr<planner::Graph> open_graph_;  // closure_tasks(); null while nothing is closed
   std::vector<long long> errand_start_;  // lifelong: tick each AGV's current goal began
   planner::Config errand_goal_;
   std::unique_ptr<planner::RealtimePlanner> p_;

@@ -66,7 +66,8 @@ py::dict run_result(const RunResult& r)
 // The lifelong runner on a LoRR problem, as rtlacam-lifelong runs it; returns its JSON log.
 py::object lifelong(const std::string& problem_file, const std::string& solver, long steps, double budget_ms,
                     uint64_t budget_expansions, std::string mode, const std::string& assigner, uint64_t seed,
-                    int agents, bool reassign, const std::string& policy_file)
+                    int agents, bool reassign, const std::string& policy_file, const py::object& battery,
+                    const std::vector<Vertex>& chargers)
 {
   using namespace tasks;
   const LorrInstance in = load_lorr_instance(problem_file, agents, "agents=");
@@ -81,6 +82,31 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
   else if (mode == "pool") tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner), reassign);
   else throw std::invalid_argument("mode must be roundrobin or pool, not '" + mode + "'");
+  if (!battery.is_none()) {
+    // rtlacam-lifelong's --battery-* options, under the YAML names of fleet.battery.
+    BatteryOptions b;
+    double charge_w = 7200 * 0.95;
+    for (const auto& [k, v] : battery.cast<py::dict>()) {
+      const std::string key = py::str(k);
+      if (key == "charging") b.charging = v.cast<bool>();
+      else if (key == "capacity_wh") b.capacity_wh = v.cast<double>();
+      else if (key == "initial") b.initial = v.cast<double>();
+      else if (key == "per_m_wh") b.per_m_wh = v.cast<double>();
+      else if (key == "per_turn_wh") b.per_turn_wh = v.cast<double>();
+      else if (key == "threshold") b.threshold = v.cast<double>();
+      else if (key == "critical") b.critical = v.cast<double>();
+      else if (key == "target") b.target = v.cast<double>();
+      else if (key == "charge_w") charge_w = v.cast<double>();
+      else throw InputError("battery: unknown key '" + key + "'");
+    }
+    try {
+      tm->set_grid_battery(g, b, chargers, charge_w);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(std::string("battery.") + e.what());
+    }
+  } else if (!chargers.empty()) {
+    throw InputError("chargers: only with battery={...}");
+  }
   policy::Model model;
   std::unique_ptr<policy::PolicyPreference> pref;
   if (!policy_file.empty()) {
@@ -257,6 +283,8 @@ PYBIND11_MODULE(_rtlacam, m)
   m.def("lifelong", &lifelong, py::arg("problem"), py::arg("solver") = "rtlacam", py::arg("steps") = -1,
         py::arg("budget_ms") = 100.0, py::arg("budget_expansions") = 0, py::arg("mode") = "",
         py::arg("assigner") = "greedy", py::arg("seed") = 0, py::arg("agents") = 0, py::arg("reassign") = false,
-        py::arg("policy") = "",
-        "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict)");
+        py::arg("policy") = "", py::arg("battery") = py::none(), py::arg("chargers") = std::vector<Vertex>{},
+        "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
+        "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, "
+        "target, charge_w, charging) on `chargers` (cell ids), as rtlacam-lifelong --battery-* --chargers");
 }

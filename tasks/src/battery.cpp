@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 namespace tasks {
@@ -12,6 +13,7 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
       seen_(g.size(), 0)
 {
   if (xy_.size() != static_cast<size_t>(g.size())) throw std::invalid_argument("Battery: one cell centre per vertex needed");
+  if (const std::string why = battery_problem(options_); !why.empty()) throw std::invalid_argument("Battery: " + why);
   for (const Charger& c : chargers_)
     if (c.cell < 0 || c.cell >= g.size()) throw std::invalid_argument("Battery: charger '" + c.id + "' is not a vertex");
   for (size_t i = 0; i < chargers_.size(); ++i)
@@ -25,6 +27,24 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
     dead_end_[i] = !corridor.empty();
     for (planner::Vertex v : corridor) reserved_[v] = 1;
   }
+}
+
+std::string battery_problem(const BatteryOptions& o)
+{
+  auto num = [](double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", x);
+    return std::string(b);
+  };
+  if (!(o.capacity_wh > 0)) return "capacity_wh: must be > 0, got " + num(o.capacity_wh);
+  if (!(o.per_m_wh >= 0)) return "per_m_wh: must be >= 0, got " + num(o.per_m_wh);
+  if (!(o.per_turn_wh >= 0)) return "per_turn_wh: must be >= 0, got " + num(o.per_turn_wh);
+  for (auto [k, v] : {std::pair<const char*, double>{"initial", o.initial}, {"threshold", o.threshold}, {"target", o.target}})
+    if (!(v > 0 && v <= 1)) return std::string(k) + ": is a fraction of capacity_wh: must be in (0, 1], got " + num(v);
+  if (o.threshold >= o.target) return "threshold: must be < target (" + num(o.target) + "), got " + num(o.threshold);
+  if (!(o.critical >= 0) || o.critical >= o.threshold)
+    return "critical: must be >= 0 and < threshold (" + num(o.threshold) + "), got " + num(o.critical);
+  return "";
 }
 
 std::vector<planner::Vertex> dead_end_corridor(const planner::Graph& g, planner::Vertex v)
@@ -71,6 +91,7 @@ std::vector<int> Battery::step(const planner::Config& positions)
   if (last_.empty()) {  // the first call: the start configuration, nothing driven yet
     last_ = positions;
     charge_.assign(n, options_.initial * options_.capacity_wh);
+    min_fraction_ = n > 0 ? options_.initial : 1;
     claim_.assign(n, -1);
     empty_.assign(n, 0);
     dir_x_.assign(n, 0);
@@ -92,6 +113,7 @@ std::vector<int> Battery::step(const planner::Config& positions)
       charge_[a] -= wh;
       if (charge_[a] <= 0 && !empty_[a]) empty_[a] = 1, ++ran_empty_, emptied_.push_back(a);
       charge_[a] = std::max(0.0, charge_[a]);
+      min_fraction_ = std::min(min_fraction_, charge_[a] / options_.capacity_wh);
     } else if (claim_[a] >= 0 && chargers_[claim_[a]].cell == v) {
       ++charging_ticks_;
       charge_[a] = std::min(options_.capacity_wh, charge_[a] + chargers_[claim_[a]].wh_per_step);

@@ -13,7 +13,7 @@ std::vector<int> GreedyAssigner::assign(int rows, int cols, const CostFn& cost)
     for (int j = 0; j < cols; ++j) {
       if (taken[j]) continue;
       const int64_t c = cost(i, j);
-      if (c < best) best = c, out[i] = j;
+      if (c < best && c < kForbidden) best = c, out[i] = j;
     }
     if (out[i] >= 0) taken[out[i]] = 1;
   }

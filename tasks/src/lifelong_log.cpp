@@ -69,6 +69,16 @@ void add_task_fields(nlohmann::json& j, const TaskManager& tasks)
     if (j.contains("errandThroughput") && ff->errands_per_step() > 0)
       j["errandThroughputOverFreeFlow"] = j["errandThroughput"].get<double>() / ff->errands_per_step();
   }
+  // Batteries (battery.hpp): the same fields as the SUMO controller's metrics.json "battery".
+  if (const Battery* b = tasks.battery())
+    j["battery"] = {{"capacity_wh", b->options().capacity_wh},
+                    {"charging", b->options().charging},
+                    {"critical", b->options().critical},
+                    {"charging_errands", b->errands()},
+                    {"dropped_mid_task", tasks.dropped_for_charge()},
+                    {"ran_empty", b->ran_empty()},
+                    {"charging_share", b->agent_ticks() > 0 ? static_cast<double>(b->charging_ticks()) / b->agent_ticks() : 0.0},
+                    {"min_charge", b->min_charge()}};
   if (const auto* pool = dynamic_cast<const TaskPool*>(&tasks)) {
     j["reassign"] = pool->reassigns();
     j["numReassignments"] = pool->reassignments();

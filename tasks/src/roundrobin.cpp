@@ -17,8 +17,19 @@ void RoundRobin::on_finished(int agent, const Task& task)
   give(agent, add_task(make_task(task.id + num_agents())));
 }
 
+void RoundRobin::on_dropped(int agent, int s)
+{
+  dropped_.resize(num_agents(), -1);
+  dropped_[agent] = s;
+}
+
 void RoundRobin::on_charged(int agent)
 {
+  if (agent < static_cast<int>(dropped_.size()) && dropped_[agent] >= 0) {
+    give(agent, dropped_[agent]);
+    dropped_[agent] = -1;
+    return;
+  }
   if (agent >= static_cast<int>(deferred_.size()) || deferred_[agent] < 0) return;
   give(agent, add_task(make_task(deferred_[agent])));
   deferred_[agent] = -1;

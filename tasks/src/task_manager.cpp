@@ -1,6 +1,7 @@
 #include "tasks/task_manager.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace tasks {
 
@@ -40,14 +41,17 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       on_finished(a, done);
     }
   }
+  const bool handed = hand_back(positions);
   if (battery_) send_to_charge(positions);
   for (int a : charged) on_charged(a);
   goals_changed_ = false;
-  if (!events.empty() || queues_ || parking_ || battery_) {
+  const bool rematch = handed || rematch_;
+  rematch_ = false;
+  if (!events.empty() || queues_ || parking_ || battery_ || rematch) {
     const planner::Config before = goals_;
-    if (!events.empty() || !charged.empty()) after_step(positions);
+    if (!events.empty() || !charged.empty() || rematch) after_step(positions);
     refresh_goals(positions);
-    goals_changed_ = !events.empty() || goals_ != before;
+    goals_changed_ = !events.empty() || handed || goals_ != before;
     // An agent that just reached a queue or parking goal: the epoch waited for it.
     at_goal_.resize(num_agents(), 0);
     for (int a = 0; a < num_agents(); ++a) {
@@ -114,6 +118,40 @@ void TaskManager::release(int agent)
   --tasks_assigned_;  // counts tasks handed out for good, not matching rounds
 }
 
+void TaskManager::drop_task(int agent)
+{
+  const int s = holding_[agent];
+  if (s < 0) return;
+  release(agent);
+  on_dropped(agent, s);
+}
+
+bool TaskManager::hand_back(const planner::Config& positions)
+{
+  bool any = false;
+  for (int a = 0; a < num_agents(); ++a) {
+    if (holding_[a] < 0) continue;
+    if (battery_ && battery_->critical(a)) {
+      // Charge first: the task would take it to empty (battery.hpp).
+      drop_task(a);
+      ++dropped_for_charge_;
+      battery_->consider(a, positions[a]);  // no charger free: send_to_charge() retries
+      any = true;
+    } else if (reach_ && reassigns_for_closures() && !reach_->reaches(positions[a], slots_[holding_[a]].next_cell())) {
+      drop_task(a);
+      ++reassigned_for_closure_;
+      any = true;
+    }
+  }
+  return any;
+}
+
+void TaskManager::set_open_graph(const planner::Graph* open)
+{
+  reach_ = open ? std::make_unique<Reachability>(*open) : nullptr;
+  rematch_ = true;
+}
+
 void TaskManager::drop(int s)
 {
   slots_[s] = Task{};
@@ -159,6 +197,25 @@ void TaskManager::set_battery(const planner::Graph& g, BatteryOptions options, s
       for (planner::Vertex u : dead_end_corridor(g, v)) station_cells_[u] = 1;
     }
   if (!parking_) parking_ = std::make_unique<Parking>(g, std::vector<planner::Vertex>{});
+}
+
+void TaskManager::set_grid_battery(const planner::Graph& g, BatteryOptions options,
+                                   const std::vector<planner::Vertex>& chargers, double charge_w)
+{
+  if (const std::string why = battery_problem(options); !why.empty()) throw std::invalid_argument(why);
+  if (!g.is_grid()) throw std::invalid_argument("chargers: a battery needs a grid map (cell centres)");
+  if (options.charging && chargers.empty()) throw std::invalid_argument("chargers: charging is on, but no charger cell is given");
+  if (options.charging && !(charge_w > 0)) throw std::invalid_argument("charge_w: must be > 0 with charging on");
+  std::vector<Charger> cs;
+  for (planner::Vertex v : chargers) {
+    if (v < 0 || v >= g.size()) throw std::invalid_argument("chargers: cell " + std::to_string(v) + " is not on the map");
+    for (const Charger& c : cs)
+      if (c.cell == v) throw std::invalid_argument("chargers: cell " + std::to_string(v) + " is given twice: one agent charges on a cell");
+    cs.push_back({v, charge_w / 3600.0, "charger" + std::to_string(cs.size())});
+  }
+  std::vector<std::pair<double, double>> xy;
+  for (planner::Vertex v = 0; v < g.size(); ++v) xy.emplace_back(g.cell_x(v), g.cell_y(v));
+  set_battery(g, options, std::move(cs), std::move(xy));
 }
 
 bool TaskManager::send_to_charge(const planner::Config& positions)

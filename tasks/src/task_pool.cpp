@@ -40,11 +40,28 @@ void TaskPool::on_start(const planner::Config& positions)
 
 void TaskPool::on_finished(int, const Task&)
 {
-  add_task(make_task(next_id_++));
+  // Tasks revealed past pool_size during a closure (top_up) are used up first.
+  if (static_cast<int>(live_slots().size()) < pool_size_) add_task(make_task(next_id_++));
+}
+
+void TaskPool::top_up(const planner::Config& positions)
+{
+  if (!closures()) return;
+  std::vector<int> live = live_slots();
+  auto reachable = [&](const Task& t) {
+    for (planner::Vertex p : positions)
+      if (can_reach(p, t.next_cell())) return true;
+    return false;
+  };
+  int usable = 0;
+  for (int s : live) usable += reachable(slot(s));
+  for (int n = static_cast<int>(live.size()); usable < pool_size_ && n < 2 * pool_size_; ++n)
+    usable += reachable(slot(add_task(make_task(next_id_++))));
 }
 
 void TaskPool::after_step(const planner::Config& positions)
 {
+  top_up(positions);
   if (reassign_) steal_rounds(positions);
   else assign_free(positions);
 }
@@ -88,20 +105,21 @@ void TaskPool::steal_rounds(const planner::Config& positions)
   // Each steal strictly shortens the stolen task's first leg, so this ends; the round
   // limit only bounds the work of one step.
   for (int round = 0; round < 8 && !agents.empty(); ++round) {
-    std::vector<int> cols;
+    std::vector<int> cols;  // unopened tasks, and opened ones handed back
     for (int s : live_slots())
-      if (slot(s).next == 0) cols.push_back(s);
+      if (slot(s).next == 0 || slot(s).agent < 0) cols.push_back(s);
     cols = admissible(cols);
     if (cols.empty()) return;
     planner::Config in_use;
-    for (int s : cols) in_use.push_back(slot(s).errands[0]);
+    for (int s : cols) in_use.push_back(slot(s).next_cell());
     dist_.set_goals(in_use);
     std::vector<int64_t> held(cols.size(), kForbidden);  // holder's distance to the first errand
     for (size_t j = 0; j < cols.size(); ++j)
       if (const int b = slot(cols[j]).agent; b >= 0) held[j] = dist_.from_goal(slot(cols[j]).errands[0], positions[b]);
     auto c = [&](int i, int j) -> int64_t {
       const Task& t = slot(cols[j]);
-      const int64_t d = dist_.from_goal(t.errands[0], positions[agents[i]]);
+      if (!can_reach(positions[agents[i]], t.next_cell())) return kForbidden;
+      const int64_t d = dist_.from_goal(t.next_cell(), positions[agents[i]]);
       if (t.agent >= 0 && d >= held[j]) return kForbidden;  // only a strictly nearer agent may take it
       return d + chain_length(t);
     };
@@ -134,10 +152,13 @@ void TaskPool::assign_free(const planner::Config& positions)
   planner::Config in_use;
   for (int s : cols) in_use.push_back(slot(s).errands[slot(s).next]);
   dist_.set_goals(in_use);  // marks their tables in use; evicts idle ones over the cap
-  const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()),
-                                                   [&](int i, int j) { return cost(positions[agents[i]], slot(cols[j])); });
+  auto c = [&](int i, int j) {
+    const Task& t = slot(cols[j]);
+    return can_reach(positions[agents[i]], t.next_cell()) ? cost(positions[agents[i]], t) : kForbidden;
+  };
+  const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()), c);
   for (size_t i = 0; i < agents.size(); ++i)
-    if (match[i] >= 0) give(agents[i], cols[match[i]]);
+    if (match[i] >= 0 && c(static_cast<int>(i), match[i]) < kForbidden) give(agents[i], cols[match[i]]);
 }
 
 }  // namespace tasks

@@ -123,3 +123,74 @@ TEST(Battery, APoolGivesNoTaskToALowAgentAndIdleAgentsKeepOffTheCharger)
   EXPECT_TRUE(pool.busy(0));
   EXPECT_EQ(pool.goals()[1], g.at(0, 1));
 }
+
+namespace {
+
+// One step of agent `a` along a shortest path to its goal (no other traffic).
+Vertex step_to_goal(const planner::Graph& g, Vertex from, Vertex goal)
+{
+  if (from == goal) return from;
+  std::vector<int> d(g.size(), -1);
+  std::vector<Vertex> open{goal};
+  d[goal] = 0;
+  for (size_t i = 0; i < open.size(); ++i)
+    for (Vertex u : g.in_neighbors(open[i]))
+      if (d[u] < 0) d[u] = d[open[i]] + 1, open.push_back(u);
+  for (Vertex v : g.neighbors(from))
+    if (d[v] >= 0 && d[v] < d[from]) return v;
+  return from;
+}
+
+}  // namespace
+
+// A task longer than the charge: a corridor x = 0..15 with a dead-end charger below its
+// right end, one task (15, 0) -> (0, 0) (30 m at 0.5 Wh/m = 15 Wh) for an agent starting at
+// (0, 0) with 10 Wh. Below the critical charge (5 Wh) mid-task it hands the task back and
+// charges; then it (the only agent) finishes the task. With critical 0 it runs empty.
+TEST(Battery, AnAgentBelowTheCriticalChargeMidTaskHandsItsTaskBackAndCharges)
+{
+  const planner::Graph g = ttest::grid({"................", "###############."});
+  auto file = ttest::task_file(g, {{{15, 0}, {0, 0}}});
+  for (const std::string mode : {"pool", "roundrobin"})
+    for (double critical : {0.25, 0.0}) {
+      SCOPED_TRACE(mode + " critical " + std::to_string(critical));
+      std::unique_ptr<TaskManager> tm;
+      if (mode == "pool") tm = std::make_unique<TaskPool>(file, g, 1, std::make_unique<GreedyAssigner>());
+      else tm = std::make_unique<RoundRobin>(file);
+      BatteryOptions o;
+      o.capacity_wh = 20;
+      o.initial = 0.5;
+      o.per_m_wh = 0.5;
+      o.threshold = 0.3;
+      o.critical = critical;
+      o.target = 0.9;
+      tm->set_battery(g, o, {{g.at(15, 1), 4.0, "c"}}, centres(g));
+      Config at{g.at(0, 0)};
+      tm->start(at);
+      ASSERT_TRUE(tm->busy(0));
+      long dropped_at = -1, charging_ticks = 0;
+      for (long t = 1; t <= 80 && tm->tasks_finished() == 0; ++t) {
+        at[0] = step_to_goal(g, at[0], tm->goals()[0]);
+        tm->update(t, at);
+        if (tm->dropped_for_charge() > 0 && dropped_at < 0) dropped_at = t;
+        charging_ticks += tm->charging(0);
+        if (tm->charging(0)) {
+          EXPECT_FALSE(tm->busy(0));
+          EXPECT_EQ(tm->goals()[0], g.at(15, 1));
+        }
+      }
+      if (critical > 0) {
+        // 11 m driven: 4.5 Wh < 5 Wh at (11, 0); 5 m more to the charger.
+        EXPECT_EQ(dropped_at, 11);
+        EXPECT_EQ(tm->dropped_for_charge(), 1);
+        EXPECT_EQ(tm->battery()->errands(), 1);
+        EXPECT_GT(charging_ticks, 0);
+        EXPECT_EQ(tm->battery()->ran_empty(), 0);
+        EXPECT_EQ(tm->tasks_finished(), 1);  // resumed after charging, finished
+        EXPECT_EQ(tm->errands_finished(), 2);
+      } else {
+        EXPECT_EQ(tm->dropped_for_charge(), 0);
+        EXPECT_EQ(tm->battery()->ran_empty(), 1);  // 20 m of its 30 m
+      }
+    }
+}

@@ -99,3 +99,66 @@ TEST(LifelongCli, AgentsUsesTheFirstNOfTheTeam)
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("teamSize is 100"), std::string::npos) << bad.err;
 }
+
+// --battery-* / --chargers (tasks/battery.hpp, the SUMO controller's fleet.battery on the
+// grid): 20 agents with half a charge and a drain that empties it in 200 moves (300 steps);
+// the critical charge covers 100 moves, more than the way to a charger (with 0.5 Wh per
+// move and critical 0.1, 10 of 20 ran empty: the chargers were farther); chargers on
+// the start cells of agents 20..27 (free cells nobody starts on). Charging keeps every
+// agent above empty; drain only (--battery-no-charging) lets agents run empty.
+TEST(LifelongCli, BatteryChargingKeepsEveryAgentAboveEmpty)
+{
+  const std::string dir = ttest::kData + "/2024/random.domain";
+  std::ifstream agents(dir + "/agents/random_32_32_20_100.agents");
+  std::string line;
+  std::vector<std::string> cells;
+  while (std::getline(agents, line))
+    if (!line.empty() && line[0] != '#') cells.push_back(line);
+  ASSERT_GE(cells.size(), 29u);  // the count, then the cells
+  std::string chargers = "8\n";
+  for (int i = 21; i < 29; ++i) chargers += cells[i] + "\n";
+  const std::string file = test::temp_file("chargers.txt", chargers);
+  const std::string base = "--problem " + dir + "/RANDOM-01.json --agents 20 --steps 300 --budget-ms 1000 "
+                           "--budget-expansions 20 --seed 1 --quiet --chargers " + file +
+                           " --battery-capacity-wh 100 --battery-initial 0.5 --battery-per-m-wh 0.25 --battery-threshold 0.4 "
+                           "--battery-critical 0.25 --battery-target 0.9 --battery-charge-w 36000";
+  for (bool charging : {true, false}) {
+    SCOPED_TRACE(charging ? "charging" : "drain only");
+    const CliRun r = run_cli(base + (charging ? "" : " --battery-no-charging"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto j = nlohmann::json::parse(r.out);
+    ASSERT_TRUE(j.contains("battery")) << r.out;
+    const auto& b = j["battery"];
+    EXPECT_EQ(b["charging"], charging);
+    EXPECT_GT(j["numTaskFinished"].get<int>(), 0);
+    if (charging) {
+      EXPECT_EQ(b["ran_empty"], 0);
+      EXPECT_GT(b["min_charge"].get<double>(), 0.0);
+      EXPECT_GE(b["charging_errands"].get<int>(), 10);
+      EXPECT_GT(b["min_charge"].get<double>(), 0.1);
+      EXPECT_GT(b["charging_share"].get<double>(), 0.0);
+    } else {
+      EXPECT_GT(b["ran_empty"].get<int>(), 0);
+      EXPECT_EQ(b["min_charge"].get<double>(), 0.0);
+      EXPECT_EQ(b["charging_errands"], 0);
+    }
+  }
+  // Without any battery option: no battery in the log.
+  const CliRun plain = run_cli("--problem " + dir + "/RANDOM-01.json --agents 20 --steps 5 --budget-expansions 20 --quiet");
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  EXPECT_FALSE(nlohmann::json::parse(plain.out).contains("battery"));
+}
+
+TEST(LifelongCli, BadBatteryOptionsAreOneLineErrors)
+{
+  const std::string p = "--problem " + ttest::kData + "/2024/random.domain/RANDOM-01.json --agents 5 --steps 5 --quiet ";
+  CliRun r = run_cli(p + "--battery-threshold 0.9 --battery-target 0.5 --battery-no-charging");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "rtlacam-lifelong: --battery-threshold: must be < target (0.5), got 0.9\n");
+  r = run_cli(p + "--battery-initial 0.5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "rtlacam-lifelong: --chargers: charging is on, but no charger cell is given\n");
+  r = run_cli(p + "--battery-critical 0.4 --battery-no-charging");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "rtlacam-lifelong: --battery-critical: must be >= 0 and < threshold (0.3), got 0.4\n");
+}

@@ -67,11 +67,12 @@ struct FleetSection {
   bool turn_in_place = false;
   bool headings(bool rotation_solver) const { return rotation_solver || turn_in_place; }
   // fleet.battery (lifelong only; tasks/battery.hpp): on when the key is present.
-  // Fractions of capacity_wh: initial, threshold, target. Chargers: the chargingStations of
+  // Fractions of capacity_wh: initial, threshold, critical, target. Chargers: the chargingStations of
   // sumo.additional, each at its `power` x `efficiency` (charge_w where it has no power).
   struct Battery {
     bool on = false;
     double capacity_wh = 100, initial = 1.0, per_m_wh = 0, per_turn_wh = 0, threshold = 0.3, target = 0.9;
+    double critical = 0.1;   // below it mid-task: the task goes back, the AGV charges (< threshold; 0: off)
     double charge_w = -1;    // -1: every chargingStation must give its power
     bool charging = true;    // false: drain only (no charging errands)
     int sample_ticks = 10;   // metrics.json battery.samples: min/mean/max charge every this many ticks
@@ -210,6 +211,9 @@ struct RulesSection {
   std::vector<RuleZone> zones;
   bool enforce_closures = true;  // false: the planner ignores closures (Safety still checks them)
   bool enforce_zones = true;     // false: no zone admission (Safety still checks the zones)
+  // Lifelong pool: a task whose next errand a closure cuts off goes back to the pool and the
+  // AGV takes one it can reach (tasks/task_manager.hpp); false: the AGV waits for the closure.
+  bool reassign = true;
 };
 
 struct Config {

@@ -82,6 +82,9 @@ struct Metrics {
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;
   long long errands_finished = 0, tasks_finished = 0, epochs = 0;
+  // Lifelong with closures: tasks an AGV handed back because a closure cut it off its next
+  // errand (tasks/task_manager.hpp), metrics.json lifelong.reassignedForClosure.
+  long long reassigned_for_closure = 0;
   // Station queues and parking (tasks.queues, tasks.parking), counted at every tick's end
   // over the task file's errand cells whether queues are on or not: the most AGVs heading
   // for one station's cell at once, AGV-ticks spent standing on a queue goal (busy, not
@@ -92,11 +95,12 @@ struct Metrics {
   // fleet.battery (tasks/battery.hpp), metrics.json "battery": charging errands begun,
   // AGVs whose charge reached 0 (must be 0), the share of AGV-ticks spent charging on a
   // charger, the lowest charge any AGV had (fraction), and every sample_ticks ticks the
-  // fleet's min / mean / max charge (fractions of capacity).
+  // fleet's min / mean / max charge (fractions of capacity); dropped_mid_task: tasks handed
+  // back below the critical charge (the AGV went to charge at once).
   struct BatteryStats {
     bool active = false, charging = true;
     double capacity_wh = 0;
-    long long errands = 0;
+    long long errands = 0, dropped_mid_task = 0;
     int ran_empty = 0;
     double charging_share = 0, min_charge = 1;
     struct Sample {

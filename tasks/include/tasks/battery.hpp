@@ -10,10 +10,14 @@
 // Charging errand: an agent below `threshold` (fraction of capacity) that holds no task
 // claims the nearest unclaimed charger (breadth-first along arcs), heads there and stands
 // on it, gaining the charger's rate per step, until it reaches `target`; then it releases
-// the charger and is free for work again. The low charge is acted on only between tasks,
-// so `threshold` must cover the longest task plus the way to a charger (an open task is
-// never abandoned half-carried). With no charger free, the agent waits idle (taking no
-// task) and retries at every step. An agent whose charge reaches 0 counts as run empty (once); the model
+// the charger and is free for work again. The low charge is acted on between tasks, so
+// `threshold` should cover the longest task plus the way to a charger. A task longer than
+// that (or a start below it) is caught by `critical`: an agent that drops below it in the
+// middle of a task hands the task back (TaskManager: the pool gives it to another agent; a
+// round-robin agent resumes it after charging) and goes to charge at once, so it never runs
+// empty on its way (critical must cover the way from anywhere to the nearest charger; 0:
+// off). With no charger free, the agent waits idle (taking no task) and retries at every
+// step. An agent whose charge reaches 0 counts as run empty (once); the model
 // does not stop it, the metric says the fleet was mis-sized (it must stay 0).
 //
 // TaskManager owns one (TaskManager::set_battery) and excludes charging agents from
@@ -36,9 +40,14 @@ struct BatteryOptions {
   double per_m_wh = 0;       // drain per metre driven
   double per_turn_wh = 0;    // drain per change of direction
   double threshold = 0.3;    // below this fraction an agent between tasks goes to charge
+  double critical = 0.1;     // below this one (< threshold) an agent drops its task to charge; 0: off
   double target = 0.9;       // it leaves the charger at this fraction
   bool charging = true;      // false: drain only (no charging errands)
 };
+
+// The first bad field of `o` as "key: what is wrong" ("" when fine), with the YAML key
+// names (fleet.battery.*): the apps prefix their option names.
+std::string battery_problem(const BatteryOptions& o);
 
 struct Charger {
   planner::Vertex cell = -1;
@@ -65,6 +74,8 @@ class Battery {
   // The claimed charger's cell (charging(a) only).
   planner::Vertex goal(int a) const { return chargers_[claim_[a]].cell; }
   bool low(int a) const { return charge_[a] < options_.threshold * options_.capacity_wh; }
+  // So low that a task in hand must wait (charging on): the agent charges first.
+  bool critical(int a) const { return options_.charging && charge_[a] < options_.critical * options_.capacity_wh; }
   // Low with charging on: it takes no task until it has charged.
   bool wants(int a) const { return options_.charging && low(a); }
   bool is_charger(planner::Vertex v) const { return charger_of_[v] >= 0; }
@@ -78,6 +89,7 @@ class Battery {
   const BatteryOptions& options() const { return options_; }
   const std::vector<Charger>& chargers() const { return chargers_; }
   double charge(int a) const { return charge_[a]; }  // Wh
+  double min_charge() const { return min_fraction_; }  // the lowest any agent had, fraction of capacity
   const std::vector<double>& charges() const { return charge_; }
   int ran_empty() const { return ran_empty_; }
   bool empty(int a) const { return empty_[a] != 0; }
@@ -106,6 +118,7 @@ class Battery {
   std::vector<int> seen_;
   int stamp_ = 0;
   int ran_empty_ = 0;
+  double min_fraction_ = 1;
   long long errands_ = 0, charging_ticks_ = 0, agent_ticks_ = 0;
 };
 

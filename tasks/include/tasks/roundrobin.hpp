@@ -2,7 +2,8 @@
 // RoundRobin (LoRR 2023): agent i holds tasks i, i+N, i+2N, ... of the task file (cyclic),
 // one at a time; no scheduler. With one-errand tasks (the 2023 files) a task is an errand.
 // An agent that needs charge after a task (battery.hpp) gets its next one when it leaves the
-// charger.
+// charger; one that hands its task back at a critical charge resumes that task there. A
+// closure does not reassign here (the stream is the agent's own): the agent waits.
 #include <vector>
 
 #include "tasks/task_manager.hpp"
@@ -20,9 +21,11 @@ class RoundRobin : public TaskManager {
   void on_start(const planner::Config& positions) override;
   void on_finished(int agent, const Task& task) override;
   void on_charged(int agent) override;
+  void on_dropped(int agent, int s) override;
 
  private:
   std::vector<long> deferred_;  // per agent: its next task's id while it charges, -1
+  std::vector<int> dropped_;    // per agent: the slot of the task it handed back, -1
 };
 
 }  // namespace tasks

@@ -12,7 +12,14 @@
 // Optional, set before start(): station queues (an agent not admitted at its errand's
 // station waits on a queue cell: station_queues.hpp) and parking (an idle agent goes to a
 // parking cell: parking.hpp) and a battery (an agent low between tasks goes to charge:
-// battery.hpp; while it charges it holds no task and the mode gives it none).
+// battery.hpp; while it charges it holds no task and the mode gives it none; one that
+// falls below the critical charge mid-task hands the task back first).
+//
+// Handing a task back (drop_task): the task stays live with its remaining errands and no
+// agent (a pool matches it again, from where it stands; a round-robin agent keeps it for
+// later). Two causes: a critical charge, and a closure (set_open_graph) that cuts a pool
+// agent off its next errand -- the agent then takes a task it can reach and the errand
+// waits in the pool for an agent that can, at the latest until the closure ends.
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +30,7 @@
 #include "tasks/lorr_files.hpp"
 #include "tasks/battery.hpp"
 #include "tasks/parking.hpp"
+#include "tasks/reachability.hpp"
 #include "tasks/station_queues.hpp"
 #include "tasks/task.hpp"
 
@@ -80,7 +88,21 @@ class TaskManager {
   // (parking's reserved-cell rule). Before start().
   void set_battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
                    std::vector<std::pair<double, double>> xy);
+  // The same on a grid (rtlacam-lifelong, Python): cell centres at the grid coordinates (1 m
+  // apart), a charger on each of `chargers`, `charge_w` watts for 1 s steps, no losses.
+  // std::invalid_argument "key: what" (battery_problem's keys, or "chargers" / "charge_w").
+  void set_grid_battery(const planner::Graph& g, BatteryOptions options, const std::vector<planner::Vertex>& chargers,
+                        double charge_w);
   const Battery* battery() const { return battery_.get(); }
+  // Closures at run time (controller/rules.hpp): `open` is the net without the arcs into
+  // closed cells, nullptr when nothing is closed; it must outlive its use (until the next
+  // call). From the next update() on, a busy agent that cannot reach its next errand on it
+  // hands its task back (modes that can match it elsewhere: reassigns_for_closures()), and
+  // no agent is given a task whose next errand it cannot reach.
+  void set_open_graph(const planner::Graph* open);
+  virtual bool reassigns_for_closures() const { return false; }
+  long reassigned_for_closure() const { return reassigned_for_closure_; }  // tasks handed back for a closure
+  long dropped_for_charge() const { return dropped_for_charge_; }          // tasks handed back at a critical charge
   StationQueues* queues() { return queues_.get(); }
   const StationQueues* queues() const { return queues_.get(); }
   const Parking* parking() const { return parking_.get(); }
@@ -108,6 +130,12 @@ class TaskManager {
   // `agent` left its charger (battery.hpp): free for work again. after_step() follows in
   // the same update, so a matching mode needs nothing here.
   virtual void on_charged(int agent) { (void)agent; }
+  // `agent` handed back the task in slot `s` (drop_task): the pool matches it again in
+  // after_step(); a mode that keeps tasks per agent may hold on to it.
+  virtual void on_dropped(int agent, int s) { (void)agent, (void)s; }
+  // Can an agent at `from` reach errand cell `to` (always, when nothing is closed)?
+  bool can_reach(planner::Vertex from, planner::Vertex to) const { return !reach_ || reach_->reaches(from, to); }
+  bool closures() const { return reach_ != nullptr; }  // set_open_graph gave a graph
   // On a charging errand, or low and waiting for a charger to come free (battery.hpp).
   bool needs_charge(int agent) const { return battery_ && (battery_->charging(agent) || battery_->wants(agent)); }
   // Free for a task: holds none and needs no charge.
@@ -117,6 +145,7 @@ class TaskManager {
   int add_task(Task t);                // returns its slot
   void give(int agent, int slot);      // assign an unassigned task
   void release(int agent);             // take back an agent's task (it stays live, unassigned)
+  void drop_task(int agent);           // release() for good (the agent gave it up): on_dropped()
   Task& slot(int s) { return slots_[s]; }
   const Task& slot(int s) const { return slots_[s]; }
   void drop(int s);                    // remove a finished task
@@ -135,6 +164,11 @@ class TaskManager {
   std::unique_ptr<Parking> parking_;
   std::unique_ptr<FreeFlowBound> free_flow_;
   std::unique_ptr<Battery> battery_;
+  std::unique_ptr<Reachability> reach_;  // set_open_graph; null: nothing closed
+  bool rematch_ = false;                 // the open graph changed: match free agents again
+  long reassigned_for_closure_ = 0, dropped_for_charge_ = 0;
+  // Hands back the tasks of agents critically low or cut off by a closure; true if any.
+  bool hand_back(const planner::Config& positions);
   std::vector<uint8_t> reserved_;  // queues' reserved cells, the chargers and the stations (battery on)
   std::vector<uint8_t> station_cells_;  // battery on: errand cells and their dead-end corridors
   // Sends agents without a task that are low to charge; true if any went.

@@ -12,6 +12,11 @@
 // With station queues (TaskManager::set_queues) a task is handed out only while each of
 // its stations holds fewer tasks than the admission limit (admissible()): the rest of the
 // fleet stays idle (parked) instead of queueing at saturated stations.
+// A task handed back (task_manager.hpp: a critical charge, a closure) is matched again from
+// its next errand, opened or not; no agent is matched to an errand it cannot reach. While
+// closures cut errands off, tasks no agent can reach do not count against pool_size: the
+// pool reveals more (up to 2 x pool_size live), else a long closure of one station fills the
+// pool with its tasks and idles the fleet; it shrinks back as tasks finish after the closure.
 #include <memory>
 
 #include "planner/dist_table.hpp"
@@ -25,6 +30,7 @@ class TaskPool : public TaskManager {
   TaskPool(std::shared_ptr<const TaskFile> file, const planner::Graph& g, int pool_size,
            std::unique_ptr<TaskAssigner> assigner, bool reassign = false);
   std::string mode() const override { return "pool"; }
+  bool reassigns_for_closures() const override { return true; }
   const TaskAssigner& assigner() const { return *assigner_; }
   bool reassigns() const { return reassign_; }
   long reassignments() const { return reassignments_; }  // tasks that changed agent
@@ -45,12 +51,12 @@ class TaskPool : public TaskManager {
 
  private:
   void assign_free(const planner::Config& positions);
+  void top_up(const planner::Config& positions);  // closures: reveal past the tasks nobody can reach
   void steal_rounds(const planner::Config& positions);  // assign_free with reassignment
   // Admission (station queues on, QueueOptions::admission): of the unassigned tasks among
   // `cols` (ascending task id), keeps the oldest whose every remaining errand station
   // holds fewer than the limit of held tasks with an errand left there; assigned ones stay.
   std::vector<int> admissible(const std::vector<int>& cols) const;
-  static constexpr int64_t kForbidden = int64_t{1} << 40;
   int chain_length(const Task& t);
 
   planner::DistTable dist_;  // per errand cell, lazily (true graph distances, LRU-capped)
