@@ -68,7 +68,9 @@ int main(int argc, char** argv)
       ->capture_default_str();
   bool mc_first = LacamOptions{}.mc_first;
   app.add_flag("--mc-first,!--no-mc-first", mc_first,
-               "Monte-Carlo generation also before the first solution (lacam3); --no-mc-first: refinement only");
+               "Monte-Carlo generation in the search for the first solution (lacam3)");
+  bool mc_refine = LacamOptions{}.mc_refine;
+  app.add_flag("--mc-refine,!--no-mc-refine", mc_refine, "Monte-Carlo generation in refinement's expansions (lacam3)");
   bool resumable = LacamOptions{}.resumable;
   app.add_flag("--resumable,!--no-resumable", resumable,
                "a LaCAM expansion may stop at the cutoff and go on in the next iteration, the agents waiting meanwhile "
@@ -151,6 +153,7 @@ int main(int argc, char** argv)
     lopt.resumable = resumable;
     lopt.mc_rollouts = mc_rollouts;
     lopt.mc_first = mc_first;
+    lopt.mc_refine = mc_refine;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (reserve) ropt.per_iteration.reserve_ms = 1e-6;  // on; the costliest expansion so far sets it
@@ -222,6 +225,7 @@ int main(int argc, char** argv)
     j["resumable"] = resumable;
     j["mc_rollouts"] = mc_rollouts;
     j["mc_first"] = mc_first;
+    j["mc_refine"] = mc_refine;
     j["swap"] = !no_swap;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;

@@ -358,7 +358,7 @@ bool Lacam::mc_keep(const Vertex* from, const Vertex* C)
 
 bool Lacam::generate_best(const HNode* H, const Constraint* L)
 {
-  if (opt_.mc_rollouts <= 1) return pibt_.generate(H->C, H->order, L, scratch_.data(), rng_);
+  if (opt_.mc_rollouts <= 1 || !opt_.mc_refine) return pibt_.generate(H->C, H->order, L, scratch_.data(), rng_);
   mc_f_ = INT64_MAX;
   mc_try_.resize(n_);
   for (int k = 0; k < opt_.mc_rollouts; ++k)

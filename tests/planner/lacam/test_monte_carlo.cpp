@@ -65,12 +65,13 @@ TEST(MonteCarlo, KeepsTheRolloutOfLeastEdgeCostPlusH)
 TEST(MonteCarlo, RealTimeRunsStayValidAndArrive)
 {
   const Inst in = random_32(80);
-  for (bool first : {true, false}) {
-    SCOPED_TRACE(first ? "mc_first" : "refinement only");
+  for (int where = 0; where < 3; ++where) {
+    SCOPED_TRACE(where == 0 ? "everywhere" : where == 1 ? "first solution only" : "refinement only");
     LacamOptions o;
     o.refine = true;
     o.mc_rollouts = 4;
-    o.mc_first = first;
+    o.mc_first = where != 2;
+    o.mc_refine = where != 1;
     RtLacam rt(in.g, in.s, in.t, o);
     Validator val(in.g, in.s, in.t);
     for (int step = 0; !rt.at_goal(); ++step) {

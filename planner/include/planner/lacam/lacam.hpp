@@ -146,7 +146,8 @@ struct LacamOptions {
   // LaCAM. A rollout is resumable like one call, and the expansion's cost (learnt whole) is
   // the rollouts', so refinement still starts one only when it fits.
   int mc_rollouts = 1;
-  bool mc_first = true;  // also before the first solution (lacam3); off: refinement only
+  bool mc_first = true;   // in the search for the first solution (lacam3: on)
+  bool mc_refine = true;  // in refinement's LaCAM* expansions (lacam3: on)
 };
 
 class Lacam {
