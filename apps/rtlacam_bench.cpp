@@ -61,6 +61,16 @@ int main(int argc, char** argv)
                "keep the cutoff before the first solution too: an expansion after the first of an iteration starts "
                "only while the costliest one so far fits (--no-reserve: the paper's loop, which starts one until the "
                "cutoff)");
+  int mc_rollouts = LacamOptions{}.mc_rollouts;
+  app.add_option("--mc-rollouts", mc_rollouts,
+                 "Monte-Carlo generation: PIBT rollouts per expansion, the least edge cost + h kept (lacam.hpp)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  bool mc_first = LacamOptions{}.mc_first;
+  app.add_flag("--mc-first,!--no-mc-first", mc_first,
+               "Monte-Carlo generation in the search for the first solution (lacam3)");
+  bool mc_refine = LacamOptions{}.mc_refine;
+  app.add_flag("--mc-refine,!--no-mc-refine", mc_refine, "Monte-Carlo generation in refinement's expansions (lacam3)");
   bool resumable = LacamOptions{}.resumable;
   app.add_flag("--resumable,!--no-resumable", resumable,
                "a LaCAM expansion may stop at the cutoff and go on in the next iteration, the agents waiting meanwhile "
@@ -141,6 +151,9 @@ int main(int argc, char** argv)
     lopt.dive = dive;
     lopt.scatter_first = scatter_first;
     lopt.resumable = resumable;
+    lopt.mc_rollouts = mc_rollouts;
+    lopt.mc_first = mc_first;
+    lopt.mc_refine = mc_refine;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (reserve) ropt.per_iteration.reserve_ms = 1e-6;  // on; the costliest expansion so far sets it
@@ -210,6 +223,9 @@ int main(int argc, char** argv)
     j["budget_expansions"] = budget_expansions;
     j["reserve"] = reserve;
     j["resumable"] = resumable;
+    j["mc_rollouts"] = mc_rollouts;
+    j["mc_first"] = mc_first;
+    j["mc_refine"] = mc_refine;
     j["swap"] = !no_swap;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;

@@ -182,6 +182,7 @@ Status Lacam::expand()
 
   gen_rng_ = rng_;
   pibt_.start(H->C, H->order, L);
+  mc_done_ = 0, mc_f_ = INT64_MAX;
   gen_ = Gen::generating;
   gen_h_ = H;
   gen_l_ = L;
@@ -201,14 +202,26 @@ Status Lacam::finish_expansion()
   int units = 0;  // of this call; the clock is read every kTailEvery
   auto stop = [&] { return tail_pausable && ++units % kTailEvery == 0 && Clock::now() >= at; };
   if (gen_ == Gen::generating) {
-    if (!pibt_.pending()) {  // cancelled by set_immobile(): again, from the same draws
-      rng_ = gen_rng_;
-      pibt_.start(gen_h_->C, gen_h_->order, gen_l_);
+    Pibt::Gen r;
+    for (;;) {
+      if (!pibt_.pending()) {  // cancelled by set_immobile(): again, from the same draws
+        rng_ = gen_rng_;
+        mc_done_ = 0, mc_f_ = INT64_MAX;
+        pibt_.start(gen_h_->C, gen_h_->order, gen_l_);
+      }
+      const uint64_t p0 = pibt_.plans();
+      r = pibt_.resume(rng_, at);
+      agents_planned_ += pibt_.plans() - p0;
+      if (r == Pibt::Gen::paused) return status_;
+      if (mc_search_rollouts() <= 1) break;
+      if (r == Pibt::Gen::done) mc_keep(gen_h_->C, pibt_.result());
+      if (++mc_done_ < mc_search_rollouts()) {  // the next rollout, in this call while it lasts
+        pibt_.start(gen_h_->C, gen_h_->order, gen_l_);
+        continue;
+      }
+      r = mc_f_ < INT64_MAX ? Pibt::Gen::done : Pibt::Gen::failed;
+      break;
     }
-    const uint64_t p0 = pibt_.plans();
-    const Pibt::Gen r = pibt_.resume(rng_, at);
-    agents_planned_ += pibt_.plans() - p0;
-    if (r == Pibt::Gen::paused) return status_;
     if (r == Pibt::Gen::failed) {  // the fixed agents collide, or PIBT failed: no successor
       gen_ = Gen::none;
       ended_ = may_pause_ = true;
@@ -224,7 +237,7 @@ Status Lacam::finish_expansion()
   }
   HNode* H = gen_h_;
   if (gen_ == Gen::lookup) {
-    const Vertex* C = pibt_.result();  // kept until the next start()
+    const Vertex* C = mc_search_rollouts() > 1 ? mc_best_.data() : pibt_.result();  // kept until the next start()
     gen_hash_ = config_hash(C, n_);
     if (HNode* known = explored_.find(C, gen_hash_)) {
       if (opt_.refine) link(H, known);

@@ -198,7 +198,7 @@ Status Lacam::refine_expand()
   }
   grow_lowlevel(H, L);
   last_step_ = Step::expansion;
-  if (!pibt_.generate(H->C, H->order, L, scratch_.data(), rng_)) return status_;
+  if (!generate_best(H, L)) return status_;
   const uint64_t hash = config_hash(scratch_.data(), n_);
   if (HNode* known = explored_.find(scratch_.data(), hash)) {
     link(H, known);
@@ -344,6 +344,28 @@ void Lacam::rebase(HNode* new_root, HNode* old_root, bool explicit_costs)
       walk_.emplace_back(y, y_old);
     }
   }
+}
+
+// Monte-Carlo generation (lacam3's set_new_config): the rollout of least edge cost + h wins.
+bool Lacam::mc_keep(const Vertex* from, const Vertex* C)
+{
+  const int64_t f = static_cast<int64_t>(edge_cost(from, C)) + heuristic(C);
+  if (f >= mc_f_) return false;
+  mc_f_ = f;
+  mc_best_.assign(C, C + n_);
+  return true;
+}
+
+bool Lacam::generate_best(const HNode* H, const Constraint* L)
+{
+  if (opt_.mc_rollouts <= 1 || !opt_.mc_refine) return pibt_.generate(H->C, H->order, L, scratch_.data(), rng_);
+  mc_f_ = INT64_MAX;
+  mc_try_.resize(n_);
+  for (int k = 0; k < opt_.mc_rollouts; ++k)
+    if (pibt_.generate(H->C, H->order, L, mc_try_.data(), rng_)) mc_keep(H->C, mc_try_.data());
+  if (mc_f_ == INT64_MAX) return false;
+  std::copy(mc_best_.begin(), mc_best_.end(), scratch_.begin());
+  return true;
 }
 
 bool Lacam::price_step()

@@ -110,10 +110,11 @@ TEST(Resumable, PausedExpansionsBuildLacamsTree)
 {
   int paused_moves = 0;  // over all runs
   for (const auto& in : instances()) {
-    for (uint64_t seed = 0; seed < 3; ++seed) {
+    for (uint64_t seed = 0; seed < 4; ++seed) {
       SCOPED_TRACE(in.name + " seed " + std::to_string(seed));
       LacamOptions o;
       o.seed = seed;
+      if (seed == 3) o.mc_rollouts = 3;  // Monte-Carlo rollouts pause and resume the same way
       DistTable d(in.g);
       Lacam full(in.g, d, o);
       full.reset(in.s, in.t);

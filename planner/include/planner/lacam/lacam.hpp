@@ -140,6 +140,14 @@ struct LacamOptions {
   // that resets (lifelong goal changes) cannot stall the agents. Off: one-shot (naive
   // RT-LaCAM, which resets every iteration).
   bool resumable = true;
+  // Monte-Carlo configuration generation (lacam3's PIBT_NUM, Okumura AAMAS-24): an expansion
+  // makes this many PIBT rollouts of its constraint (the random stream goes on, so the
+  // tie-breaks differ) and keeps the successor of least edge cost + h; 1 = one PIBT call, as
+  // LaCAM. A rollout is resumable like one call, and the expansion's cost (learnt whole) is
+  // the rollouts', so refinement still starts one only when it fits.
+  int mc_rollouts = 1;
+  bool mc_first = true;   // in the search for the first solution (lacam3: on)
+  bool mc_refine = true;  // in refinement's LaCAM* expansions (lacam3: on)
 };
 
 class Lacam {
@@ -268,6 +276,9 @@ class Lacam {
   Status finish_expansion();               // resumes the pending generation, inserts its successor
   bool lns_step(int window);                // one LnsRefiner step; an improved window goes to pending_
   bool insert_step();                       // inserts pending_ while it fits; true when done
+  int mc_search_rollouts() const { return opt_.mc_first ? opt_.mc_rollouts : 1; }  // before the first solution
+  bool mc_keep(const Vertex* from, const Vertex* C);  // Monte-Carlo: keeps C if its edge cost + h is least
+  bool generate_best(const HNode* H, const Constraint* L);  // one-shot, mc_rollouts rollouts, into scratch_
   void guide_step();                        // scatter work, else a dive step (lacam_guide.cpp)
   bool scatter_step();                      // false once SUO is done (or off)
   void dive_step();
@@ -373,6 +384,11 @@ class Lacam {
   bool ended_ = false;           // an expansion of this tree has ended
   Clock::time_point pause_at_ = Clock::time_point::max();  // the running search()'s deadline
   double gen_cpu_ms_ = 0;        // CPU of the expansion's earlier pieces
+  // Monte-Carlo generation (LacamOptions::mc_rollouts): rollouts of the running expansion
+  // done, the best successor so far and its edge cost + h (INT64_MAX: none succeeded).
+  int mc_done_ = 0;
+  int64_t mc_f_ = INT64_MAX;
+  Config mc_best_, mc_try_;
   uint64_t agents_planned_ = 0;
 };
 
