@@ -180,6 +180,25 @@ TEST(ControllerRotationAdg, ATurnTakesTurnSecondsUnderAdg)
   expect_physical_turns(c, m);
 }
 
+// A slowed AGV turns slower too (delays.slow, issue 20): with every AGV at half speed each
+// quarter turn stands 2n SUMO steps on its cell (n = turn_s / step_length), in steps of
+// 90 / 2n degrees, and the Driver waits for all of them.
+TEST(ControllerRotationAdg, ASlowedAgvTurnsSlower)
+{
+  Config c = small_adg("pibt-rot", "adg-follow", "ctl_rot_adg_slow");
+  for (int i = 0; i < c.fleet.count; ++i) c.delays.spec.slow.push_back({i, 0.5});
+  Controller ctl(c);
+  const Metrics m = ctl.run();
+  EXPECT_TRUE(m.solved) << m.error;
+  ctest_util::expect_checked_every_step(c, m);
+  ASSERT_GT(m.commands.quarter_turns, 0);
+  const int n = static_cast<int>(std::lround(c.fleet.turn_s / c.sumo.step_length));
+  EXPECT_EQ(m.turn_steps, 2 * n * m.commands.quarter_turns);
+  const FcdTurns t = fcd_turns(c.output.dir + "/fcd.xml", 2 * n);
+  EXPECT_EQ(t.bad, 0);
+  EXPECT_EQ(t.turns, m.commands.quarter_turns);
+}
+
 // A cell solver's reversal in an aisle is an instant 180-degree flip in SUMO (counted as
 // instant_flips); given fleet.turn_s under adg-follow its AGVs turn on their cells like the
 // rotation solvers' (two quarter turns of turn_s each), with no flip left.
