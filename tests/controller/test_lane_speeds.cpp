@@ -127,6 +127,8 @@ TEST(LaneCosts, AgvsRouteViaTheFastAislesWithCostsAndTheSlowShorterOneWithout)
   const Metrics ma = run_clean(on, a);
   EXPECT_FALSE(used_slow_aisle(a)) << "with lane costs the AGV took the slow aisle";
   EXPECT_EQ(ma.makespan, 16);  // round through c0 or c2 at a cell per tick
+  EXPECT_EQ(ma.ticks, 16);     // 1 m/s lanes, 1 m cells, 1 s ticks: nothing stretched
+  EXPECT_EQ(ma.lane_ticks, 0);
   EXPECT_GT(ma.costly_cells, 0);
 
   Config off = slow_aisle_config("costs_off");
