@@ -16,7 +16,9 @@ and the cells the costs made costlier; every run must end clean (0 violations, 0
 re-syncs, no error: the script says so).
 
   scripts/bench_lane_costs.py [--build build] [--config config/small_warehouse_lifelong.yaml]
-      [--slow c1r0_c1r1=0.25,c2r0_c2r1=0.5] [--ticks 1000] [--expansions 50] [--agvs 16]
+      [--slow c1r0_c1r1=0.25,c2r0_c2r1=0.5] [--ticks 1000] [--expansions 50] [--agvs 16] [--executor lockstep]
+With --executor adg | adg-follow the config's vType drives; lane speeds are then the Driver's
+speed cap (off: it ignores the lanes' limits, the reference row).
 A --slow entry names an edge; it and its reverse edge (B_A for A_B) get the speed.
 """
 import argparse
@@ -56,7 +58,7 @@ def slow_net(src, dst, slow):
     open(dst, "w").write(text)
 
 
-def run(build, base, net, out, ticks, expansions, agvs, costs, speeds):
+def run(build, base, net, out, ticks, expansions, agvs, costs, speeds, executor):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
     cfg["sumo"]["additional"] = os.path.normpath(os.path.join(here, cfg["sumo"]["additional"]))
@@ -68,7 +70,7 @@ def run(build, base, net, out, ticks, expansions, agvs, costs, speeds):
     cfg["fleet"]["count"] = agvs
     cfg["run"]["max_ticks"] = ticks
     cfg["run"]["progress_s"] = 0
-    cfg["run"]["executor"] = "lockstep"
+    cfg["run"]["executor"] = executor
     cfg["run"]["lane_speeds"] = speeds
     cfg["output"] = {"dir": out, "congestion": False}
     path = out + ".yaml"
@@ -88,6 +90,7 @@ def main():
     ap.add_argument("--ticks", type=int, default=1000)
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--agvs", type=int, default=16)
+    ap.add_argument("--executor", default="lockstep", help="lockstep | adg | adg-follow (the Driver caps speeds)")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
     slow = {e: float(v) for e, v in (kv.split("=") for kv in a.slow.split(","))}
@@ -96,13 +99,13 @@ def main():
     src = os.path.normpath(os.path.join(os.path.dirname(os.path.join(ROOT, a.config)), cfg["sumo"]["net"]))
     net = os.path.join(tmp, "slow.net.xml")
     slow_net(src, net, slow)
-    print(f"# {a.config}, slowed {a.slow}, {a.agvs} AGVs, {a.ticks} ticks, lockstep, {a.expansions} expansions per SUMO step")
+    print(f"# {a.config}, slowed {a.slow}, {a.agvs} AGVs, {a.ticks} ticks, {a.executor}, {a.expansions} expansions per SUMO step")
     print("| lane speeds | lane costs | errands/tick | vs costs off | lane ticks | costly cells | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|")
     clean, base = True, None
     for speeds, costs in ((True, False), (True, True), (False, False)):
         label = f"{'on' if speeds else 'off'}_{'on' if costs else 'off'}"
-        m = run(build, a.config, net, os.path.join(tmp, label), a.ticks, a.expansions, a.agvs, costs, speeds)
+        m = run(build, a.config, net, os.path.join(tmp, label), a.ticks, a.expansions, a.agvs, costs, speeds, a.executor)
         rate = m["lifelong"]["errandThroughput"]
         base = rate if base is None else base
         ls = m.get("lane_speeds", {})
