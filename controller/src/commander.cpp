@@ -213,6 +213,25 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
   }
 }
 
+int Commander::lane_ticks(int i, planner::Vertex u, planner::Vertex v) const
+{
+  if (u == v) return 1;
+  const Agv& a = agv_[i];
+  const gridify::SumoPose target = map_.pose_entering(u, v);
+  const Lane& here = lane(a.pose.lane);
+  const Lane& to = lane(target.lane);
+  // The front's travel, as command() commands it.
+  double d = 0;
+  if (target.lane == a.pose.lane)
+    d = target.pos - a.pose.pos;
+  else if (map_.cells[u].kind == gridify::CellKind::Junction && connected(here.edge, to.edge))
+    d = target.pos;
+  else if (target.lane == here.opposite)
+    d = target.pos - (to.length - a.pose.pos);  // turned round where it stands, then driven
+  if (!(d > 0) || !(to.speed > 0)) return 1;  // a jump (or nothing to drive)
+  return std::max(1, static_cast<int>(std::ceil(d / (to.speed * tick_) - 1e-9)));
+}
+
 std::vector<int> Commander::start_headings(const planner::Config& starts) const
 {
   std::vector<int> h;
@@ -230,17 +249,18 @@ void Commander::use_headings(const std::vector<int>& start, int turn_steps)
   turn_steps_ = std::max(1, turn_steps);
 }
 
-void Commander::turn(const std::string& actions)
+void Commander::turn(const std::string& actions, const std::vector<double>& factors)
 {
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
     const char act = actions[static_cast<size_t>(i)];
-    if (act == 'R' || act == 'C') begin_turn(i, act);
+    if (act == 'R' || act == 'C') begin_turn(i, act, factors.empty() ? 1.0 : factors[static_cast<size_t>(i)]);
   }
 }
 
-void Commander::begin_turn(int i, char act)
+void Commander::begin_turn(int i, char act, double factor)
 {
   Agv& a = agv_[i];
+  a.turn_steps = factor >= 1 ? turn_steps_ : static_cast<int>(std::ceil(turn_steps_ / factor - 1e-9));
   a.turn_from = sumo_angle(heading_[i]);
   a.turn_by = act == 'R' ? 90.0 : -90.0;  // clockwise: SUMO's angle grows
   heading_[i] = planner::heading_after(heading_[i], act);
@@ -277,10 +297,10 @@ void Commander::orient(const std::vector<uint8_t>* hold)
     try {
       double angle = 0;
       if (a.turn_step > 0 && hold && (*hold)[i]) {
-        angle = a.turn_from + a.turn_by * (a.turn_step - 1) / turn_steps_;  // held where it got to
+        angle = a.turn_from + a.turn_by * (a.turn_step - 1) / a.turn_steps;  // held where it got to
       } else if (a.turn_step > 0) {
-        angle = a.turn_from + a.turn_by * a.turn_step / turn_steps_;
-        a.turn_step = a.turn_step >= turn_steps_ ? 0 : a.turn_step + 1;
+        angle = a.turn_from + a.turn_by * a.turn_step / a.turn_steps;
+        a.turn_step = a.turn_step >= a.turn_steps ? 0 : a.turn_step + 1;
       } else if (auto it = lane_heading_.find(a.pose.lane); it == lane_heading_.end() || heading_[i] != it->second) {
         angle = sumo_angle(heading_[i]);
       } else {

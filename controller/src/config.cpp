@@ -399,7 +399,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node p = root["planner"];
   r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine",
-                        "dive", "rotation"});
+                        "dive", "lane_costs", "rotation"});
   // Every real-time solver; lacam plans once, offline, and cannot follow SUMO.
   const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
@@ -418,6 +418,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.flag(p, "planner", "keep_priorities", c.planner.keep_priorities);
   r.flag(p, "planner", "refine", c.planner.refine);
   r.flag(p, "planner", "dive", c.planner.dive);
+  r.flag(p, "planner", "lane_costs", c.planner.lane_costs);
   if (c.planner.budget_ms == 0 && c.planner.expansions == 0)
     r.fail("planner.budget_ms", "0 needs planner.expansions > 0 (some limit per SUMO step)");
 
@@ -495,7 +496,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   const YAML::Node u = root["run"];
   r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "order", "progress_s", "executor",
                     "window", "drain", "replan_on_stuck", "stuck_after_s", "relative_braking", "same_step_starts",
-                    "chain_to_end"});
+                    "chain_to_end", "lane_speeds"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -517,6 +518,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.flag(u, "run", "relative_braking", c.run.relative_braking);
   r.flag(u, "run", "same_step_starts", c.run.same_step_starts);
   r.flag(u, "run", "chain_to_end", c.run.chain_to_end);
+  r.flag(u, "run", "lane_speeds", c.run.lane_speeds);
   // Not yet with adg-follow: the replan's cut plan assumes the strict hand-over order
   // (stuck_replan.hpp); measured to give vertex conflicts in the cut plan with following.
   if (c.run.executor == "lockstep" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)

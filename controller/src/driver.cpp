@@ -120,7 +120,7 @@ bool Driver::faces(int i, int id)
   if (want == cmd_.heading(i)) return true;
   // At rest (reported by SUMO) on its cell: a quarter turn, then the next if need be.
   if (g.rest_steps > 0) {
-    cmd_.begin_turn(i, planner::turn_toward(cmd_.heading(i), want));
+    cmd_.begin_turn(i, planner::turn_toward(cmd_.heading(i), want), delays_.factor(i));  // slowed: slower
     g.turning = true;
   }
   return false;

@@ -129,6 +129,7 @@ nlohmann::json Metrics::to_json() const
                    {"end_stop_steps", end_stop_steps},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (turn_steps > 0) j["executor"]["turn_steps"] = turn_steps;  // adg with headings only
+  if (costly_cells > 0 || lane_ticks > 0) j["lane_speeds"] = {{"costly_cells", costly_cells}, {"lockstep_ticks", lane_ticks}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   if (rules.active)
     j["rules"] = {{"closure_changes", rules.closure_changes}, {"replans", rules.replans}, {"zone_holds", rules.zone_holds},

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "controller/fleet.hpp"
+#include "controller/lane_costs.hpp"
 #include "controller/lifelong.hpp"
 #include "controller/sumo_error.hpp"
 #include "controller/sumo_options.hpp"
@@ -81,7 +82,18 @@ void Run::prepare()
   const planner::Graph& g = c_.map_.graph;
   m_.agents = ins_.num_agents();
   m_.cells = g.size();
-  if (!cfg_.tasks.lifelong()) m_.soc_lb = ins_.soc_lower_bound(g);
+  if (!cfg_.tasks.lifelong()) m_.soc_lb = ins_.soc_lower_bound(g);  // in moves: before the lane costs
+  if (cfg_.planner.lane_costs) {
+    // Slow lanes cost more in every distance table on this graph (lane_costs.hpp): the
+    // planner's heuristics and the task assigners' distances. The AGVs' top speed: a cell
+    // per tick in lockstep, the vType's otherwise.
+    double spacing = 0;
+    for (const gridify::Aisle& a : c_.map_.aisles) spacing = std::max(spacing, a.spacing);
+    const double top = cfg_.run.executor == "lockstep" ? spacing / cfg_.run.tick_s : cfg_.fleet.vtype.max_speed;
+    if (top > 0) c_.map_.graph.set_move_costs(lane_costs(c_.map_, top));
+    m_.costly_cells = 0;
+    for (uint8_t k : c_.map_.graph.move_costs()) m_.costly_cells += k > 1;
+  }
   if (cfg_.tasks.lifelong()) {
     tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
     // The free-flow bound (tasks/free_flow.hpp) prices an errand's shortest path as the

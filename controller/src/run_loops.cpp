@@ -71,12 +71,29 @@ void Run::loop_lockstep()
       held = held || delays_->stopped(i);
       ticks = std::max(ticks, delays_->move_ticks(i));
     }
-    if (rot && !held && acts.find_first_of("RC") != std::string::npos) ticks = std::max(ticks, turn_ticks);
+    if (rot && !held) {
+      // A slowed AGV turns slower too: its turn takes turn_ticks / factor.
+      for (int i = 0; i < ins_.num_agents(); ++i)
+        if (acts[static_cast<size_t>(i)] == 'R' || acts[static_cast<size_t>(i)] == 'C')
+          ticks = std::max(ticks, static_cast<int>(std::ceil(turn_ticks / delays_->factor(i) - 1e-9)));
+    }
     const planner::Config& to = held ? cur : next;
     if (held) ++m_.lockstep_waits;
     if (!val_->step(to)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
+    if (!held && cfg_.run.lane_speeds) {
+      // Lane speeds: the step lasts as many ticks as its slowest move needs on its lane.
+      int lane = ticks;
+      for (int i = 0; i < ins_.num_agents(); ++i)
+        if (next[i] != cur[i]) lane = std::max(lane, cmd_->lane_ticks(i, cur[i], next[i]));
+      m_.lane_ticks += lane - ticks;
+      ticks = lane;
+    }
     cmd_->command(cur, to, ticks);
-    if (rot && !held) cmd_->turn(acts);
+    if (rot && !held) {
+      std::vector<double> factors(static_cast<size_t>(ins_.num_agents()));
+      for (int i = 0; i < ins_.num_agents(); ++i) factors[static_cast<size_t>(i)] = delays_->factor(i);
+      cmd_->turn(acts, factors);
+    }
     show_lockstep(cur, next, held);
     double ctl = ms_since(t0);
 
@@ -124,6 +141,7 @@ void Run::loop_adg()
   dp.sure_travel = cfg_.run.relative_braking;
   dp.same_step_starts = cfg_.run.same_step_starts;
   dp.exact_chain = cfg_.run.chain_to_end;
+  dp.lane_speeds = cfg_.run.lane_speeds;
   Driver drv(*cmd_, adg, *delays_, dp);
   if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) drv.set_zones(&rules_->zones_of());
   // Rotation solvers: the plan's cells go to the ADG like a cell plan (its turns are waits

@@ -21,6 +21,7 @@ Graph without_arcs(const Graph& g, const std::function<bool(Vertex, Vertex)>& dr
     out.attach_grid(g.width(), g.height(), std::move(cells));
   }
   out.name = g.name;
+  if (g.weighted()) out.set_move_costs(g.move_costs());  // a slow lane stays slow
   return out;
 }
 

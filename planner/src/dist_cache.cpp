@@ -13,10 +13,15 @@ constexpr size_t kSpare = 16;   // dropped tables kept for reuse
 }
 
 DistCache::Table::Table(const Graph& g, Vertex goal_vertex, DistCache* cache)
-    : dist(g.size(), kInf), goal(goal_vertex), owner(cache)
+    : dist(g.size(), kInf), goal(goal_vertex), owner(cache), weighted(g.weighted())
 {
-  dist[goal] = 0;
-  queue.push_back(goal);
+  if (!weighted) {
+    dist[goal] = 0;
+    queue.push_back(goal);
+    return;
+  }
+  buckets.resize(static_cast<size_t>(g.max_move_cost()) + 1);
+  restart(goal_vertex);
 }
 
 void DistCache::Table::restart(Vertex goal_vertex)
@@ -30,11 +35,55 @@ void DistCache::Table::restart(Vertex goal_vertex)
   missed = false;
   popped = 0;
   dist[goal] = 0;
-  queue.push_back(goal);
+  if (!weighted) {
+    queue.push_back(goal);
+    return;
+  }
+  // The goal is settled at 0 (dist) and popped first, from bucket 0.
+  tent.assign(dist.size(), kInf);
+  for (auto& b : buckets) b.clear();
+  tent[goal] = 0;
+  buckets[0].push_back(goal);
+  cur = 0;
+  open = 1;
+}
+
+void DistCache::Table::finish()
+{
+  if (weighted) {
+    if (!tent.empty()) std::vector<int32_t>().swap(tent);
+    for (auto& b : buckets) std::vector<Vertex>().swap(b);
+    return;
+  }
+  if (!queue.empty()) std::vector<Vertex>().swap(queue), head = 0;
+}
+
+void DistCache::Table::pop_weighted(const Graph& g)
+{
+  const size_t nb = buckets.size();
+  while (buckets[static_cast<size_t>(cur) % nb].empty()) ++cur;  // open > 0: ends within nb buckets
+  std::vector<Vertex>& b = buckets[static_cast<size_t>(cur) % nb];
+  const Vertex u = b.back();
+  b.pop_back();
+  --open;
+  ++popped;
+  // Entries are pushed only when a tentative distance drops, so an entry whose distance is
+  // no longer u's is stale (u went into a nearer bucket and was settled from there).
+  if (tent[u] != cur) return;
+  dist[u] = cur;
+  // Distances *to* the goal: a move w -> u costs u's cost.
+  const int32_t d = cur + g.move_cost(u);
+  for (Vertex w : g.in_neighbors(u)) {
+    if (dist[w] != kInf || tent[w] <= d) continue;
+    tent[w] = d;
+    buckets[static_cast<size_t>(d) % nb].push_back(w);
+    ++open;
+  }
 }
 
 void DistCache::Table::compact()
 {
+  if (weighted) return;  // the ring holds only entries near the popped distance
   // The popped prefix of the queue is dead: keep the open frontier only (a ring of a few
   // hundred vertices, against up to |V| discovered), so a partly grown table costs about
   // its distance array.
@@ -46,6 +95,7 @@ void DistCache::Table::compact()
 
 void DistCache::Table::pop(const Graph& g)
 {
+  if (weighted) return pop_weighted(g);
   const Vertex u = queue[head++];
   ++popped;
   // Distances *to* the goal: the BFS walks arcs backwards (in-neighbours; the same as
@@ -60,21 +110,21 @@ void DistCache::Table::pop(const Graph& g)
 int32_t DistCache::Table::extend_until(Vertex v, const Graph& g)
 {
   // Vertices get their distance when discovered, so stop as soon as v is discovered.
-  while (head < queue.size()) {
+  while (!done()) {
     pop(g);
     if (dist[v] != kInf) {
       compact();
       return dist[v];
     }
   }
-  if (!queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done: free the queue
+  finish();     // search done: free the queue
   return kInf;  // v is unreachable
 }
 
 bool DistCache::Table::grow_until(Vertex v, size_t pops, const Graph& g)
 {
-  for (; pops > 0 && dist[v] == kInf && head < queue.size(); --pops) pop(g);
-  if (head >= queue.size() && !queue.empty()) std::vector<Vertex>().swap(queue), head = 0;  // BFS done
+  for (; pops > 0 && dist[v] == kInf && !done(); --pops) pop(g);
+  if (done()) finish();  // search done
   compact();
   return dist[v] != kInf || done();
 }
@@ -108,10 +158,11 @@ int32_t DistCache::Table::lower_bound(Vertex v, const Graph& g) const
 {
   if (dist[v] != kInf) return dist[v];
   if (done()) return kInf;
-  // The queue is in BFS order, so every vertex nearer than its head's distance + 1 has
-  // been discovered; an undiscovered one is at least that far.
-  int32_t d = dist[queue[head]] + 1;
-  if (g.is_grid())  // every arc joins 4-neighbours: Manhattan is a lower bound too (one-way arcs only lengthen paths)
+  // BFS: the queue is in BFS order, so every vertex nearer than its head's distance + 1 has
+  // been discovered; an undiscovered one is at least that far. Dijkstra: an unsettled
+  // vertex is at least the popped bucket's distance away, and v is not the goal (settled).
+  int32_t d = weighted ? std::max<int32_t>(cur, 1) : dist[queue[head]] + 1;
+  if (g.is_grid())  // every arc joins 4-neighbours, each move costs >= 1: Manhattan is a lower bound too (one-way arcs only lengthen paths)
     d = std::max(d, std::abs(g.cell_x(v) - g.cell_x(goal)) + std::abs(g.cell_y(v) - g.cell_y(goal)));
   return d;
 }
@@ -223,8 +274,13 @@ bool DistCache::precompute(Deadline deadline)
 size_t DistCache::bytes() const
 {
   size_t b = 0;
-  for (const auto& t : tables_) b += t->dist.capacity() * sizeof(int32_t) + t->queue.capacity() * sizeof(Vertex);
-  for (const auto& t : spare_) b += t->dist.capacity() * sizeof(int32_t) + t->queue.capacity() * sizeof(Vertex);
+  auto of = [](const Table& t) {
+    size_t n = t.dist.capacity() * sizeof(int32_t) + t.queue.capacity() * sizeof(Vertex) + t.tent.capacity() * sizeof(int32_t);
+    for (const auto& q : t.buckets) n += q.capacity() * sizeof(Vertex);
+    return n;
+  };
+  for (const auto& t : tables_) b += of(*t);
+  for (const auto& t : spare_) b += of(*t);
   return b;
 }
 

@@ -204,4 +204,18 @@ bool Graph::reaches(Vertex from, Vertex to) const
   return false;
 }
 
+void Graph::set_move_costs(std::vector<uint8_t> costs)
+{
+  if (costs.size() != static_cast<size_t>(size()))
+    throw std::invalid_argument("move costs: " + std::to_string(costs.size()) + " for " + std::to_string(size()) + " vertices");
+  int32_t top = 1;
+  for (size_t v = 0; v < costs.size(); ++v) {
+    if (costs[v] < 1) throw std::invalid_argument("move costs: vertex " + std::to_string(v) + " costs 0 (must be >= 1)");
+    top = std::max<int32_t>(top, costs[v]);
+  }
+  max_cost_ = top;
+  if (top == 1) costs.clear();  // all 1: the plain BFS tables
+  cost_ = std::move(costs);
+}
+
 }  // namespace planner

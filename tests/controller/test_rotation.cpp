@@ -89,11 +89,24 @@ TEST(ControllerRotation, WpplReachesAllGoalsOnTheSmallWarehouse) { expect_all_go
 // SUMO's angle of every standing AGV, step by step: a quarter turn is turn_s / step_length
 // steps of 90 / N degrees each (here 2 s = 16 steps of 5.625 degrees, the tick stretched to
 // two), never a jump; and there are as many such turns as the controller executed.
-TEST(ControllerRotation, ATurnTakesTurnSecondsInSumo)
+namespace {
+void expect_turns_in_sumo(double factor, const std::string& name);
+}
+
+TEST(ControllerRotation, ATurnTakesTurnSecondsInSumo) { expect_turns_in_sumo(1.0, "ctl_rot_turn"); }
+
+// A slowed AGV turns slower too (delays.slow): every AGV at half speed, a quarter turn is
+// 2 x 16 steps of 2.8125 degrees (the tick stretched to four).
+TEST(ControllerRotation, ASlowedAgvTurnsSlowerInLockstep) { expect_turns_in_sumo(0.5, "ctl_rot_turn_slow"); }
+
+namespace {
+void expect_turns_in_sumo(double factor, const std::string& name)
 {
-  Config c = small_rotation("pibt-rot", "ctl_rot_turn");
+  Config c = small_rotation("pibt-rot", name);
   c.fleet.turn_s = 2.0;
-  const int n = static_cast<int>(std::lround(c.fleet.turn_s / c.sumo.step_length));
+  if (factor < 1)
+    for (int i = 0; i < c.fleet.count; ++i) c.delays.spec.slow.push_back({i, factor});
+  const int n = static_cast<int>(std::lround(c.fleet.turn_s / c.sumo.step_length / factor));
   const double per_step = 90.0 / n;
   Controller ctl(c);
   std::map<int, double> last_angle;
@@ -152,6 +165,7 @@ TEST(ControllerRotation, ATurnTakesTurnSecondsInSumo)
   EXPECT_EQ(turns_seen, m.commands.quarter_turns);
   EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
 }
+}  // namespace
 
 TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
 {

@@ -6,11 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 #include <regex>
 
 #include "closed_loop_util.hpp"
 #include "controller/bound.hpp"
+#include "controller/commander.hpp"
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
 #include "controller_test_util.hpp"
@@ -53,7 +55,8 @@ Config small_adg(const std::string& solver, const std::string& executor, const s
 struct FcdTurns {
   long long turns = 0, bad = 0;
 };
-FcdTurns fcd_turns(const std::string& fcd, int n)
+// n_of(id): the steps of a quarter turn of that vehicle (a slowed AGV's are more).
+FcdTurns fcd_turns(const std::string& fcd, const std::function<int(const std::string&)>& n_of)
 {
   const std::string s = ctest_util::slurp(fcd);
   const std::regex veh_re(R"re(<vehicle id="([^"]+)" x="([-0-9.e]+)" y="([-0-9.e]+)" angle="([-0-9.e]+)")re");
@@ -63,8 +66,8 @@ FcdTurns fcd_turns(const std::string& fcd, int n)
   };
   std::map<std::string, Last> last;
   FcdTurns out;
-  const double per_step = 90.0 / n;
   auto close = [&](Last& l, const std::string& id) {
+    const int n = n_of(id);
     if (l.run == 0) return;
     if (l.run % n != 0) {
       ++out.bad;
@@ -75,6 +78,8 @@ FcdTurns fcd_turns(const std::string& fcd, int n)
   };
   for (auto it = std::sregex_iterator(s.begin(), s.end(), veh_re); it != std::sregex_iterator(); ++it) {
     const std::string id = (*it)[1];
+    const int n = n_of(id);
+    const double per_step = 90.0 / n;
     const double x = std::stod((*it)[2]), y = std::stod((*it)[3]), a = std::stod((*it)[4]);
     Last& l = last[id];
     const bool standing = std::hypot(x - l.x, y - l.y) <= 1.1e-3;
@@ -106,13 +111,20 @@ void expect_physical_turns(const Config& c, const Metrics& m)
   EXPECT_GT(m.commands.quarter_turns, 0) << "no turn executed: the run did not use headings";
   const int n = static_cast<int>(std::lround(c.fleet.turn_s / c.sumo.step_length));
   // Without delays a quarter turn is n Driver steps exactly (a held turn takes longer).
-  if (c.delays.spec.kind == "none") {
+  if (c.delays.spec.kind == "none" && c.delays.spec.slow.empty()) {
     EXPECT_EQ(m.turn_steps, n * m.commands.quarter_turns);
   } else {
     // (A turn still running when a lifelong run ends has had fewer steps.)
     EXPECT_GE(m.turn_steps + (n - 1) * c.fleet.count, n * m.commands.quarter_turns);
   }
-  const FcdTurns t = fcd_turns(c.output.dir + "/fcd.xml", n);
+  // A slowed AGV (delays.slow, factor f) turns in ceil(n / f) steps.
+  auto n_of = [&](const std::string& id) {
+    double f = 1;
+    for (const executor::Slowdown& s : c.delays.spec.slow)
+      if (Commander::vehicle_id(s.agent) == id) f = s.factor;
+    return static_cast<int>(std::ceil(n / f - 1e-9));
+  };
+  const FcdTurns t = fcd_turns(c.output.dir + "/fcd.xml", n_of);
   EXPECT_EQ(t.bad, 0);
   EXPECT_EQ(t.turns, m.commands.quarter_turns);
   const ctest_util::Kinematics k = ctest_util::fcd_kinematics(c.output.dir + "/fcd.xml", c.sumo.step_length);
@@ -178,6 +190,25 @@ TEST(ControllerRotationAdg, ATurnTakesTurnSecondsUnderAdg)
   const Metrics m = ctl.run();
   EXPECT_TRUE(m.solved) << m.error;
   expect_physical_turns(c, m);
+}
+
+// A slowed AGV turns slower too (delays.slow, issue 20): with every AGV at half speed each
+// quarter turn stands 2n SUMO steps on its cell (n = turn_s / step_length), in steps of
+// 90 / 2n degrees, and the Driver waits for all of them.
+TEST(ControllerRotationAdg, ASlowedAgvTurnsSlower)
+{
+  Config c = small_adg("pibt-rot", "adg-follow", "ctl_rot_adg_slow");
+  for (int i = 0; i < c.fleet.count; ++i) c.delays.spec.slow.push_back({i, 0.5});
+  Controller ctl(c);
+  const Metrics m = ctl.run();
+  EXPECT_TRUE(m.solved) << m.error;
+  ctest_util::expect_checked_every_step(c, m);
+  ASSERT_GT(m.commands.quarter_turns, 0);
+  const int n = static_cast<int>(std::lround(c.fleet.turn_s / c.sumo.step_length));
+  EXPECT_EQ(m.turn_steps, 2 * n * m.commands.quarter_turns);
+  const FcdTurns t = fcd_turns(c.output.dir + "/fcd.xml", [&](const std::string&) { return 2 * n; });
+  EXPECT_EQ(t.bad, 0);
+  EXPECT_EQ(t.turns, m.commands.quarter_turns);
 }
 
 // A cell solver's reversal in an aisle is an instant 180-degree flip in SUMO (counted as

@@ -259,3 +259,93 @@ TEST(DistCache, FreshTableBoundsAreManhattanOnGridsAndReachabilityIsExact)
   cache.set_deadline(DistCache::Deadline::min());
   EXPECT_EQ(t->at(g.at(5, 0), g), DistCache::kInf);  // finished: exact even past the deadline
 }
+
+// Move costs (Graph::set_move_costs: a slow lane's cells): the tables are a resumable
+// Dijkstra with a bucket queue.
+namespace {
+// Distances to `goal`, a move onto w costing g.move_cost(w): Bellman-Ford, the slow way.
+std::vector<int> weighted_reference(const Graph& g, Vertex goal)
+{
+  std::vector<int> d(g.size(), DistTable::kInf);
+  d[goal] = 0;
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (Vertex w = 0; w < g.size(); ++w)
+      if (d[w] < DistTable::kInf)
+        for (Vertex u : g.in_neighbors(w))
+          if (d[w] + g.move_cost(w) < d[u]) d[u] = d[w] + g.move_cost(w), changed = true;
+  }
+  return d;
+}
+
+Graph with_random_costs(Graph g, uint64_t seed, int top)
+{
+  Rng rng(seed);
+  std::vector<uint8_t> c(g.size());
+  for (uint8_t& k : c) k = static_cast<uint8_t>(1 + rng.below(static_cast<uint64_t>(top)));
+  g.set_move_costs(c);
+  return g;
+}
+}  // namespace
+
+TEST(DistCache, WeightedTablesAreExactDijkstraDistancesInAnyQueryOrder)
+{
+  // A grid (two rooms cut apart: some goals unreachable) and a directed graph.
+  Graph grid = with_random_costs(load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map"), 3, 5);
+  std::vector<std::pair<Vertex, Vertex>> arcs;
+  for (Vertex v = 0; v < 200; ++v) arcs.push_back({v, (v + 1) % 200}), arcs.push_back({v, (v * 7 + 3) % 200});
+  arcs.erase(std::remove_if(arcs.begin(), arcs.end(), [](auto a) { return a.first == a.second; }), arcs.end());
+  Graph ring = with_random_costs(Graph::from_arcs(200, arcs), 4, 9);
+  ASSERT_TRUE(grid.weighted());
+  ASSERT_TRUE(ring.directed());
+  for (const Graph* gp : {&grid, &ring}) {
+    const Graph& g = *gp;
+    Rng rng(9);
+    Config goals;
+    for (int i = 0; i < 6; ++i) goals.push_back(static_cast<Vertex>(rng.below(g.size())));
+    std::vector<std::vector<int>> exact;
+    for (Vertex goal : goals) exact.push_back(weighted_reference(g, goal));
+    DistTable d(g);
+    d.set_goals(goals);
+    for (int q = 0; q < 5000; ++q) {
+      const int i = static_cast<int>(rng.below(goals.size()));
+      const Vertex v = static_cast<Vertex>(rng.below(g.size()));
+      ASSERT_EQ(d.get(i, v), exact[i][v]) << "goal " << goals[i] << " v " << v;
+    }
+    for (size_t i = 0; i < goals.size(); ++i)
+      for (Vertex v = 0; v < g.size(); ++v) ASSERT_EQ(d.get(static_cast<int>(i), v), exact[i][v]);
+  }
+}
+
+TEST(DistCache, WeightedQueriesPastTheDeadlineAreLowerBounds)
+{
+  Graph g = with_random_costs(load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map"), 5, 4);
+  Rng rng(2);
+  DistCache cache(g);
+  for (int k = 0; k < 6; ++k) {
+    const Vertex goal = static_cast<Vertex>(rng.below(g.size()));
+    std::vector<int> exact = weighted_reference(g, goal);
+    DistCache::Table* t = cache.table(goal);
+    cache.set_deadline(DistCache::Deadline::max());
+    const Vertex mid = static_cast<Vertex>(rng.below(g.size()));
+    ASSERT_EQ(t->at(mid, g), exact[mid]);
+    cache.set_deadline(DistCache::Deadline::min());
+    expect_admissible(*t, g, exact);
+    EXPECT_FALSE(cache.precompute(DistCache::Deadline::max()));
+    cache.set_deadline(DistCache::Deadline::max());
+    for (Vertex v = 0; v < g.size(); ++v) ASSERT_EQ(t->at(v, g), exact[v]);
+  }
+}
+
+TEST(DistCache, UnitCostsKeepThePlainBfsAndBadCostsAreRefused)
+{
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  g.set_move_costs(std::vector<uint8_t>(g.size(), 1));
+  EXPECT_FALSE(g.weighted());  // all 1: no costs at all
+  DistCache cache(g);
+  EXPECT_FALSE(cache.table(0)->weighted);
+  EXPECT_THROW(g.set_move_costs(std::vector<uint8_t>(3, 2)), std::invalid_argument);
+  std::vector<uint8_t> zero(g.size(), 1);
+  zero[5] = 0;
+  EXPECT_THROW(g.set_move_costs(zero), std::invalid_argument);
+}

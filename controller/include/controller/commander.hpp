@@ -66,6 +66,11 @@ class Commander {
   // The speed limit of a kept lane (the net's lane `speed`), m/s: the adg Driver never
   // commands more on it.
   double lane_speed(const std::string& lane_id) const { return lane(lane_id).speed; }
+  // Lockstep: the ticks the move u -> v of an AGV commanded to cell u needs so that its
+  // speed keeps to the limit of the lane it drives on (its target pose's lane: along a lane,
+  // out of a junction and after a reversal the front travels on that lane only); 1 for a
+  // wait or a jump. command() with at least this many ticks never exceeds the lane's speed.
+  int lane_ticks(int agent, planner::Vertex u, planner::Vertex v) const;
   bool changes_lane(int agent, planner::Vertex u, planner::Vertex v) const
   {
     return map_.pose_entering(u, v).lane != agv_[agent].pose.lane;
@@ -84,11 +89,13 @@ class Commander {
   std::vector<int> start_headings(const planner::Config& starts) const;
   void use_headings(const std::vector<int>& start, int turn_steps);
   bool headings() const { return !heading_.empty(); }
-  // At a tick's start, with the executed rotation actions (F, R, C, W per agent).
-  void turn(const std::string& actions);
+  // At a tick's start, with the executed rotation actions (F, R, C, W per agent) and the
+  // agents' speed factors (begin_turn; empty: all 1).
+  void turn(const std::string& actions, const std::vector<double>& factors = {});
   // One AGV's quarter turn (act R or C), as turn() does for each: the adg Driver turns an
-  // AGV at rest toward its next move's direction.
-  void begin_turn(int agent, char act);
+  // AGV at rest toward its next move's direction. A slowed AGV (speed factor f in (0, 1],
+  // executor/delay_model.hpp) turns slower too: ceil(turn_steps / f) SUMO steps.
+  void begin_turn(int agent, char act, double factor = 1);
   // Its turn still animates (orient() has steps of it to run).
   bool turning(int agent) const { return agv_[agent].turn_step > 0; }
   // Before every SUMO step. `hold` (adg: AGVs stopped by a delay), per agent: a running
@@ -133,6 +140,7 @@ class Commander {
                              // 1 mm and cut the route to the current edge
     bool held_mm = false;    // held since its last move: its front may stand 1 mm back
     int turn_step = 0;       // steps of the running turn done (0: none running)
+    int turn_steps = 1;      // steps of the running turn in all
     double turn_from = 0, turn_by = 0;  // SUMO angle at the turn's start, +-90
   };
   struct Lane {

@@ -114,6 +114,10 @@ struct PlannerSection {
   // aisles that solution's backtracking costs 3-4x the bound; a rollout is a far cheaper path
   // (controller/README.md, "Dives").
   bool dive = true;
+  // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
+  // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top
+  // speed, v_fast the fastest cell's (controller/lane_costs.hpp; planner Graph::set_move_costs).
+  bool lane_costs = true;
   RotationSection rotation;
   bool rotation_solver() const;  // solver plans rotation actions (planner::plans_rotation)
 };
@@ -167,6 +171,9 @@ struct RunSection {
   bool relative_braking = true;      // count on a leader's sure travel when following
   bool same_step_starts = true;      // a move released by another start in a step starts in it
   bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
+  // Lane speed limits: lockstep stretches a step over the ticks its slowest move needs at its
+  // lane's speed; adg: the Driver's DriveParams::lane_speeds. false: a cell per tick regardless.
+  bool lane_speeds = true;
 };
 
 // Delays (executor/delay_model.hpp), durations in seconds in the YAML, ticks here.

@@ -27,6 +27,15 @@
 // `max_tables` exist; pinned tables are never dropped, so the cap may be exceeded by them.
 // A table costs 4 bytes per vertex (+4 per vertex of its open BFS frontier; the queue is
 // compacted as it grows and freed when the BFS finishes). max_tables == 0: no cap.
+//
+// Weighted graphs (Graph::set_move_costs: a move onto v costs move_cost(v), small integers):
+// the table is a resumable Dijkstra instead, with Dial's bucket queue (a ring of
+// max_move_cost() + 1 buckets: a relaxed vertex is at most that far above the bucket being
+// popped, and no heap is needed). A vertex gets its distance (dist) when it is settled, so
+// everything above holds as is: dist[v] < kInf is exact, and an unsettled vertex is at
+// least the popped bucket's distance away (and, costs being >= 1, at least Manhattan on a
+// grid). The tentative distances take 4 more bytes per vertex until the search finishes.
+// Unweighted graphs keep the BFS, unchanged (same distances, same speed).
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -52,9 +61,17 @@ class DistCache {
     DistCache* owner = nullptr;  // whose deadline bounds queries (none: every query exact)
     bool missed = false;         // a query got an estimate; queued for the next precompute
     uint64_t popped = 0;         // BFS vertices popped so far (work counter)
+    // Weighted graphs only (Dijkstra): tentative distances, the bucket ring (tentative
+    // distance d in bucket d % size; stale entries are skipped), the distance being popped
+    // and the entries left in the ring.
+    bool weighted = false;
+    std::vector<int32_t> tent;
+    std::vector<std::vector<Vertex>> buckets;
+    int32_t cur = 0;
+    size_t open = 0;
     Table(const Graph& g, Vertex goal, DistCache* owner = nullptr);
     void restart(Vertex goal);  // a fresh BFS from `goal` in this table's memory
-    bool done() const { return head >= queue.size(); }
+    bool done() const { return weighted ? open == 0 : head >= queue.size(); }
     int32_t extend_until(Vertex v, const Graph& g);  // distance of v, growing the BFS as needed
     // Grows the BFS by up to `pops` vertices or until v is discovered; returns whether it is
     // (or the BFS is finished).
@@ -67,6 +84,8 @@ class DistCache {
     int32_t lower_bound(Vertex v, const Graph& g) const;
     void compact();  // drops the popped part of the queue once it is most of it
     void pop(const Graph& g);  // one BFS step: the next queued vertex labels its unlabelled neighbours
+    void pop_weighted(const Graph& g);  // one Dijkstra step: the next bucket entry, settled unless stale
+    void finish();  // the search is done: frees its queue
   };
 
   explicit DistCache(const Graph& g, size_t max_tables = 0) : g_(g), max_tables_(max_tables) {}

@@ -102,6 +102,18 @@ class Graph {
   // Whether `to` can be reached from `from` along arcs.
   bool reaches(Vertex from, Vertex to) const;
 
+  // Move costs (optional): a move onto v costs move_cost(v) >= 1, e.g. the ticks an AGV
+  // needs to enter a cell of a slow lane. Only the distance tables read them (DistCache:
+  // the heuristics PIBT and LaCAM rank moves by); the search space, the validator and a
+  // plan's steps do not change, so no guarantee does. Without costs (the default) every
+  // move costs 1 and the tables are plain BFS. Throws std::invalid_argument unless there
+  // is one cost per vertex, each >= 1; all 1: no costs (weighted() false).
+  void set_move_costs(std::vector<uint8_t> costs);
+  bool weighted() const { return !cost_.empty(); }
+  int32_t move_cost(Vertex v) const { return cost_.empty() ? 1 : cost_[v]; }
+  int32_t max_move_cost() const { return max_cost_; }
+  const std::vector<uint8_t>& move_costs() const { return cost_; }  // empty: all 1
+
   std::string name;  // e.g. the map file it came from
 
  private:
@@ -116,6 +128,8 @@ class Graph {
   int width_ = 0, height_ = 0;
   std::vector<int32_t> cell_;       // vertex -> y * width + x
   std::vector<Vertex> vertex_at_;   // y * width + x -> vertex or -1
+  std::vector<uint8_t> cost_;       // move costs, empty: all 1
+  int32_t max_cost_ = 1;
 };
 
 }  // namespace planner

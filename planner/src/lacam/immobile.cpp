@@ -63,11 +63,25 @@ void DetourTable::set_blocked(std::vector<Vertex> blocked)
   for (size_t k = 0; k < blocked_.size(); ++k) {
     std::vector<int32_t>& d = to_blocked_[k];
     d.assign(g_.size(), DistTable::kInf);
-    std::vector<Vertex> q{blocked_[k]};
     d[blocked_[k]] = 0;
-    for (size_t h = 0; h < q.size(); ++h)
-      for (Vertex u : g_.in_neighbors(q[h]))
-        if (d[u] == DistTable::kInf) d[u] = d[q[h]] + 1, q.push_back(u);
+    if (!g_.weighted()) {
+      std::vector<Vertex> q{blocked_[k]};
+      for (size_t h = 0; h < q.size(); ++h)
+        for (Vertex u : g_.in_neighbors(q[h]))
+          if (d[u] == DistTable::kInf) d[u] = d[q[h]] + 1, q.push_back(u);
+      continue;
+    }
+    // Move costs (graph.hpp): a move u -> w costs w's cost; Dijkstra.
+    using Item = std::pair<int32_t, Vertex>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+    open.push({0, blocked_[k]});
+    while (!open.empty()) {
+      const auto [dw, w] = open.top();
+      open.pop();
+      if (dw > d[w]) continue;
+      for (Vertex u : g_.in_neighbors(w))
+        if (dw + g_.move_cost(w) < d[u]) d[u] = dw + g_.move_cost(w), open.push({d[u], u});
+    }
   }
 }
 
@@ -118,12 +132,14 @@ void DetourTable::build(Shadow& s, size_t found, DistCache::Table* t)
   if (++epoch_ == 0) std::fill(stamp_.begin(), stamp_.end(), 0), epoch_ = 1;
   auto out = [&](Vertex u) { return stamp_[u] == epoch_ || blocked(u); };  // shadowed or blocked
   // The shadow in order of d: a candidate is a vertex one step farther than a blocked or
-  // shadowed one, with a move onto it.
+  // shadowed one, with a move onto it. (A move onto w costs c(w) = g_.move_cost(w): 1
+  // without move costs.)
+  auto c = [&](Vertex w) { return g_.move_cost(w); };
   std::map<int32_t, std::vector<Vertex>> next;  // d -> candidates
   for (Vertex b : blocked_)
     if (t->dist[b] != DistTable::kInf)
       for (Vertex u : g_.in_neighbors(b))
-        if (d(u) == t->dist[b] + 1) next[d(u)].push_back(u);
+        if (d(u) == t->dist[b] + c(b)) next[d(u)].push_back(u);
   std::vector<Vertex> shadow;
   while (!next.empty()) {
     const auto [du, us] = *next.begin();
@@ -132,23 +148,23 @@ void DetourTable::build(Shadow& s, size_t found, DistCache::Table* t)
       if (out(u)) continue;
       bool through = true;  // every shortest move from u lands on a blocked / shadowed vertex
       for (Vertex w : g_.neighbors(u))
-        if (d(w) == du - 1 && !out(w)) through = false;
+        if (d(w) == du - c(w) && !out(w)) through = false;
       if (!through) continue;
       s.dist[u] = DistTable::kInf;
       stamp_[u] = epoch_;
       shadow.push_back(u);
       for (Vertex x : g_.in_neighbors(u))
-        if (d(x) == du + 1) next[du + 1].push_back(x);
+        if (d(x) == du + c(u)) next[du + c(u)].push_back(x);
     }
   }
   // Repaired distances: leave the shadow over a move to a vertex that keeps its d, or
-  // through shadowed neighbours (Dijkstra with unit moves).
+  // through shadowed neighbours (Dijkstra).
   using Item = std::pair<int32_t, Vertex>;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
   for (Vertex u : shadow) {
     int32_t best = DistTable::kInf;
     for (Vertex w : g_.neighbors(u))
-      if (!out(w) && d(w) != DistTable::kInf) best = std::min(best, d(w) + 1);
+      if (!out(w) && d(w) != DistTable::kInf) best = std::min(best, d(w) + c(w));
     if (best < DistTable::kInf) open.push({best, u});
   }
   while (!open.empty()) {
@@ -159,7 +175,7 @@ void DetourTable::build(Shadow& s, size_t found, DistCache::Table* t)
     cur = du;
     for (Vertex x : g_.in_neighbors(u)) {
       const auto it = s.dist.find(x);
-      if (it != s.dist.end() && du + 1 < it->second) open.push({du + 1, x});
+      if (it != s.dist.end() && du + c(u) < it->second) open.push({du + c(u), x});
     }
   }
 }

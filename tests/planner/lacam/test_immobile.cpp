@@ -220,28 +220,41 @@ TEST(Immobile, DetourTableGoesAroundBlockedVertices)
 
 namespace {
 
-// Distances to `goal` without the blocked vertices: one BFS over the in-arcs.
+// Distances to `goal` without the blocked vertices: one Bellman-Ford over the in-arcs (a
+// move onto w costs g.move_cost(w): 1 without move costs).
 std::vector<int32_t> bfs_around(const Graph& g, Vertex goal, const std::vector<Vertex>& blocked)
 {
   std::vector<int32_t> d(g.size(), DistTable::kInf);
   auto is_blocked = [&](Vertex u) { return std::find(blocked.begin(), blocked.end(), u) != blocked.end(); };
   if (is_blocked(goal)) return d;
-  std::vector<Vertex> q{goal};
   d[goal] = 0;
-  for (size_t k = 0; k < q.size(); ++k)
-    for (Vertex u : g.in_neighbors(q[k]))
-      if (d[u] == DistTable::kInf && !is_blocked(u)) d[u] = d[q[k]] + 1, q.push_back(u);
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (Vertex w = 0; w < g.size(); ++w)
+      if (d[w] < DistTable::kInf)
+        for (Vertex u : g.in_neighbors(w))
+          if (!is_blocked(u) && d[w] + g.move_cost(w) < d[u]) d[u] = d[w] + g.move_cost(w), changed = true;
+  }
   return d;
 }
+
+void expect_detours_exact(bool costs);
 
 }  // namespace
 
 // The shadow search (immobile.hpp) against a BFS per goal on random grids with walls, one-way
 // arcs included: never above the true detour distance, never below the plain one, and exact
 // once the plain BFS has found every blocked vertex -- and it searches far fewer vertices.
-TEST(Immobile, DetourTableMatchesABfsAroundTheBlockedVertices)
+TEST(Immobile, DetourTableMatchesABfsAroundTheBlockedVertices) { expect_detours_exact(false); }
+
+// The same with move costs 1..4 (a slow lane's cells, graph.hpp): the shadow and its repair
+// step by the cost of the vertex moved onto.
+TEST(Immobile, DetourTableMatchesADijkstraAroundTheBlockedVerticesWithMoveCosts) { expect_detours_exact(true); }
+
+namespace {
+void expect_detours_exact(bool costs)
 {
-  std::mt19937 rng(7);
+  std::mt19937 rng(costs ? 11 : 7);
   for (int trial = 0; trial < 60; ++trial) {
     const int w = 4 + static_cast<int>(rng() % 9), h = 3 + static_cast<int>(rng() % 7);
     std::vector<bool> free(w * h);
@@ -258,6 +271,11 @@ TEST(Immobile, DetourTableMatchesABfsAroundTheBlockedVertices)
             if (rng() % 4) arcs.push_back({v, u});
           }
       g = Graph::from_arcs(grid.size(), arcs);
+    }
+    if (costs) {
+      std::vector<uint8_t> c(g.size());
+      for (uint8_t& k : c) k = static_cast<uint8_t>(1 + rng() % 4);
+      g.set_move_costs(c);
     }
     std::vector<Vertex> blocked;
     for (int k = 1 + static_cast<int>(rng() % 4); k > 0; --k) blocked.push_back(static_cast<Vertex>(rng() % g.size()));
@@ -281,6 +299,7 @@ TEST(Immobile, DetourTableMatchesABfsAroundTheBlockedVertices)
     }
   }
 }
+}  // namespace
 
 // The cost that made a stuck replan blow the step budget at 1000 AGVs: with one stuck AGV,
 // the detours of 300 agents' goals on a warehouse-like grid (shelf rows, aisles) search a

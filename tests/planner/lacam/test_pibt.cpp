@@ -120,3 +120,54 @@ TEST(Pibt, LacamStaysCompleteUnderAnyPreference)
     EXPECT_GT(pref.prepared, 0);
   }
 }
+
+// Move costs (Graph::set_move_costs: a slow lane's cells) change only the distances PIBT
+// ranks moves by. Two ways from S to G: along the top row (4 moves, its cells slow: cost 3)
+// or round the bottom (8 moves of cost 1). With the costs the agent goes round; without, along.
+TEST(Pibt, MoveCostsRouteAnAgentRoundASlowShortcut)
+{
+  auto route = [](bool costs) {
+    Graph g = test::grid({".....", ".@@@.", "....."});
+    if (costs) {
+      std::vector<uint8_t> c(g.size(), 1);
+      for (int x = 1; x <= 3; ++x) c[g.at(x, 0)] = 3;
+      g.set_move_costs(c);
+    }
+    const Config s = test::at(g, {{0, 0}}), t = test::at(g, {{4, 0}});
+    DistTable d(g);
+    Lacam lacam(g, d, LacamOptions{});
+    lacam.reset(s, t);
+    EXPECT_EQ(lacam.search(Budget::unlimited()), Status::Solved);
+    const std::vector<Config> path = lacam.path(lacam.goal_node());
+    EXPECT_EQ(validate_plan(g, s, t, path, true), "");
+    bool top = false;  // the path used the top row's slow middle
+    for (const Config& c : path) top = top || c[0] == g.at(2, 0);
+    return std::make_pair(top, path.size() - 1);
+  };
+  const auto [plain_top, plain_moves] = route(false);
+  EXPECT_TRUE(plain_top);
+  EXPECT_EQ(plain_moves, 4u);
+  const auto [cost_top, cost_moves] = route(true);
+  EXPECT_FALSE(cost_top) << "the slow row was taken";
+  EXPECT_EQ(cost_moves, 8u);
+}
+
+// Completeness does not depend on the costs: the cases that need search are solved with
+// random move costs too.
+TEST(Pibt, LacamStaysCompleteUnderMoveCosts)
+{
+  uint32_t seed = 1;
+  for (const auto& c : test::hard_cases()) {
+    SCOPED_TRACE(c.name);
+    Graph g = test::grid(c.rows);
+    std::vector<uint8_t> cost(g.size());
+    for (uint8_t& k : cost) k = static_cast<uint8_t>(1 + (seed = seed * 1103515245u + 12345u) / 65536u % 5);
+    g.set_move_costs(cost);
+    Config s = test::at(g, c.starts), t = test::at(g, c.goals);
+    DistTable d(g);
+    Lacam lacam(g, d, LacamOptions{});
+    lacam.reset(s, t);
+    ASSERT_EQ(lacam.search(Budget::unlimited()), Status::Solved);
+    EXPECT_EQ(validate_plan(g, s, t, lacam.path(lacam.goal_node()), true), "");
+  }
+}

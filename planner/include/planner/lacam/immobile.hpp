@@ -56,6 +56,7 @@ GoalTest relaxed_goal_test(const Graph& g, const Config& current, const Config& 
 // d. A stuck AGV in an aisle shadows the aisle behind it: tens of vertices per goal where a
 // BFS per goal over the whole graph was 75 ms for 1000 agents (huge warehouse), in the
 // step that starts a stuck replan. And a goal's shadow is searched only once a query meets
+// (With move costs, graph.hpp, every +1 here is the cost of the vertex moved onto.)
 // a vertex with a shortest path through a blocked vertex b (d(v) == d(b) + |v -> b|, from
 // one BFS per blocked vertex): most agents' paths pass no stuck AGV and cost nothing. Exact for a query at v for the blocked vertices nearer
 // the goal than v (the only ones a shortest path from v can meet; d's BFS has found them

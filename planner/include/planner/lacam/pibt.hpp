@@ -84,6 +84,10 @@ class Pibt {
   // Agent i's distance from u to its goal: around the immobile agents when its goal can be
   // reached that way (DetourTable), else the plain one.
   float distance(int32_t i, Vertex u);
+  // A move's cost beyond 1 (graph move costs: a slow lane's cell): ranking v -> u by
+  // d(u) + cost(u) - 1 ranks by the time to the goal through u; staying keeps d(v). 0
+  // without move costs, so the unit ranking is unchanged.
+  float extra_cost(Vertex v, Vertex u) const { return u == v ? 0.0f : static_cast<float>(g_.move_cost(u) - 1); }
 
   const Graph& g_;
   DistTable& d_;
