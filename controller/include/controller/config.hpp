@@ -164,6 +164,9 @@ struct RunSection {
   bool relative_braking = true;      // count on a leader's sure travel when following
   bool same_step_starts = true;      // a move released by another start in a step starts in it
   bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
+  // Lifelong: an epoch start stays within the next SUMO step's planner budget (controller/src/run.cpp
+  // Run::epoch_start), and lockstep runs it at the tick's start (switch for tests and benches).
+  bool epoch_in_budget = true;
 };
 
 // Delays (executor/delay_model.hpp), durations in seconds in the YAML, ticks here.
