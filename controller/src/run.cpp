@@ -408,32 +408,57 @@ void Run::start_sumo()
 
 void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
 {
-  // The tick boundary of the task layer. Errands completed at the end of tick t (1-based,
-  // against where the AGVs really are) start a new epoch: new goals, a fresh tree rooted
-  // at the planner's current configuration, and one search slice so the next tick has a
-  // first move (a fresh tree's only node is the root).
   life_.planner_ms.push_back(tick_planner_ms);
-  auto t0 = Clock::now();
-  const std::vector<tasks::Event> ev = tm_->update(m_.ticks, executed);
-  if (!ev.empty() || tm_->goals_changed()) {  // goals change without a completion only with station queues
-    const double c0 = planner::thread_cpu_ms();
-    p_->set_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
-    val_->set_goals(tm_->goals());
-    show_goals();
-    p_->search(plan_budget());
-    plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
-    ++life_.epochs;
-    life_.events.insert(life_.events.end(), ev.begin(), ev.end());
-    epoch_ms_ = ms_since(t0);
-  } else {
-    life_.task_ms += ms_since(t0);
-  }
+  if (!epoch_early()) epoch_start(executed, m_.ticks);
   errand_ticks();
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
   m_.reassigned_for_closure = tm_->reassigned_for_closure();
   count_queues(executed);
   if (const tasks::Battery* b = tm_->battery()) count_battery(*b), m_.battery.dropped_mid_task = tm_->dropped_for_charge();
+}
+
+bool Run::epoch_early() const
+{
+  // Lockstep knows a tick's outcome when it commands it: the epoch start moves to the tick's
+  // start, and its new tree is searched in the tick's own SUMO steps. Not with rules (their
+  // goals depend on the time) nor with a rotation solver (it plans a tick in one call).
+  return cfg_.run.epoch_in_budget && cfg_.run.executor == "lockstep" && !rules_ && !p_->rotation();
+}
+
+void Run::epoch_start(const planner::Config& executed, long tick)
+{
+  // The task layer at the end of tick `tick` (1-based, where the AGVs are then). Completed
+  // errands start a new epoch: new goals, a fresh tree rooted at the planner's current
+  // configuration, and a search slice for the tree's first move. It is the next SUMO step's
+  // planning (plan_cpu_pending_), so with a time budget it is bounded by that step's: the
+  // distance queries of set_goals stop growing tables at the step's deadline (lower bounds
+  // past it; later steps grow them), and the search gets only what is left (a resumable
+  // expansion pauses at its deadline; the next steps go on with it).
+  auto t0 = Clock::now();
+  const std::vector<tasks::Event> ev = tm_->update(tick, executed);
+  if (ev.empty() && !tm_->goals_changed()) {  // goals change without a completion only with station queues
+    life_.task_ms += ms_since(t0);
+    return;
+  }
+  const double c0 = planner::thread_cpu_ms();
+  const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
+  if (bounded) {
+    planner::Budget tb = budget_;
+    tb.ms = std::max(0.0, tb.ms - plan_cpu_pending_ - reserve_.ms(tb.ms));
+    dist_cache_->set_deadline(tb.deadline_from(t0));
+  }
+  p_->set_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+  val_->set_goals(tm_->goals());
+  planner::Budget b = plan_budget();
+  if (bounded) b.ms = std::max(0.0, b.ms - plan_cpu_pending_ - (planner::thread_cpu_ms() - c0));
+  if (!bounded || b.ms > 0) p_->search(b);
+  if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+  plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+  show_goals();  // the view's work, not the planner's
+  ++life_.epochs;
+  life_.events.insert(life_.events.end(), ev.begin(), ev.end());
+  epoch_ms_ += ms_since(t0);
 }
 
 void Run::count_battery(const tasks::Battery& b)

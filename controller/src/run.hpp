@@ -68,6 +68,10 @@ class Run {
   }
   // Lifelong: completions at the end of tick `t` against the executed positions.
   void lifelong_tick(const planner::Config& executed, double tick_planner_ms);
+  // The epoch start of the tick that ends at `tick` (task layer, new goals): lifelong_tick
+  // calls it at the tick's end, lockstep at its start (epoch_early).
+  void epoch_start(const planner::Config& executed, long tick);
+  bool epoch_early() const;
   // Lifelong: the queue and parking counts of metrics.json (Metrics::max_heading ...).
   void count_queues(const planner::Config& executed);
   // Lifelong with fleet.battery: the battery metrics, a warning for each AGV run empty.

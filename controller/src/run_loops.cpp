@@ -96,6 +96,8 @@ void Run::loop_lockstep()
     }
     show_lockstep(cur, next, held);
     double ctl = ms_since(t0);
+    // This tick's outcome is known: its epoch start now, searched in the tick's steps.
+    if (tm_ && epoch_early()) epoch_start(to, m_.ticks + ticks);
 
     std::vector<std::vector<planner::Vertex>> allowed(ins_.num_agents());
     for (int i = 0; i < ins_.num_agents(); ++i) allowed[i] = {cur[i], to[i]};

@@ -174,6 +174,9 @@ struct RunSection {
   // Lane speed limits: lockstep stretches a step over the ticks its slowest move needs at its
   // lane's speed; adg: the Driver's DriveParams::lane_speeds. false: a cell per tick regardless.
   bool lane_speeds = true;
+  // Lifelong: an epoch start stays within the next SUMO step's planner budget (controller/src/run.cpp
+  // Run::epoch_start), and lockstep runs it at the tick's start (switch for tests and benches).
+  bool epoch_in_budget = true;
 };
 
 // Delays (executor/delay_model.hpp), durations in seconds in the YAML, ticks here.
