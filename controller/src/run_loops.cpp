@@ -244,7 +244,11 @@ void Run::loop_adg()
     const planner::Config now = executed();
     if (rules_ && drv.zone_gated()) m_.rules.zone_holds += rules_->count_held(drv.gated(), now);
     count_tick(now);
-    if (tm_) lifelong_tick(now, plan_in_tick_ + epoch_ms_), epoch_ms_ = 0;
+    if (tm_) {  // this tick's planner time: its steps and the last epoch start; the new one counts next tick
+      const double tick_planner_ms = plan_in_tick_ + epoch_ms_;
+      epoch_ms_ = 0;
+      lifelong_tick(now, tick_planner_ms);
+    }
     progress_line(now);
   }
   m_.dependency_waits = drv.stats().dependency_waits;
