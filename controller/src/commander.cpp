@@ -14,18 +14,19 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
   for (const gridify::Aisle& a : map.aisles) {
     lanes_[a.lane_ab] = Lane{a.ab, a.length_ab, a.lane_ba, a.cells.back(), a.speed_ab};
     edge_lane_[a.ab] = a.lane_ab;
-    if (a.one_way) continue;  // no B->A lane (the planner never reverses on it)
-    lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front(), a.speed_ba};
-    edge_lane_[a.ba] = a.lane_ba;
     // On a lattice net every aisle runs along one axis: its lanes face two opposite headings
-    // (from two consecutive cells on the graph: an end junction gridify dropped is -1).
+    // (from two consecutive cells on the graph: an end junction gridify dropped is -1); a
+    // one-way aisle has its A->B lane only.
     for (size_t k = 0; map.graph.is_grid() && k + 1 < a.cells.size(); ++k) {
       if (a.cells[k] < 0 || a.cells[k + 1] < 0) continue;
       const int h = planner::heading_of_move(map.graph, a.cells[k], a.cells[k + 1]);
       lane_heading_[a.lane_ab] = h;
-      if (!a.lane_ba.empty()) lane_heading_[a.lane_ba] = planner::reversed(h);
+      if (!a.one_way && !a.lane_ba.empty()) lane_heading_[a.lane_ba] = planner::reversed(h);
       break;
     }
+    if (a.one_way) continue;  // no B->A lane (the planner never reverses on it)
+    lanes_[a.lane_ba] = Lane{a.ba, a.length_ba, a.lane_ab, a.cells.front(), a.speed_ba};
+    edge_lane_[a.ba] = a.lane_ba;
   }
   for (const gridify::Cell& c : map.cells)
     for (const gridify::Movement& m : c.movements) next_edges_[m.from].push_back(m.to);

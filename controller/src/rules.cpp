@@ -135,7 +135,7 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
   if (!closures.empty() || !zones.empty()) {
     if (cfg.planner.rotation_solver())
       fail("rules", "closures and one-at-a-time zones need a cell solver (rtlacam | naive | pibt | cspibt): " +
-                        cfg.planner.solver + " refuses the directed graph they make");
+                        cfg.planner.solver + " is not restarted on the rules' graph when it changes (not built yet)");
   }
 
   // Zones: cells, not a cut, not two one-shot goals.

@@ -168,6 +168,35 @@ TEST(ControllerScenario, OneWayWarehouseCompletesExactly)
   EXPECT_GT(one_way_moves, 16);
 }
 
+// The rotation solvers on the one-way warehouse (lifelong): AGVs with a heading drive the
+// one-way aisles only forwards (every planned move is an arc of the directed graph), turn on
+// their cells, and finish errands; 0 violations. Fails if the rotation planners refuse
+// directed graphs (or the one-way lanes get no heading), or move against an arc.
+TEST(ControllerScenario, RotationSolversDriveOneWayAislesForwardsOnly)
+{
+  for (const char* solver : {"pibt-rot", "wppl"}) {
+    Config cfg = scenario("small_oneway_lifelong.yaml", std::string("oneway_rot_") + solver);
+    cfg.planner.solver = solver;
+    cfg.run.max_ticks = 150;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ASSERT_EQ(m.error, "") << solver;
+    EXPECT_EQ(m.violations, 0) << solver;
+    EXPECT_GT(m.errands_finished, 0) << solver;
+    const planner::Graph& g = c.map().graph;
+    ASSERT_TRUE(g.directed());
+    long long one_way_moves = 0;
+    const auto& plan = c.plan();
+    for (size_t t = 1; t < plan.size(); ++t)
+      for (size_t i = 0; i < plan[t].size(); ++i)
+        if (plan[t][i] != plan[t - 1][i]) {
+          ASSERT_TRUE(g.adjacent(plan[t - 1][i], plan[t][i])) << solver << " t " << t << " agent " << i;
+          one_way_moves += !g.adjacent(plan[t][i], plan[t - 1][i]);
+        }
+    EXPECT_GT(one_way_moves, 10) << solver;
+  }
+}
+
 TEST(ControllerScenario, LargeWarehouseHundredsOfAgvsCompleteExactly)
 {
   Config cfg = scenario("large_warehouse.yaml", "large");

@@ -8,7 +8,8 @@
 // them in its innermost loop.
 //
 // Which planners accept a directed graph, and with which guarantee, is stated in
-// lacam/lacam.hpp and lacam/rt_lacam.hpp; the rotation planners refuse one.
+// lacam/lacam.hpp and lacam/rt_lacam.hpp; the rotation planners move along the arcs
+// (rotation/rotation_dist.hpp), with no completeness on any graph.
 //
 // Vertices may carry a display position (x, y). Graphs built from a MovingAI grid also
 // keep the grid: width(), height(), cell (x = column, y = row) of each vertex and the

@@ -29,8 +29,22 @@ constexpr int quarter_turns(int from, int to) { return (to - from + 4) % 4 == 3 
 // goes clockwise.
 constexpr char turn_toward(int h, int d) { return (d - h + 4) % 4 == 3 ? 'C' : 'R'; }
 
-// The cell ahead of v facing h on a grid graph; -1 off the map or on an obstacle.
-inline Vertex cell_ahead(const Graph& g, Vertex v, int h) { return g.at(g.cell_x(v) + kHeadingDx[h], g.cell_y(v) + kHeadingDy[h]); }
+// The cell ahead of v facing h on a grid graph, if the graph has the move v -> it; -1 off
+// the map, on an obstacle, or against a one-way arc (a directed graph; and on a gridified
+// net two cells side by side are not always joined).
+inline Vertex cell_ahead(const Graph& g, Vertex v, int h)
+{
+  const Vertex u = g.at(g.cell_x(v) + kHeadingDx[h], g.cell_y(v) + kHeadingDy[h]);
+  return u >= 0 && g.adjacent(v, u) ? u : -1;
+}
+// The cell behind v facing h from which a forward move (heading h) enters v; -1 if none. The
+// backward searches (distance tables) walk these: on a directed graph it is not the cell
+// ahead facing the other way.
+inline Vertex cell_behind(const Graph& g, Vertex v, int h)
+{
+  const Vertex u = g.at(g.cell_x(v) - kHeadingDx[h], g.cell_y(v) - kHeadingDy[h]);
+  return u >= 0 && g.adjacent(u, v) ? u : -1;
+}
 
 // The heading of the move u -> v between 4-neighbours of a grid graph; throws
 // std::invalid_argument for anything else.

@@ -21,7 +21,7 @@ std::vector<int32_t> cheap_components(const Graph& g, const Guidance& gd, uint16
   const Vertex n = g.size();
   auto arc = [&](Vertex v, int o, bool reverse) -> Vertex {
     // reverse: the arc into v from the cell behind it, facing o
-    const Vertex u = ahead(g, v, reverse ? reversed(o) : o);
+    const Vertex u = reverse ? cell_behind(g, v, o) : ahead(g, v, o);
     if (u < 0) return -1;
     return gd.forward_cost(reverse ? u : v, o) <= cheap ? u : -1;
   };
@@ -79,7 +79,7 @@ std::vector<char> lane_parity(const Graph& g, bool rows)
   std::vector<char> lane(static_cast<size_t>(n), 0), even(static_cast<size_t>(n), 0);
   const int o = rows ? 0 : 1;  // east: along a row; south: along a column
   for (Vertex v = 0; v < g.size(); ++v)
-    if (ahead(g, v, o) >= 0) lane[static_cast<size_t>(rows ? g.cell_y(v) : g.cell_x(v))] = 1;
+    if (ahead(g, v, o) >= 0 || ahead(g, v, reversed(o)) >= 0) lane[static_cast<size_t>(rows ? g.cell_y(v) : g.cell_x(v))] = 1;
   int k = -1;
   for (int i = 0; i < n; ++i) {
     if (!lane[static_cast<size_t>(i)]) {

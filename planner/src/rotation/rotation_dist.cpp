@@ -11,14 +11,16 @@ namespace planner {
 RotationDist::RotationDist(const Graph& g, size_t max_tables) : g_(g), max_tables_(max_tables)
 {
   if (!g.is_grid()) throw std::invalid_argument("rotation distances need a grid graph");
-  // Their BFS over (cell, heading) states and the turn-in-place moves assume every edge can
-  // be driven both ways; one-way arcs are not supported by the rotation planners.
-  if (g.directed())
-    throw std::invalid_argument("rotation planners need an undirected graph: '" + g.name + "' has " +
-                                std::to_string(g.num_one_way()) + " one-way arc(s)");
+  // Forward moves follow the graph's arcs (one-way ones included); the backward search
+  // walks them in reverse (behind_), so on a directed graph a table is the distance along
+  // the arcs, kInf where the goal cannot be reached.
   ahead_.assign(static_cast<size_t>(g.size()) * 4, -1);
+  behind_.assign(static_cast<size_t>(g.size()) * 4, -1);
   for (Vertex v = 0; v < g.size(); ++v)
-    for (int o = 0; o < 4; ++o) ahead_[static_cast<size_t>(v) * 4 + o] = cell_ahead(g, v, o);
+    for (int o = 0; o < 4; ++o) {
+      ahead_[static_cast<size_t>(v) * 4 + o] = cell_ahead(g, v, o);
+      behind_[static_cast<size_t>(v) * 4 + o] = cell_behind(g, v, o);
+    }
 }
 
 void RotationDist::set_guidance(Guidance gd)
@@ -122,8 +124,8 @@ void RotationDist::grow_bfs(Table* t, int32_t state, size_t pops) const
     // Predecessors: turned clockwise from o - 1, counter-clockwise from o + 1, or moved
     // forward (heading o) from the cell behind v.
     const int32_t pred[3] = {v * 4 + turned_ccw(o), v * 4 + turned_cw(o),
-                             ahead_[static_cast<size_t>(v) * 4 + reversed(o)] >= 0
-                                 ? ahead_[static_cast<size_t>(v) * 4 + reversed(o)] * 4 + o
+                             behind_[static_cast<size_t>(v) * 4 + o] >= 0
+                                 ? behind_[static_cast<size_t>(v) * 4 + o] * 4 + o
                                  : -1};
     for (int32_t p : pred)
       if (p >= 0 && dist[static_cast<size_t>(p)] == kInf) {
@@ -159,7 +161,7 @@ void RotationDist::grow_dijkstra(Table* t, int32_t state, size_t pops) const
     --pops;
     const Vertex v = s / 4;
     const int o = s % 4;
-    const Vertex behind = ahead_[static_cast<size_t>(v) * 4 + reversed(o)];
+    const Vertex behind = behind_[static_cast<size_t>(v) * 4 + o];
     // Predecessors as in the BFS, each with its action's cost.
     const int32_t pred[3] = {v * 4 + turned_ccw(o), v * 4 + turned_cw(o), behind >= 0 ? behind * 4 + o : -1};
     const uint32_t cost[3] = {guid_.turn, guid_.turn, behind >= 0 ? guid_.forward_cost(behind, o) : 0u};

@@ -99,7 +99,7 @@ void TrafficFlow::plan(int agent, Vertex v0, int o0, Vertex goal)
     const int o = s % 4;
     relax(u * 4 + turned_cw(o), uint64_t{d} + turn_cost);  // (u, o + 1) turns counter-clockwise into (u, o)
     relax(u * 4 + turned_ccw(o), uint64_t{d} + turn_cost);  // (u, o - 1) turns clockwise
-    const Vertex v = dist_.ahead(u, reversed(o));  // (v, o) moves forward into u
+    const Vertex v = dist_.behind(u, o);  // (v, o) moves forward into u
     if (v >= 0) relax(v * 4 + o, uint64_t{d} + forward(v, o));
   }
   // The guide path: down the table from (v0, o0), forward first on ties.

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "planner/rng.hpp"
+#include "planner/rotation/epibt.hpp"
 #include "planner/rotation/rotation_dist.hpp"
 #include "planner/rotation/rotation_pibt.hpp"
 #include "planner/validator.hpp"
@@ -39,7 +40,7 @@ uint16_t brute(const Graph& g, Vertex v, int o, Vertex goal)
     const int h = s % 4;
     if (u == goal) return static_cast<uint16_t>(d[static_cast<size_t>(s)]);
     const Vertex f = g.at(g.cell_x(u) + dx[h], g.cell_y(u) + dy[h]);
-    for (int n : {f >= 0 ? f * 4 + h : -1, u * 4 + (h + 1) % 4, u * 4 + (h + 3) % 4})
+    for (int n : {f >= 0 && g.adjacent(u, f) ? f * 4 + h : -1, u * 4 + (h + 1) % 4, u * 4 + (h + 3) % 4})
       if (n >= 0 && d[static_cast<size_t>(n)] < 0) {
         d[static_cast<size_t>(n)] = d[static_cast<size_t>(s)] + 1;
         q.push_back(n);
@@ -208,17 +209,84 @@ TEST(RotationPibt, NeedsAGridAndDistinctStarts)
   EXPECT_THROW(RotationPibt(g, {0, 0}, {1, 2}), std::invalid_argument);
 }
 
-// Directed graphs (one-way aisles) are refused with a clear error (rotation_dist.hpp).
-TEST(DirectedGraph, RotationPlannersRefuseOneWayArcs)
+// The grid graph g with its 4-neighbour pairs made one-way where `dir` says so: dir(v, u) for
+// a pair (v, u) with u right of or below v returns 0 (both ways), 1 (v -> u only) or 2
+// (u -> v only).
+template <class Dir>
+Graph with_directions(const Graph& g, Dir dir)
 {
-  Graph two_way = test::grid({"..."});
-  Graph g = Graph::from_arcs(3, {{0, 1}, {1, 2}, {2, 1}});
-  g.attach_grid(3, 1, {0, 1, 2});
-  EXPECT_NO_THROW(RotationPibt(two_way, {0}, {2}));
-  try {
-    RotationPibt r(g, {0}, {2});
-    FAIL() << "expected an error";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("one-way arc"), std::string::npos) << e.what();
+  std::vector<std::pair<Vertex, Vertex>> arcs;
+  std::vector<int32_t> cells;
+  for (Vertex v = 0; v < g.size(); ++v) {
+    cells.push_back(g.cell_y(v) * g.width() + g.cell_x(v));
+    for (Vertex u : {g.at(g.cell_x(v) + 1, g.cell_y(v)), g.at(g.cell_x(v), g.cell_y(v) + 1)}) {
+      if (u < 0) continue;
+      const int d = dir(v, u);
+      if (d != 2) arcs.push_back({v, u});
+      if (d != 1) arcs.push_back({u, v});
+    }
+  }
+  Graph out = Graph::from_arcs(g.size(), arcs);
+  out.attach_grid(g.width(), g.height(), cells);
+  return out;
+}
+
+// Directed graphs (one-way aisles): the rotation distances follow the arcs (a forward move
+// only along one, the backward search over the arcs into a cell), kInf where the goal
+// cannot be reached along them. Fails if the tables ignore directions (or refuse them).
+TEST(DirectedGraph, RotationDistFollowsOneWayArcs)
+{
+  for (uint64_t seed = 0; seed < 4; ++seed) {
+    planner::Rng rng(seed + 7);
+    const Graph g = with_directions(random_grid(7, 6, 15, seed + 30), [&](Vertex, Vertex) { return static_cast<int>(rng.below(4)) % 3; });
+    ASSERT_TRUE(g.directed());
+    RotationDist dist(g);
+    long unreachable = 0;
+    for (Vertex goal = 0; goal < g.size(); goal += 2) {
+      RotationDist::Table* t = dist.table(goal);
+      for (Vertex v = g.size() - 1; v >= 0; --v)
+        for (int o = 0; o < 4; ++o) {
+          const uint16_t want = brute(g, v, o, goal);
+          unreachable += want == RotationDist::kInf;
+          ASSERT_EQ(dist.get(t, v, o), want) << "seed " << seed << " goal " << goal << " v " << v << " o " << o;
+        }
+    }
+    EXPECT_GT(unreachable, 0) << "seed " << seed << ": the sample should hold states cut off by one-way arcs";
+  }
+}
+
+// pibt-rot and epibt on a one-way loop (clockwise: east along the top, south on the right,
+// west along the bottom, north on the left): every step moves along arcs only (the
+// validator checks adjacency on the directed graph) and every robot reaches its goal.
+TEST(DirectedGraph, RotationPlannersMoveAlongOneWayArcsOnly)
+{
+  const Graph ring = test::grid({".....", ".@@@.", "....."});
+  const Graph g = with_directions(ring, [&](Vertex v, Vertex u) {
+    const int y = ring.cell_y(v), x = ring.cell_x(v);
+    if (ring.cell_y(u) == y) return y == 0 ? 1 : 2;  // top row east, bottom row west
+    return x == ring.width() - 1 ? 1 : 2;             // right column south, left column north
+  });
+  const Config starts = {g.at(0, 0), g.at(4, 1), g.at(2, 2)}, goals = {g.at(3, 2), g.at(1, 0), g.at(0, 1)};
+  for (int kind = 0; kind < 2; ++kind) {
+    std::unique_ptr<planner::RotationPlanner> p;
+    if (kind == 0) p = std::make_unique<RotationPibt>(g, starts, goals, 1);
+    else {
+      // Age priority (the controller's default): with the paper's distance priority a robot
+      // resting on its goal outranks one that must pass it and never yields (not complete).
+      planner::EpibtOptions o;
+      o.priority = planner::EpibtOptions::Priority::Age;
+      p = std::make_unique<planner::Epibt>(g, starts, goals, o);
+    }
+    Config cur = starts;
+    std::vector<bool> arrived(starts.size(), false);
+    for (int t = 1; t <= 60; ++t) {
+      p->search(planner::Budget{});
+      const Config next = p->next();
+      ASSERT_EQ(planner::Validator::check_transition(g, cur, next), "") << p->name() << " step " << t;
+      p->commit();
+      cur = p->current();
+      for (size_t i = 0; i < cur.size(); ++i) arrived[i] = arrived[i] || cur[i] == goals[i];
+    }
+    for (size_t i = 0; i < arrived.size(); ++i) EXPECT_TRUE(arrived[i]) << p->name() << ": robot " << i << " never reached its goal";
   }
 }

@@ -13,9 +13,12 @@
 // DistCache's tables it is lazy and resumable (lacam3's DistTable): a query grows the BFS
 // only until the queried state is discovered.
 //
-// Undirected graphs only: the backward BFS takes (v - dir(o)) as a predecessor whenever
-// both cells are free, i.e. every edge two-way. A directed graph (one-way arcs) is refused
-// with std::invalid_argument, which makes every rotation planner refuse it.
+// Directed graphs (one-way aisles): a forward move needs the arc v -> v + dir(o), and the
+// backward BFS takes (v - dir(o), o) as a predecessor only over the arc into v (heading.hpp
+// cell_ahead / cell_behind), so a table is the distance along the arcs, kInf where they do
+// not reach the goal. The rotation planners read every move from ahead(), hence move along
+// arcs only (DirectedGraph.* in test_rotation_pibt). Like PIBT they are not complete, on
+// any graph.
 //
 // Memory: 4 states per cell, uint16 distances (8 bytes per cell, twice a DistCache cell
 // table's 4) plus the open BFS queue (4 bytes per state on it; compacted, freed when the
@@ -65,8 +68,11 @@ class RotationDist {
   // Needs a grid graph (std::invalid_argument otherwise).
   explicit RotationDist(const Graph& g, size_t max_tables = 0);
 
-  // The cell ahead of v facing o, or -1 (wall, obstacle, off the map).
+  // The cell ahead of v facing o, or -1 (wall, obstacle, off the map, a one-way arc the
+  // other way: heading.hpp cell_ahead).
   Vertex ahead(Vertex v, int o) const { return ahead_[static_cast<size_t>(v) * 4 + static_cast<size_t>(o)]; }
+  // The cell from which a forward move facing o enters v, or -1 (cell_behind).
+  Vertex behind(Vertex v, int o) const { return behind_[static_cast<size_t>(v) * 4 + static_cast<size_t>(o)]; }
 
   // Drops every table (the holders' Table pointers dangle: take them anew) and measures
   // distances in `gd`'s costs from now on (uniform: steps, by BFS). gd.forward must be
@@ -135,7 +141,8 @@ class RotationDist {
   const Graph& g_;
   size_t max_tables_;
   uint64_t tick_ = 0;
-  std::vector<Vertex> ahead_;  // v * 4 + o -> neighbour or -1
+  std::vector<Vertex> ahead_;   // v * 4 + o -> neighbour or -1
+  std::vector<Vertex> behind_;  // v * 4 + o -> the cell a forward move facing o enters v from, or -1
   Guidance guid_;
   bool weighted_ = false;
   uint16_t min_forward_ = 1;
