@@ -244,7 +244,7 @@ planner::Config Run::rule_goals(const planner::Graph& g, const planner::Config& 
   return eff;
 }
 
-void Run::rules_tick(const planner::Config& cur)
+bool Run::rules_update()
 {
   const double t = m_.ticks * cfg_.run.tick_s;
   const auto t0 = Clock::now();
@@ -259,6 +259,13 @@ void Run::rules_tick(const planner::Config& cur)
     std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
                  rules_->num_closed(), rules_->closed_arcs().size());
     closure_tasks();
+  }
+  return changed;
+}
+
+void Run::rules_tick(const planner::Config& cur)
+{
+  if (rules_update()) {
     rules_restart(cur);
   } else if (cfg_.rules.enforce_zones && rules_->blocked_zones(cur) != zone_occ_) {
     rules_restart(cur);
@@ -268,22 +275,9 @@ void Run::rules_tick(const planner::Config& cur)
 
 void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
 {
-  const double t = m_.ticks * cfg_.run.tick_s;
-  const auto t0 = Clock::now();
-  const bool changed = rules_->update(t, sumo_.get());
-  m_.rules.poll_ms += ms_since(t0);
+  const bool changed = rules_update();
   planner::Config at(ins_.num_agents());
   for (int i = 0; i < ins_.num_agents(); ++i) at[i] = adg.at(i);
-  if (changed) {
-    std::vector<std::string> edges;  // SUMO refuses routes through these now
-    for (const std::string& l : rules_->lanes_closed()) edges.push_back(l.substr(0, l.rfind('_')));
-    cmd_->avoid_edges(std::move(edges));
-    ++m_.rules.closure_changes;
-    m_.rules.max_closed = std::max(m_.rules.max_closed, rules_->num_closed());
-    std::fprintf(stderr, "[rtlacam-sumo] t=%.1f s: %d cell(s) closed, %zu arc(s) closed one way\n", t,
-                 rules_->num_closed(), rules_->closed_arcs().size());
-    closure_tasks();
-  }
   // (enforce_closures off: the planner keeps its graph, RuleCheck sees what follows.)
   const bool regraph = (changed && cfg_.rules.enforce_closures) ||
                        (cfg_.rules.enforce_zones && rules_->blocked_zones(at) != zone_occ_);

@@ -106,6 +106,9 @@ class Run {
   // rule_goals() the goals the planner gets from `at` on a rules graph `g` (the current one,
   // or the one rules_restart() is about to plan on), logging the AGVs that must wait.
   void rules_tick(const planner::Config& cur);
+  // Polls the rules; on a closure change: SUMO avoids the closed edges, counters, one line,
+  // closure_tasks(). Returns whether the closures changed.
+  bool rules_update();
   void rules_restart(const planner::Config& at);
   // Lifelong: the net without the arcs into closed cells, for the task layer (an errand a
   // closure cuts off goes back to the pool: tasks/task_manager.hpp).

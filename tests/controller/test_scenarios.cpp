@@ -143,6 +143,22 @@ TEST(ControllerScenario, SmallWarehouseCompletesExactly)
   EXPECT_EQ(m.agents, 16);
 }
 
+// "" when every move of the executed plan follows an arc of g (else the first that does
+// not); `one_way` counts the moves whose reverse is no arc.
+template <class Plan>
+std::string moves_along_arcs(const planner::Graph& g, const Plan& plan, long long& one_way)
+{
+  for (size_t t = 1; t < plan.size(); ++t)
+    for (size_t i = 0; i < plan[t].size(); ++i)
+      if (plan[t][i] != plan[t - 1][i]) {
+        if (!g.adjacent(plan[t - 1][i], plan[t][i]))
+          return "t " + std::to_string(t) + " agent " + std::to_string(i) + ": no arc " + std::to_string(plan[t - 1][i]) +
+                 " -> " + std::to_string(plan[t][i]);
+        one_way += !g.adjacent(plan[t][i], plan[t - 1][i]);
+      }
+  return "";
+}
+
 // One-way picking aisles (issue 24): gridify keeps them as arcs, RT-LaCAM drives along
 // them only forwards, SUMO reports no collision, every AGV ends exactly on its goal.
 // Fails if the aisles were made two-way (no one-way arc) or refused (gridify error).
@@ -158,13 +174,7 @@ TEST(ControllerScenario, OneWayWarehouseCompletesExactly)
   const planner::Graph& g = c.map().graph;
   ASSERT_TRUE(g.directed());
   long long one_way_moves = 0;
-  const auto& plan = c.plan();
-  for (size_t t = 1; t < plan.size(); ++t)
-    for (size_t i = 0; i < plan[t].size(); ++i)
-      if (plan[t][i] != plan[t - 1][i]) {
-        ASSERT_TRUE(g.adjacent(plan[t - 1][i], plan[t][i]));
-        one_way_moves += !g.adjacent(plan[t][i], plan[t - 1][i]);
-      }
+  ASSERT_EQ(moves_along_arcs(g, c.plan(), one_way_moves), "");
   EXPECT_GT(one_way_moves, 16);
 }
 
@@ -186,13 +196,7 @@ TEST(ControllerScenario, RotationSolversDriveOneWayAislesForwardsOnly)
     const planner::Graph& g = c.map().graph;
     ASSERT_TRUE(g.directed());
     long long one_way_moves = 0;
-    const auto& plan = c.plan();
-    for (size_t t = 1; t < plan.size(); ++t)
-      for (size_t i = 0; i < plan[t].size(); ++i)
-        if (plan[t][i] != plan[t - 1][i]) {
-          ASSERT_TRUE(g.adjacent(plan[t - 1][i], plan[t][i])) << solver << " t " << t << " agent " << i;
-          one_way_moves += !g.adjacent(plan[t][i], plan[t - 1][i]);
-        }
+    ASSERT_EQ(moves_along_arcs(g, c.plan(), one_way_moves), "") << solver;
     EXPECT_GT(one_way_moves, 10) << solver;
   }
 }
