@@ -54,6 +54,11 @@ QUEUES = False
 EXECUTOR = None  # --executor: every run under it (None: the config's)
 
 
+def run_clean(m):
+    """0 violations, 0 jumps / re-syncs, 0 collisions, no error."""
+    return m["violations"] == 0 and m["teleports_or_jumps"] == 0 and m.get("collisions", 0) == 0 and not m["error"]
+
+
 def run(build, base, out, ticks, expansions, rules):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
@@ -105,7 +110,7 @@ def station_closure(a, build, tmp):
             rate = m["lifelong"]["errandThroughput"]
             base_rate = rate if base_rate is None else base_rate
             jr = m["teleports_or_jumps"]
-            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            clean = clean and run_clean(m)
             print(f"| {name} | {label} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
                   f"{m['lifelong']['maxErrandTicks']} | {m['lifelong'].get('reassignedForClosure', 0)} | "
                   f"{m['violations']} | {jr} |", flush=True)
@@ -167,7 +172,7 @@ def main():
             base_rate = rate if base_rate is None else base_rate
             r = m.get("rules", {})
             jr = m["teleports_or_jumps"]
-            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            clean = clean and run_clean(m)
             what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zones" in extra else "")
             print(f"| {name} | {what} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
                   f"{m['lifelong']['maxErrandTicks']} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
@@ -184,7 +189,7 @@ def main():
             rate = m["lifelong"]["errandThroughput"]
             base_rate = rate if base_rate is None else base_rate
             jr = m["teleports_or_jumps"]
-            clean = clean and m["violations"] == 0 and jr == 0 and m.get("collisions", 0) == 0 and not m["error"]
+            clean = clean and run_clean(m)
             print(f"| large (200 AGVs) | {label}, rules off | {m['ticks']} | {rate:.3f} | "
                   f"{rate / base_rate if base_rate else 0:.2f} | {m['lifelong']['maxErrandTicks']} | 0 | 0 | "
                   f"{m.get('rules', {}).get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
