@@ -19,6 +19,7 @@ binaries are given by path; they are not part of this repository.
 Stdlib only.
 """
 import argparse
+import concurrent.futures
 import json
 import math
 import os
@@ -81,6 +82,40 @@ def run_peer(binary, args, m, scen, n, plan):
     return False
 
 
+def instance_row(args, peers, variants, tmp, i, inst):
+    """One instance (map, N, scen): ours (every variant) and every peer, checked; the row and
+    its ratios. Runs in a worker thread: its plan files are its own (prefix i)."""
+    m_name, n, k = inst
+    m = find(m_name + ".map")
+    scen = find(f"{m_name}-random-{k}.scen")
+    row = f"{m_name:24} {n:>4} {k:>4}"
+    ours, ratios = {}, []
+    for name, extra in variants:
+        plan = os.path.join(tmp, f"{i}-ours.txt")
+        solved, p99, _ = run_ours(args, m, scen, n, plan, extra)
+        o = check(args, m, scen, n, plan) if solved else None
+        if o and not o["valid"]:
+            fail(f"our plan ({name}) on {m_name} N={n} scen {k} is invalid: {o['error']}")
+        ours[name] = o
+        row += f" {o['soc']:>9} {o['sum_of_loss']:>8} {p99:>7.3f}" if o else f" {'unsolved':>9} {'-':>8} {'-':>7}"
+    for pname, path in peers:
+        pplan = os.path.join(tmp, f"{i}-{pname}.txt")
+        theirs = check(args, m, scen, n, pplan) if run_peer(path, args, m, scen, n, pplan) else None
+        if theirs and not theirs["valid"]:
+            row += f" {'invalid':>11} {'-':>8}" + f" {'-':>7}" * len(variants)
+            print(f"# {pname} on {m_name} N={n} scen {k}: {theirs['error']}", file=sys.stderr)
+            continue
+        if not theirs:
+            row += f" {'unsolved':>11} {'-':>8}" + f" {'-':>7}" * len(variants)
+            continue
+        row += f" {theirs['soc']:>11} {theirs['sum_of_loss']:>8}"
+        for name, _ in variants:
+            r = ours[name]["soc"] / theirs["soc"] if ours[name] else float("inf")
+            ratios.append(((pname, name), r))
+            row += f" {r:>7.3f}"
+    return row, ratios
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--lacam3", help="path to lacam3's binary (build/main)")
@@ -95,9 +130,14 @@ def main():
                     help="a setting of ours (rtlacam-bench options), run on every instance; repeatable")
     ap.add_argument("--peer-time-s", type=float, default=10, help="peers' time limit (-t)")
     ap.add_argument("--peer-args", default="", help="more peer options (e.g. --no-star for lacam3)")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="instances run at once (each planner keeps its own threads: lacam3 runs refiner "
+                         "threads, so leave cores for them; the default 1 runs one after the other)")
     ap.add_argument("--bench", default=os.path.join(ROOT, "build", "apps", "rtlacam-bench"))
     ap.add_argument("--check", default=os.path.join(ROOT, "build", "apps", "rtlacam-check"))
     args = ap.parse_args()
+    if args.jobs < 1:
+        fail(f"--jobs must be at least 1, not {args.jobs}")
     peers = [(name, path) for name, path in (("lacam3", args.lacam3), ("lacam", args.lacam)) if path]
     if not peers:
         fail("give at least one peer binary (--lacam3 PATH or --lacam PATH)")
@@ -135,39 +175,15 @@ def main():
             head += f" {'r.' + name:>7}"
     print(head)
     ratios = {(pname, name): [] for pname, _ in peers for name, _ in variants}
-    with tempfile.TemporaryDirectory() as tmp:
-        for m_name, n in cells:
-            m = find(m_name + ".map")
-            for k in args.scens:
-                scen = find(f"{m_name}-random-{k}.scen")
-                row = f"{m_name:24} {n:>4} {k:>4}"
-                ours = {}
-                for name, extra in variants:
-                    plan = os.path.join(tmp, "ours.txt")
-                    solved, p99, _ = run_ours(args, m, scen, n, plan, extra)
-                    o = check(args, m, scen, n, plan) if solved else None
-                    if o and not o["valid"]:
-                        fail(f"our plan ({name}) on {m_name} N={n} scen {k} is invalid: {o['error']}")
-                    ours[name] = o
-                    row += f" {o['soc']:>9} {o['sum_of_loss']:>8} {p99:>7.3f}" if o else f" {'unsolved':>9} {'-':>8} {'-':>7}"
-                for pname, path in peers:
-                    pplan = os.path.join(tmp, pname + ".txt")
-                    if os.path.exists(pplan):
-                        os.remove(pplan)
-                    theirs = check(args, m, scen, n, pplan) if run_peer(path, args, m, scen, n, pplan) else None
-                    if theirs and not theirs["valid"]:
-                        row += f" {'invalid':>11} {'-':>8}" + f" {'-':>7}" * len(variants)
-                        print(f"# {pname} on {m_name} N={n} scen {k}: {theirs['error']}", file=sys.stderr)
-                        continue
-                    if not theirs:
-                        row += f" {'unsolved':>11} {'-':>8}" + f" {'-':>7}" * len(variants)
-                        continue
-                    row += f" {theirs['soc']:>11} {theirs['sum_of_loss']:>8}"
-                    for name, _ in variants:
-                        r = ours[name]["soc"] / theirs["soc"] if ours[name] else float("inf")
-                        ratios[(pname, name)].append(r)
-                        row += f" {r:>7.3f}"
-                print(row, flush=True)
+    instances = [(m_name, n, k) for m_name, n in cells for k in args.scens]
+    with tempfile.TemporaryDirectory() as tmp, concurrent.futures.ThreadPoolExecutor(args.jobs) as pool:
+        # Rows print in instance order as they finish; each instance has its own plan files.
+        rows = [pool.submit(instance_row, args, peers, variants, tmp, i, inst) for i, inst in enumerate(instances)]
+        for f in rows:
+            row, rs = f.result()
+            for key, r in rs:
+                ratios[key].append(r)
+            print(row, flush=True)
     for (pname, name), rs in ratios.items():
         who = "ours" if len(variants) == 1 and name == "ours" else f"ours ({name})"
         finite = [r for r in rs if math.isfinite(r)]
