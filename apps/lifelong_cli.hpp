@@ -3,7 +3,7 @@
 // (bind), checked and turned into the library's options (apply) with one-line
 // planner::InputError messages, and described in the run's JSON (describe).
 //   SolverCli  --solver, --seed, --policy and every solver's options (planner/solver.hpp)
-//   ExecCli    --executor and the delay model (executor/; grid4 only)
+//   ExecCli    --executor and the delay model (executor/: grid4 plans, and the rotation solvers' with headings)
 //   BatteryCli --battery-* and --chargers: batteries and charging errands (tasks/battery.hpp)
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -212,8 +212,6 @@ struct ExecCli {
   // opt.graph_execution, opt.exec and opt.delays for a team of `agents`. Throws InputError.
   void apply(int agents, tasks::LifelongOptions& opt)
   {
-    if (!mode.empty() && opt.action_model != tasks::ActionModel::Grid4)
-      throw planner::InputError("--executor runs grid4 plans; --action-model rotation has its own executor");
     if (mode.empty()) {
       if (delays.kind != "none" || !slow.empty() || !stuck.empty())
         throw planner::InputError("delay options need --executor lockstep|adg");

@@ -163,6 +163,10 @@ int main(int argc, char** argv)
       };
 
     xc.apply(pr.team_size, opt);
+    if (opt.graph_execution && opt.action_model == tasks::ActionModel::Rotation &&
+        !planner::plans_rotation(planner::parse_solver(sc.solver)))
+      throw planner::InputError("--executor " + opt.exec.mode + " with --action-model rotation needs a rotation solver (pibt-rot, epibt, wppl): " +
+                                sc.solver + "'s cell plan runs on the rotation executor");
     LifelongExecResult xr;
     if (opt.graph_execution)
       xr = run_lifelong_exec(g, starts, *tm, sc.solver, sc.seed, opt, opt.delays, opt.exec);
@@ -184,6 +188,7 @@ int main(int argc, char** argv)
                        {"dependencyWaits", xr.exec.dependency_waits},
                        {"lockstepWaits", xr.exec.lockstep_waits},
                        {"delayAgentTicks", xr.exec.delay_ticks},
+                       {"turnTicks", xr.exec.turn_ticks},
                        {"maxTicksWithoutErrand", xr.max_gap}};
     add_task_fields(j, *tm);
     const int sig = planner::stop_signal();

@@ -81,8 +81,12 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
     rot_->precompute(Clock::time_point::max());
   }
   if (opt.graph_execution) {
-    if (rotation_ || native_)  // its steps are LoRR actions, not cell moves an executor can delay
-      throw std::invalid_argument("solver " + solver + " with the rotation model has its own executor: no graph execution");
+    // A cell plan under the rotation model runs on RotationExecution; the rotation solvers'
+    // plans run on GraphExecution with executed headings (graph_execution.hpp).
+    if (rotation_ && !native_)
+      throw std::invalid_argument("solver " + solver +
+                                  " under the rotation model runs its cell plan on the rotation executor: no --executor (the "
+                                  "rotation solvers pibt-rot, epibt, wppl take one)");
     auto ge = std::make_unique<executor::GraphExecution>(*p_, opt.delays, opt.exec);
     graph_ = ge.get();
     exec_ = std::move(ge);
@@ -284,6 +288,10 @@ void LifelongRun::commit(Step& s)
     graph_->top_up([&](const planner::Config& from, const planner::Config& to) {
       const std::string err = planner::Validator::check_transition(g_, from, to);
       if (!err.empty()) error(t, ": " + err);
+      if (rot_) {  // the planned actions too (the executed ones are checked in execute())
+        const std::string bad = check_rotation_step(g_, from, rot_->headings(), rot_->actions(), to);
+        if (!bad.empty()) error(t, ": " + bad);
+      }
     });
     return;
   }
@@ -306,11 +314,16 @@ const planner::Config& LifelongRun::execute(Step& s)
   if (!exec_) return p_->current();
   if (s.plan_now && !graph_) exec_->push(p_->current());
   const planner::Config before = exec_->positions();
+  const std::vector<int> headed = graph_ && rot_ ? exec_->headings() : std::vector<int>{};
   exec_->step();
   // The executed step is checked like a planned one: cells, adjacency, vertex and swap conflicts.
   const std::string err = planner::Validator::check_transition(g_, before, exec_->positions());
   if (!err.empty()) error(s.rec.t, " (executed): " + err);
-  if (letters_ && graph_) {  // what the agents executed this step (several commits may run at once)
+  if (graph_ && rot_) {  // and the robots' executed actions: forward into the cell ahead, turns in place
+    const std::string bad = check_rotation_step(g_, before, headed, exec_->actions(), exec_->positions());
+    if (!bad.empty()) error(s.rec.t, " (executed): " + bad);
+  }
+  if (letters_ && graph_ && !rot_) {  // what the agents executed this step (several commits may run at once)
     for (size_t i = 0; i < before.size(); ++i) r_.actions[i] += grid4_letter(g_, before[i], exec_->positions()[i]);
   } else if (letters_) {
     const std::string& act = exec_->actions();
@@ -376,7 +389,7 @@ LifelongResult LifelongRun::finish()
 {
   cache_->set_deadline(planner::DistCache::Deadline::max());  // the task layer keeps the cache: exact again
   if (exec_) r_.final_headings = exec_->headings();
-  if (rot_) r_.final_headings = rot_->headings();
+  if (rot_ && !graph_) r_.final_headings = rot_->headings();  // the robots' (with graph_: the executed ones)
   r_.dist_tables = cache_->num_tables() + (rot_ ? rot_->dist().num_tables() : 0);
   r_.dist_counters = cache_->counters();
   r_.ms_per_expansion = sb_.later.known() ? sb_.later.mean : sb_.first.mean;

@@ -17,8 +17,10 @@
 //   commit    check the planned step (Validator; rotation actions), commit it
 //   execute   the Execution runs what was committed (rotation: RotationExecution, one
 //             configuration a step, waits included, while its window has room; grid4 under
-//             delays: GraphExecution, whose window commit fills, waits dropped); the
-//             executed step is checked like a planned one
+//             delays: GraphExecution, whose window commit fills, waits dropped; the rotation
+//             solvers under delays: GraphExecution with executed headings, one planned step
+//             a step); the executed step is checked like a planned one (and its executed
+//             LoRR actions, with headings)
 //   complete  errands done on the robots' real cells; new goals start a new epoch
 //             (set_goals, timed as the next step's planning), upcoming goals prefetched
 //   record    the step's record and the run's counters
