@@ -261,6 +261,9 @@ struct BatteryCli {
     opts.push_back(app.add_option("--battery-critical", o.critical,
                                   "battery: below it mid-task an agent hands its task back and charges (fraction, < threshold; 0 = off)")
                        ->capture_default_str());
+    opts.push_back(app.add_option("--battery-reserve-margin", o.reserve_margin,
+                                  "battery: also low / critical below this x the energy of the way to the nearest charger (0 = off)")
+                       ->capture_default_str());
     opts.push_back(app.add_option("--battery-target", o.target, "battery: an agent leaves the charger at this fraction")->capture_default_str());
     opts.push_back(app.add_option("--battery-charge-w", charge_w, "battery: each charger's power (W; 1 s steps)")->capture_default_str());
     opts.push_back(app.add_flag("--battery-no-charging", no_charging, "battery: drain only, no charging errands"));
