@@ -105,7 +105,7 @@ namespace {
 // drain (1 Wh/m) that makes a task longer than the charge left above empty. (At 1.5 Wh/m
 // with critical 0.25, two AGVs still ran empty: head-on in one aisle, they took 36 moves
 // to reach a charger, more than the critical charge covers.)
-Config critical_config(const std::string& name, double critical)
+Config critical_config(const std::string& name, double critical, double reserve_margin = 0)
 {
   Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_charging_lifelong.yaml");
   cfg.output.dir = test::temp_dir("critical_" + name);
@@ -119,6 +119,7 @@ Config critical_config(const std::string& name, double critical)
   cfg.fleet.battery.per_m_wh = 1.0;
   cfg.fleet.battery.threshold = 0.3;
   cfg.fleet.battery.critical = critical;
+  cfg.fleet.battery.reserve_margin = reserve_margin;  // 0: the fixed level alone
   return cfg;
 }
 
@@ -142,5 +143,31 @@ TEST(LifelongRules, AnAgvBelowTheCriticalChargeMidTaskChargesAndNoneRunsEmpty)
   const Metrics mo = co.run();
   ctest_util::expect_checked_every_step(off, mo);
   EXPECT_EQ(mo.battery.dropped_mid_task, 0);
+  EXPECT_GT(mo.battery.ran_empty, 0);
+}
+
+// Aggressive drain (1.5 Wh/m, critical 0.25): the fixed level does not cover the way to a
+// charger from every cell, and a head-on standoff on the way drains more (two AGVs ran
+// empty, session 30). The distance-aware reserve (fleet.battery.reserve_margin, 1.5 x the
+// energy of the way to the nearest charger it could claim) sends them earlier: none runs
+// empty. Off (margin 0): some do.
+TEST(LifelongRules, UnderAggressiveDrainTheReserveKeepsEveryAgvAboveEmpty)
+{
+  Config on = critical_config("reserve_on", 0.25, 1.5);
+  on.fleet.battery.per_m_wh = 1.5;
+  Controller c(on);
+  const Metrics m = c.run();
+  ctest_util::expect_checked_every_step(on, m);
+  ASSERT_TRUE(m.battery.active);
+  EXPECT_EQ(m.battery.ran_empty, 0);
+  EXPECT_GT(m.battery.min_charge, 0.0);
+  EXPECT_GE(m.battery.dropped_mid_task, 1);
+  EXPECT_GT(m.errands_finished, 5);
+
+  Config off = critical_config("reserve_off", 0.25, 0);
+  off.fleet.battery.per_m_wh = 1.5;
+  Controller co(off);
+  const Metrics mo = co.run();
+  ctest_util::expect_checked_every_step(off, mo);
   EXPECT_GT(mo.battery.ran_empty, 0);
 }
