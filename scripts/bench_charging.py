@@ -5,7 +5,8 @@ Runs of rtlacam-sumo on config/small_charging_lifelong.yaml in the same invocati
 identical but for the battery: none (no fleet.battery: the baseline), charging (the config's
 battery, AGVs charge below the threshold between tasks and, below fleet.battery.critical or
 the distance-aware reserve, mid-task), charging without the reserve (reserve_margin: 0),
-charging without the critical level and the reserve (critical: 0, reserve_margin: 0), drain only
+charging without rematched claims (rematch: false), charging without the critical level, the
+reserve and the rematch, drain only
 (fleet.battery.charging: false: the same drain, no charging errands).
 --per-m-wh / --critical override the config's drain and critical level (aggressive
 settings: --per-m-wh 1.5 --critical 0.25); --seeds runs every variant once per fleet.seed
@@ -75,8 +76,9 @@ def main():
         shipped["per_m_wh"] = a.per_m_wh
     if a.critical is not None:
         shipped["critical"] = a.critical
-    variants = [("no battery", None), ("charging", dict(shipped)), ("charging, reserve off", dict(shipped, reserve_margin=0)),
-                ("charging, critical and reserve off", dict(shipped, critical=0, reserve_margin=0)),
+    variants = [("no battery", None), ("charging", dict(shipped)), ("charging, rematch off", dict(shipped, rematch=False)),
+                ("charging, reserve off", dict(shipped, reserve_margin=0)),
+                ("charging, critical, reserve and rematch off", dict(shipped, critical=0, reserve_margin=0, rematch=False)),
                 ("drain only", dict(shipped, charging=False))]
     seeds = [int(x) for x in a.seeds.split(",") if x] or [None]
     print(f"# {BASE}, {a.agvs} AGVs, {a.ticks} ticks, {a.expansions} expansions per SUMO step; battery {shipped}; "

@@ -30,7 +30,7 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
     dead_end_[i] = !corridor.empty();
     for (planner::Vertex v : corridor) reserved_[v] = 1;
   }
-  if (options_.reserve_margin > 0 && options_.charging) plan_ways();
+  if ((options_.reserve_margin > 0 || options_.rematch) && options_.charging) plan_ways();
 }
 
 void Battery::plan_ways()
@@ -41,6 +41,7 @@ void Battery::plan_ways()
     return std::hypot(xy_[v].first - xy_[u].first, xy_[v].second - xy_[u].second);
   };
   way_wh_.assign(chargers_.size(), std::vector<double>(n, kInf));
+  way_m_.assign(chargers_.size(), std::vector<double>(n, kInf));
   std::vector<double> metres(n);
   std::vector<planner::Vertex> next(n);  // the first cell of v's way (towards the charger)
   std::vector<int> turns(n);
@@ -71,6 +72,7 @@ void Battery::plan_ways()
       const bool turn = ax * bx + ay * by < std::cos(M_PI / 4) * std::hypot(ax, ay) * std::hypot(bx, by);  // as step() counts
       turns[v] = turns[w] + turn;
     }
+    for (planner::Vertex v : order) way_m_[i][v] = metres[v];
     for (planner::Vertex v : order)
       way_wh_[i][v] = options_.per_m_wh * metres[v] + (v == chargers_[i].cell ? 0 : options_.per_turn_wh * (turns[v] + 1));
   }
@@ -78,7 +80,7 @@ void Battery::plan_ways()
 
 bool Battery::short_of_reserve(int a) const
 {
-  if (way_wh_.empty() || last_.empty()) return false;
+  if (options_.reserve_margin <= 0 || way_wh_.empty() || last_.empty()) return false;
   const planner::Vertex v = last_[a];
   double free = std::numeric_limits<double>::infinity(), any = free;
   for (size_t i = 0; i < chargers_.size(); ++i) {
@@ -186,7 +188,25 @@ std::vector<int> Battery::step(const planner::Config& positions)
     }
   }
   last_ = positions;
+  if (options_.rematch && !way_m_.empty()) rematch(positions);
   return done;
+}
+
+void Battery::rematch(const planner::Config& positions)
+{
+  std::vector<int> way;  // agents on their way to a claimed charger
+  for (int a = 0; a < static_cast<int>(claim_.size()); ++a)
+    if (claim_[a] >= 0 && chargers_[claim_[a]].cell != positions[a]) way.push_back(a);
+  for (size_t i = 0; i < way.size(); ++i)
+    for (size_t j = i + 1; j < way.size(); ++j) {
+      const int a = way[i], b = way[j], ca = claim_[a], cb = claim_[b];
+      const planner::Vertex pa = positions[a], pb = positions[b];
+      if (way_m_[cb][pa] + way_m_[ca][pb] < way_m_[ca][pa] + way_m_[cb][pb] - 1e-9) {
+        std::swap(claim_[a], claim_[b]);
+        claimed_by_[claim_[a]] = a, claimed_by_[claim_[b]] = b;
+        ++swaps_;
+      }
+    }
 }
 
 bool Battery::consider(int a, planner::Vertex at)

@@ -242,3 +242,40 @@ TEST(Battery, TheReserveSendsAnAgentToChargeWhileTheWayBackIsStillCovered)
     }
   }
 }
+
+// Rematched claims: a corridor x = 0..4 with a dead-end charger below each end. Agent 0 in
+// the middle claims one charger; agent 1, beside it on that charger's side, gets the other
+// (the only one free): each charger lies behind the other agent, head-on. At the next step
+// the two swap claims (ways 3 + 2 m against 3 + 4 m): each heads for the charger on its
+// own side. With rematch off the claims stay crossed.
+TEST(Battery, AgentsOnTheirWayToChargersSwapClaimsThatCross)
+{
+  const planner::Graph g = ttest::grid({".....", ".###."});
+  for (bool rematch : {true, false}) {
+    SCOPED_TRACE(rematch ? "rematch" : "no rematch");
+    BatteryOptions o;
+    o.initial = 0.2;  // below the threshold: both go to charge
+    o.per_m_wh = 1;
+    o.rematch = rematch;
+    Battery b(g, o, {{g.at(0, 1), 1.0, "left"}, {g.at(4, 1), 1.0, "right"}}, centres(g));
+    const Vertex mid = g.at(2, 0);
+    b.step({mid, mid});  // the start (agent 1's cell is set below)
+    ASSERT_TRUE(b.consider(0, mid));
+    const bool left = b.goal(0) == g.at(0, 1);
+    const Vertex beside = g.at(left ? 1 : 3, 0);
+    Config at{mid, beside};
+    ASSERT_TRUE(b.consider(1, beside));
+    EXPECT_EQ(b.goal(1), g.at(left ? 4 : 0, 1));  // crossed
+    b.step(at);  // agent 1 "jumps" beside: 1 m drained, then the rematch
+    if (rematch) {
+      EXPECT_EQ(b.swaps(), 1);
+      EXPECT_EQ(b.goal(0), g.at(left ? 4 : 0, 1));
+      EXPECT_EQ(b.goal(1), g.at(left ? 0 : 4, 1));
+    } else {
+      EXPECT_EQ(b.swaps(), 0);
+      EXPECT_EQ(b.goal(1), g.at(left ? 4 : 0, 1));
+    }
+    b.step(at);  // no further swap: the sum is already the shorter one
+    EXPECT_EQ(b.swaps(), rematch ? 1 : 0);
+  }
+}
