@@ -165,6 +165,13 @@ TEST(LifelongRules, UnderAggressiveDrainRematchedChargerClaimsKeepEveryAgvAboveE
   EXPECT_GT(m.battery.min_charge, 0.0);
   EXPECT_GE(m.battery.dropped_mid_task, 1);
   EXPECT_GT(m.errands_finished, 5);
+  // The busy-only errand metrics (tasks/errand_stalls.hpp) of a real run: every completed
+  // errand and the open ones, a stall never longer than its errand, nothing past the run.
+  EXPECT_GE(m.stalls.errands, m.errands_finished);
+  EXPECT_GT(m.stalls.max_stall, 0);
+  EXPECT_LE(m.stalls.max_stall, m.stalls.max_open);
+  EXPECT_LE(m.stalls.p99_stall, m.stalls.max_stall);
+  EXPECT_LE(m.stalls.max_open, m.ticks);
 
   Config off = critical_config("rematch_off", 0.25, 1.5);
   off.fleet.battery.per_m_wh = 1.5;
