@@ -245,7 +245,7 @@ struct BatteryCli {
   tasks::BatteryOptions o;
   double charge_w = 7200 * 0.95;  // the shipped chargingStations' power x efficiency
   std::string chargers_file;
-  bool no_charging = false;
+  bool no_charging = false, no_rematch = false;
   std::vector<CLI::Option*> opts;
 
   void bind(CLI::App& app)
@@ -259,9 +259,13 @@ struct BatteryCli {
     opts.push_back(app.add_option("--battery-critical", o.critical,
                                   "battery: below it mid-task an agent hands its task back and charges (fraction, < threshold; 0 = off)")
                        ->capture_default_str());
+    opts.push_back(app.add_option("--battery-reserve-margin", o.reserve_margin,
+                                  "battery: also low / critical below this x the energy of the way to the nearest charger (0 = off)")
+                       ->capture_default_str());
     opts.push_back(app.add_option("--battery-target", o.target, "battery: an agent leaves the charger at this fraction")->capture_default_str());
     opts.push_back(app.add_option("--battery-charge-w", charge_w, "battery: each charger's power (W; 1 s steps)")->capture_default_str());
     opts.push_back(app.add_flag("--battery-no-charging", no_charging, "battery: drain only, no charging errands"));
+    opts.push_back(app.add_flag("--battery-no-rematch", no_rematch, "battery: agents on their way to chargers never swap claims"));
     opts.push_back(app.add_option("--chargers", chargers_file, "battery: charger cells (the agents-file format: a count, then cell ids)"));
   }
 
@@ -278,6 +282,7 @@ struct BatteryCli {
     if (!on()) return;
     tasks::BatteryOptions b = o;
     b.charging = !no_charging;
+    b.rematch = !no_rematch;
     std::vector<planner::Vertex> cells;
     if (!chargers_file.empty()) {
       const planner::Config c = tasks::load_lorr_agents(chargers_file, g);

@@ -11,8 +11,9 @@ Then one-way versus two-way aisles on the large layout: config/large_warehouse_l
 against config/large_oneway_lifelong.yaml (the same layout, stations, starts and tasks, its
 picking aisles one-way in alternate directions; sumo_scenarios/make_warehouse.py), rules off.
 The planner has a fixed number of expansions per SUMO step (deterministic decisions, so the
-rules alone make the difference). Prints errands per tick, the ratio to "off", the longest
-any AGV spent on one errand, and the rule counters; every run must end clean (0 collisions, 0 violations,
+rules alone make the difference). Prints errands per tick, the ratio to "off", K (the
+longest stall of a busy AGV's errand: ticks without getting closer to it, max / p99;
+tasks/errand_stalls.hpp), the longest errand from assignment to completion, and the rule counters; every run must end clean (0 collisions, 0 violations,
 0 jumps / re-syncs; the script says so).
 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
@@ -54,6 +55,12 @@ QUEUES = False
 EXECUTOR = None  # --executor: every run under it (None: the config's)
 
 
+def k_cols(m):
+    """K = stall ticks max / p99, and errand ticks (assignment to completion) max."""
+    l = m["lifelong"]
+    return f"{l['stallTicks']['max']} / {l['stallTicks']['p99']} | {l['errandTicks']['max']}"
+
+
 def run_clean(m):
     """0 violations, 0 jumps / re-syncs, 0 collisions, no error."""
     return m["violations"] == 0 and m["teleports_or_jumps"] == 0 and m.get("collisions", 0) == 0 and not m["error"]
@@ -89,8 +96,8 @@ def run(build, base, out, ticks, expansions, rules):
 
 def station_closure(a, build, tmp):
     clean = True
-    print("| warehouse | station closure | ticks | errands/tick | vs no closure | max ticks on one errand | tasks handed back | violations | jumps+resyncs |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| warehouse | station closure | ticks | errands/tick | vs no closure | K (stall max / p99) | errand ticks max | tasks handed back | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, _, _ in WAREHOUSES:
         key = name.split()[0]
         if (a.skip_large and key == "large") or (a.skip_small and key == "small"):
@@ -112,7 +119,7 @@ def station_closure(a, build, tmp):
             jr = m["teleports_or_jumps"]
             clean = clean and run_clean(m)
             print(f"| {name} | {label} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
-                  f"{m['lifelong']['maxErrandTicks']} | {m['lifelong'].get('reassignedForClosure', 0)} | "
+                  f"{k_cols(m)} | {m['lifelong'].get('reassignedForClosure', 0)} | "
                   f"{m['violations']} | {jr} |", flush=True)
     print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
@@ -138,8 +145,8 @@ def main():
     clean = True
     if a.station_closure:
         return station_closure(a, build, tmp)
-    print("| warehouse | rules | ticks | errands/tick | vs off | max ticks on one errand | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:
         if (a.skip_large and "large" in name) or (a.skip_small and "small" in name):
             continue
@@ -175,7 +182,7 @@ def main():
             clean = clean and run_clean(m)
             what = label + (f" ({','.join(zone_rule[0]['edges'])})" if "zones" in extra else "")
             print(f"| {name} | {what} | {m['ticks']} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
-                  f"{m['lifelong']['maxErrandTicks']} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
+                  f"{k_cols(m)} | {r.get('closure_changes', 0)} | {r.get('zone_holds', 0)} | "
                   f"{r.get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
     if not a.skip_one_way:  # the same layout with one-way picking aisles, rules off
         base_rate = None
@@ -191,7 +198,7 @@ def main():
             jr = m["teleports_or_jumps"]
             clean = clean and run_clean(m)
             print(f"| large (200 AGVs) | {label}, rules off | {m['ticks']} | {rate:.3f} | "
-                  f"{rate / base_rate if base_rate else 0:.2f} | {m['lifelong']['maxErrandTicks']} | 0 | 0 | "
+                  f"{rate / base_rate if base_rate else 0:.2f} | {k_cols(m)} | 0 | 0 | "
                   f"{m.get('rules', {}).get('replans', 0)} | {m['violations']} | {jr} |", flush=True)
     print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1

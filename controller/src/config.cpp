@@ -370,12 +370,14 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     FleetSection::Battery& x = c.fleet.battery;
     if (!b.IsMap()) r.fail("fleet.battery", "expected a mapping {capacity_wh, per_m_wh, per_turn_wh, threshold, target, ...}");
     r.keys(b, "fleet.battery", {"capacity_wh", "initial", "per_m_wh", "per_turn_wh", "threshold", "critical", "target", "charge_w",
-                                "charging", "sample_ticks"});
+                                "charging", "sample_ticks", "reserve_margin", "rematch"});
     x.on = true;
     r.number(b, "fleet.battery", "capacity_wh", x.capacity_wh, 0, true);
     r.number(b, "fleet.battery", "per_m_wh", x.per_m_wh, 0);
     r.number(b, "fleet.battery", "per_turn_wh", x.per_turn_wh, 0);
     if (b["charge_w"]) r.number(b, "fleet.battery", "charge_w", x.charge_w, 0, true);
+    r.number(b, "fleet.battery", "reserve_margin", x.reserve_margin, 0);
+    r.flag(b, "fleet.battery", "rematch", x.rematch);
     r.flag(b, "fleet.battery", "charging", x.charging);
     r.integer(b, "fleet.battery", "sample_ticks", x.sample_ticks, 1, 1000000);
     for (auto [k, v] : {std::pair<const char*, double*>{"initial", &x.initial}, {"threshold", &x.threshold}, {"target", &x.target}}) {

@@ -120,6 +120,8 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
     o.per_turn_wh = b.per_turn_wh;
     o.threshold = b.threshold;
     o.critical = b.critical;
+    o.reserve_margin = b.reserve_margin;
+    o.rematch = b.rematch;
     o.target = b.target;
     o.charging = b.charging;
     std::vector<std::pair<double, double>> xy;

@@ -49,6 +49,8 @@ nlohmann::json Metrics::to_json() const
   if (mode == "lifelong") {
     j["lifelong"]["throughputBound"] = throughput_bound();
     j["lifelong"]["maxErrandTicks"] = max_errand_ticks;
+    j["lifelong"]["errandTicks"] = {{"max", stalls.max_open}, {"p99", stalls.p99_open}, {"errands", stalls.errands}};
+    j["lifelong"]["stallTicks"] = {{"max", stalls.max_stall}, {"p99", stalls.p99_stall}};
     j["lifelong"]["reassignedForClosure"] = reassigned_for_closure;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
     // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).

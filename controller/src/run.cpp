@@ -105,6 +105,9 @@ void Run::prepare()
         return rest_to_rest_s(moves * cell, kin) / tick;
       };
     tm_->set_free_flow(std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost));
+    // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (move costs
+    // included), closures or not: tables of their own, exact whatever the step's deadline.
+    tm_->watch_stalls(c_.map_.graph);
   }
   if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
     for (size_t i = 0; i < b->chargers().size(); ++i)

@@ -319,6 +319,7 @@ void Run::finish()
     life_.wall_ms = m_.wall_s * 1000;
     life_.planner_errors = m_.violations;
     if (const tasks::FreeFlowBound* ff = tm_->free_flow()) m_.free_flow_bound = ff->errands_per_step();
+    m_.stalls = tm_->stall_summary();
     if (m_.violations > 0) life_.first_error = m_.error;
     tasks::RunInfo info;
     info.problem = cfg_.path;

@@ -95,6 +95,8 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
       else if (key == "per_turn_wh") b.per_turn_wh = v.cast<double>();
       else if (key == "threshold") b.threshold = v.cast<double>();
       else if (key == "critical") b.critical = v.cast<double>();
+      else if (key == "reserve_margin") b.reserve_margin = v.cast<double>();
+      else if (key == "rematch") b.rematch = v.cast<bool>();
       else if (key == "target") b.target = v.cast<double>();
       else if (key == "charge_w") charge_w = v.cast<double>();
       else throw InputError("battery: unknown key '" + key + "'");
@@ -285,6 +287,6 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("assigner") = "greedy", py::arg("seed") = 0, py::arg("agents") = 0, py::arg("reassign") = false,
         py::arg("policy") = "", py::arg("battery") = py::none(), py::arg("chargers") = std::vector<Vertex>{},
         "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
-        "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, "
+        "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, reserve_margin, rematch, "
         "target, charge_w, charging) on `chargers` (cell ids), as rtlacam-lifelong --battery-* --chargers");
 }

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <limits>
+#include <queue>
 #include <stdexcept>
 
 namespace tasks {
@@ -27,6 +30,65 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
     dead_end_[i] = !corridor.empty();
     for (planner::Vertex v : corridor) reserved_[v] = 1;
   }
+  if ((options_.reserve_margin > 0 || options_.rematch) && options_.charging) plan_ways();
+}
+
+void Battery::plan_ways()
+{
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const int n = g_.size();
+  auto len = [&](planner::Vertex u, planner::Vertex v) {
+    return std::hypot(xy_[v].first - xy_[u].first, xy_[v].second - xy_[u].second);
+  };
+  way_wh_.assign(chargers_.size(), std::vector<double>(n, kInf));
+  way_m_.assign(chargers_.size(), std::vector<double>(n, kInf));
+  std::vector<double> metres(n);
+  std::vector<planner::Vertex> next(n);  // the first cell of v's way (towards the charger)
+  std::vector<int> turns(n);
+  std::vector<planner::Vertex> order;  // settled, nearest first
+  using Item = std::pair<double, planner::Vertex>;
+  for (size_t i = 0; i < chargers_.size(); ++i) {
+    std::fill(metres.begin(), metres.end(), kInf);
+    std::fill(next.begin(), next.end(), -1);
+    order.clear();
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open;
+    metres[chargers_[i].cell] = 0;
+    open.push({0.0, chargers_[i].cell});
+    while (!open.empty()) {
+      const auto [d, v] = open.top();
+      open.pop();
+      if (d > metres[v]) continue;
+      order.push_back(v);
+      for (planner::Vertex u : g_.in_neighbors(v))  // u -> v: a way from u runs through v
+        if (const double du = d + len(u, v); du < metres[u] - 1e-12) metres[u] = du, next[u] = v, open.push({du, u});
+    }
+    // Turns along each way, nearest first (the rest of a way is settled before it).
+    for (planner::Vertex v : order) {
+      const planner::Vertex w = next[v];
+      turns[v] = 0;
+      if (w < 0 || next[w] < 0) continue;
+      const double ax = xy_[w].first - xy_[v].first, ay = xy_[w].second - xy_[v].second;
+      const double bx = xy_[next[w]].first - xy_[w].first, by = xy_[next[w]].second - xy_[w].second;
+      const bool turn = ax * bx + ay * by < std::cos(M_PI / 4) * std::hypot(ax, ay) * std::hypot(bx, by);  // as step() counts
+      turns[v] = turns[w] + turn;
+    }
+    for (planner::Vertex v : order) way_m_[i][v] = metres[v];
+    for (planner::Vertex v : order)
+      way_wh_[i][v] = options_.per_m_wh * metres[v] + (v == chargers_[i].cell ? 0 : options_.per_turn_wh * (turns[v] + 1));
+  }
+}
+
+bool Battery::short_of_reserve(int a) const
+{
+  if (options_.reserve_margin <= 0 || way_wh_.empty() || last_.empty()) return false;
+  const planner::Vertex v = last_[a];
+  double free = std::numeric_limits<double>::infinity(), any = free;
+  for (size_t i = 0; i < chargers_.size(); ++i) {
+    any = std::min(any, way_wh_[i][v]);
+    if (claimed_by_[i] < 0 || claimed_by_[i] == a) free = std::min(free, way_wh_[i][v]);
+  }
+  const double need = std::isfinite(free) ? free : any;  // every charger taken: it waits for the nearest
+  return std::isfinite(need) && charge_[a] < options_.reserve_margin * need;
 }
 
 std::string battery_problem(const BatteryOptions& o)
@@ -44,6 +106,7 @@ std::string battery_problem(const BatteryOptions& o)
   if (o.threshold >= o.target) return "threshold: must be < target (" + num(o.target) + "), got " + num(o.threshold);
   if (!(o.critical >= 0) || o.critical >= o.threshold)
     return "critical: must be >= 0 and < threshold (" + num(o.threshold) + "), got " + num(o.critical);
+  if (!(o.reserve_margin >= 0)) return "reserve_margin: must be >= 0 (0: off), got " + num(o.reserve_margin);
   return "";
 }
 
@@ -125,7 +188,25 @@ std::vector<int> Battery::step(const planner::Config& positions)
     }
   }
   last_ = positions;
+  if (options_.rematch && !way_m_.empty()) rematch(positions);
   return done;
+}
+
+void Battery::rematch(const planner::Config& positions)
+{
+  std::vector<int> way;  // agents on their way to a claimed charger
+  for (int a = 0; a < static_cast<int>(claim_.size()); ++a)
+    if (claim_[a] >= 0 && chargers_[claim_[a]].cell != positions[a]) way.push_back(a);
+  for (size_t i = 0; i < way.size(); ++i)
+    for (size_t j = i + 1; j < way.size(); ++j) {
+      const int a = way[i], b = way[j], ca = claim_[a], cb = claim_[b];
+      const planner::Vertex pa = positions[a], pb = positions[b];
+      if (way_m_[cb][pa] + way_m_[ca][pb] < way_m_[ca][pa] + way_m_[cb][pb] - 1e-9) {
+        std::swap(claim_[a], claim_[b]);
+        claimed_by_[claim_[a]] = a, claimed_by_[claim_[b]] = b;
+        ++swaps_;
+      }
+    }
 }
 
 bool Battery::consider(int a, planner::Vertex at)

@@ -69,11 +69,18 @@ void add_task_fields(nlohmann::json& j, const TaskManager& tasks)
     if (j.contains("errandThroughput") && ff->errands_per_step() > 0)
       j["errandThroughputOverFreeFlow"] = j["errandThroughput"].get<double>() / ff->errands_per_step();
   }
+  // Errand times and stalls (errand_stalls.hpp): K = stallTicks.max.
+  if (tasks.stalls()) {
+    const ErrandStalls::Summary st = tasks.stall_summary();
+    j["errandTicks"] = {{"max", st.max_open}, {"p99", st.p99_open}, {"errands", st.errands}};
+    j["stallTicks"] = {{"max", st.max_stall}, {"p99", st.p99_stall}};
+  }
   // Batteries (battery.hpp): the same fields as the SUMO controller's metrics.json "battery".
   if (const Battery* b = tasks.battery())
     j["battery"] = {{"capacity_wh", b->options().capacity_wh},
                     {"charging", b->options().charging},
                     {"critical", b->options().critical},
+                    {"reserve_margin", b->options().reserve_margin},
                     {"charging_errands", b->errands()},
                     {"dropped_mid_task", tasks.dropped_for_charge()},
                     {"ran_empty", b->ran_empty()},

@@ -46,6 +46,7 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
   const auto t0 = Clock::now();
   // One distance cache for the task layer, the heading preference and the planner.
   cache_ = std::make_shared<planner::DistCache>(g, opt.max_dist_tables ? opt.max_dist_tables : 2 * starts.size() + 256);
+  if (!tasks_.stalls()) tasks_.watch_stalls(g);  // errand times and stalls (errand_stalls.hpp)
   tasks_.share_dist_cache(cache_);
   tasks_.set_free_flow(std::make_unique<FreeFlowBound>(cache_));  // a move per step
   tasks_.start(starts);

@@ -14,6 +14,21 @@ void TaskManager::start(const planner::Config& positions)
   if (battery_) battery_->step(positions);  // the start charges
   on_start(positions);
   refresh_goals(positions);
+  observe_stalls(positions);
+}
+
+void TaskManager::watch_stalls(const planner::Graph& g)
+{
+  stalls_ = std::make_unique<ErrandStalls>(g);
+}
+
+void TaskManager::observe_stalls(const planner::Config& positions)
+{
+  if (!stalls_) return;
+  std::vector<ErrandStalls::Held> held(positions.size());
+  for (int a = 0; a < num_agents(); ++a)
+    if (const Task* k = task_of(a)) held[a] = {k->id, k->next, k->next_cell()};
+  stalls_->observe(now_, held, positions);
 }
 
 std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
@@ -27,6 +42,7 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
     Task& k = slots_[s];
     if (positions[a] != k.next_cell()) continue;
     events.push_back({t, a, k.id, k.next});
+    if (stalls_) stalls_->completed(t, k.id, k.next);
     if (free_flow_) free_flow_->errand(a, k.next_cell());
     ++k.next;
     ++errands_finished_;
@@ -60,6 +76,7 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       at_goal_[a] = at;
     }
   }
+  observe_stalls(positions);
   return events;
 }
 

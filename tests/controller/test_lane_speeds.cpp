@@ -25,11 +25,11 @@ namespace {
 
 constexpr double kSlow = 0.25;
 
-// small_warehouse.yaml on a copy of its net with aisle c1's two lanes at kSlow, one AGV
-// from c1r0 to c1r1 (plus `extra` AGVs parked on their goals in the cross aisles).
-Config slow_aisle_config(const std::string& name)
+// small_warehouse.yaml (or `base`) on a copy of its net with aisle c1's two lanes at kSlow,
+// one AGV from c1r0 to c1r1.
+Config slow_aisle_config(const std::string& name, const std::string& base = "small_warehouse.yaml")
 {
-  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse.yaml");
+  Config c = load_config(std::string(RTLACAM_CONFIGS) + "/" + base);
   c.output.dir = test::temp_dir("lane_speeds_" + name);
   c.run.progress_s = 0;
   c.run.max_ticks = 200;
@@ -71,17 +71,23 @@ bool used_slow_aisle(const Controller& ctl)
   return false;
 }
 
-// The fastest fcd speed of any AGV on aisle c1's lanes, and the number of such samples.
-std::pair<double, long> top_speed_on_c1(const std::string& dir)
+// The fastest fcd speed of any AGV (or of AGV `id`) on aisle `aisle`'s lanes, and the
+// number of such samples.
+std::pair<double, long> top_speed_on(const std::string& dir, const std::string& aisle, const std::string& id = "")
 {
   const std::string s = ctest_util::slurp(dir + "/fcd.xml");
-  const std::regex re(R"re(<vehicle id="([^"]+)"[^>]* speed="([-0-9.e]+)"[^>]* lane="(c1r[01]_c1r[01]_0)")re");
+  const std::regex re("<vehicle id=\"([^\"]+)\"[^>]* speed=\"([-0-9.e]+)\"[^>]* lane=\"(" + aisle + "r[01]_" + aisle +
+                      "r[01]_0)\"");
   double top = 0;
   long n = 0;
-  for (auto it = std::sregex_iterator(s.begin(), s.end(), re); it != std::sregex_iterator(); ++it, ++n)
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), re); it != std::sregex_iterator(); ++it) {
+    if (!id.empty() && (*it)[1] != id) continue;
     top = std::max(top, std::stod((*it)[2]));
+    ++n;
+  }
   return {top, n};
 }
+std::pair<double, long> top_speed_on_c1(const std::string& dir) { return top_speed_on(dir, "c1"); }
 
 Metrics run_clean(const Config& c, Controller& ctl)
 {
@@ -168,4 +174,51 @@ TEST(LaneSpeeds, LockstepNeverExceedsASlowLanesSpeed)
   EXPECT_GT(top_off, 2 * kSlow) << "without lane speeds the AGV should drive a cell per tick";
   EXPECT_EQ(mb.ticks, 8);
   EXPECT_EQ(mb.lane_ticks, 0);
+}
+
+// Per AGV under adg and adg-follow (unlike lockstep, where the whole fleet waits for the
+// slowest move): AGV 0 drives up the slow aisle c1 (lane costs off), AGV 1 up the parallel
+// aisle c2 at 1 m/s at the same time. SUMO's fcd: AGV 0 never faster than 0.25 m/s on c1,
+// AGV 1 at its vType's 1 m/s on c2, and AGV 1 at its goal long before AGV 0 (8 m at 1 m/s
+// against 8 m at 0.25 m/s: over 8 s earlier). Lockstep, same two AGVs: AGV 1 keeps to 0.25 m/s too (the
+// documented synchronous steps). Without run.lane_speeds AGV 0 drives c1 at 1 m/s.
+TEST(LaneSpeeds, AdgCapsEachAgvAtItsOwnLaneWhileOthersDriveFullSpeed)
+{
+  auto two_agvs = [](const std::string& name, const std::string& executor, bool lane_speeds) {
+    Config c = slow_aisle_config(name, "small_warehouse_agv.yaml");
+    c.run.executor = executor;
+    c.run.lane_speeds = lane_speeds;
+    c.planner.lane_costs = false;  // AGV 0 through the slow aisle
+    c.delays = {};
+    c.fleet.count = 2;
+    c.fleet.starts.push_back(CellRef{-1, "c2r0", "", 0, "fleet.starts[1]"});
+    c.tasks.goals.push_back(CellRef{-1, "c2r1", "", 0, "tasks.goals[1]"});
+    return c;
+  };
+  for (const std::string executor : {"adg-follow", "adg"}) {
+    SCOPED_TRACE(executor);
+    const Config on = two_agvs("per_agv_" + executor, executor, true);
+    Controller a(on);
+    const Metrics m = run_clean(on, a);
+    ASSERT_TRUE(used_slow_aisle(a));
+    const auto [slow, n_slow] = top_speed_on(on.output.dir, "c1", "agv0");
+    const auto [fast, n_fast] = top_speed_on(on.output.dir, "c2", "agv1");
+    EXPECT_GT(n_slow, 0);
+    EXPECT_GT(n_fast, 0);
+    EXPECT_LE(slow, kSlow + 1e-6);
+    EXPECT_GT(fast, 0.95) << "AGV 1 on the 1 m/s aisle is held back by AGV 0's slow lane";
+    ASSERT_EQ(m.goal_s.size(), 2u);
+    EXPECT_GT(m.goal_s[0], 0);
+    EXPECT_GT(m.goal_s[1], 0);
+    EXPECT_LT(m.goal_s[1] + 8, m.goal_s[0]);  // measured 18.75 s against 32.4 s
+
+    const Config off = two_agvs("per_agv_off_" + executor, executor, false);
+    Controller b(off);
+    run_clean(off, b);
+    EXPECT_GT(top_speed_on(off.output.dir, "c1", "agv0").first, 2 * kSlow) << "lane speed ignored: it should drive 1 m/s";
+  }
+  const Config lock = two_agvs("per_agv_lockstep", "lockstep", true);
+  Controller l(lock);
+  run_clean(lock, l);
+  EXPECT_LE(top_speed_on(lock.output.dir, "c2", "agv1").first, kSlow + 1e-6) << "lockstep: the fleet waits for the slowest move";
 }

@@ -60,6 +60,7 @@ TEST(Battery, ALowAgentChargesBetweenTasksAndGetsItsNextTaskAtTheTarget)
     o.threshold = 0.3;
     o.target = 0.8;
     o.charging = charging;
+    o.reserve_margin = 0;  // the threshold alone
     rr.set_battery(g, o, {{g.at(0, 1), 2.0, "c"}}, centres(g));
     rr.start({g.at(0, 0)});
     long t = 0;
@@ -164,6 +165,7 @@ TEST(Battery, AnAgentBelowTheCriticalChargeMidTaskHandsItsTaskBackAndCharges)
       o.threshold = 0.3;
       o.critical = critical;
       o.target = 0.9;
+      o.reserve_margin = 0;  // the fixed level alone (the reserve: the next test)
       tm->set_battery(g, o, {{g.at(15, 1), 4.0, "c"}}, centres(g));
       Config at{g.at(0, 0)};
       tm->start(at);
@@ -193,4 +195,87 @@ TEST(Battery, AnAgentBelowTheCriticalChargeMidTaskHandsItsTaskBackAndCharges)
         EXPECT_EQ(tm->battery()->ran_empty(), 1);  // 20 m of its 30 m
       }
     }
+}
+
+// The distance-aware reserve: the charger is at the far end of the way back. A corridor
+// x = 0..15 with a dead-end charger below its left end; one task (15, 0) -> (0, 0) for an
+// agent at (0, 0) with 10 of 20 Wh at 0.5 Wh/m; critical 0.1 (2 Wh, 4 m). The fixed level
+// trips only on the way back at x = 13 (1.5 Wh), 14 m from the charger: it runs empty. With
+// the reserve (margin 1.5) it trips on the way out where the charge no longer covers 1.5 x
+// the way back: at x = 8, 6 Wh < 1.5 x 0.5 x 9 m = 6.75 Wh; it turns back and arrives with 1.5 Wh.
+TEST(Battery, TheReserveSendsAnAgentToChargeWhileTheWayBackIsStillCovered)
+{
+  const planner::Graph g = ttest::grid({"................", ".###############"});
+  auto file = ttest::task_file(g, {{{15, 0}, {0, 0}}});
+  for (double margin : {1.5, 0.0}) {
+    SCOPED_TRACE("reserve_margin " + std::to_string(margin));
+    auto tm = std::make_unique<TaskPool>(file, g, 1, std::make_unique<GreedyAssigner>());
+    BatteryOptions o;
+    o.capacity_wh = 20;
+    o.initial = 0.5;
+    o.per_m_wh = 0.5;
+    o.threshold = 0.3;
+    o.critical = 0.1;
+    o.target = 0.9;
+    o.reserve_margin = margin;
+    tm->set_battery(g, o, {{g.at(0, 1), 4.0, "c"}}, centres(g));
+    if (margin > 0) {  // the way: metres and turns (one turn at (0, 0), plus the first move's)
+      EXPECT_DOUBLE_EQ(tm->battery()->way_wh(0, g.at(8, 0)), 0.5 * 9);
+      EXPECT_DOUBLE_EQ(tm->battery()->way_wh(0, g.at(0, 1)), 0.0);
+    }
+    Config at{g.at(0, 0)};
+    tm->start(at);
+    ASSERT_TRUE(tm->busy(0));
+    long dropped_at = -1;
+    for (long t = 1; t <= 60; ++t) {
+      at[0] = step_to_goal(g, at[0], tm->goals()[0]);
+      tm->update(t, at);
+      if (tm->dropped_for_charge() > 0 && dropped_at < 0) dropped_at = t;
+    }
+    if (margin > 0) {
+      EXPECT_EQ(dropped_at, 8);
+      EXPECT_EQ(tm->battery()->ran_empty(), 0);
+      EXPECT_GT(tm->battery()->min_charge(), 0.05);
+    } else {
+      EXPECT_EQ(dropped_at, 17);  // out to x = 15, back to x = 13 on the fixed level
+      EXPECT_EQ(tm->battery()->ran_empty(), 1);
+    }
+  }
+}
+
+// Rematched claims: a corridor x = 0..4 with a dead-end charger below each end. Agent 0 in
+// the middle claims one charger; agent 1, beside it on that charger's side, gets the other
+// (the only one free): each charger lies behind the other agent, head-on. At the next step
+// the two swap claims (ways 3 + 2 m against 3 + 4 m): each heads for the charger on its
+// own side. With rematch off the claims stay crossed.
+TEST(Battery, AgentsOnTheirWayToChargersSwapClaimsThatCross)
+{
+  const planner::Graph g = ttest::grid({".....", ".###."});
+  for (bool rematch : {true, false}) {
+    SCOPED_TRACE(rematch ? "rematch" : "no rematch");
+    BatteryOptions o;
+    o.initial = 0.2;  // below the threshold: both go to charge
+    o.per_m_wh = 1;
+    o.rematch = rematch;
+    Battery b(g, o, {{g.at(0, 1), 1.0, "left"}, {g.at(4, 1), 1.0, "right"}}, centres(g));
+    const Vertex mid = g.at(2, 0);
+    b.step({mid, mid});  // the start (agent 1's cell is set below)
+    ASSERT_TRUE(b.consider(0, mid));
+    const bool left = b.goal(0) == g.at(0, 1);
+    const Vertex beside = g.at(left ? 1 : 3, 0);
+    Config at{mid, beside};
+    ASSERT_TRUE(b.consider(1, beside));
+    EXPECT_EQ(b.goal(1), g.at(left ? 4 : 0, 1));  // crossed
+    b.step(at);  // agent 1 "jumps" beside: 1 m drained, then the rematch
+    if (rematch) {
+      EXPECT_EQ(b.swaps(), 1);
+      EXPECT_EQ(b.goal(0), g.at(left ? 4 : 0, 1));
+      EXPECT_EQ(b.goal(1), g.at(left ? 0 : 4, 1));
+    } else {
+      EXPECT_EQ(b.swaps(), 0);
+      EXPECT_EQ(b.goal(1), g.at(left ? 4 : 0, 1));
+    }
+    b.step(at);  // no further swap: the sum is already the shorter one
+    EXPECT_EQ(b.swaps(), rematch ? 1 : 0);
+  }
 }

@@ -73,6 +73,8 @@ struct FleetSection {
     bool on = false;
     double capacity_wh = 100, initial = 1.0, per_m_wh = 0, per_turn_wh = 0, threshold = 0.3, target = 0.9;
     double critical = 0.1;   // below it mid-task: the task goes back, the AGV charges (< threshold; 0: off)
+    double reserve_margin = 1.5;  // also low / critical below this x the energy to the nearest charger (0: off)
+    bool rematch = true;          // AGVs on their way to chargers swap claims when that shortens their ways
     double charge_w = -1;    // -1: every chargingStation must give its power
     bool charging = true;    // false: drain only (no charging errands)
     int sample_ticks = 10;   // metrics.json battery.samples: min/mean/max charge every this many ticks

@@ -8,6 +8,7 @@
 #include "controller/commander.hpp"
 #include "controller/fleet_view.hpp"
 #include "planner/latency.hpp"
+#include "tasks/errand_stalls.hpp"
 
 namespace controller {
 
@@ -74,7 +75,11 @@ struct Metrics {
     long long checks = 0;           // SUMO steps RuleCheck checked
     double poll_ms = 0;             // wall ms in Rules::update (closure schedule + lane polling), all ticks
   } rules;
-  long long max_errand_ticks = 0;   // lifelong: longest any AGV spent on one errand (open ones to the end)
+  long long max_errand_ticks = 0;   // lifelong: longest any AGV kept one goal, idle ones too (open ones to the end)
+  // Lifelong: errands of busy AGVs only (tasks/errand_stalls.hpp): open ticks (assignment
+  // to completion) and stall ticks (longest stretch without getting closer), max and p99;
+  // metrics.json lifelong.errandTicks / stallTicks. K = stalls.max_stall.
+  tasks::ErrandStalls::Summary stalls;
   long long end_stop_steps = 0;     // SUMO steps the stop at the run's end took (all AGVs at rest after)
   // The physical bound (bound.hpp), in ticks: one-shot, the slowest AGV alone on its path;
   // lifelong, the mean over the AGVs (throughput bound = tasks / that mean).

@@ -17,7 +17,24 @@
 // round-robin agent resumes it after charging) and goes to charge at once, so it never runs
 // empty on its way (critical must cover the way from anywhere to the nearest charger; 0:
 // off). With no charger free, the agent waits idle (taking no task) and retries at every
-// step. An agent whose charge reaches 0 counts as run empty (once); the model
+// step.
+//
+// Reserve (distance-aware; `reserve_margin` > 0, default 1.5): a fixed `critical` fraction
+// covers the way to a charger only where chargers are near, and a detour or a head-on
+// standoff on the way drains more than the shortest path. So an agent also counts as low
+// (between tasks) and as critical (mid-task: the task goes back) when its charge is below
+// reserve_margin x the energy of the shortest way from its cell to the nearest charger it
+// could claim (free or its own; all taken: the nearest): per_m_wh x metres + per_turn_wh x
+// (turns along that way + 1, its first move may turn). The ways are one reverse Dijkstra
+// per charger on metres, at construction. 0: off (critical alone).
+//
+// Claims rematched (`rematch`, default on): two agents on their way to chargers swap their
+// claims when the swap makes the sum of their ways (metres) strictly shorter, checked at
+// every step() for every pair not yet standing on its charger. Without it, two agents head-on
+// in a one-lane aisle, each with its charger behind the other, can oscillate there until
+// empty (the planner restarts its search at every new goal elsewhere in the fleet; seen in
+// SUMO at 1.5 Wh/m). With the swap each heads for the charger on its own side. Every swap
+// shortens the sum strictly, so claims cannot swap back at the same cells. An agent whose charge reaches 0 counts as run empty (once); the model
 // does not stop it, the metric says the fleet was mis-sized (it must stay 0).
 //
 // TaskManager owns one (TaskManager::set_battery) and excludes charging agents from
@@ -42,6 +59,8 @@ struct BatteryOptions {
   double threshold = 0.3;    // below this fraction an agent between tasks goes to charge
   double critical = 0.1;     // below this one (< threshold) an agent drops its task to charge; 0: off
   double target = 0.9;       // it leaves the charger at this fraction
+  double reserve_margin = 1.5;  // low / critical also below this x the energy to the nearest charger; 0: off
+  bool rematch = true;          // agents on their way swap claims when that shortens both ways' sum
   bool charging = true;      // false: drain only (no charging errands)
 };
 
@@ -73,9 +92,17 @@ class Battery {
   bool charging(int a) const { return a < static_cast<int>(claim_.size()) && claim_[a] >= 0; }
   // The claimed charger's cell (charging(a) only).
   planner::Vertex goal(int a) const { return chargers_[claim_[a]].cell; }
-  bool low(int a) const { return charge_[a] < options_.threshold * options_.capacity_wh; }
+  bool low(int a) const { return charge_[a] < options_.threshold * options_.capacity_wh || short_of_reserve(a); }
   // So low that a task in hand must wait (charging on): the agent charges first.
-  bool critical(int a) const { return options_.charging && charge_[a] < options_.critical * options_.capacity_wh; }
+  bool critical(int a) const
+  {
+    return options_.charging && (charge_[a] < options_.critical * options_.capacity_wh || short_of_reserve(a));
+  }
+  // Below the reserve at its cell of the last step() (reserve_margin > 0, charging on).
+  bool short_of_reserve(int a) const;
+  // The energy (Wh) of the shortest way from `v` to charger i (turns included, see above).
+  double way_wh(int i, planner::Vertex v) const { return way_wh_[i][v]; }
+  long long swaps() const { return swaps_; }  // claims swapped (rematch)
   // Low with charging on: it takes no task until it has charged.
   bool wants(int a) const { return options_.charging && low(a); }
   bool is_charger(planner::Vertex v) const { return charger_of_[v] >= 0; }
@@ -100,6 +127,8 @@ class Battery {
 
  private:
   int nearest_free(planner::Vertex from);  // a charger index, -1: none free
+  void plan_ways();                        // way_m_, way_wh_ (the reserve, rematch)
+  void rematch(const planner::Config& positions);
 
   const planner::Graph& g_;
   BatteryOptions options_;
@@ -109,6 +138,9 @@ class Battery {
   std::vector<uint8_t> reserved_;  // per vertex: a charger or its dead-end corridor
   std::vector<char> dead_end_;     // per charger
   std::vector<int> claimed_by_;  // per charger: agent, -1
+  std::vector<std::vector<double>> way_wh_;  // per charger, per vertex: energy of the way there (reserve)
+  std::vector<std::vector<double>> way_m_;   // per charger, per vertex: metres of the way there (rematch)
+  long long swaps_ = 0;
   std::vector<double> charge_;
   std::vector<int> claim_;       // per agent: charger index, -1
   std::vector<char> empty_;

@@ -29,6 +29,7 @@
 #include "tasks/free_flow.hpp"
 #include "tasks/lorr_files.hpp"
 #include "tasks/battery.hpp"
+#include "tasks/errand_stalls.hpp"
 #include "tasks/parking.hpp"
 #include "tasks/reachability.hpp"
 #include "tasks/station_queues.hpp"
@@ -64,6 +65,12 @@ class TaskManager {
   virtual std::vector<Upcoming> upcoming() const;
   // Distances the mode needs (the pool's assigner) come from `cache`, shared with the planner.
   virtual void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { share_queue_cache(std::move(cache)); }
+  // Errand times and stalls (errand_stalls.hpp) on `g`, the agents' graph: before start()
+  // (and before share_dist_cache, whose cache it then uses too).
+  void watch_stalls(const planner::Graph& g);
+  const ErrandStalls* stalls() const { return stalls_.get(); }
+  // stalls()->summary() at the last update.
+  ErrandStalls::Summary stall_summary() const { return stalls_ ? stalls_->summary(now_) : ErrandStalls::Summary{}; }
   // Agents that hold a task (and so have a real errand to reach).
   bool busy(int agent) const { return holding_[agent] >= 0; }
   // Busy and heading for its errand's cell (not waiting in a station's queue or parked).
@@ -153,6 +160,7 @@ class TaskManager {
 
   void share_queue_cache(std::shared_ptr<planner::DistCache> cache)
   {
+    if (stalls_) stalls_->share(cache);
     if (queues_) queues_->share_dist_cache(std::move(cache));
   }
 
@@ -165,6 +173,8 @@ class TaskManager {
   std::unique_ptr<FreeFlowBound> free_flow_;
   std::unique_ptr<Battery> battery_;
   std::unique_ptr<Reachability> reach_;  // set_open_graph; null: nothing closed
+  std::unique_ptr<ErrandStalls> stalls_;  // watch_stalls
+  void observe_stalls(const planner::Config& positions);
   bool rematch_ = false;                 // the open graph changed: match free agents again
   long reassigned_for_closure_ = 0, dropped_for_charge_ = 0;
   // Hands back the tasks of agents critically low or cut off by a closure; true if any.
