@@ -135,6 +135,7 @@ inline void expect_closure_kept(const Config& cfg, const Controller& c, const Me
   EXPECT_EQ(entries(c.plan(), closed, 0, 25), 0);
   const planner::Vertex goal0 = c.map().locate("c1r0_c1r1_0", 4);
   EXPECT_GE(first_at(c.plan(), 0, goal0), 25);
+  ASSERT_GT(c.plan().size(), 10u);
   EXPECT_FALSE(in(closed, c.plan()[10][1]));  // agv1 left the closed aisle
   EXPECT_EQ(m.rules.closure_changes, 1);      // reopened at 25 s
   EXPECT_EQ(m.rules.max_closed, 7);
