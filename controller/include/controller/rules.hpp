@@ -61,7 +61,8 @@
 // off wait, as for closed cells). A closure that ends and zones that empty restore the real
 // graph and goals, and so RT-LaCAM's completeness from there (rt_lacam.hpp; under adg with
 // the ADG's deadlock freedom, as after the last stuck replan). A zone that cuts the net into
-// pieces is refused: an AGV parked in it would cut every route between them.
+// pieces is refused: an AGV parked in it would cut every route between them. The rotation
+// solvers are complete on no graph (planner/rotation/rotation_dist.hpp), with rules or without.
 #include <memory>
 #include <string>
 #include <utility>

@@ -39,13 +39,18 @@ void RotationDist::set_guidance(Guidance gd)
   tables_.clear();
   guid_ = given_;
   if (costs_on_ && g_.weighted()) {
-    // A forward move costs its guidance cost times the move cost of the cell it enters.
+    // A forward move costs its guidance cost plus the extra time of the cell it enters,
+    // (move cost - 1) steps at the cheapest forward cost (a step's price in these units).
+    // Added, not multiplied: a guidance penalty against a lane's arrow is a preference, not
+    // time, and does not grow with the lane's slowness. (Without guidance both are the move
+    // cost; with arrows neither made pibt-rot faster on bench_lane_costs.py: README.)
+    const uint32_t step = given_.min_forward();
     guid_.forward.resize(static_cast<size_t>(g_.size()) * 4);
     for (Vertex v = 0; v < g_.size(); ++v)
       for (int o = 0; o < 4; ++o) {
         const size_t s = static_cast<size_t>(v) * 4 + static_cast<size_t>(o);
         const Vertex c = ahead_[s];
-        const uint32_t k = uint32_t{given_.forward_cost(v, o)} * static_cast<uint32_t>(c >= 0 ? g_.move_cost(c) : 1);
+        const uint32_t k = uint32_t{given_.forward_cost(v, o)} + (c >= 0 ? static_cast<uint32_t>(g_.move_cost(c)) - 1 : 0) * step;
         guid_.forward[s] = static_cast<uint16_t>(std::min<uint32_t>(k, Guidance::kMaxCost));
       }
   }

@@ -1,6 +1,6 @@
 // Move costs (Graph::set_move_costs: slow lanes) in the rotation planners: RotationDist
-// measures a forward move into a cell at its move cost times its guidance cost (turns keep
-// theirs), checked against a forward Dijkstra; and pibt-rot, epibt, wppl route round a slow
+// measures a forward move into a cell at its guidance cost plus the cell's extra steps
+// (turns keep theirs), checked against a forward Dijkstra; and pibt-rot, epibt, wppl route round a slow
 // shortcut when the detour is cheaper, and take it when the costs are off.
 #include <gtest/gtest.h>
 
@@ -26,8 +26,8 @@ using planner::Vertex;
 namespace {
 
 // Forward Dijkstra over (cell, heading) from (v, o) to any state on `goal`: F into the cell
-// ahead (along an arc) costs forward(cell, heading) x move_cost(cell ahead), a quarter turn
-// `turn`. kInf when the goal cannot be reached.
+// ahead (along an arc) costs forward(cell, heading) + (move_cost(cell ahead) - 1) x the
+// cheapest forward cost, a quarter turn `turn`. kInf when the goal cannot be reached.
 uint32_t brute(const Graph& g, const Guidance& gd, Vertex v, int o, Vertex goal)
 {
   using Item = std::pair<uint32_t, int>;
@@ -43,7 +43,8 @@ uint32_t brute(const Graph& g, const Guidance& gd, Vertex v, int o, Vertex goal)
     const int h = s % 4;
     if (u == goal) return k;
     const Vertex f = planner::cell_ahead(g, u, h);
-    const Item next[3] = {{f >= 0 ? k + gd.forward_cost(u, h) * static_cast<uint32_t>(g.move_cost(f)) : UINT32_MAX, f * 4 + h},
+    const uint32_t extra = f >= 0 ? static_cast<uint32_t>(g.move_cost(f) - 1) * gd.min_forward() : 0;
+    const Item next[3] = {{f >= 0 ? k + gd.forward_cost(u, h) + extra : UINT32_MAX, f * 4 + h},
                           {k + gd.turn, u * 4 + (h + 1) % 4},
                           {k + gd.turn, u * 4 + (h + 3) % 4}};
     for (const auto& [nk, n] : next)
@@ -67,7 +68,7 @@ Graph weighted_directed(uint64_t seed)
 }  // namespace
 
 // The tables equal a forward Dijkstra in the move costs, with and without arrow guidance
-// (whose forward costs multiply the move costs). Fails if RotationDist ignores the costs.
+// (whose forward costs the move costs' extra steps are added to). Fails if RotationDist ignores the costs.
 TEST(RotationCosts, DistEqualsDijkstraOnRandomWeightedDirectedGrids)
 {
   for (uint64_t seed = 0; seed < 4; ++seed) {
@@ -77,7 +78,7 @@ TEST(RotationCosts, DistEqualsDijkstraOnRandomWeightedDirectedGrids)
       RotationDist dist(g);
       Guidance gd;
       if (guided) {
-        gd = planner::arrow_guidance(g, 1, 3, 2);
+        gd = planner::arrow_guidance(g, 2, 5, 2);  // cheapest forward 2: a step's extra costs 2
         dist.set_guidance(gd);
       }
       long differs = 0;  // states whose costed distance differs from the uncosted one

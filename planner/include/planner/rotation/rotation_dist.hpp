@@ -40,8 +40,8 @@
 // plain BFS runs, as before.
 //
 // Move costs (Graph::set_move_costs: a slow lane's cells): a forward move into cell c costs
-// its guidance cost times move_cost(c), capped at Guidance::kMaxCost; turns keep their
-// cost. Folded once into the costs this class measures in (guidance(), forward_cost()), so
+// its guidance cost plus (move_cost(c) - 1) x the cheapest forward cost (the extra steps it
+// takes, priced as a step), capped at Guidance::kMaxCost; turns keep their cost. Folded once into the costs this class measures in (guidance(), forward_cost()), so
 // every reader -- pibt-rot's ranking, epibt's operation costs, traffic flow, wppl's tables --
 // sees a slow aisle as costlier and routes round it when the detour is cheaper. On a
 // weighted graph without guidance the tables are Dijkstra too. set_move_costs(false)

@@ -14,7 +14,7 @@
 //   load(u)     guide-path moves entering u (vertex load).
 // A forward move from v facing o into u then costs, for the robot planning now,
 //   kScale * forward_cost(v, o)                      (the guidance graph's cost, guidance.hpp,
-//                                                     times u's move cost: rotation_dist.hpp)
+//                                                     plus u's extra move cost: rotation_dist.hpp)
 //   + round(kScale * contraflow * flow(u, o + 2))    (robots planned to cross it the other way)
 //   + round(kScale * vertex * load(u))               (robots planned through u)
 // and a quarter turn kScale * turn_cost. These are the marginal increases of the paper's
