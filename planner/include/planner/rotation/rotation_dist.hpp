@@ -41,11 +41,12 @@
 //
 // Move costs (Graph::set_move_costs: a slow lane's cells): a forward move into cell c costs
 // its guidance cost plus (move_cost(c) - 1) x the cheapest forward cost (the extra steps it
-// takes, priced as a step), capped at Guidance::kMaxCost; turns keep their cost. Folded once into the costs this class measures in (guidance(), forward_cost()), so
-// every reader -- pibt-rot's ranking, epibt's operation costs, traffic flow, wppl's tables --
-// sees a slow aisle as costlier and routes round it when the detour is cheaper. On a
-// weighted graph without guidance the tables are Dijkstra too. set_move_costs(false)
-// switches the fold off (the distances of the uniform graph, as before costs existed).
+// takes, priced as a step), capped at Guidance::kMaxCost; turns keep their cost. Folded
+// once into the costs this class measures in (guidance(), forward_cost()), so every reader
+// -- pibt-rot's ranking, epibt's operation costs, traffic flow, wppl's tables -- sees a
+// slow aisle as costlier and routes round it when the detour is cheaper. On a weighted
+// graph without guidance the tables are Dijkstra too. set_move_costs(false) switches the
+// fold off (the distances of the uniform graph, as before costs existed).
 //
 // Deadline (as DistCache's; set_deadline, none by default): past it a query for a state
 // its table has not settled does not grow the table but answers a lower bound, max(the
@@ -83,7 +84,7 @@ class RotationDist {
   Vertex behind(Vertex v, int o) const { return behind_[static_cast<size_t>(v) * 4 + static_cast<size_t>(o)]; }
 
   // Drops every table (the holders' Table pointers dangle: take them anew) and measures
-  // distances in `gd`'s costs (times the graph's move costs, above) from now on (uniform:
+  // distances in `gd`'s costs (plus the graph's move costs, above) from now on (uniform:
   // steps, by BFS). gd.forward must be empty or 4 per cell (std::invalid_argument otherwise).
   void set_guidance(Guidance gd);
   // Whether forward moves cost the graph's move costs (default true; false: as if all 1).
