@@ -17,6 +17,9 @@ re-syncs, no error: the script says so).
 
   scripts/bench_lane_costs.py [--build build] [--config config/small_warehouse_lifelong.yaml]
       [--slow c1r0_c1r1=0.25,c2r0_c2r1=0.5] [--ticks 1000] [--expansions 50] [--agvs 16] [--executor lockstep]
+      [--solver pibt-rot]
+--solver: every run with this planner.solver (default: the config's); the rotation solvers read
+the lane costs in their (cell, heading) tables (planner/rotation/rotation_dist.hpp).
 With --executor adg | adg-follow the config's vType drives; lane speeds are then the Driver's
 speed cap (off: it ignores the lanes' limits, the reference row).
 A --slow entry names an edge; it and its reverse edge (B_A for A_B) get the speed.
@@ -58,7 +61,7 @@ def slow_net(src, dst, slow):
     open(dst, "w").write(text)
 
 
-def run(build, base, net, out, ticks, expansions, agvs, costs, speeds, executor):
+def run(build, base, net, out, ticks, expansions, agvs, costs, speeds, executor, solver):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
     cfg["sumo"]["additional"] = os.path.normpath(os.path.join(here, cfg["sumo"]["additional"]))
@@ -67,6 +70,8 @@ def run(build, base, net, out, ticks, expansions, agvs, costs, speeds, executor)
     cfg["planner"]["budget_ms"] = 0
     cfg["planner"]["expansions"] = expansions
     cfg["planner"]["lane_costs"] = costs
+    if solver:
+        cfg["planner"]["solver"] = solver
     cfg["fleet"]["count"] = agvs
     cfg["run"]["max_ticks"] = ticks
     cfg["run"]["progress_s"] = 0
@@ -91,6 +96,7 @@ def main():
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--agvs", type=int, default=16)
     ap.add_argument("--executor", default="lockstep", help="lockstep | adg | adg-follow (the Driver caps speeds)")
+    ap.add_argument("--solver", help="planner.solver (default: the config's)")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
     slow = {e: float(v) for e, v in (kv.split("=") for kv in a.slow.split(","))}
@@ -99,13 +105,14 @@ def main():
     src = os.path.normpath(os.path.join(os.path.dirname(os.path.join(ROOT, a.config)), cfg["sumo"]["net"]))
     net = os.path.join(tmp, "slow.net.xml")
     slow_net(src, net, slow)
-    print(f"# {a.config}, slowed {a.slow}, {a.agvs} AGVs, {a.ticks} ticks, {a.executor}, {a.expansions} expansions per SUMO step")
+    print(f"# {a.config}, slowed {a.slow}, {a.agvs} AGVs, {a.ticks} ticks, {a.executor}, solver {a.solver or cfg['planner']['solver']}, "
+          f"{a.expansions} expansions per SUMO step")
     print("| lane speeds | lane costs | errands/tick | vs costs off | lane ticks | costly cells | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|")
     clean, base = True, None
     for speeds, costs in ((True, False), (True, True), (False, False)):
         label = f"{'on' if speeds else 'off'}_{'on' if costs else 'off'}"
-        m = run(build, a.config, net, os.path.join(tmp, label), a.ticks, a.expansions, a.agvs, costs, speeds, a.executor)
+        m = run(build, a.config, net, os.path.join(tmp, label), a.ticks, a.expansions, a.agvs, costs, speeds, a.executor, a.solver)
         rate = m["lifelong"]["errandThroughput"]
         base = rate if base is None else base
         ls = m.get("lane_speeds", {})

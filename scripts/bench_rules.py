@@ -19,10 +19,14 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
                          [--skip-large] [--skip-one-way] [--skip-small] [--queues]
                          [--station-closure] [--executor lockstep|adg|adg-follow]
+                         [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
 AGV waits), against no closure; prints the tasks handed back.
+--solver: every run with this planner.solver (default: the config's, rtlacam); a rotation
+solver (pibt-rot, epibt, wppl) gets the controller's rotation defaults (guidance arrows for
+pibt-rot and epibt) and restarts on the rules' graph from the AGVs' cells and headings.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
@@ -53,6 +57,7 @@ WAREHOUSES = [
 
 QUEUES = False
 EXECUTOR = None  # --executor: every run under it (None: the config's)
+SOLVER = None  # --solver: every run with it (None: the config's)
 
 
 def k_cols(m):
@@ -79,6 +84,8 @@ def run(build, base, out, ticks, expansions, rules):
     cfg["run"]["progress_s"] = 0
     if EXECUTOR:
         cfg["run"]["executor"] = EXECUTOR
+    if SOLVER:
+        cfg["planner"]["solver"] = SOLVER
     cfg["output"] = {"dir": out, "congestion": False}
     cfg["rules"] = rules
     if QUEUES:
@@ -137,9 +144,13 @@ def main():
     ap.add_argument("--queues", action="store_true")
     ap.add_argument("--station-closure", action="store_true")
     ap.add_argument("--executor", choices=["lockstep", "adg", "adg-follow"])
+    ap.add_argument("--solver")
     a = ap.parse_args()
-    global QUEUES, EXECUTOR
-    QUEUES, EXECUTOR = a.queues, a.executor
+    global QUEUES, EXECUTOR, SOLVER
+    QUEUES, EXECUTOR, SOLVER = a.queues, a.executor, a.solver
+    dflt = "the config's"
+    print(f"# solver: {SOLVER or dflt}, executor: {EXECUTOR or dflt}, expansions per step: {a.expansions}"
+          + (", queues" if QUEUES else ""), flush=True)
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
     clean = True

@@ -125,18 +125,11 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
       zones.push_back(std::move(z));
     }
   }
-  const bool rotation = cfg.planner.rotation_solver();
-  if (cfg.rules.watch_lanes == 1 && rotation)
-    fail("rules.watch_lanes", "needs a cell solver (rtlacam | naive | pibt | cspibt), not " + cfg.planner.solver);
   // By default (-1) lockstep runs on libsumo watch; adg runs only when asked (a poll of every
-  // lane per tick is not free on a large net).
-  const bool watch = !rotation && (cfg.rules.watch_lanes == 1 || (cfg.rules.watch_lanes < 0 &&
-                                                                   cfg.run.backend == "libsumo" && cfg.run.executor == "lockstep"));
-  if (!closures.empty() || !zones.empty()) {
-    if (cfg.planner.rotation_solver())
-      fail("rules", "closures and one-at-a-time zones need a cell solver (rtlacam | naive | pibt | cspibt): " +
-                        cfg.planner.solver + " is not restarted on the rules' graph when it changes (not built yet)");
-  }
+  // lane per tick is not free on a large net). Every solver: a rotation solver restarts on
+  // the rules' graph from the AGVs' cells and headings (Run::rules_restart, Run::replan).
+  const bool watch = cfg.rules.watch_lanes == 1 ||
+                     (cfg.rules.watch_lanes < 0 && cfg.run.backend == "libsumo" && cfg.run.executor == "lockstep");
 
   // Zones: cells, not a cut, not two one-shot goals.
   const planner::Graph& g = map.graph;

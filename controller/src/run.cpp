@@ -219,8 +219,13 @@ void Run::rules_restart(const planner::Config& at)
   planner::GoalTest test;
   if (tm_) test = tasks::lifelong_goal_test(*tm_, at);
   if (p_) replan_expansions_ += p_->expansions();
+  // Rotation solvers: the headings its executed actions left each AGV with. The old
+  // planner's are those at its current configuration, which is `at` or differs from it only
+  // by forward moves admit() held (a held F keeps its heading).
+  std::vector<int> headings;
+  if (p_ && p_->rotation()) headings = p_->rotation()->headings();
   // The old planner goes first (it still refers to the old graph), then the old graph.
-  p_ = make_planner(cfg_.planner, *g, at, eff, pref_.get(), test, {});
+  p_ = make_planner(cfg_.planner, *g, at, eff, pref_.get(), test, headings);
   rules_graph_ = std::move(g);
   cap_dist_tables();
   p_->search(plan_budget());

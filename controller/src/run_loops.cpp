@@ -44,7 +44,10 @@ void Run::loop_lockstep()
 
     auto t0 = Clock::now();
     if (next.empty()) {
-      if (rules_) rules_tick(cur);  // closures that began or ended: a planner on the new graph
+      if (rules_) {
+        rules_tick(cur);  // closures that began or ended: a planner on the new graph
+        rot = p_->rotation();
+      }
       const double c0 = planner::thread_cpu_ms();
       next = p_->next();
       if (rot) {
@@ -61,7 +64,10 @@ void Run::loop_lockstep()
         // fills or empties restarts the planner at what is executed.
         const int held = rules_->admit(cur, next);
         m_.rules.zone_holds += held;
-        if (held > 0 || rules_->blocked_zones(next) != zone_occ_) rules_restart(next);
+        if (held > 0 || rules_->blocked_zones(next) != zone_occ_) {
+          rules_restart(next);
+          rot = p_->rotation();
+        }
       }
     }
     bool held = false;
@@ -170,6 +176,7 @@ void Run::loop_adg()
       const auto t0 = Clock::now();
       const double c0 = planner::thread_cpu_ms();
       rules_tick_adg(adg, drv);
+      rot = p_->rotation();  // a replan built a new planner
       plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
       plan_in_tick_ += ms_since(t0);
     }

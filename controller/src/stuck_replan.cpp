@@ -170,8 +170,16 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
         rules_->graph(zone_occ_, cfg_.rules.enforce_closures, rules_->frozen_cells(from, lanes)));
     const planner::Config eff = rule_goals(*rg, from);
     replan_expansions_ += p_->expansions();
+    // Rotation solvers: each AGV's heading where its moves in progress end -- that of its
+    // last running move, else the one the Driver has turned it to (a turn under way
+    // finishes there) -- not the planner's, which ran ahead of the cut.
+    std::vector<int> headings;
+    if (p_->rotation())
+      for (int i = 0; i < n; ++i)
+        headings.push_back(mid[i].empty() ? cmd_->heading(i)
+                                          : cmd_->move_heading(adg.action(mid[i].back()).from, adg.action(mid[i].back()).to));
     // The old planner goes first (it still refers to the old graph), then the old graph.
-    p_ = make_planner(cfg_.planner, *rg, from, eff, pref_.get(), std::move(test), {});
+    p_ = make_planner(cfg_.planner, *rg, from, eff, pref_.get(), std::move(test), headings);
     rules_graph_ = std::move(rg);
     cap_dist_tables();
     if (std::find(immobile.begin(), immobile.end(), 1) != immobile.end()) p_->set_immobile(immobile);

@@ -147,6 +147,32 @@ TEST(LaneCosts, AgvsRouteViaTheFastAislesWithCostsAndTheSlowShorterOneWithout)
   EXPECT_GT(mb.ticks, ma.ticks);
 }
 
+// The same with pibt-rot: its rotation distances count a forward move into a slow cell at
+// the cell's cost (planner/rotation/rotation_dist.hpp). Guidance off, so that only the costs
+// decide. 8 moves straight up c1 at 4 ticks each, or round at a cell per tick plus turns.
+TEST(LaneCosts, PibtRotRoutesViaTheFastAislesWithCostsAndTheSlowShorterOneWithout)
+{
+  auto rotation = [](Config c) {
+    c.planner.solver = "pibt-rot";
+    c.planner.rotation.guidance = "none";
+    return c;
+  };
+  Config on = rotation(slow_aisle_config("rot_costs_on"));
+  Controller a(on);
+  const Metrics ma = run_clean(on, a);
+  EXPECT_FALSE(used_slow_aisle(a)) << "with lane costs pibt-rot took the slow aisle";
+  EXPECT_EQ(ma.lane_ticks, 0);
+  EXPECT_GT(ma.commands.quarter_turns, 0);  // round: it turned on its way
+
+  Config off = rotation(slow_aisle_config("rot_costs_off"));
+  off.planner.lane_costs = false;
+  Controller b(off);
+  const Metrics mb = run_clean(off, b);
+  EXPECT_TRUE(used_slow_aisle(b)) << "without lane costs pibt-rot went round (the test shows nothing)";
+  EXPECT_GT(mb.lane_ticks, 0);
+  EXPECT_GT(mb.ticks, ma.ticks);  // the slow aisle is the slower way
+}
+
 // Lockstep keeps to the slow lane's speed (fcd: SUMO's own speeds, every step); without
 // run.lane_speeds the AGV drives a cell per tick (1 m/s) on it.
 TEST(LaneSpeeds, LockstepNeverExceedsASlowLanesSpeed)

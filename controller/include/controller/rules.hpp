@@ -32,6 +32,11 @@
 //     boundary: one driving into a cell as it closes gets there, then leaves like one that
 //     stood on it; RuleCheck excuses that entry), and the planner on the new graph starts
 //     where they end, the stuck AGVs still immobile;
+//   - rotation solvers (pibt-rot, epibt, wppl) restart the same way, each AGV also at its
+//     heading: lockstep, the heading its executed actions left it with (a forward move held
+//     by admit() keeps it); adg / adg-follow, the heading of its last move in progress, or
+//     the one the Driver turned it to (Commander::heading) if none -- so no AGV's heading
+//     flips or jumps at a restart, and the Driver turns it only where its next move needs;
 //   - an AGV whose goal it cannot reach on that graph (its goal closed or cut off, or in an
 //     occupied zone) waits: its planner goal becomes the nearest reachable cell that is
 //     open, outside every zone and nobody's goal (goals()); one line names it when a
@@ -56,7 +61,8 @@
 // off wait, as for closed cells). A closure that ends and zones that empty restore the real
 // graph and goals, and so RT-LaCAM's completeness from there (rt_lacam.hpp; under adg with
 // the ADG's deadlock freedom, as after the last stuck replan). A zone that cuts the net into
-// pieces is refused: an AGV parked in it would cut every route between them.
+// pieces is refused: an AGV parked in it would cut every route between them. The rotation
+// solvers are complete on no graph (planner/rotation/rotation_dist.hpp), with rules or without.
 #include <memory>
 #include <string>
 #include <utility>
@@ -88,8 +94,7 @@ class Rules {
   // From the config and sumo.additional; nullptr when there is nothing to keep (no closure,
   // no zone, no lanes to watch). Bad input throws ConfigError (one line naming the object):
   // an unknown lane or edge, end < begin, a zone with no cells or one that cuts the net, two
-  // one-shot goals in one zone, rules with a solver that cannot keep them (rotation), the
-  // lane watch with a rotation solver.
+  // one-shot goals in one zone.
   // `goals`: one-shot goals (empty for lifelong), checked against every closure: one whose
   // cells close or cut off a goal is reported in `warnings` (the AGV will wait).
   // `starts`: no zone may hold two of them either.

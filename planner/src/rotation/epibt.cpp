@@ -18,6 +18,9 @@ Epibt::Epibt(const Graph& g, const Config& starts, const Config& goals, Options 
     if (seen[starts[i]]) throw std::invalid_argument("agent " + std::to_string(i) + " starts on another agent's cell");
     seen[starts[i]] = 1;
   }
+  // Move costs alone (slow lanes, rotation_dist.hpp) make the costs non-uniform too.
+  guided_ = !dist_.guidance().uniform();
+  wait_cost_ = std::min<uint32_t>(dist_.turn_cost(), dist_.guidance().min_forward());
   goal_table_.assign(n, nullptr);
   age_.assign(n, 0.0);
   key_.assign(n, 0.0);

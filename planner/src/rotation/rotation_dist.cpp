@@ -21,6 +21,7 @@ RotationDist::RotationDist(const Graph& g, size_t max_tables) : g_(g), max_table
       ahead_[static_cast<size_t>(v) * 4 + o] = cell_ahead(g, v, o);
       behind_[static_cast<size_t>(v) * 4 + o] = cell_behind(g, v, o);
     }
+  if (g.weighted()) set_guidance(Guidance{});  // the move costs alone
 }
 
 void RotationDist::set_guidance(Guidance gd)
@@ -30,14 +31,37 @@ void RotationDist::set_guidance(Guidance gd)
                                 std::to_string(g_.size()) + " cells (4 per cell expected)");
   if (gd.turn < 1 || gd.max_cost() > Guidance::kMaxCost || gd.min_forward() < 1)
     throw std::invalid_argument("guidance: costs must be in 1.." + std::to_string(Guidance::kMaxCost));
+  given_ = std::move(gd);
   for (Table* t : late_) t->late = false;
   late_.clear();
   wanted_.clear();
   wanted_head_ = 0;
   tables_.clear();
-  guid_ = std::move(gd);
+  guid_ = given_;
+  if (costs_on_ && g_.weighted()) {
+    // A forward move costs its guidance cost plus the extra time of the cell it enters,
+    // (move cost - 1) steps at the cheapest forward cost (a step's price in these units).
+    // Added, not multiplied: a guidance penalty against a lane's arrow is a preference, not
+    // time, and does not grow with the lane's slowness. (Without guidance both are the move
+    // cost; with arrows neither made pibt-rot faster on bench_lane_costs.py: README.)
+    const uint32_t step = given_.min_forward();
+    guid_.forward.resize(static_cast<size_t>(g_.size()) * 4);
+    for (Vertex v = 0; v < g_.size(); ++v)
+      for (int o = 0; o < 4; ++o) {
+        const size_t s = static_cast<size_t>(v) * 4 + static_cast<size_t>(o);
+        const Vertex c = ahead_[s];
+        const uint32_t k = uint32_t{given_.forward_cost(v, o)} + (c >= 0 ? static_cast<uint32_t>(g_.move_cost(c)) - 1 : 0) * step;
+        guid_.forward[s] = static_cast<uint16_t>(std::min<uint32_t>(k, Guidance::kMaxCost));
+      }
+  }
   weighted_ = !guid_.uniform();
   min_forward_ = guid_.min_forward();
+}
+
+void RotationDist::set_move_costs(bool on)
+{
+  costs_on_ = on;
+  set_guidance(given_);
 }
 
 RotationDist::Table* RotationDist::table(Vertex goal)

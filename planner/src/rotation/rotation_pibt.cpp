@@ -20,6 +20,7 @@ RotationPibt::RotationPibt(const Graph& g, const Config& starts, const Config& g
     if (occ_now_[starts[i]] >= 0) throw std::invalid_argument("agents " + std::to_string(occ_now_[starts[i]]) + " and " + std::to_string(i) + " start on one cell");
     occ_now_[starts[i]] = static_cast<int32_t>(i);
   }
+  wait_cost_ = std::min<uint32_t>(dist_.turn_cost(), dist_.guidance().min_forward());  // move costs alone: rotation_dist.hpp
   goal_table_.assign(n, nullptr);
   prio_.assign(n, 0.0);
   set_goals(goals, std::move(test));

@@ -39,6 +39,15 @@
 // once the queue's level reached it (Table::settled). Without guidance (uniform costs) the
 // plain BFS runs, as before.
 //
+// Move costs (Graph::set_move_costs: a slow lane's cells): a forward move into cell c costs
+// its guidance cost plus (move_cost(c) - 1) x the cheapest forward cost (the extra steps it
+// takes, priced as a step), capped at Guidance::kMaxCost; turns keep their cost. Folded
+// once into the costs this class measures in (guidance(), forward_cost()), so every reader
+// -- pibt-rot's ranking, epibt's operation costs, traffic flow, wppl's tables -- sees a
+// slow aisle as costlier and routes round it when the detour is cheaper. On a weighted
+// graph without guidance the tables are Dijkstra too. set_move_costs(false) switches the
+// fold off (the distances of the uniform graph, as before costs existed).
+//
 // Deadline (as DistCache's; set_deadline, none by default): past it a query for a state
 // its table has not settled does not grow the table but answers a lower bound, max(the
 // search's level + 1, Manhattan distance x the cheapest forward cost + the fewest quarter
@@ -75,9 +84,14 @@ class RotationDist {
   Vertex behind(Vertex v, int o) const { return behind_[static_cast<size_t>(v) * 4 + static_cast<size_t>(o)]; }
 
   // Drops every table (the holders' Table pointers dangle: take them anew) and measures
-  // distances in `gd`'s costs from now on (uniform: steps, by BFS). gd.forward must be
-  // empty or 4 per cell (std::invalid_argument otherwise).
+  // distances in `gd`'s costs (plus the graph's move costs, above) from now on (uniform:
+  // steps, by BFS). gd.forward must be empty or 4 per cell (std::invalid_argument otherwise).
   void set_guidance(Guidance gd);
+  // Whether forward moves cost the graph's move costs (default true; false: as if all 1).
+  // Drops every table, as set_guidance().
+  void set_move_costs(bool on);
+  bool move_costs() const { return costs_on_; }
+  // The costs distances are measured in: the guidance with the move costs folded in.
   const Guidance& guidance() const { return guid_; }
   bool weighted() const { return weighted_; }
   uint16_t forward_cost(Vertex v, int o) const { return guid_.forward_cost(v, o); }
@@ -143,7 +157,9 @@ class RotationDist {
   uint64_t tick_ = 0;
   std::vector<Vertex> ahead_;   // v * 4 + o -> neighbour or -1
   std::vector<Vertex> behind_;  // v * 4 + o -> the cell a forward move facing o enters v from, or -1
-  Guidance guid_;
+  Guidance given_;  // set_guidance()'s, before the move costs
+  Guidance guid_;   // given_ with the move costs folded in: what the tables measure
+  bool costs_on_ = true;
   bool weighted_ = false;
   uint16_t min_forward_ = 1;
   std::unordered_map<Vertex, std::unique_ptr<Table>> tables_;

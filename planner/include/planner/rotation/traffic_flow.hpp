@@ -13,7 +13,8 @@
 //   flow(v, o)  robots whose guide path moves forward from v facing o (a directed edge);
 //   load(u)     guide-path moves entering u (vertex load).
 // A forward move from v facing o into u then costs, for the robot planning now,
-//   kScale * forward_cost(v, o)                      (the guidance graph's cost, guidance.hpp)
+//   kScale * forward_cost(v, o)                      (the guidance graph's cost, guidance.hpp,
+//                                                     plus u's extra move cost: rotation_dist.hpp)
 //   + round(kScale * contraflow * flow(u, o + 2))    (robots planned to cross it the other way)
 //   + round(kScale * vertex * load(u))               (robots planned through u)
 // and a quarter turn kScale * turn_cost. These are the marginal increases of the paper's
