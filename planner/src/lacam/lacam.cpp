@@ -20,9 +20,10 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood, opt.objective), scatter_(g, dist), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood, opt.objective), scatter_(g, dist), lg_(g, dist), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
+  lg_.set_window(opt.lg_window);
   lns_wanted_ = opt.lns;
 }
 
@@ -72,6 +73,7 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   spliced_.clear();
   scratch_.assign(n_, -1);
   pibt_.set_scatter(nullptr);
+  pibt_.set_local_guidance(opt_.lg_window > 0 && opt_.lg_first ? &lg_ : nullptr);
   scatter_.clear();
   scatter_started_ = first_dive_done_ = false;
   scatter_root_ = nullptr;

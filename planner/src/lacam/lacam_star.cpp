@@ -56,6 +56,7 @@ void Lacam::start_refining()
 {
   refining_ = preparing_ = true;
   prepare_next_ = 0;
+  pibt_.set_local_guidance(opt_.lg_window > 0 && opt_.lg_refine ? &lg_ : nullptr);
   if (!timed_) prepare_step();  // no deadline: at once, in this expansion (deterministic runs)
 }
 

@@ -72,6 +72,7 @@
 #include "planner/lacam/explored_table.hpp"
 #include "planner/lacam/hnode.hpp"
 #include "planner/lacam/lns_refiner.hpp"
+#include "planner/lacam/local_guidance.hpp"
 #include "planner/lacam/objective.hpp"
 #include "planner/lacam/pibt.hpp"
 #include "planner/rng.hpp"
@@ -148,6 +149,15 @@ struct LacamOptions {
   int mc_rollouts = 1;
   bool mc_first = true;   // in the search for the first solution (lacam3: on)
   bool mc_refine = true;  // in refinement's LaCAM* expansions (lacam3: on)
+  // Local guidance (LG-LaCAM, Arita & Okumura AAAI-26; local_guidance.hpp): before PIBT
+  // makes a successor, every agent gets a space-time path over this many steps around the
+  // higher-priority agents' paths, and PIBT tries its first step first. 0 = off (LaCAM's
+  // PIBT). Its work is part of the generation, so it pauses and resumes with it before the
+  // first solution, and refinement's expansions (learnt whole, step_cost.hpp) start only
+  // when they fit, as with Monte-Carlo rollouts.
+  int lg_window = 0;
+  bool lg_first = true;   // in the search for the first solution (changes LaCAM's tree)
+  bool lg_refine = true;  // in refinement's LaCAM* expansions and dives
 };
 
 class Lacam {
@@ -316,6 +326,7 @@ class Lacam {
   bool refining_ = false, refine_capped_ = false;
   LnsRefiner lns_;
   Scatter scatter_;
+  LocalGuidance lg_;
   bool scatter_started_ = false, first_dive_done_ = false;
   HNode* scatter_root_ = nullptr;  // the node whose configuration SUO started from
   int passes_dived_ = 0;           // SUO passes already followed by a dive
