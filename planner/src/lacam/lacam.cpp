@@ -357,7 +357,11 @@ Status Lacam::search(const Budget& b, bool until_solved)
       const double dc = c - cpu_last;
       cpu_last = c;
       if (last_step_ == Step::partial) gen_cpu_ms_ += dc;  // the expansion's cost is learnt whole
-      if (last_step_ == Step::expansion) expand_cost_.record(1, dc + gen_cpu_ms_), gen_cpu_ms_ = 0;
+      // A guided expansion of the first search is learnt apart (lg_cost_): refinement's
+      // unguided ones are cheaper, and expand_cost_ gates every refinement step.
+      if (last_step_ == Step::expansion)
+        (!refining_ && pibt_.local_guidance() ? lg_cost_ : expand_cost_).record(1, dc + gen_cpu_ms_), gen_cpu_ms_ = 0;
+      else if (last_step_ == Step::lg_expansion) lg_cost_.record(1, dc);
       else if (last_step_ == Step::lns) lns_cost_.record(last_units_, dc);
       max_unit_ms_ = std::max(max_unit_ms_, dc / static_cast<double>(std::max<uint64_t>(units_, 1)));
     }

@@ -56,7 +56,7 @@ void Lacam::start_refining()
 {
   refining_ = preparing_ = true;
   prepare_next_ = 0;
-  pibt_.set_local_guidance(opt_.lg_window > 0 && opt_.lg_refine ? &lg_ : nullptr);
+  pibt_.set_local_guidance(nullptr);  // refine_expand() guides its expansions one by one
   if (!timed_) prepare_step();  // no deadline: at once, in this expansion (deterministic runs)
 }
 
@@ -199,7 +199,16 @@ Status Lacam::refine_expand()
   }
   grow_lowlevel(H, L);
   last_step_ = Step::expansion;
-  if (!generate_best(H, L)) return status_;
+  if (opt_.lg_window > 0 && opt_.lg_refine) {  // guided when it fits (lg_cost_), unguided else
+    lg_cost_.set_prior(2 * expand_cost_.rate());
+    const bool lg = !timed_ || fits(lg_cost_.predict_ms(1));
+    if (!lg) lg_cost_.forget();
+    if (lg) last_step_ = Step::lg_expansion;
+    pibt_.set_local_guidance(lg ? &lg_ : nullptr);
+  }
+  const bool made = generate_best(H, L);
+  pibt_.set_local_guidance(nullptr);
+  if (!made) return status_;
   const uint64_t hash = config_hash(scratch_.data(), n_);
   if (HNode* known = explored_.find(scratch_.data(), hash)) {
     link(H, known);

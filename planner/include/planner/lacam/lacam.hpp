@@ -157,7 +157,9 @@ struct LacamOptions {
   // when they fit, as with Monte-Carlo rollouts.
   int lg_window = 0;
   bool lg_first = true;   // in the search for the first solution (changes LaCAM's tree)
-  bool lg_refine = true;  // in refinement's LaCAM* expansions and dives
+  // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
+  // apart) fits the iteration, else unguided. Dives and LNS are never guided.
+  bool lg_refine = true;
 };
 
 class Lacam {
@@ -345,11 +347,15 @@ class Lacam {
   Clock::time_point deadline_ = Clock::time_point::max();
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
-  enum class Step { expansion, lns, guide, prepare, insert, price, partial, none };
+  enum class Step { expansion, lg_expansion, lns, guide, prepare, insert, price, partial, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
   StepCost insert_cost_;          // one node of an improved LNS window
+  // A refinement expansion with local guidance (lg_refine): learnt apart from expand_cost_,
+  // which gates every refinement step, so that a guided expansion that does not fit makes
+  // that expansion unguided instead of keeping LNS and the rest out of the iteration.
+  StepCost lg_cost_;
   // Objective::soc: the followed path; the goal's g drops counted (a new tree path to
   // price) and the count last priced; an LNS window being inserted: its start, its nodes,
   // and the agents it replanned (spliced into best_ when inserted).
