@@ -77,6 +77,13 @@ int main(int argc, char** argv)
                  "(local_guidance.hpp); 0 = off")
       ->check(CLI::Range(0, 64))
       ->capture_default_str();
+  int lg_weight = LacamOptions{}.lg_collision_weight;
+  app.add_option("--lg-collision-weight", lg_weight,
+                 "local guidance: 0 = collisions first, then cost; K = a collision costs K steps")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  bool lg_rest = LacamOptions{}.lg_rest;
+  app.add_flag("--lg-rest,!--no-lg-rest", lg_rest, "local guidance: an agent on its goal is guided to stay");
   bool lg_first = LacamOptions{}.lg_first;
   app.add_flag("--lg-first,!--no-lg-first", lg_first, "local guidance in the search for the first solution");
   bool lg_refine = LacamOptions{}.lg_refine;
@@ -166,6 +173,8 @@ int main(int argc, char** argv)
     lopt.mc_refine = mc_refine;
     lopt.lg_window = lg_window;
     lopt.lg_first = lg_first;
+    lopt.lg_rest = lg_rest;
+    lopt.lg_collision_weight = lg_weight;
     lopt.lg_refine = lg_refine;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
@@ -241,6 +250,8 @@ int main(int argc, char** argv)
     j["mc_refine"] = mc_refine;
     j["local_guidance"] = lg_window;
     j["lg_first"] = lg_first;
+    j["lg_rest"] = lg_rest;
+    j["lg_collision_weight"] = lg_weight;
     j["lg_refine"] = lg_refine;
     j["swap"] = !no_swap;
     j["refine"] = refine;

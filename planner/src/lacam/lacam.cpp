@@ -24,6 +24,8 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
 {
   pibt_.set_preference(pref);
   lg_.set_window(opt.lg_window);
+  lg_.set_collision_weight(opt.lg_collision_weight);
+  lg_.set_rest_on_goal(opt.lg_rest);
   lns_wanted_ = opt.lns;
 }
 

@@ -40,11 +40,27 @@ void LocalGuidance::plan(int32_t i)
 {
   if (++call_ == 0) std::fill(closed_.begin(), closed_.end(), 0), call_ = 1;
   const Vertex goal = goals_[i];
+  if (rest_ && from_[i] == goal) {  // resting on its goal: it stays (PIBT moves it if pushed)
+    Vertex* p = paths_.data() + static_cast<size_t>(i) * (w_ + 1);
+    std::fill(p, p + w_ + 1, goal);
+    for (int t = 1; t <= w_; ++t) {
+      uint16_t& c = cnt_[at(t, goal)];
+      if (c < UINT16_MAX) ++c;
+      who_[at(t, goal)] = i;
+    }
+    stamp_of_[i] = round_;
+    planned_list_.push_back(i);
+    return;
+  }
   // Key: collisions, then f = g + h, then deeper first (ties end sooner).
   auto key = [&](const Node& x) {
     const uint64_t c = std::min<uint64_t>(static_cast<uint64_t>(x.coll), (uint64_t{1} << 20) - 1);
     const uint64_t f = std::min<uint64_t>(static_cast<uint64_t>(x.g) + static_cast<uint64_t>(d_.get(i, x.v)),
                                           (uint64_t{1} << 28) - 1);
+    if (weight_ > 0) {  // one sum: a collision is worth weight_ steps (ties: fewer collisions)
+      const uint64_t s = std::min<uint64_t>(f + static_cast<uint64_t>(weight_) * c, (uint64_t{1} << 28) - 1);
+      return (s << 36) | (std::min<uint64_t>(c, (uint64_t{1} << 20) - 1) << 16) | static_cast<uint64_t>(0xFFFF - x.t);
+    }
     return (c << 44) | (f << 16) | static_cast<uint64_t>(0xFFFF - x.t);
   };
   auto cmp = std::greater<std::pair<uint64_t, int32_t>>();

@@ -155,3 +155,53 @@ TEST(LocalGuidance, LacamsFirstSolutionIsCheaperWithGuidance)
   }
   EXPECT_LT(static_cast<double>(on), 0.95 * static_cast<double>(off)) << "off " << off << ", on " << on;
 }
+
+// lg_collision_weight: head-on in a one-wide corridor, agent 1 (planned second) can avoid
+// agent 0's path only by keeping ahead of it, away from its goal (cost 6 in a window of 3,
+// against 1 for the direct way with one collision). Collisions first: it runs; with a
+// collision worth 2 steps: it takes the direct way and leaves the conflict to PIBT.
+TEST(LocalGuidance, ACollisionWeightBoundsTheDetourTakenToAvoidOne)
+{
+  const Graph g = test::grid({"......."});
+  const Config from{0, 2}, goals{6, 1};
+  DistTable d(g);
+  d.set_goals(goals);
+  for (int k : {0, 2}) {
+    LocalGuidance lg(g, d);
+    lg.set_window(3);
+    lg.set_collision_weight(k);
+    lg.begin(from.data(), 2, goals.data());
+    lg.plan(0);
+    lg.plan(1);
+    expect_legal(g, lg, from);
+    if (k == 0) {
+      EXPECT_EQ(collisions(lg, 0, 1), 0);
+      EXPECT_NE(lg.next(1), 1) << "collisions first: it keeps ahead of agent 0";
+      EXPECT_GT(lg.path(1)[3], 3);
+    } else {
+      EXPECT_EQ(lg.next(1), 1) << "a collision worth 2 steps: the direct way";
+    }
+  }
+}
+
+// lg_rest: an agent resting on its goal across a higher-priority agent's way steps aside in
+// its guidance (collisions first) unless told to rest; resting, it stays the whole window.
+TEST(LocalGuidance, AnAgentOnItsGoalStaysWhenToldToRest)
+{
+  const Graph g = test::grid({".....", ".....", "....."});
+  const Config from{5, 7}, goals{9, 7};  // agent 0 along the middle row through agent 1's goal
+  DistTable d(g);
+  d.set_goals(goals);
+  for (bool rest : {false, true}) {
+    LocalGuidance lg(g, d);
+    lg.set_window(4);
+    lg.set_rest_on_goal(rest);
+    lg.begin(from.data(), 2, goals.data());
+    lg.plan(0);
+    lg.plan(1);
+    expect_legal(g, lg, from);
+    bool stays = true;
+    for (int t = 0; t <= 4; ++t) stays = stays && lg.path(1)[t] == 7;
+    EXPECT_EQ(stays, rest) << (rest ? "resting" : "not resting");
+  }
+}

@@ -156,6 +156,8 @@ struct LacamOptions {
   // first solution, and refinement's expansions (learnt whole, step_cost.hpp) start only
   // when they fit, as with Monte-Carlo rollouts.
   int lg_window = 0;
+  int lg_collision_weight = 0;  // 0: collisions first (lexicographic); k: a collision costs k steps
+  bool lg_rest = false;         // an agent on its goal is guided to stay (local_guidance.hpp)
   bool lg_first = true;   // in the search for the first solution (changes LaCAM's tree)
   // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
   // apart) fits the iteration, else unguided. Dives and LNS are never guided.

@@ -37,6 +37,13 @@ class LocalGuidance {
   int window() const { return w_; }
   // Whether the current vertices of the agents not planned yet count as collisions at t = 1.
   void set_count_unplanned(bool on) { unplanned_ = on; }
+  // 0: collisions first, then cost (above); k > 0: one cost, a collision worth k steps (a
+  // detour longer than that is not taken to avoid it).
+  void set_collision_weight(int k) { weight_ = k < 0 ? 0 : k; }
+  // An agent on its goal stays there in its path (no A*): it would otherwise step off its
+  // goal for any higher-priority path through it in the window, paying the standard SOC
+  // for a collision PIBT may never have (it pushes it only when somebody really comes).
+  void set_rest_on_goal(bool on) { rest_ = on; }
 
   // A new round from configuration `from` of n agents towards `goals`: forgets the paths of
   // the last round (O(N x w), no O(V) clearing). `from` and `goals` must stay valid.
@@ -62,6 +69,8 @@ class LocalGuidance {
   const Graph& g_;
   DistTable& d_;
   bool unplanned_ = false;
+  int weight_ = 0;
+  bool rest_ = false;
   int w_ = 5, tw_ = 0;  // window; the window the tables are sized for
   size_t V_ = 0;
   int n_ = 0;
