@@ -201,9 +201,10 @@ Status Lacam::refine_expand()
   last_step_ = Step::expansion;
   if (opt_.lg_window > 0 && opt_.lg_refine) {  // guided when it fits (lg_cost_), unguided else
     lg_cost_.set_prior(2 * expand_cost_.rate());
+    // No forget() when it does not fit (unlike the other steps): its cost is O(N x window)
+    // every time, not a spike, and retrying it as the rate decayed overran every ~40th call.
     const bool lg = !timed_ || fits(lg_cost_.predict_ms(1));
-    if (!lg) lg_cost_.forget();
-    if (lg) last_step_ = Step::lg_expansion;
+    if (lg) last_step_ = Step::lg_expansion, ++guided_;
     pibt_.set_local_guidance(lg ? &lg_ : nullptr);
   }
   const bool made = generate_best(H, L);

@@ -242,6 +242,7 @@ class Lacam {
   bool reversible(const HNode* a, const HNode* b) const;
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
+  uint64_t guided_expansions() const { return guided_; }  // refinement's, with local guidance
   // A LaCAM expansion stopped at a deadline, to go on in the next search() (resumable).
   bool expansion_paused() const { return gen_ != Gen::none; }
   // Top-level agents PIBT has handled in LaCAM expansions before the first solution, since
@@ -358,6 +359,7 @@ class Lacam {
   // which gates every refinement step, so that a guided expansion that does not fit makes
   // that expansion unguided instead of keeping LNS and the rest out of the iteration.
   StepCost lg_cost_;
+  uint64_t guided_ = 0;
   // Objective::soc: the followed path; the goal's g drops counted (a new tree path to
   // price) and the count last priced; an LNS window being inserted: its start, its nodes,
   // and the agents it replanned (spliced into best_ when inserted).
