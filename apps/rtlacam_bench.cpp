@@ -71,6 +71,23 @@ int main(int argc, char** argv)
                "Monte-Carlo generation in the search for the first solution (lacam3)");
   bool mc_refine = LacamOptions{}.mc_refine;
   app.add_flag("--mc-refine,!--no-mc-refine", mc_refine, "Monte-Carlo generation in refinement's expansions (lacam3)");
+  int lg_window = LacamOptions{}.lg_window;
+  app.add_option("--local-guidance", lg_window,
+                 "local guidance (LG-LaCAM): window of each agent's space-time path that PIBT's first choice follows "
+                 "(local_guidance.hpp); 0 = off")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  int lg_weight = LacamOptions{}.lg_collision_weight;
+  app.add_option("--lg-collision-weight", lg_weight,
+                 "local guidance: 0 = collisions first, then cost; K = a collision costs K steps")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  bool lg_rest = LacamOptions{}.lg_rest;
+  app.add_flag("--lg-rest,!--no-lg-rest", lg_rest, "local guidance: an agent on its goal is guided to stay");
+  bool lg_first = LacamOptions{}.lg_first;
+  app.add_flag("--lg-first,!--no-lg-first", lg_first, "local guidance in the search for the first solution");
+  bool lg_refine = LacamOptions{}.lg_refine;
+  app.add_flag("--lg-refine,!--no-lg-refine", lg_refine, "local guidance in refinement's expansions");
   bool resumable = LacamOptions{}.resumable;
   app.add_flag("--resumable,!--no-resumable", resumable,
                "a LaCAM expansion may stop at the cutoff and go on in the next iteration, the agents waiting meanwhile "
@@ -154,6 +171,11 @@ int main(int argc, char** argv)
     lopt.mc_rollouts = mc_rollouts;
     lopt.mc_first = mc_first;
     lopt.mc_refine = mc_refine;
+    lopt.lg_window = lg_window;
+    lopt.lg_first = lg_first;
+    lopt.lg_rest = lg_rest;
+    lopt.lg_collision_weight = lg_weight;
+    lopt.lg_refine = lg_refine;
     RunOptions ropt;
     ropt.per_iteration = Budget::time_ms(cutoff_ms);
     if (reserve) ropt.per_iteration.reserve_ms = 1e-6;  // on; the costliest expansion so far sets it
@@ -226,6 +248,11 @@ int main(int argc, char** argv)
     j["mc_rollouts"] = mc_rollouts;
     j["mc_first"] = mc_first;
     j["mc_refine"] = mc_refine;
+    j["local_guidance"] = lg_window;
+    j["lg_first"] = lg_first;
+    j["lg_rest"] = lg_rest;
+    j["lg_collision_weight"] = lg_weight;
+    j["lg_refine"] = lg_refine;
     j["swap"] = !no_swap;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;

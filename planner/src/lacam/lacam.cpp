@@ -20,9 +20,12 @@ const char* to_string(Status s)
 }
 
 Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference* pref)
-    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood, opt.objective), scatter_(g, dist), moves_(g.max_degree() + 1)
+    : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood, opt.objective), scatter_(g, dist), lg_(g, dist), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
+  lg_.set_window(opt.lg_window);
+  lg_.set_collision_weight(opt.lg_collision_weight);
+  lg_.set_rest_on_goal(opt.lg_rest);
   lns_wanted_ = opt.lns;
 }
 
@@ -72,6 +75,7 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   spliced_.clear();
   scratch_.assign(n_, -1);
   pibt_.set_scatter(nullptr);
+  pibt_.set_local_guidance(opt_.lg_window > 0 && opt_.lg_first ? &lg_ : nullptr);
   scatter_.clear();
   scatter_started_ = first_dive_done_ = false;
   scatter_root_ = nullptr;
@@ -355,7 +359,11 @@ Status Lacam::search(const Budget& b, bool until_solved)
       const double dc = c - cpu_last;
       cpu_last = c;
       if (last_step_ == Step::partial) gen_cpu_ms_ += dc;  // the expansion's cost is learnt whole
-      if (last_step_ == Step::expansion) expand_cost_.record(1, dc + gen_cpu_ms_), gen_cpu_ms_ = 0;
+      // A guided expansion of the first search is learnt apart (lg_cost_): refinement's
+      // unguided ones are cheaper, and expand_cost_ gates every refinement step.
+      if (last_step_ == Step::expansion)
+        (!refining_ && pibt_.local_guidance() ? lg_cost_ : expand_cost_).record(1, dc + gen_cpu_ms_), gen_cpu_ms_ = 0;
+      else if (last_step_ == Step::lg_expansion) lg_cost_.record(1, dc);
       else if (last_step_ == Step::lns) lns_cost_.record(last_units_, dc);
       max_unit_ms_ = std::max(max_unit_ms_, dc / static_cast<double>(std::max<uint64_t>(units_, 1)));
     }

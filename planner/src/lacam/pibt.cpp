@@ -42,6 +42,7 @@ void Pibt::start(const Vertex* from, const int32_t* order, const Constraint* c)
   phase_ = Phase::undo;
   k_ = 0;
   pending_ = true;
+  lg_ = lg_next_;
 }
 
 // Every phase is a loop over agents (or constraints) with a cursor kept in members, so that
@@ -99,6 +100,15 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
       next_[i] = v;
       occ_next_[v] = i;
     }
+    phase_ = lg_ ? Phase::guide : Phase::plan, k_ = 0;
+    if (lg_) lg_->begin(from, n_, goals_.data());
+  }
+  if (phase_ == Phase::guide) {
+    // Windowed paths in priority order (local_guidance.hpp): one A* per agent.
+    for (; k_ < n_; ++k_) {
+      if (stop(kGuideEvery)) return Gen::paused;
+      lg_->plan(order_[k_]);
+    }
     phase_ = Phase::plan, k_ = 0;
   }
   for (; k_ < n_; ++k_) {
@@ -138,6 +148,11 @@ bool Pibt::plan(int32_t i, Rng& rng)
     const Vertex s = scatter_->next(i, v);
     for (int k = 0; k <= K; ++k)
       if (C[k] == s) key_[k] = -1e30f;
+  }
+  if (lg_) {  // the first step of its windowed path first (before the scatter successor)
+    const Vertex s = lg_->next(i);
+    for (int k = 0; k <= K; ++k)
+      if (C[k] == s) key_[k] = -2e30f;
   }
   for (int k = 1; k <= K; ++k) {
     const Vertex u = C[k];

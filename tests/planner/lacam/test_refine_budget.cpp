@@ -41,3 +41,36 @@ TEST(RefineBudget, EveryIterationFitsTheCutoffOnCpuTime)
   EXPECT_LE(r.p99_iteration_cpu_ms, 1.5);
   EXPECT_LE(r.max_iteration_cpu_ms, 3.0);
 }
+
+// Local guidance in refinement (LacamOptions::lg_refine): a guided expansion costs a windowed
+// A* per agent (several ms at N = 400); it runs only when its own learnt cost fits, else the
+// expansion is unguided, so the cutoff holds. At 1 ms it never fits here; at 20 ms it does.
+TEST(RefineBudget, GuidedRefinementExpansionsRunOnlyWhenTheyFit)
+{
+#if !defined(NDEBUG) || defined(__SANITIZE_ADDRESS__)
+  GTEST_SKIP() << "time budgets are measured in Release builds only";
+#endif
+  const Graph g = load_map(RTLACAM_REPO_DATA "/movingai/warehouse-10-20-10-2-1.map");
+  const Instance ins = load_scen(RTLACAM_REPO_DATA "/movingai/warehouse-10-20-10-2-1-random-1.scen", g, 400);
+  for (double cutoff : {1.0, 20.0}) {
+    LacamOptions o;
+    o.refine = true;
+    o.scatter = true;
+    o.lg_window = 5;
+    o.lg_first = false;
+    RtLacam rt(g, ins.starts, ins.goals, o);
+    RunOptions ro;
+    ro.per_iteration = Budget::time_ms(cutoff);
+    ro.per_iteration.reserve_ms = 1e-6;
+    ro.record_plan = false;
+    ro.max_steps = cutoff > 1 ? 60 : 100000;  // the long cutoff: a few iterations are enough
+    const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ro);
+    std::printf("cutoff %.0f ms: iterations %lld, cpu p99 %.3f max %.3f ms, guided expansions %llu\n", cutoff,
+                r.iterations, r.p99_iteration_cpu_ms, r.max_iteration_cpu_ms,
+                static_cast<unsigned long long>(rt.lacam().guided_expansions()));
+    EXPECT_EQ(r.validation_error, "");
+    EXPECT_LE(r.p99_iteration_cpu_ms, 1.5 * cutoff);
+    if (cutoff > 1) EXPECT_GT(rt.lacam().guided_expansions(), 0u) << "guided expansions never fit 20 ms";
+    else EXPECT_LE(r.max_iteration_cpu_ms, 3.0);
+  }
+}

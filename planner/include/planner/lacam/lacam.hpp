@@ -72,6 +72,7 @@
 #include "planner/lacam/explored_table.hpp"
 #include "planner/lacam/hnode.hpp"
 #include "planner/lacam/lns_refiner.hpp"
+#include "planner/lacam/local_guidance.hpp"
 #include "planner/lacam/objective.hpp"
 #include "planner/lacam/pibt.hpp"
 #include "planner/rng.hpp"
@@ -148,6 +149,19 @@ struct LacamOptions {
   int mc_rollouts = 1;
   bool mc_first = true;   // in the search for the first solution (lacam3: on)
   bool mc_refine = true;  // in refinement's LaCAM* expansions (lacam3: on)
+  // Local guidance (LG-LaCAM, Arita & Okumura AAAI-26; local_guidance.hpp): before PIBT
+  // makes a successor, every agent gets a space-time path over this many steps around the
+  // higher-priority agents' paths, and PIBT tries its first step first. 0 = off (LaCAM's
+  // PIBT). Its work is part of the generation, so it pauses and resumes with it before the
+  // first solution, and refinement's expansions (learnt whole, step_cost.hpp) start only
+  // when they fit, as with Monte-Carlo rollouts.
+  int lg_window = 0;
+  int lg_collision_weight = 0;  // 0: collisions first (lexicographic); k: a collision costs k steps
+  bool lg_rest = false;         // an agent on its goal is guided to stay (local_guidance.hpp)
+  bool lg_first = true;   // in the search for the first solution (changes LaCAM's tree)
+  // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
+  // apart) fits the iteration, else unguided. Dives and LNS are never guided.
+  bool lg_refine = true;
 };
 
 class Lacam {
@@ -228,6 +242,7 @@ class Lacam {
   bool reversible(const HNode* a, const HNode* b) const;
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
+  uint64_t guided_expansions() const { return guided_; }  // refinement's, with local guidance
   // A LaCAM expansion stopped at a deadline, to go on in the next search() (resumable).
   bool expansion_paused() const { return gen_ != Gen::none; }
   // Top-level agents PIBT has handled in LaCAM expansions before the first solution, since
@@ -316,6 +331,7 @@ class Lacam {
   bool refining_ = false, refine_capped_ = false;
   LnsRefiner lns_;
   Scatter scatter_;
+  LocalGuidance lg_;
   bool scatter_started_ = false, first_dive_done_ = false;
   HNode* scatter_root_ = nullptr;  // the node whose configuration SUO started from
   int passes_dived_ = 0;           // SUO passes already followed by a dive
@@ -334,11 +350,16 @@ class Lacam {
   Clock::time_point deadline_ = Clock::time_point::max();
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
-  enum class Step { expansion, lns, guide, prepare, insert, price, partial, none };
+  enum class Step { expansion, lg_expansion, lns, guide, prepare, insert, price, partial, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
   StepCost insert_cost_;          // one node of an improved LNS window
+  // A refinement expansion with local guidance (lg_refine): learnt apart from expand_cost_,
+  // which gates every refinement step, so that a guided expansion that does not fit makes
+  // that expansion unguided instead of keeping LNS and the rest out of the iteration.
+  StepCost lg_cost_;
+  uint64_t guided_ = 0;
   // Objective::soc: the followed path; the goal's g drops counted (a new tree path to
   // price) and the count last priced; an LNS window being inserted: its start, its nodes,
   // and the agents it replanned (spliced into best_ when inserted).

@@ -27,6 +27,7 @@
 #include "planner/graph.hpp"
 #include "planner/lacam/hnode.hpp"
 #include "planner/lacam/immobile.hpp"
+#include "planner/lacam/local_guidance.hpp"
 #include "planner/rng.hpp"
 #include "planner/lacam/scatter.hpp"
 
@@ -52,6 +53,12 @@ class Pibt {
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
   void set_scatter(const Scatter* s) { scatter_ = s; }
+  // Local guidance (local_guidance.hpp; null = none): each generation first plans every
+  // agent's windowed space-time path in priority order (a phase of resume(), stoppable
+  // between two agents), and an agent's first step on it comes first among its candidates,
+  // before its scatter successor. Takes effect at the next start().
+  void set_local_guidance(LocalGuidance* lg) { lg_next_ = lg; }
+  const LocalGuidance* local_guidance() const { return lg_next_; }
 
   // Writes a successor of `from` into `to`. Agents are planned in `order` (highest
   // priority first); `c` (may be null) fixes some agents. Returns false when the fixed
@@ -59,8 +66,8 @@ class Pibt {
   bool generate(const Vertex* from, const int32_t* order, const Constraint* c, Vertex* to, Rng& rng);
 
   // generate() in pieces: start() only records the call; resume() does its work -- undo the
-  // last call's reservations, place the agents at `from`, fix the constraint's agents, plan
-  // the others -- until the successor is made (done: it is result()), the fixed agents
+  // last call's reservations, place the agents at `from`, fix the constraint's agents, with
+  // local guidance plan every agent's windowed path, plan the others -- until the successor is made (done: it is result()), the fixed agents
   // collide or PIBT cannot place a top-level agent (failed), or `deadline` has passed
   // (paused). The clock is read every kSetupEvery agents while setting up, every
   // kCheckEvery top-level plan() calls after; each resume() does at least that much.
@@ -72,6 +79,7 @@ class Pibt {
   const Vertex* result() const { return next_.data(); }  // after resume() returned done
   uint64_t plans() const { return plans_; }  // top-level agents handled, over all calls (tests)
   static constexpr int kCheckEvery = 8;
+  static constexpr int kGuideEvery = 2;  // windowed A* per clock reading (local guidance)
   static constexpr int kSetupEvery = 64;
 
  private:
@@ -94,6 +102,8 @@ class Pibt {
   bool swap_;
   ActionPreference* pref_ = nullptr;
   const Scatter* scatter_ = nullptr;
+  LocalGuidance* lg_ = nullptr;       // of the generation in progress
+  LocalGuidance* lg_next_ = nullptr;  // set_local_guidance()
   Config goals_;
   int n_ = 0;
   int stride_;                      // candidates per agent: max degree + 1
@@ -109,7 +119,7 @@ class Pibt {
   std::vector<uint8_t> cut_off_;         // agent -> no path around the immobile agents
   uint32_t generation_ = 0;
   // The generation in progress (start() .. resume() done / failed) and its cursor.
-  enum class Phase { undo, place, chain, plan };
+  enum class Phase { undo, place, chain, guide, plan };
   const Vertex* from_ = nullptr;
   const int32_t* order_ = nullptr;
   const Constraint* chain_ = nullptr;
