@@ -50,6 +50,7 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["throughputBound"] = throughput_bound();
     j["lifelong"]["maxErrandTicks"] = max_errand_ticks;
     j["lifelong"]["reassignedForClosure"] = reassigned_for_closure;
+    j["lifelong"]["epochDistEstimates"] = epoch_estimates;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
     // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
     j["lifelong"]["freeFlowBound"] = free_flow_bound;
