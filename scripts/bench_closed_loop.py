@@ -19,6 +19,7 @@ planner budget by E expansions per SUMO step (deterministic plans, whatever the 
                                [--ps 0 0.01] [--executors lockstep adg adg-follow[:key=value,...]]
                                [--max-ticks N] [--seeds 1 2 3] [--expansions 50]
 """
+import itertools
 import math
 import re
 import argparse
@@ -72,25 +73,22 @@ def main():
     ratio_of = {}  # (config, seed, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
     print("| config | seed | p | executor | makespan or tasks/tick | bound | ratio | solved | error | collisions | overshoot m | wall s |")
     print("|---|---:|---:|---|---:|---:|---:|---|---|---:|---:|---:|")
-    for c in a.configs:
-      for seed in a.seeds:
-        for p in a.ps:
-            for ex in a.executors:
-                name, _, sets = ex.partition(":")
-                cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
-                with_agv_vtype(cfg)
-                set_run_keys(cfg, sets, seed, a.expansions)
-                m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
-                life = m.get("lifelong")
-                if life:
-                    val, bound, ratio = life["throughput"], life["throughputBound"], life["throughputOverBound"]
-                else:
-                    val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
-                # an unfinished one-shot run has no makespan to compare
-                ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
-                print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | "
-                      f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
-                      f"{m['_wall']:.1f} |", flush=True)
+    for c, seed, p, ex in itertools.product(a.configs, a.seeds, a.ps, a.executors):
+        name, _, sets = ex.partition(":")
+        cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
+        with_agv_vtype(cfg)
+        set_run_keys(cfg, sets, seed, a.expansions)
+        m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
+        life = m.get("lifelong")
+        if life:
+            val, bound, ratio = life["throughput"], life["throughputBound"], life["throughputOverBound"]
+        else:
+            val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
+        # an unfinished one-shot run has no makespan to compare
+        ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
+        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | "
+              f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
+              f"{m['_wall']:.1f} |", flush=True)
     # The targets (issue 21), against baselines of this run: at p = 0 the executor's ratio over
     # lockstep's (one-shot: makespan/bound, lower is better; lifelong: lockstep's
     # throughput/bound over the executor's, so > 1 is worse alike); at p > 0, the same
