@@ -9,9 +9,19 @@ A config without a fleet.vtype (the lifelong ones) gets the *_agv configs' kinem
 
 Then, per row, the ratio over lockstep's at the same p and over the same executor's at p = 0.
 
+An executor may carry run switches after a colon, e.g. `adg-follow:gap_handover=false` (the
+same binary with a mechanism off: a before/after in one call). `--seeds S1 S2 ...` runs each
+instance with fleet.seed S and tasks.seed S + 1 (other start and goal draws); the ratio table
+then also gives the geometric mean over the seeds. `--expansions E` replaces the wall-clock
+planner budget by E expansions per SUMO step (deterministic plans, whatever the box's load).
+
   scripts/bench_closed_loop.py [--build build] [--configs small_warehouse_agv.yaml ...]
-                               [--ps 0 0.01] [--executors lockstep adg adg-follow] [--max-ticks N]
+                               [--ps 0 0.01] [--executors lockstep adg adg-follow[:key=value,...]]
+                               [--max-ticks N] [--seeds 1 2 3] [--expansions 50]
 """
+import itertools
+import math
+import re
 import argparse
 import json
 import os
@@ -34,6 +44,20 @@ def with_agv_vtype(path):
         open(path, "w").write(s.replace("fleet:\n", "fleet:\n" + AGV_VTYPE, 1))
 
 
+def set_run_keys(cfg, sets, seed, expansions):
+    """`key=value,...` into the config's run section; the fleet / tasks seeds; a deterministic budget."""
+    s = open(cfg).read()
+    for kv in filter(None, sets.split(",")):
+        k, v = kv.split("=")
+        s = s.replace("run:\n", f"run:\n  {k}: {v}\n", 1)
+    if seed is not None:
+        s = re.sub(r"(\nfleet:\n(?:  .*\n)*?  seed: )\d+", rf"\g<1>{seed}", s, 1)
+        s = re.sub(r"(\ntasks:\n(?:  .*\n)*?  seed: )\d+", rf"\g<1>{seed + 1}", s, 1)
+    if expansions:
+        s = re.sub(r"  budget_ms: [0-9.]+\n", f"  budget_ms: 0\n  expansions: {expansions}\n", s, 1)
+    open(cfg, "w").write(s)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -42,37 +66,53 @@ def main():
     ap.add_argument("--executors", nargs="+", default=["lockstep", "adg", "adg-follow"])
     ap.add_argument("--window", type=int, default=16)
     ap.add_argument("--max-ticks", type=int, default=None)
+    ap.add_argument("--seeds", nargs="+", type=int, default=[None], help="fleet.seed (tasks.seed: +1); default: the config's")
+    ap.add_argument("--expansions", type=int, default=0, help="planner expansions per SUMO step instead of budget_ms")
     a = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="bench_closed_")
-    ratio_of = {}  # (config, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
-    print("| config | p | executor | makespan or tasks/tick | bound | ratio | solved | error | overshoot m | wall s |")
-    print("|---|---:|---|---:|---:|---:|---|---|---:|---:|")
-    for c in a.configs:
-        for p in a.ps:
-            for ex in a.executors:
-                cfg = yaml_variant(c, ex, p, window=a.window, max_ticks=a.max_ticks)
-                with_agv_vtype(cfg)
-                m = sumo_run(a.build, cfg, os.path.join(tmp, f"{c}_{ex}_{p}"))
-                life = m.get("lifelong")
-                if life:
-                    val, bound, ratio = life["throughput"], life["throughputBound"], life["throughputOverBound"]
-                else:
-                    val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
-                # an unfinished one-shot run has no makespan to compare
-                ratio_of[(c, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
-                print(f"| {c} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | {m['solved']} | "
-                      f"{m['error'][:60]} | {m['executor'].get('overshoot_m', 0):.2g} | {m['_wall']:.1f} |", flush=True)
+    ratio_of = {}  # (config, seed, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
+    print("| config | seed | p | executor | makespan or tasks/tick | bound | ratio | solved | error | collisions | overshoot m | wall s |")
+    print("|---|---:|---:|---|---:|---:|---:|---|---|---:|---:|---:|")
+    for c, seed, p, ex in itertools.product(a.configs, a.seeds, a.ps, a.executors):
+        name, _, sets = ex.partition(":")
+        cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
+        with_agv_vtype(cfg)
+        set_run_keys(cfg, sets, seed, a.expansions)
+        m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
+        life = m.get("lifelong")
+        if life:
+            val, bound, ratio = life["throughput"], life["throughputBound"], life["throughputOverBound"]
+        else:
+            val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
+        # an unfinished one-shot run has no makespan to compare
+        ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
+        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | "
+              f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
+              f"{m['_wall']:.1f} |", flush=True)
     # The targets (issue 21), against baselines of this run: at p = 0 the executor's ratio over
     # lockstep's (one-shot: makespan/bound, lower is better; lifelong: lockstep's
     # throughput/bound over the executor's, so > 1 is worse alike); at p > 0, the same
     # executor's ratio over its own at p = 0 (the same orientation).
-    print("\n| config | p | executor | vs lockstep (same p) | vs itself at p = 0 |\n|---|---:|---|---:|---:|")
-    for (c, p, ex), (r, life) in ratio_of.items():
-        def rel(base):
+    print("\n| config | seed | p | executor | vs lockstep (same p) | vs itself at p = 0 |\n|---|---:|---:|---|---:|---:|")
+    rels = {}  # (config, p, executor, which) -> ratios over the seeds
+    for (c, seed, p, ex), (r, life) in ratio_of.items():
+        def rel(base, which):
             if base is None or r is None or base[0] is None or not r or not base[0]:
                 return "-"
-            return f"{(base[0] / r if life else r / base[0]):.3f}"
-        print(f"| {c} | {p} | {ex} | {rel(ratio_of.get((c, p, 'lockstep')))} | {rel(ratio_of.get((c, 0.0, ex)))} |")
+            x = base[0] / r if life else r / base[0]
+            rels.setdefault((c, p, ex, which), []).append(x)
+            return f"{x:.3f}"
+        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {rel(ratio_of.get((c, seed, p, 'lockstep')), 0)} | "
+              f"{rel(ratio_of.get((c, seed, 0.0, ex)), 1)} |")
+    if len(a.seeds) > 1:
+        print("\nGeometric means over the seeds (runs with a ratio on both sides only):")
+        print("| config | p | executor | vs lockstep (same p) | vs itself at p = 0 | seeds |\n|---|---:|---|---:|---:|---:|")
+        for c in a.configs:
+            for p in a.ps:
+                for ex in a.executors:
+                    g = [rels.get((c, p, ex, w), []) for w in (0, 1)]
+                    gm = ["-" if not x else f"{math.exp(sum(map(math.log, x)) / len(x)):.3f}" for x in g]
+                    print(f"| {c} | {p} | {ex} | {gm[0]} | {gm[1]} | {max(len(g[0]), len(g[1]))} |")
 
 
 if __name__ == "__main__":

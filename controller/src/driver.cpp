@@ -307,7 +307,8 @@ double Driver::gap(const executor::Action& a, double end) const
   if (h.state == executor::State::Done || (a.group >= 0 && h.group == a.group)) return INFINITY;
   // The previous occupant of a.to is leaving it: keep the front `margin` behind its back
   // (measured as if its path went straight on through a.to: exact for a train, and at a
-  // junction conservative), and short of a.to until it has arrived (ADG order).
+  // junction conservative); without the gap hand-over also short of a.to until it has
+  // arrived (ADG order: its completion waits for the leader's either way, after_step).
   const double now = ahead(h.agent, a.handover) - p_.length - p_.margin;
   // Relative braking (DriveParams::sure_travel): the leader cannot stop before covering
   // its sure travel -- every command is >= v - decel dt, and an outside stop brakes no harder
@@ -317,12 +318,15 @@ double Driver::gap(const executor::Action& a, double end) const
   // stops: its least is now or at the end. So only a follower already `margin` behind the
   // leader's back (end + now >= 0) may count on it; one that is not (a leader reaching v from
   // another side, its body projected straight on) waits, as without it.
-  if (!p_.sure_travel || end + now < 0) return std::min(now, -1e-6);
+  if (!p_.sure_travel || end + now < 0) return p_.gap_handover ? now : std::min(now, -1e-6);
   const double front = ahead(h.agent, a.handover) + sure_travel(h.agent);
   // ... and a leader sure to arrive (its front will reach its target) is as good as arrived:
   // a.to may be entered (to 1e-6 m: a stopping point is aimed a nanometre short, and its
   // sure travel is a sum of steps). Its completion still waits for the leader's (after_step).
-  const double arrive = p_.sure_travel && front >= handover_dist(h.agent, a.handover) - 1e-6 ? INFINITY : -1e-6;
+  // With the gap hand-over (DriveParams::gap_handover) the body gap alone: a front at a.to
+  // already puts the leader's front length + margin past it, its body off a.to's line.
+  const double arrive =
+      p_.gap_handover || front >= handover_dist(h.agent, a.handover) - 1e-6 ? INFINITY : -1e-6;
   return std::min(front - p_.length - p_.margin, arrive);
 }
 

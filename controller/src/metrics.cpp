@@ -52,6 +52,7 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["errandTicks"] = {{"max", stalls.max_open}, {"p99", stalls.p99_open}, {"errands", stalls.errands}};
     j["lifelong"]["stallTicks"] = {{"max", stalls.max_stall}, {"p99", stalls.p99_stall}};
     j["lifelong"]["reassignedForClosure"] = reassigned_for_closure;
+    j["lifelong"]["epochDistEstimates"] = epoch_estimates;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
     // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
     j["lifelong"]["freeFlowBound"] = free_flow_bound;

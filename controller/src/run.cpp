@@ -450,7 +450,9 @@ void Run::epoch_start(const planner::Config& executed, long tick)
     tb.ms = std::max(0.0, tb.ms - plan_cpu_pending_ - reserve_.ms(tb.ms));
     dist_cache_->set_deadline(tb.deadline_from(t0));
   }
+  const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
   p_->set_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+  if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
   val_->set_goals(tm_->goals());
   planner::Budget b = plan_budget();
   if (bounded) b.ms = std::max(0.0, b.ms - plan_cpu_pending_ - (planner::thread_cpu_ms() - c0));

@@ -149,6 +149,10 @@ void Run::loop_adg()
   dp.sure_travel = cfg_.run.relative_braking;
   dp.same_step_starts = cfg_.run.same_step_starts;
   dp.exact_chain = cfg_.run.chain_to_end;
+  // Not with headings (rotation solvers, fleet.turn_s): there it let an AGV start a turn in
+  // place that SUMO's fcd shows as interrupted (half a quarter turn at rest, then moving;
+  // ControllerRotationAdg.*, not yet explained), so turns keep the old hand-over.
+  dp.gap_handover = cfg_.run.gap_handover && !cmd_->headings();
   dp.lane_speeds = cfg_.run.lane_speeds;
   Driver drv(*cmd_, adg, *delays_, dp);
   if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) drv.set_zones(&rules_->zones_of());

@@ -391,3 +391,40 @@ TEST(ControllerLifelong, BoundedPlanMemoryWritesTheSamePlan)
     EXPECT_DOUBLE_EQ(bound[0], bound[1]) << file;
   }
 }
+
+TEST(ControllerLifelong, EpochStartsReadLowerBoundsPastTheStepDeadline)
+{
+  // run.epoch_in_budget: an epoch start (new goals) is the next SUMO step's planning, so the
+  // distance reads of its set_goals stop growing tables at that step's deadline and answer
+  // lower bounds past it (planner/dist_cache.hpp). A budget that rounds to 0 ns puts the
+  // deadline at the epoch start itself: every read that would grow a table is then a lower
+  // bound, deterministically, however loaded the box (no timing threshold). Off: the epoch
+  // start has no deadline and every read is exact. Both loops: lockstep starts its epochs
+  // at the tick's start, adg-follow after the tick.
+  for (const char* ex : {"lockstep", "adg-follow"}) {
+    long long estimates[2] = {0, 0}, epochs[2] = {0, 0};
+    for (const bool on : {false, true}) {
+      Config cfg = lifelong_config(std::string("epoch_") + ex + (on ? "_on" : "_off"), 120);
+      cfg.run.executor = ex;
+      cfg.run.epoch_in_budget = on;
+      cfg.planner.budget_ms = 1e-7;  // 0.1 ns: the deadline is the step's start
+      Controller c(cfg);
+      const Metrics m = c.run();
+      ASSERT_EQ(m.error, "") << ex << (on ? " on" : " off");
+      EXPECT_EQ(m.violations, 0) << ex;
+      EXPECT_EQ(m.commands.jumps, 0) << ex;
+      ctest_util::expect_no_sumo_collision(cfg.output.dir);
+      estimates[on] = m.epoch_estimates;
+      epochs[on] = m.epochs;
+      EXPECT_EQ(read_json(cfg.output.dir + "/metrics.json")["lifelong"]["epochDistEstimates"].get<long long>(),
+                m.epoch_estimates);
+    }
+    // Both runs start epochs (measured 27-30 in 150 ticks, 2026-11-26), and only the bounded
+    // ones read lower bounds (531-621 in 150 ticks; a new goal whose table already reaches
+    // its AGV reads none, so no count per epoch is promised).
+    EXPECT_GE(epochs[0], 5) << ex;
+    EXPECT_GE(epochs[1], 5) << ex;
+    EXPECT_EQ(estimates[0], 0) << ex << ": epoch_in_budget off, yet an epoch start read a lower bound";
+    EXPECT_GT(estimates[1], 0) << ex << ": epoch_in_budget on, yet the epoch starts read exact distances";
+  }
+}

@@ -173,6 +173,7 @@ struct RunSection {
   bool relative_braking = true;      // count on a leader's sure travel when following
   bool same_step_starts = true;      // a move released by another start in a step starts in it
   bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
+  bool gap_handover = true;          // a follower may reach the cell before its leader arrives (body gap only)
   // Lane speed limits: lockstep stretches a step over the ticks its slowest move needs at its
   // lane's speed; adg: the Driver's DriveParams::lane_speeds. false: a cell per tick regardless.
   bool lane_speeds = true;

@@ -91,6 +91,10 @@ struct Metrics {
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;
   long long errands_finished = 0, tasks_finished = 0, epochs = 0;
+  // Distance reads of the epoch starts' set_goals answered with a lower bound because the
+  // step's deadline had passed (run.epoch_in_budget; 0 with it off: those reads are exact),
+  // metrics.json lifelong.epochDistEstimates.
+  long long epoch_estimates = 0;
   // Lifelong with closures: tasks an AGV handed back because a closure cut it off its next
   // errand (tasks/task_manager.hpp), metrics.json lifelong.reassignedForClosure.
   long long reassigned_for_closure = 0;
