@@ -52,9 +52,11 @@ def check(args, m, scen, n, plan):
 
 
 def run_ours(args, m, scen, n, plan, extra):
-    cmd = [args.bench, "--map", m, "--scen", scen, "-N", str(n), "--solver", "rtlacam", "--cutoff-ms",
-           str(args.cutoff_ms), "--timeout-s", str(args.ours_timeout_s), "--json", "--progress-s", "0", "--out",
-           plan, *args.ours_args.split(), *extra.split()]
+    own = args.ours_args.split() + extra.split()
+    # A variant may set its own budget (e.g. --variant c001="--cutoff-ms 0.01"): then it replaces --cutoff-ms.
+    cutoff = [] if "--cutoff-ms" in own else ["--cutoff-ms", str(args.cutoff_ms)]
+    cmd = [args.bench, "--map", m, "--scen", scen, "-N", str(n), "--solver", "rtlacam", *cutoff,
+           "--timeout-s", str(args.ours_timeout_s), "--json", "--progress-s", "0", "--out", plan, *own]
     out = subprocess.run(cmd, capture_output=True, text=True)
     if out.returncode not in (0, 4):
         fail(f"{' '.join(cmd)} failed: {out.stderr.strip()}")
