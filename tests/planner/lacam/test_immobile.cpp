@@ -442,7 +442,9 @@ TEST(Immobile, RestartAtAMovedConfigurationIsOneRestartAndPlansOnFromThere)
     const auto* rt = dynamic_cast<const RtLacam*>(p.get());
     const uint64_t r0 = rt ? rt->restarts() : 0;
     ASSERT_TRUE(p->restart_at(at, c.goals, {}, c.marks)) << p->name();
-    if (rt) EXPECT_EQ(rt->restarts(), r0 + 1);
+    if (rt) {
+      EXPECT_EQ(rt->restarts(), r0 + 1);
+    }
     EXPECT_EQ(p->current(), at) << p->name();
     Config prev = at;
     for (int k = 0; k < 60; ++k) {

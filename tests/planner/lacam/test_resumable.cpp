@@ -139,7 +139,9 @@ TEST(Resumable, PausedExpansionsBuildLacamsTree)
       const int n = static_cast<int>(in.s.size());
       for (size_t id = 0; id < full.explored(); ++id)
         ASSERT_TRUE(std::equal(full.node(id)->C, full.node(id)->C + n, rt.lacam().node(id)->C)) << "node " << id;
-      if (n >= 40) EXPECT_GT(paused_calls, 0);
+      if (n >= 40) {
+        EXPECT_GT(paused_calls, 0);
+      }
     }
   }
   EXPECT_GT(paused_moves, 0) << "no reroot happened under a paused expansion";
@@ -241,7 +243,9 @@ TEST(Resumable, SetImmobileRestartsAPausedGeneration)
   EXPECT_EQ(Validator::check_transition(in.g, a, b), "");
   // The constraint of H's 2nd expansion fixes H's first agent in order at most.
   for (int i = 0; i < n; i += 5) {
-    if (i != H->order[0]) EXPECT_EQ(b[i], a[i]) << "immobile agent " << i << " moved";
+    if (i != H->order[0]) {
+      EXPECT_EQ(b[i], a[i]) << "immobile agent " << i << " moved";
+    }
   }
 
   // However far the cancelled generation had gone (how many of its draws were made), the
