@@ -29,6 +29,35 @@ int64_t LnsRefiner::cost_of(const std::vector<Config>& path, const Config& goals
   return agent_soc(path, goals, i, t0, t1, stays ? stays[i] != 0 : path[t1][i] == goals[i]);
 }
 
+void LnsRefiner::reserve_tables()
+{
+  max_window_ = std::max(max_window_, window_);
+  const size_t cells = static_cast<size_t>(max_window_ + 1) * g_.size();
+  occ_.ensure(cells);
+  best_.ensure(cells);
+  stamp_.ensure(cells);
+  if (nbh_ == LnsNeighbourhood::blocking || nbh_ == LnsNeighbourhood::adaptive) at_.ensure(cells);
+}
+
+int LnsRefiner::warm_window() const
+{
+  return static_cast<int>(occ_.touched() / std::max<size_t>(g_.size(), 1)) - 1;
+}
+
+// Only the occupancy table: a step writes every agent's cell at every step of its window
+// into it (N x W cells over all its pages), while the A*'s tables see a few pages per step.
+bool LnsRefiner::warm(int window, Clock::time_point deadline)
+{
+  reserve_tables();
+  const size_t want = static_cast<size_t>(std::min(window, max_window_) + 1) * g_.size();
+  constexpr size_t kPiece = 16 * LazyTable<int32_t>::kPage / sizeof(int32_t);  // 16 pages per clock reading
+  while (occ_.touched() < want) {
+    occ_.touch(std::min(want, occ_.touched() + kPiece));
+    if (occ_.touched() < want && Clock::now() >= deadline) return false;
+  }
+  return true;
+}
+
 // Space-time A* for agent i from (path[t0][i], t0) to (path[t1][i], t1) around the agents in
 // occ_; cost per step 1, but 0 for waiting on the goal (loss; soc for an agent that leaves its
 // goal after t1, whose standard SOC no path changes) or 1 throughout (soc, settling). h =
@@ -44,9 +73,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   const int32_t d_end = dist_.get(i, end);
   // Flat window x |V| table of best g, valid where its stamp is this call's (no hashing, no
   // clearing, no allocation once grown: the step is real-time work).
-  const size_t W = static_cast<size_t>(t1 - t0 + 1);
-  best_.ensure(W * V);
-  stamp_.ensure(W * V);
+  const size_t W = static_cast<size_t>(t1 - t0 + 1);  // tables: allocated for the largest window (reserve_tables)
   if (++epoch_ == 0) {  // wrapped: stale stamps could collide
     for (size_t k = 0; k < stamp_.size(); ++k) stamp_[k] = 0;
     epoch_ = 1;
@@ -99,7 +126,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
       const int64_t g = n.g + (settle || !(n.v == goal && u == goal));
       if (stamp_[at] == epoch_ && best_[at] <= g) continue;
       stamp_[at] = epoch_;
-      best_[at] = g;
+      best_[at] = static_cast<int32_t>(g);
       nodes_.push_back({u, n.t + 1, g, idx});
       open_.push({g + h(u), -(n.t + 1), static_cast<int32_t>(nodes_.size() - 1)});
     }
@@ -126,7 +153,7 @@ void LnsRefiner::neighbourhood(int h, const std::vector<Config>& path, const Con
   std::vector<int> cand;
   if (h == 1) {  // blocking chains, breadth-first from the seed
     const size_t W = static_cast<size_t>(t1 - t0 + 1);
-    at_.ensure(W * V);
+    at_.ensure(W * V);  // allocated for the largest window already (reserve_tables)
     for (int t = t0; t <= t1; ++t)
       for (int i = 0; i < n; ++i) at_[static_cast<size_t>(t - t0) * V + static_cast<size_t>(path[t][i])] = i + 1;
     work_ += W * static_cast<size_t>(n);
@@ -187,6 +214,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   const int T = static_cast<int>(path.size()) - 1;
   work_ = static_cast<uint64_t>(T + 1) * static_cast<uint64_t>(n);  // the cost pass below
   if (T < 1 || n == 0) return false;
+  reserve_tables();
   // A delayed agent seeds the neighbourhood: only where someone waits or detours can the
   // cost drop. One pass in time order (the configurations are stored by time step).
   const bool soc = obj_ == Objective::soc;
@@ -251,8 +279,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   neighbourhood(h, path, goals, cost, std::min(k, n), t0, t1, rng);
   std::vector<int>& set = set_;
 
-  const size_t V = g_.size(), W = static_cast<size_t>(t1 - t0 + 1);
-  occ_.ensure(W * V);
+  const size_t V = g_.size();
   written_.clear();
   std::vector<char> in_set(n, 0);
   for (int i : set) in_set[i] = 1;

@@ -74,3 +74,29 @@ TEST(RefineBudget, GuidedRefinementExpansionsRunOnlyWhenTheyFit)
     else EXPECT_LE(r.max_iteration_cpu_ms, 3.0);
   }
 }
+
+// LNS's window x |V| tables are mapped ahead of the windows that use them (warm steps in the
+// iterations' budgets, lazy_table.hpp) and allocated once: a step that faulted its pages in,
+// or reallocated its tables as the windows grew, overran a 10 ms cutoff by up to 5 ms at
+// N = 1000. Counts, not times: every LNS window ran on mapped tables.
+TEST(RefineBudget, LnsStepsRunOnTablesMappedAhead)
+{
+  const Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  const Instance ins = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 200);
+  LacamOptions o;
+  o.refine = true;
+  RtLacam rt(g, ins.starts, ins.goals, o);
+  RunOptions ro;
+  ro.per_iteration = Budget::time_ms(2.0);
+  ro.record_plan = false;
+  ro.max_steps = 150;
+  const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ro);
+  EXPECT_EQ(r.validation_error, "");
+  const Lacam& l = rt.lacam();
+  std::printf("LNS: largest window %d, warm steps %llu, mapped for %d\n", l.lns_max_window(),
+              static_cast<unsigned long long>(l.lns_warm_steps()), l.lns().warm_window());
+  ASSERT_GT(l.lns_max_window(), 0) << "no LNS step ran";
+  EXPECT_GT(l.lns_warm_steps(), 0u);
+  EXPECT_GE(l.lns().warm_window(), l.lns_max_window());
+  EXPECT_EQ(l.lns().table_allocations(), 3);
+}

@@ -58,7 +58,7 @@ class LnsRefiner {
  public:
   LnsRefiner(const Graph& g, DistTable& dist, int window = 32,
              LnsNeighbourhood nbh = LnsNeighbourhood::random, Objective obj = Objective::loss)
-      : g_(g), dist_(dist), window_(window), nbh_(nbh), obj_(obj) {}
+      : g_(g), dist_(dist), window_(window), max_window_(window), nbh_(nbh), obj_(obj) {}
 
   // path[0] and path.back() are fixed (a caller may pass a window of a longer path; the
   // delays that seed the neighbourhood are taken against its ends). Returns true when `path` was improved
@@ -78,6 +78,17 @@ class LnsRefiner {
   uint64_t work() const { return work_; }
   void set_window(int window) { window_ = window; }
   int window() const { return window_; }
+  // The window x |V| tables are allocated once, for the largest window (the constructor's,
+  // or a larger one set later), and their pages are mapped on first touch (lazy_table.hpp).
+  // warm() maps the occupancy table ahead, for windows up to `window` steps, in pieces of 16
+  // pages, and stops at `deadline`: true when done. A step writes all N agents' cells of
+  // every step of its window there, so a real-time caller warms before it steps; the A*'s
+  // tables (a few pages per step) fault in as they are used.
+  bool warm(int window, Clock::time_point deadline);
+  // The largest window whose occupancy table is mapped (-1: none).
+  int warm_window() const;
+  // Allocations of the tables so far (tests: one per table however the windows vary).
+  long table_allocations() const { return occ_.allocations() + best_.allocations() + stamp_.allocations(); }
   // Heuristic of the last step (0 random, 1 blocking, 2 intersection) and the weights.
   int last_heuristic() const { return last_h_; }
   const double* weights() const { return weight_; }
@@ -99,9 +110,13 @@ class LnsRefiner {
   void neighbourhood(int h, const std::vector<Config>& path, const Config& goals, const std::vector<int64_t>& cost,
                      int k, int t0, int t1, Rng& rng);
 
+  // Allocates the tables for windows up to max(window_, max_window_) steps (once).
+  void reserve_tables();
+
   const Graph& g_;
   DistTable& dist_;
   int window_;
+  int max_window_;  // the largest window the tables are allocated for
   LnsNeighbourhood nbh_;
   Objective obj_;
   double weight_[3] = {1.0, 1.0, 1.0};  // adaptive: ALNS weights of the three heuristics
@@ -120,7 +135,7 @@ class LnsRefiner {
   using Item = std::tuple<int64_t, int, int32_t>;  // f, -t (deeper first), node
   std::vector<AstarNode> nodes_;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open_;
-  LazyTable<int64_t> best_;  // (t - t0) * |V| + v -> best g, valid where stamp_ == epoch_
+  LazyTable<int32_t> best_;  // (t - t0) * |V| + v -> best g (<= the window), valid where stamp_ == epoch_
   LazyTable<uint32_t> stamp_;
   uint32_t epoch_ = 0;
   uint64_t clock_pops_ = 0;  // A* pops since construction: the deadline is read every 64
