@@ -23,14 +23,21 @@ uint64_t Scatter::key(int64_t coll, int32_t f, int32_t g) const
 
 void Scatter::clear()
 {
+  // body_ and last_ (per vertex, per step: who is there) are kept for the next reset(): every
+  // entry belongs to a path in paths_, so emptying those cells empties them, in O(the paths'
+  // length). Dropping and rebuilding them (|V| lists of up to T lists each) took 4-8 ms in one
+  // refinement step at N = 1000 (warehouse-20-40-10-2-2), when SUO restarted further ahead.
+  for (const auto& p : paths_) {
+    for (size_t t = 0; t < p.size(); ++t)
+      if (static_cast<size_t>(p[t]) < body_.size() && t < body_[p[t]].size()) body_[p[t]][t].clear();
+    if (!p.empty() && static_cast<size_t>(p.back()) < last_.size()) last_[p.back()].clear();
+  }
   n_ = 0;
   done_ = true;
   in_astar_ = false;
   paths_.clear();
   published_.clear();
   next_.clear();
-  body_.clear();
-  last_.clear();
   passes_ = 0;
   collisions_ = published_collisions_ = 0;
 }
@@ -45,8 +52,9 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
   rng_ = Rng(seed);
   starts_ = starts;
   paths_.assign(n_, {});
-  body_.assign(g_.size(), {});
-  last_.assign(g_.size(), {});
+  const size_t V = static_cast<size_t>(g_.size());
+  if (body_.size() != V) body_.assign(V, {}), ++occupancy_builds_;  // else emptied by clear()
+  if (last_.size() != V) last_.assign(V, {});
   parent_.assign(g_.size(), -2);
   // f, g <= distance + margin < |V| + margin + 1: len_bits_ bits each, the rest for collisions.
   len_bits_ = 1;

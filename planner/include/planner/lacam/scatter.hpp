@@ -53,8 +53,12 @@ class Scatter {
   Vertex next(int i, Vertex v) const;
   const std::vector<Vertex>& path(int i) const { return published_[i]; }
   int num_agents() const { return n_; }
+  // How often the per-vertex occupancy lists were built (tests: once; later resets empty the
+  // cells the paths used instead, O(their length) against O(|V| x T)).
+  long occupancy_builds() const { return occupancy_builds_; }
 
  private:
+  long occupancy_builds_ = 0;
   struct Node {
     uint64_t key;  // (collisions, f, len_max_ - g), packed by key()
     Vertex v, parent;
