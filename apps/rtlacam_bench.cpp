@@ -93,6 +93,12 @@ int main(int argc, char** argv)
                "a LaCAM expansion may stop at the cutoff and go on in the next iteration, the agents waiting meanwhile "
                "(lacam.hpp; the tree is the same); --no-resumable: one expansion always ends in its iteration")
       ->capture_default_str();
+  double pause_min_ms = LacamOptions{}.pause_min_ms;
+  app.add_option("--pause-min-ms", pause_min_ms,
+                 "below this cutoff an expansion always ends in its iteration (the paper's loop), so the agents do not "
+                 "wait for it; 0: resumable at any cutoff")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_flag("--refine,!--no-refine", refine,
                "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
       ->capture_default_str();
@@ -168,6 +174,7 @@ int main(int argc, char** argv)
     lopt.dive = dive;
     lopt.scatter_first = scatter_first;
     lopt.resumable = resumable;
+    lopt.pause_min_ms = pause_min_ms;
     lopt.mc_rollouts = mc_rollouts;
     lopt.mc_first = mc_first;
     lopt.mc_refine = mc_refine;
@@ -245,6 +252,7 @@ int main(int argc, char** argv)
     j["budget_expansions"] = budget_expansions;
     j["reserve"] = reserve;
     j["resumable"] = resumable;
+    j["pause_min_ms"] = pause_min_ms;
     j["mc_rollouts"] = mc_rollouts;
     j["mc_first"] = mc_first;
     j["mc_refine"] = mc_refine;

@@ -324,7 +324,9 @@ Status Lacam::search(const Budget& b, bool until_solved)
     if (done >= b.expansions) return status_;
   }
   bool first = true;
-  pause_at_ = deadline;  // a LaCAM expansion may stop here (resumable)
+  // A LaCAM expansion may stop here (resumable), unless the cutoff is below pause_min_ms.
+  const bool pausing = opt_.resumable && b.ms >= opt_.pause_min_ms;
+  pause_at_ = pausing ? deadline : Clock::time_point::max();
   while (status_ == Status::Searching || (refining_ && !until_solved)) {
     // Refinement is never forced: not even one step starts unless it fits. Before the first
     // solution one expansion always runs (progress), the next ones as the paper's loop or,
@@ -337,7 +339,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
         }
       } else if (!first) {
         // A resumable expansion stops at the deadline itself: no reserve for it.
-        if (reserving && !(opt_.resumable && may_pause_)) {
+        if (reserving && !(pausing && may_pause_)) {
           const double r = std::max(b.reserve_ms, max_unit_ms_);
           if (Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double, std::milli>(r)) >=
               deadline)

@@ -68,6 +68,7 @@ TEST(MonteCarlo, RealTimeRunsStayValidAndArrive)
   for (int where = 0; where < 3; ++where) {
     SCOPED_TRACE(where == 0 ? "everywhere" : where == 1 ? "first solution only" : "refinement only");
     LacamOptions o;
+    o.pause_min_ms = 0;  // the zero budgets pause rollouts
     o.refine = true;
     o.mc_rollouts = 4;
     o.mc_first = where != 2;

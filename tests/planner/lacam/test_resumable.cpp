@@ -50,6 +50,13 @@ Inst big()
 // A deadline that has always passed: resume() stops at its every chance.
 const Clock::time_point kPast = Clock::time_point::min();
 
+// Options under which a zero budget pauses expansions (no floor: LacamOptions::pause_min_ms).
+LacamOptions pausing(LacamOptions o = {})
+{
+  o.pause_min_ms = 0;
+  return o;
+}
+
 // Runs a generation to its end, pausing at every chance; returns the number of pieces.
 int resume_in_pieces(Pibt& p, Rng& rng, Pibt::Gen* result)
 {
@@ -112,7 +119,7 @@ TEST(Resumable, PausedExpansionsBuildLacamsTree)
   for (const auto& in : instances()) {
     for (uint64_t seed = 0; seed < 4; ++seed) {
       SCOPED_TRACE(in.name + " seed " + std::to_string(seed));
-      LacamOptions o;
+      LacamOptions o = pausing();
       o.seed = seed;
       if (seed == 3) o.mc_rollouts = 3;  // Monte-Carlo rollouts pause and resume the same way
       DistTable d(in.g);
@@ -154,7 +161,7 @@ TEST(Resumable, ResetDropsAPausedExpansion)
 {
   const Inst in = big();
   DistTable d(in.g);
-  Lacam lacam(in.g, d);
+  Lacam lacam(in.g, d, pausing());
   lacam.reset(in.s, in.t);
   lacam.search(Budget::time_ms(0));
   ASSERT_TRUE(lacam.expansion_paused());
@@ -227,7 +234,7 @@ TEST(Resumable, SetImmobileRestartsAPausedGeneration)
 
   // Through Lacam: the paused expansion restarts itself; its successor keeps the immobile
   // agents (those no constraint fixes) in place and is a legal move.
-  Lacam lacam(in.g, d);
+  Lacam lacam(in.g, d, pausing());
   lacam.reset(in.s, in.t);
   lacam.search(Budget::expansion_count(3));
   lacam.search(Budget::time_ms(0));
@@ -250,7 +257,7 @@ TEST(Resumable, SetImmobileRestartsAPausedGeneration)
 
   // However far the cancelled generation had gone (how many of its draws were made), the
   // restarted one makes the same successor.
-  Lacam later(in.g, d);
+  Lacam later(in.g, d, pausing());
   later.reset(in.s, in.t);
   later.search(Budget::expansion_count(3));
   for (int k = 0; k < 15; ++k) later.search(Budget::time_ms(0));
@@ -269,7 +276,7 @@ TEST(Resumable, IterationWorkIsBounded)
   const int n = static_cast<int>(in.s.size());
   for (bool resumable : {true, false}) {
     SCOPED_TRACE(resumable ? "resumable" : "one-shot");
-    LacamOptions o;
+    LacamOptions o = pausing();
     o.resumable = resumable;
     RtLacam rt(in.g, in.s, in.t, o);
     uint64_t most = 0, calls = 0;
@@ -283,5 +290,40 @@ TEST(Resumable, IterationWorkIsBounded)
     ASSERT_GT(calls, 40u);
     if (resumable) EXPECT_LE(most, static_cast<uint64_t>(Pibt::kCheckEvery));
     else EXPECT_EQ(most, static_cast<uint64_t>(n));
+  }
+}
+
+// Below LacamOptions::pause_min_ms an expansion is not paused: every call ends one (the
+// paper's loop), so the agents never wait for a half-made successor. With a zero budget the
+// deadline has always passed: with the floor (the default, 0.05 ms) each call still ends
+// exactly one expansion and the agents follow it; without (0), calls end paused and the
+// agents wait in most of them.
+TEST(Resumable, BelowThePauseFloorEveryCallEndsAnExpansion)
+{
+  const Inst in = big();
+  for (double floor_ms : {LacamOptions{}.pause_min_ms, 0.0}) {
+    SCOPED_TRACE("pause_min_ms " + std::to_string(floor_ms));
+    LacamOptions o;
+    o.pause_min_ms = floor_ms;
+    RtLacam rt(in.g, in.s, in.t, o);
+    int paused = 0, waits = 0, calls = 0;
+    for (int step = 0; step < 60 && !rt.at_goal(); ++step, ++calls) {
+      const uint64_t e0 = rt.expansions();
+      rt.search(Budget::time_ms(0));
+      paused += rt.lacam().expansion_paused();
+      if (floor_ms > 0) {
+        ASSERT_FALSE(rt.lacam().expansion_paused()) << "step " << step;
+        ASSERT_EQ(rt.expansions(), e0 + 1) << "step " << step;
+      }
+      waits += rt.next() == rt.current();
+      rt.commit();
+    }
+    ASSERT_EQ(calls, 60);
+    if (floor_ms > 0) {
+      EXPECT_EQ(waits, 0);  // the DFS top is always one move ahead
+    } else {
+      EXPECT_GT(paused, 30);
+      EXPECT_GT(waits, 30);
+    }
   }
 }
