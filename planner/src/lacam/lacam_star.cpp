@@ -160,7 +160,8 @@ Status Lacam::refine_expand()
     // Half the room: a step's cost varies about 2x at one size (A* successes, rewiring).
     const double fit = timed_ ? lns_cost_.units_within(0.5 * room_ms()) / per_step : 1e300;
     int window = static_cast<int>(std::min<double>(opt_.lns_window, fit));
-    if (window >= kMinLnsWindow && timed_ && lns_.warm_window() < window) {
+    const bool warming = window >= kMinLnsWindow && timed_ && lns_.warm_window() < window;
+    if (warming) {
       // The occupancy table's pages for this window are mapped first, in half of what is
       // left (lazy_table.hpp): a step that faulted them in cost up to 15 ms at N = 1000. The
       // step then gets the rows mapped so far, cut to the rest. Untimed runs fault them in
@@ -185,7 +186,8 @@ Status Lacam::refine_expand()
       // An expansion costs O(N) (one PIBT call); an LNS step O(W x N) and more: charge it in
       // expansion-equivalents, so that a budget in expansions bounds the work too.
       units_ = std::max<uint64_t>(1, lns_.work() / static_cast<uint64_t>(std::max(n_, 1)));
-      last_step_ = Step::lns;
+      // A step after mapping pages is not learnt from (its time holds the mapping's).
+      last_step_ = warming ? Step::warm : Step::lns;
       last_units_ = window * per_step;
       return status_;
     }
