@@ -312,13 +312,13 @@ void Run::finish()
   m_.wall_s = ms_since(wall0_) / 1000;
   if (m_.sim_s == 0) m_.sim_s = m_.ticks * cfg_.run.tick_s;
 
-  // The physical bound: each AGV alone on its planned path (bound.hpp).
+  // The plan's bound: each AGV alone on its planned path (bound.hpp).
   AloneBound whole = *alone_;
   for (const planner::Config& c : c_.plan_.kept()) whole.add(c);
   std::vector<double> alone = whole.result();
   if (cfg_.run.executor != "lockstep")
     for (double& t : alone) t /= cfg_.run.tick_s;
-  for (double t : alone) m_.bound_ticks = tm_ ? m_.bound_ticks + t / alone.size() : std::max(m_.bound_ticks, t);
+  for (double t : alone) m_.plan_bound_ticks = tm_ ? m_.plan_bound_ticks + t / alone.size() : std::max(m_.plan_bound_ticks, t);
 
   const planner::Graph& g = c_.map_.graph;
   if (tm_) {
