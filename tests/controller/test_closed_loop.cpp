@@ -86,6 +86,7 @@ void run_with_outside_stops(Config cfg, int every, unsigned seed)
   EXPECT_LE(k.max_speed, cfg.fleet.vtype.max_speed + 1e-6);
   EXPECT_LE(m.overshoot_m, 1e-9);  // never commanded past a stopping point
   for (const auto& [id, v] : k.last_speed) EXPECT_EQ(v, 0) << id << " still moving at the end";
+  EXPECT_LE(m.bound_ticks, m.makespan);  // the instance bound holds on every net, stops or not
   std::printf("%s %s seed %u: error '%s' makespan %lld bound %.2f held %lld max decel %.6f accel %.6f\n",
               cfg.sumo.net.substr(cfg.sumo.net.rfind('/') + 1).c_str(), cfg.run.executor.c_str(), seed, m.error.c_str(),
               m.makespan, m.bound_ticks, stops.steps_held, k.max_decel, k.max_accel);
