@@ -3,8 +3,14 @@
 
 For each scenario config and delay probability p (Bernoulli per AGV per tick, stops of 1-5 s)
 runs lockstep, adg and adg-follow (physics of the config) and prints makespan (one-shot) or
-tasks per tick (lifelong), the physical bound (metrics.json bound_ticks: every AGV alone on its
-planned path; lockstep: in moves) and their ratio, plus errors / collisions / overshoot.
+errands per tick (lifelong), the bound and their ratio, plus errors / collisions / overshoot.
+The bound is fixed by the instance, the same for every executor and plan:
+- one-shot: metrics.json bound_ticks (controller/instance_bound.hpp), the slowest AGV alone on a
+  shortest way -- lockstep: in moves (lockstep_bound_ticks); the others: with the vType's
+  kinematics (physical_bound_ticks). The plan's bound (plan_bound_ticks: every AGV alone on
+  its planned path, which moves with the execution) is printed beside it;
+- lifelong: lifelong.freeFlowBound (tasks/free_flow.hpp), every AGV alone on shortest paths
+  along its errand sequence (errands per tick over it: errandThroughputOverFreeFlow).
 A config without a fleet.vtype (the lifelong ones) gets the *_agv configs' kinematics.
 
 Then, per row, the ratio over lockstep's at the same p and over the same executor's at p = 0.
@@ -71,8 +77,9 @@ def main():
     a = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="bench_closed_")
     ratio_of = {}  # (config, seed, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
-    print("| config | seed | p | executor | makespan or tasks/tick | bound | ratio | solved | error | collisions | overshoot m | wall s |")
-    print("|---|---:|---:|---|---:|---:|---:|---|---|---:|---:|---:|")
+    print("| config | seed | p | executor | makespan or errands/tick | bound | ratio | plan's bound | solved | error | "
+          "collisions | overshoot m | wall s |")
+    print("|---|---:|---:|---|---:|---:|---:|---:|---|---|---:|---:|---:|")
     for c, seed, p, ex in itertools.product(a.configs, a.seeds, a.ps, a.executors):
         name, _, sets = ex.partition(":")
         cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
@@ -81,17 +88,19 @@ def main():
         m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
         life = m.get("lifelong")
         if life:
-            val, bound, ratio = life["throughput"], life["throughputBound"], life["throughputOverBound"]
+            val, bound, ratio = life["errandThroughput"], life["freeFlowBound"], life["errandThroughputOverFreeFlow"]
+            plan = life["throughputBound"]
         else:
             val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
+            plan = m["plan_bound_ticks"]
         # an unfinished one-shot run has no makespan to compare
         ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
-        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | "
+        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | {plan:.4g} | "
               f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
               f"{m['_wall']:.1f} |", flush=True)
     # The targets (issue 21), against baselines of this run: at p = 0 the executor's ratio over
     # lockstep's (one-shot: makespan/bound, lower is better; lifelong: lockstep's
-    # throughput/bound over the executor's, so > 1 is worse alike); at p > 0, the same
+    # errands per tick / bound over the executor's, so > 1 is worse alike); at p > 0, the same
     # executor's ratio over its own at p = 0 (the same orientation).
     print("\n| config | seed | p | executor | vs lockstep (same p) | vs itself at p = 0 |\n|---|---:|---:|---|---:|---:|")
     rels = {}  # (config, p, executor, which) -> ratios over the seeds

@@ -5,7 +5,7 @@ Reads a run's plan.txt (one configuration per plan step, cells as (x, y) lattice
 per AGV alone on its planned path with the vType's kinematics (controller/bound.hpp's
 rest_to_rest_s), prints three times:
 
-  flow     the physical bound (metrics.json bound_ticks): waits dropped, one trapezoid per
+  flow     the physical bound (metrics.json plan_bound_ticks): waits dropped, one trapezoid per
            straight stretch between reversals (a reversal rests one SUMO step);
   stops    the same path, but the AGV comes to rest at every planned wait too: each stretch
            between two waits (or reversals) is its own trapezoid;

@@ -68,8 +68,14 @@ nlohmann::json Metrics::to_json() const
                     {"ran_empty", battery.ran_empty}, {"charging_share", battery.charging_share},
                     {"min_charge", battery.min_charge}, {"samples", samples}};
   }
-  j["bound_ticks"] = bound_ticks;
-  if (mode != "lifelong") j["makespan_over_bound"] = makespan_over_bound();
+  j["plan_bound_ticks"] = plan_bound_ticks;
+  if (mode != "lifelong") {
+    j["bound_ticks"] = bound_ticks;
+    j["makespan_over_bound"] = makespan_over_bound();
+    j["physical_bound_ticks"] = physical_bound_ticks;
+    j["lockstep_bound_ticks"] = lockstep_bound_ticks;
+    j["makespan_over_plan_bound"] = makespan_over_plan_bound();
+  }
   j["solved"] = solved;
   j["agents"] = agents;
   j["cells"] = cells;

@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "controller/fleet.hpp"
+#include "controller/instance_bound.hpp"
 #include "controller/lane_costs.hpp"
 #include "controller/lifelong.hpp"
 #include "controller/sumo_error.hpp"
@@ -570,6 +571,23 @@ void Run::stop_all()
   }
 }
 
+void Run::instance_bound()
+{
+  const planner::Graph& g = c_.map_.graph;
+  // Lockstep turns only with the rotation solvers; the Driver turns whenever AGVs have
+  // headings (fleet.turn_s too), a turn_s rounded to SUMO steps as the Commander does.
+  const std::vector<int> none;
+  const std::vector<double> lock =
+      lockstep_alone_ticks(g, ins_.starts, ins_.goals, cfg_.planner.rotation_solver() ? start_headings_ : none);
+  const double turn_step_s = std::lround(cfg_.fleet.turn_s / cfg_.sumo.step_length) * cfg_.sumo.step_length;
+  const std::vector<double> phys =
+      physical_alone_s(c_.map_, ins_.starts, ins_.goals, kinematics(), fastest_cell_speeds(c_.map_, cfg_.fleet.vtype.max_speed),
+                       start_headings_, turn_step_s);
+  m_.lockstep_bound_ticks = lock.empty() ? 0 : *std::max_element(lock.begin(), lock.end());
+  m_.physical_bound_ticks = phys.empty() ? 0 : *std::max_element(phys.begin(), phys.end()) / cfg_.run.tick_s;
+  m_.bound_ticks = cfg_.run.executor == "lockstep" ? m_.lockstep_bound_ticks : m_.physical_bound_ticks;
+}
+
 Metrics Run::execute()
 {
   wall0_ = Clock::now();
@@ -580,6 +598,7 @@ Metrics Run::execute()
   // Rotation: turns are steps (lockstep), or rest + turn_s each (physics).
   if (!start_headings_.empty())
     alone_->count_turns(c_.map_.graph, start_headings_, cfg_.run.executor == "lockstep" ? 0.0 : cfg_.fleet.turn_s);
+  if (!tm_) instance_bound();
   if (tm_)  // lifelong: bounded memory (executed_plan.hpp)
     c_.plan_.bound(cfg_.output.plan_keep > 0 ? static_cast<size_t>(cfg_.output.plan_keep)
                                              : std::max<size_t>(64, (size_t{1} << 18) / static_cast<size_t>(ins_.num_agents())),

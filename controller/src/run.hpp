@@ -62,6 +62,8 @@ class Run {
   {
     if (tm_) p_->set_max_dist_tables(2 * ins_.starts.size() + 256);
   }
+  // One-shot: the instance bounds of metrics.json (instance_bound.hpp), before the run.
+  void instance_bound();
   Kinematics kinematics() const  // the vType's, for the physical bounds (bound.hpp)
   {
     return {cfg_.fleet.vtype.accel, cfg_.fleet.vtype.decel, cfg_.fleet.vtype.max_speed, cfg_.sumo.step_length};
