@@ -76,9 +76,13 @@ def absolute(cfg, base):
     return cfg
 
 
+TREND_WINDOW = 1000  # --trend-window: the issue's first / last 1000 ticks
+
+
 def window_rates(events, ticks):
-    first = sum(1 for t, *_ in events if t <= 1000) / min(1000, ticks)
-    last = sum(1 for t, *_ in events if t > ticks - 1000) / min(1000, ticks)
+    w = min(TREND_WINDOW, ticks)
+    first = sum(1 for t, *_ in events if t <= w) / w
+    last = sum(1 for t, *_ in events if t > ticks - w) / w
     return last / first if first else 0.0
 
 
@@ -106,7 +110,7 @@ def sumo_run(a, base, solver, p, out):
     ll = m["lifelong"]
     return {"thr": ll["errandThroughput"], "bound": ll["freeFlowBound"], "ratio": ll["errandThroughputOverFreeFlow"],
             "trend": window_rates(ev, m["ticks"]), "coll": m["collisions"], "jumps": m["teleports_or_jumps"],
-            "viol": m["violations"], "error": m["error"]}, ""
+            "viol": m["violations"], "error": m["error"], "ms": 1000 * m["wall_s"] / max(1, m["ticks"])}, ""
 
 
 def twin_problem(a, base, work):
@@ -174,11 +178,17 @@ def main():
     ap.add_argument("--ticks", type=int, default=5000)
     ap.add_argument("--expansions", type=int, default=5, help="planner expansions per SUMO step")
     ap.add_argument("--executor", default="adg-follow", choices=["lockstep", "adg", "adg-follow"])
+    ap.add_argument("--trend-window", type=int, default=1000,
+                    help="ticks of the first and last windows of the collapse ratio (the issue: 1000 of 5000; scaled-down runs: less)")
     ap.add_argument("--out", help="keep runs here (default: a temporary folder)")
     ap.add_argument("--twin-only", action="store_true",
                     help="run the grid twin side only (e.g. after a change to the twin, against an earlier SUMO side)")
     a = ap.parse_args()
     a.build = os.path.abspath(a.build)
+    global TREND_WINDOW
+    TREND_WINDOW = a.trend_window
+    if not 0 < a.trend_window <= a.ticks:
+        sys.exit(f"bench_twin.py: --trend-window {a.trend_window}: must be in 1..--ticks ({a.ticks})")
     for app in ("rtlacam-sumo", "rtlacam-lifelong", "rtlacam-gridify"):
         if not os.access(os.path.join(a.build, "apps", app), os.X_OK):
             sys.exit(f"bench_twin.py: {a.build}/apps/{app} is not built")
@@ -188,7 +198,8 @@ def main():
         sys.exit(f"bench_twin.py: --p: '{a.p}' is not a comma-separated list of numbers")
     work = os.path.abspath(a.out) if a.out else tempfile.mkdtemp(prefix="bench_twin_")
     os.makedirs(work, exist_ok=True)
-    print(f"# bench_twin.py: executor {a.executor}, {a.expansions} expansions per SUMO step, {a.ticks} ticks; files in {work}",
+    print(f"# bench_twin.py: executor {a.executor}, {a.expansions} expansions per SUMO step, {a.ticks} ticks, "
+          f"last/first over {a.trend_window} ticks; files in {work}",
           flush=True)
     clean = True
     f = lambda v, k, fmt="{:.3f}": fmt.format(v[k]) if v else "-"
@@ -197,13 +208,13 @@ def main():
         rel = f"{s['ratio'] / t['ratio']:.2f}" if s and t and t["ratio"] > 0 else "-"
         print(f"| {name} | {solver} | {p:g} | {f(s, 'thr')} | {f(s, 'bound')} | {f(s, 'ratio')} | {f(t, 'thr')} | "
               f"{f(t, 'bound')} | {f(t, 'ratio')} | {rel} | {f(s, 'trend', '{:.2f}')} | {f(t, 'trend', '{:.2f}')} | "
-              f"{f(s, 'coll', '{}')} | {f(s, 'jumps', '{}')} |", flush=True)
+              f"{f(s, 'coll', '{}')} | {f(s, 'jumps', '{}')} | {f(s, 'ms', '{:.0f}')} |", flush=True)
 
     print()
     print("| warehouse | solver | p | SUMO errands/tick | SUMO free-flow bound | SUMO / bound | twin errands/step | "
-          "twin free-flow bound | twin / bound | SUMO share / twin share (target >= 0.8) | SUMO last/first 1000 | "
-          "twin last/first 1000 | collisions | jumps |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
+          f"twin free-flow bound | twin / bound | SUMO share / twin share (target >= 0.8) | SUMO last/first {a.trend_window} | "
+          f"twin last/first {a.trend_window} | collisions | jumps | SUMO wall ms/tick |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
     for base in a.configs.split(","):
         twin = twin_problem(a, base, work)
         name = os.path.splitext(os.path.basename(base))[0]
