@@ -79,10 +79,16 @@ def absolute(cfg, base):
 TREND_WINDOW = 1000  # --trend-window: the issue's first / last 1000 ticks
 
 
-def window_rates(events, ticks):
-    w = min(TREND_WINDOW, ticks)
+def windows(events, ticks, w):
+    """Errands per tick over the first and the last w ticks (w capped at the run's length)."""
+    w = min(w, ticks)
     first = sum(1 for t, *_ in events if t <= w) / w
     last = sum(1 for t, *_ in events if t > ticks - w) / w
+    return first, last
+
+
+def window_rates(events, ticks):
+    first, last = windows(events, ticks, TREND_WINDOW)
     return last / first if first else 0.0
 
 
@@ -144,29 +150,36 @@ def twin_problem(a, base, work):
     return prob, q, keep, steps_per_tick
 
 
-def twin_run(a, twin, solver, p, out):
-    prob, q, keep, steps_per_tick = twin
+def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=None):
+    """One grid-twin run (rtlacam-lifelong): `expansions` per grid step, cell and rotation plans
+    on `executor` with the Bernoulli delay model at p (as SUMO's delays: 1-5 steps). `agents`:
+    another fleet size than the config's, with queues off and priorities reset (the layout's
+    own limit; bench_twin_sweep.py --fleet)."""
+    prob, q, keep, _ = twin
     solver, rot = variant(solver)
-    cmd = [os.path.join(a.build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(a.ticks),
-           "--budget-ms", "1000", "--budget-expansions", str(a.expansions * steps_per_tick), "--solver", solver,
+    cmd = [os.path.join(build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(steps),
+           "--budget-ms", "1000", "--budget-expansions", str(expansions), "--solver", solver,
            "--quiet", "--out", out + ".log.json"]
     if solver in ROTATION:  # a turn is one grid step, as fleet.turn_s defaults to one tick in SUMO
         cmd += twin_rotation_args(solver, rot)
-    cmd += ["--executor", a.executor]
-    if not keep:
-        cmd.append("--reset-priorities")
-    if q.get("capacity", 0) > 0:
+    cmd += ["--executor", executor]
+    if agents:
+        cmd += ["--agents", str(agents)]
+    elif q.get("capacity", 0) > 0:
         cmd += ["--queue-capacity", str(q["capacity"]), "--queue-length", str(q.get("length", 8))]
+    if not keep or agents:
+        cmd.append("--reset-priorities")
     if p > 0:
         cmd += ["--delay-kind", "bernoulli", "--delay-p", str(p), "--delay-min", "1", "--delay-max", "5"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         return None, f"rtlacam-lifelong exit {r.returncode}: {r.stderr.strip().splitlines()[-1:]}"
     j = json.loads(r.stdout)
-    ev = json.load(open(out + ".log.json"))["events"]
+    log = json.load(open(out + ".log.json"))
+    ev = log["events"]
     return {"thr": j["errandThroughput"], "bound": j.get("freeFlowBound", 0),
             "ratio": j.get("errandThroughputOverFreeFlow", 0), "trend": window_rates(ev, j["makespan"]),
-            "errors": j["numPlannerErrors"]}, ""
+            "errors": j["numPlannerErrors"], "events": ev, "steps": j["makespan"], "team": log["teamSize"]}, ""
 
 
 def main():
@@ -187,8 +200,9 @@ def main():
     a.build = os.path.abspath(a.build)
     global TREND_WINDOW
     TREND_WINDOW = a.trend_window
-    if not 0 < a.trend_window <= a.ticks:
-        sys.exit(f"bench_twin.py: --trend-window {a.trend_window}: must be in 1..--ticks ({a.ticks})")
+    if a.trend_window <= 0:
+        sys.exit(f"bench_twin.py: --trend-window {a.trend_window}: must be positive")
+    a.trend_window = min(a.trend_window, a.ticks)  # a shorter run: both windows are the whole run
     for app in ("rtlacam-sumo", "rtlacam-lifelong", "rtlacam-gridify"):
         if not os.access(os.path.join(a.build, "apps", app), os.X_OK):
             sys.exit(f"bench_twin.py: {a.build}/apps/{app} is not built")
@@ -222,7 +236,8 @@ def main():
             for p in ps:
                 tag = f"{name}_{solver}_p{p:g}"
                 s, err_s = (None, "") if a.twin_only else sumo_run(a, base, solver, p, os.path.join(work, tag))
-                t, err_t = twin_run(a, twin, solver, p, os.path.join(work, "twin_" + tag))
+                t, err_t = twin_run(a.build, twin, solver, p, os.path.join(work, "twin_" + tag), a.ticks,
+                                    a.expansions * twin[3], a.executor)
                 for e in (err_s, err_t):
                     if e:
                         print(f"# {tag}: {e}", flush=True)
