@@ -92,22 +92,29 @@ def window_rates(events, ticks):
     return last / first if first else 0.0
 
 
-def sumo_run(a, base, solver, p, out):
+def sumo_config(base, solver, p, out, ticks, expansions, executor):
+    """Writes out.yaml: the SUMO side of a row (the config with the physical vType, the row's
+    solver and options, executor, Bernoulli stops at p) and returns its path."""
     cfg = absolute(yaml.safe_load(open(os.path.join(ROOT, base))), base)
     cfg["sumo"]["outputs"] = {"fcd": False, "tripinfo": False, "summary": False, "collision": True}
     cfg["fleet"]["vtype"] = VTYPE
     solver, rot = variant(solver)
-    cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": a.expansions})
+    cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": expansions})
     cfg["planner"].pop("rotation", None)  # the row's options only, as in the twin
     if rot:
         cfg["planner"]["rotation"] = rot
-    cfg["run"].update({"executor": a.executor, "max_ticks": a.ticks, "progress_s": 0})
-    if a.executor != "lockstep":
+    cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
+    if executor != "lockstep":
         cfg["run"].setdefault("window", 16)
     cfg["delays"] = {"kind": "bernoulli", "p": p, "duration_s": [1, 5], "seed": 0} if p > 0 else {"kind": "none"}
     cfg["output"] = {"dir": out, "congestion": False}
     with open(out + ".yaml", "w") as f:
         yaml.safe_dump(cfg, f)
+    return out + ".yaml"
+
+
+def sumo_run(a, base, solver, p, out):
+    sumo_config(base, solver, p, out, a.ticks, a.expansions, a.executor)
     r = subprocess.run([os.path.join(a.build, "apps", "rtlacam-sumo"), out + ".yaml"], capture_output=True, text=True)
     if not os.path.exists(os.path.join(out, "metrics.json")):
         return None, f"rtlacam-sumo exit {r.returncode}: {r.stderr.strip().splitlines()[-1:]}"
