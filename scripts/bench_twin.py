@@ -203,7 +203,11 @@ def main():
     ap.add_argument("--out", help="keep runs here (default: a temporary folder)")
     ap.add_argument("--twin-only", action="store_true",
                     help="run the grid twin side only (e.g. after a change to the twin, against an earlier SUMO side)")
+    ap.add_argument("--sumo-only", action="store_true",
+                    help="run the SUMO side only (e.g. its twin rows run in another process)")
     a = ap.parse_args()
+    if a.twin_only and a.sumo_only:
+        sys.exit("bench_twin.py: --twin-only and --sumo-only: one of them")
     a.build = os.path.abspath(a.build)
     global TREND_WINDOW
     TREND_WINDOW = a.trend_window
@@ -243,8 +247,8 @@ def main():
             for p in ps:
                 tag = f"{name}_{solver}_p{p:g}"
                 s, err_s = (None, "") if a.twin_only else sumo_run(a, base, solver, p, os.path.join(work, tag))
-                t, err_t = twin_run(a.build, twin, solver, p, os.path.join(work, "twin_" + tag), a.ticks,
-                                    a.expansions * twin[3], a.executor)
+                t, err_t = (None, "") if a.sumo_only else twin_run(a.build, twin, solver, p, os.path.join(work, "twin_" + tag),
+                                                                   a.ticks, a.expansions * twin[3], a.executor)
                 for e in (err_s, err_t):
                     if e:
                         print(f"# {tag}: {e}", flush=True)
