@@ -26,7 +26,7 @@ not get worse in SUMO"), and no collapse (last 1000 ticks >= 0.8 x the first 100
                         [--solvers rtlacam,pibt] [--p 0,0.01] [--ticks 5000] [--out DIR]
                         [--trend-window 1000] [--twin-only | --sumo-only]
 A scaled-down run (fewer ticks) sets --trend-window below --ticks (e.g. 300 of 1000); the two
-sides of a table can run in separate processes (--sumo-only, --twin-only) on one --out.
+sides of a table can run in separate processes (--sumo-only, --twin-only), each with its own --out.
 """
 import argparse
 import json
