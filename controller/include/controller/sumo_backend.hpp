@@ -20,8 +20,8 @@ struct VehiclePose {
 class SumoBackend {
  public:
   // set_angle's moveToXY map-matches its point against every lane within this radius
-  // (matchThreshold; SUMO's default, 100 m, cost ~3 ms a call on the 1000-AGV warehouse
-  // and made pibt-rot runs there ~2 s per tick). The point is on the AGV's own lane (1 cm
+  // (matchThreshold; SUMO's default, 100 m, cost 2-6 ms a call on the 1000-AGV warehouse
+  // and made pibt-rot runs there 1-4 s per tick). The point is on the AGV's own lane (1 cm
   // off at most) and that lane wins the match by its id whatever else lies near, so a metre
   // finds the same lane at the same position: only fewer far lanes are scored.
   static constexpr double kAngleMatchRadius = 1.0;
