@@ -24,6 +24,9 @@ not get worse in SUMO"), and no collapse (last 1000 ticks >= 0.8 x the first 100
 
   scripts/bench_twin.py [--build build] [--configs config/large_warehouse_lifelong.yaml,...]
                         [--solvers rtlacam,pibt] [--p 0,0.01] [--ticks 5000] [--out DIR]
+                        [--trend-window 1000] [--twin-only | --sumo-only]
+A scaled-down run (fewer ticks) sets --trend-window below --ticks (e.g. 300 of 1000); the two
+sides of a table can run in separate processes (--sumo-only, --twin-only), each with its own --out.
 """
 import argparse
 import json
@@ -76,28 +79,45 @@ def absolute(cfg, base):
     return cfg
 
 
+TREND_WINDOW = 1000  # --trend-window: the issue's first / last 1000 ticks
+
+
+def windows(events, ticks, w):
+    """Errands per tick over the first and the last w ticks (w capped at the run's length)."""
+    w = min(w, ticks)
+    first = sum(1 for t, *_ in events if t <= w) / w
+    last = sum(1 for t, *_ in events if t > ticks - w) / w
+    return first, last
+
+
 def window_rates(events, ticks):
-    first = sum(1 for t, *_ in events if t <= 1000) / min(1000, ticks)
-    last = sum(1 for t, *_ in events if t > ticks - 1000) / min(1000, ticks)
+    first, last = windows(events, ticks, TREND_WINDOW)
     return last / first if first else 0.0
 
 
-def sumo_run(a, base, solver, p, out):
+def sumo_config(base, solver, p, out, ticks, expansions, executor):
+    """Writes out.yaml: the SUMO side of a row (the config with the physical vType, the row's
+    solver and options, executor, Bernoulli stops at p) and returns its path."""
     cfg = absolute(yaml.safe_load(open(os.path.join(ROOT, base))), base)
     cfg["sumo"]["outputs"] = {"fcd": False, "tripinfo": False, "summary": False, "collision": True}
     cfg["fleet"]["vtype"] = VTYPE
     solver, rot = variant(solver)
-    cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": a.expansions})
+    cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": expansions})
     cfg["planner"].pop("rotation", None)  # the row's options only, as in the twin
     if rot:
         cfg["planner"]["rotation"] = rot
-    cfg["run"].update({"executor": a.executor, "max_ticks": a.ticks, "progress_s": 0})
-    if a.executor != "lockstep":
+    cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
+    if executor != "lockstep":
         cfg["run"].setdefault("window", 16)
     cfg["delays"] = {"kind": "bernoulli", "p": p, "duration_s": [1, 5], "seed": 0} if p > 0 else {"kind": "none"}
     cfg["output"] = {"dir": out, "congestion": False}
     with open(out + ".yaml", "w") as f:
         yaml.safe_dump(cfg, f)
+    return out + ".yaml"
+
+
+def sumo_run(a, base, solver, p, out):
+    sumo_config(base, solver, p, out, a.ticks, a.expansions, a.executor)
     r = subprocess.run([os.path.join(a.build, "apps", "rtlacam-sumo"), out + ".yaml"], capture_output=True, text=True)
     if not os.path.exists(os.path.join(out, "metrics.json")):
         return None, f"rtlacam-sumo exit {r.returncode}: {r.stderr.strip().splitlines()[-1:]}"
@@ -106,7 +126,7 @@ def sumo_run(a, base, solver, p, out):
     ll = m["lifelong"]
     return {"thr": ll["errandThroughput"], "bound": ll["freeFlowBound"], "ratio": ll["errandThroughputOverFreeFlow"],
             "trend": window_rates(ev, m["ticks"]), "coll": m["collisions"], "jumps": m["teleports_or_jumps"],
-            "viol": m["violations"], "error": m["error"]}, ""
+            "viol": m["violations"], "error": m["error"], "ms": 1000 * m["wall_s"] / max(1, m["ticks"])}, ""
 
 
 def twin_problem(a, base, work):
@@ -140,29 +160,36 @@ def twin_problem(a, base, work):
     return prob, q, keep, steps_per_tick
 
 
-def twin_run(a, twin, solver, p, out):
-    prob, q, keep, steps_per_tick = twin
+def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=None):
+    """One grid-twin run (rtlacam-lifelong): `expansions` per grid step, cell and rotation plans
+    on `executor` with the Bernoulli delay model at p (as SUMO's delays: 1-5 steps). `agents`:
+    another fleet size than the config's, with queues off and priorities reset (the layout's
+    own limit; bench_twin_sweep.py --fleet)."""
+    prob, q, keep, _ = twin
     solver, rot = variant(solver)
-    cmd = [os.path.join(a.build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(a.ticks),
-           "--budget-ms", "1000", "--budget-expansions", str(a.expansions * steps_per_tick), "--solver", solver,
+    cmd = [os.path.join(build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(steps),
+           "--budget-ms", "1000", "--budget-expansions", str(expansions), "--solver", solver,
            "--quiet", "--out", out + ".log.json"]
     if solver in ROTATION:  # a turn is one grid step, as fleet.turn_s defaults to one tick in SUMO
         cmd += twin_rotation_args(solver, rot)
-    cmd += ["--executor", a.executor]
-    if not keep:
-        cmd.append("--reset-priorities")
-    if q.get("capacity", 0) > 0:
+    cmd += ["--executor", executor]
+    if agents:
+        cmd += ["--agents", str(agents)]
+    elif q.get("capacity", 0) > 0:
         cmd += ["--queue-capacity", str(q["capacity"]), "--queue-length", str(q.get("length", 8))]
+    if not keep or agents:
+        cmd.append("--reset-priorities")
     if p > 0:
         cmd += ["--delay-kind", "bernoulli", "--delay-p", str(p), "--delay-min", "1", "--delay-max", "5"]
     r = subprocess.run(cmd, capture_output=True, text=True)
     if r.returncode != 0:
         return None, f"rtlacam-lifelong exit {r.returncode}: {r.stderr.strip().splitlines()[-1:]}"
     j = json.loads(r.stdout)
-    ev = json.load(open(out + ".log.json"))["events"]
+    log = json.load(open(out + ".log.json"))
+    ev = log["events"]
     return {"thr": j["errandThroughput"], "bound": j.get("freeFlowBound", 0),
             "ratio": j.get("errandThroughputOverFreeFlow", 0), "trend": window_rates(ev, j["makespan"]),
-            "errors": j["numPlannerErrors"]}, ""
+            "errors": j["numPlannerErrors"], "events": ev, "steps": j["makespan"], "team": log["teamSize"]}, ""
 
 
 def main():
@@ -174,11 +201,22 @@ def main():
     ap.add_argument("--ticks", type=int, default=5000)
     ap.add_argument("--expansions", type=int, default=5, help="planner expansions per SUMO step")
     ap.add_argument("--executor", default="adg-follow", choices=["lockstep", "adg", "adg-follow"])
+    ap.add_argument("--trend-window", type=int, default=1000,
+                    help="ticks of the first and last windows of the collapse ratio (the issue: 1000 of 5000; scaled-down runs: less)")
     ap.add_argument("--out", help="keep runs here (default: a temporary folder)")
     ap.add_argument("--twin-only", action="store_true",
                     help="run the grid twin side only (e.g. after a change to the twin, against an earlier SUMO side)")
+    ap.add_argument("--sumo-only", action="store_true",
+                    help="run the SUMO side only (e.g. its twin rows run in another process)")
     a = ap.parse_args()
+    if a.twin_only and a.sumo_only:
+        sys.exit("bench_twin.py: --twin-only and --sumo-only: one of them")
     a.build = os.path.abspath(a.build)
+    global TREND_WINDOW
+    TREND_WINDOW = a.trend_window
+    if a.trend_window <= 0:
+        sys.exit(f"bench_twin.py: --trend-window {a.trend_window}: must be positive")
+    a.trend_window = min(a.trend_window, a.ticks)  # a shorter run: both windows are the whole run
     for app in ("rtlacam-sumo", "rtlacam-lifelong", "rtlacam-gridify"):
         if not os.access(os.path.join(a.build, "apps", app), os.X_OK):
             sys.exit(f"bench_twin.py: {a.build}/apps/{app} is not built")
@@ -188,7 +226,8 @@ def main():
         sys.exit(f"bench_twin.py: --p: '{a.p}' is not a comma-separated list of numbers")
     work = os.path.abspath(a.out) if a.out else tempfile.mkdtemp(prefix="bench_twin_")
     os.makedirs(work, exist_ok=True)
-    print(f"# bench_twin.py: executor {a.executor}, {a.expansions} expansions per SUMO step, {a.ticks} ticks; files in {work}",
+    print(f"# bench_twin.py: executor {a.executor}, {a.expansions} expansions per SUMO step, {a.ticks} ticks, "
+          f"last/first over {a.trend_window} ticks; files in {work}",
           flush=True)
     clean = True
     f = lambda v, k, fmt="{:.3f}": fmt.format(v[k]) if v else "-"
@@ -197,13 +236,13 @@ def main():
         rel = f"{s['ratio'] / t['ratio']:.2f}" if s and t and t["ratio"] > 0 else "-"
         print(f"| {name} | {solver} | {p:g} | {f(s, 'thr')} | {f(s, 'bound')} | {f(s, 'ratio')} | {f(t, 'thr')} | "
               f"{f(t, 'bound')} | {f(t, 'ratio')} | {rel} | {f(s, 'trend', '{:.2f}')} | {f(t, 'trend', '{:.2f}')} | "
-              f"{f(s, 'coll', '{}')} | {f(s, 'jumps', '{}')} |", flush=True)
+              f"{f(s, 'coll', '{}')} | {f(s, 'jumps', '{}')} | {f(s, 'ms', '{:.0f}')} |", flush=True)
 
     print()
     print("| warehouse | solver | p | SUMO errands/tick | SUMO free-flow bound | SUMO / bound | twin errands/step | "
-          "twin free-flow bound | twin / bound | SUMO share / twin share (target >= 0.8) | SUMO last/first 1000 | "
-          "twin last/first 1000 | collisions | jumps |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
+          f"twin free-flow bound | twin / bound | SUMO share / twin share (target >= 0.8) | SUMO last/first {a.trend_window} | "
+          f"twin last/first {a.trend_window} | collisions | jumps | SUMO wall ms/tick |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
     for base in a.configs.split(","):
         twin = twin_problem(a, base, work)
         name = os.path.splitext(os.path.basename(base))[0]
@@ -211,7 +250,8 @@ def main():
             for p in ps:
                 tag = f"{name}_{solver}_p{p:g}"
                 s, err_s = (None, "") if a.twin_only else sumo_run(a, base, solver, p, os.path.join(work, tag))
-                t, err_t = twin_run(a, twin, solver, p, os.path.join(work, "twin_" + tag))
+                t, err_t = (None, "") if a.sumo_only else twin_run(a.build, twin, solver, p, os.path.join(work, "twin_" + tag),
+                                                                   a.ticks, a.expansions * twin[3], a.executor)
                 for e in (err_s, err_t):
                     if e:
                         print(f"# {tag}: {e}", flush=True)

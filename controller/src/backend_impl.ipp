@@ -82,7 +82,7 @@ class ApiBackend : public SumoBackend {
     call("Vehicle.moveToXY", [&] {
       const libsumo::TraCIPosition p = api::Simulation::convert2D(edge, pos, 0);
       api::Vehicle::moveTo(id, lane, back);
-      api::Vehicle::moveToXY(id, edge, 0, p.x + dx, p.y + dy, angle, 0);
+      api::Vehicle::moveToXY(id, edge, 0, p.x + dx, p.y + dy, angle, 0, kAngleMatchRadius);
     });
   }
   double angle(const std::string& id) override

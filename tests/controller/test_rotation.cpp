@@ -10,6 +10,9 @@
 #include "controller/commander.hpp"
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "controller/sumo_error.hpp"
+#include "controller/sumo_options.hpp"
+#include "gridify/gridifier.hpp"
 #include "controller_test_util.hpp"
 #include "planner/validator.hpp"
 #include "temp_path.hpp"
@@ -169,6 +172,39 @@ void expect_turns_in_sumo(double factor, const std::string& name)
   EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
 }
 }  // namespace
+
+// An AGV held at an angle (set_angle, every SUMO step while it faces off its lane) is
+// map-matched only against lanes within SumoBackend::kAngleMatchRadius: on its own lane it
+// stands at the angle asked, exactly where it was; a point 3 m off every lane is an error,
+// where SUMO's default radius (100 m) searched -- and on the 1000-AGV warehouse scored --
+// every lane around (~3 ms a call). Fails with the radius left at SUMO's default.
+TEST(ControllerRotation, SetAngleMatchesOnlyLanesNearItsPoint)
+{
+  Config c = small_rotation("pibt-rot", "ctl_rot_match_radius");
+  const gridify::CellMap map = gridify::gridify(c.sumo.net);
+  // An aisle cell of the lowest row: nothing lies south of it.
+  planner::Vertex v = -1;
+  for (planner::Vertex u = 0; u < static_cast<planner::Vertex>(map.cells.size()); ++u)
+    if (map.cells[u].kind == gridify::CellKind::Aisle && (v < 0 || map.cells[u].y < map.cells[v].y)) v = u;
+  ASSERT_GE(v, 0);
+  std::unique_ptr<SumoBackend> sumo = make_libsumo_backend();
+  Commander cmd(map, *sumo, c.run.tick_s);
+  sumo->start(sumo_args(c, c.output.dir, write_vtype_file(c, c.output.dir, c.grid.cell_length), false));
+  cmd.insert({v});
+  sumo->step();
+  const VehiclePose at = sumo->pose("agv0");
+  const std::string edge = at.lane.substr(0, at.lane.rfind('_'));
+  const double angle = std::fmod(sumo->angle("agv0") + 90.0, 360.0);
+  sumo->set_angle("agv0", at.lane, edge, at.pos, at.pos - 1e-4, angle, 0, 0);
+  sumo->step();
+  const VehiclePose held = sumo->pose("agv0");
+  EXPECT_EQ(held.lane, at.lane);
+  EXPECT_NEAR(held.pos, at.pos, 1.1e-3);
+  EXPECT_NEAR(sumo->angle("agv0"), angle, 1e-6);
+  EXPECT_THROW(sumo->set_angle("agv0", at.lane, edge, at.pos, at.pos - 1e-4, angle, 0, -3.0), SumoError)
+      << "a point 3 m south of the lowest aisle was map-matched: the search radius is wider than kAngleMatchRadius";
+  sumo->close();
+}
 
 TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
 {
