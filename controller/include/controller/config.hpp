@@ -144,6 +144,8 @@ struct TasksSection {
   int pool_size = 0;                       // pool: revealed tasks; 0 = ceil(1.5 x fleet.count)
   int k_nearest = 32;                      // hungarian: candidate tasks per AGV
   bool reassign = false;                   // pool: a nearer free AGV may take an unopened task
+  // Priority hints to the planner (tasks/urgency.hpp): stalled errands, low batteries.
+  bool urgency_stalls = true, urgency_battery = true;
   // Station queues (tasks/station_queues.hpp): AGVs admitted to one station at once (0: off),
   // queue cells per station, pool admission limit (0: capacity + length, -1: none).
   int queue_capacity = 0, queue_length = 4, queue_admission = 0;
