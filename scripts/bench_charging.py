@@ -81,7 +81,7 @@ def main():
     if a.critical is not None:
         shipped["critical"] = a.critical
     # The task layer's priority hints (tasks/urgency.hpp) are on unless a variant says otherwise.
-    no_hint = {"stalls": True, "battery": False}
+    no_hint = {"battery": False}
     variants = [("no battery", None), ("charging", dict(shipped)),
                 ("charging, battery priority off", dict(shipped), no_hint),
                 ("charging, rematch off", dict(shipped, rematch=False)),

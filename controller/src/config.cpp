@@ -471,9 +471,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.integer(t, "tasks", "k_nearest", c.tasks.k_nearest, 1, 1000000);
     r.flag(t, "tasks", "reassign", c.tasks.reassign);
     if (const YAML::Node u = t["urgency"]) {
-      if (!u.IsMap()) r.fail("tasks.urgency", "expected a mapping {stalls: true|false, battery: true|false}");
+      if (!u.IsMap()) r.fail("tasks.urgency", "expected a mapping {stalls: true|false|auto, battery: true|false}");
       r.keys(u, "tasks.urgency", {"stalls", "battery"});
-      r.flag(u, "tasks.urgency", "stalls", c.tasks.urgency_stalls);
+      if (u["stalls"] && !(u["stalls"].IsScalar() && u["stalls"].Scalar() == "auto")) {
+        bool on = false;
+        r.get(u, "tasks.urgency", "stalls", on, "true, false or auto");
+        c.tasks.urgency_stalls = on;
+      }
       r.flag(u, "tasks.urgency", "battery", c.tasks.urgency_battery);
     }
     if (const YAML::Node q = t["queues"]) {

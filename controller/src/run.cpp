@@ -108,7 +108,8 @@ void Run::prepare()
     // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (move costs
     // included), closures or not: tables of their own, exact whatever the step's deadline.
     tm_->watch_stalls(c_.map_.graph);
-    tm_->set_urgency({cfg_.tasks.urgency_stalls, cfg_.tasks.urgency_battery});
+    const bool stalls = cfg_.tasks.urgency_stalls < 0 ? cfg_.tasks.queue_capacity > 0 : cfg_.tasks.urgency_stalls != 0;
+    tm_->set_urgency({stalls, cfg_.tasks.urgency_battery});
   }
   if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
     for (size_t i = 0; i < b->chargers().size(); ++i)

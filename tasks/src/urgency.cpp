@@ -6,6 +6,12 @@
 
 namespace tasks {
 
+bool battery_urgent(const TaskManager& tm, int a)
+{
+  const Battery* b = tm.urgency().battery ? tm.battery() : nullptr;
+  return b && (b->charging(a) || (tm.busy(a) && b->low(a)));
+}
+
 std::vector<float> priority_hints(const TaskManager& tm)
 {
   const UrgencyOptions& o = tm.urgency();
@@ -16,7 +22,7 @@ std::vector<float> priority_hints(const TaskManager& tm)
   const Battery* b = o.battery ? tm.battery() : nullptr;
   for (int a = 0; a < n; ++a) {
     if (st && tm.heading(a)) h[a] = static_cast<float>(st->stalled(tm.now(), tm.task_of(a)->id));
-    if (b && (b->charging(a) || (tm.busy(a) && b->low(a)))) {
+    if (b && battery_urgent(tm, a)) {
       const double f = std::clamp(b->charge(a) / b->options().capacity_wh, 0.0, 1.0);
       h[a] = kBatteryUrgency + static_cast<float>(kBatteryUrgency * (1.0 - f));
     }

@@ -18,7 +18,9 @@
 //    fraction): above every stall, and the emptier one first (two low AGVs head-on: one
 //    yields, they no longer swap priorities and oscillate).
 // Hints only order conflicts; the planners' guarantees stay (RT-LaCAM's tree of an epoch is
-// one complete search whatever the root's priorities).
+// one complete search whatever the root's priorities). Battery urgency also narrows the
+// epoch's goal test to the low agents (battery_urgent, below): still one complete search,
+// for a goal that one agent reaching its charger satisfies.
 #include <vector>
 
 #include "planner/realtime_planner.hpp"
@@ -34,6 +36,14 @@ struct UrgencyOptions {
 };
 
 inline constexpr float kBatteryUrgency = 10000.0f;
+
+// Battery urgency on and agent a on its way to a charger, or busy while low. While such an
+// agent is off its goal, the epoch's goal test (lifelong_goal.hpp) waits for one of them:
+// a hint orders PIBT's conflicts, but RT-LaCAM follows the path to the first configuration
+// that passes the goal test, and with "any pending agent arrives" that path may drag a low
+// AGV up and down an aisle while another one arrives (bench_charging.py seed 2: three AGVs
+// in one aisle for 40 ticks, one ran empty).
+bool battery_urgent(const TaskManager& tm, int a);
 
 // One hint per agent at the last update() (empty when every option is off).
 std::vector<float> priority_hints(const TaskManager& tm);
