@@ -20,7 +20,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--skip-large] [--skip-one-way] [--skip-small] [--queues]
                          [--station-closure] [--executor lockstep|adg|adg-follow]
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
-                         [--urgency [--urgency-configs CONFIG...]]
+                         [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
@@ -31,6 +31,8 @@ pibt-rot and epibt) and restarts on the rules' graph from the AGVs' cells and he
 --urgency: instead, the task layer's priority hints (tasks/urgency.hpp) on and off, rules
 off, on each of --urgency-configs (default: the large two-way and one-way warehouses and the
 small one), same ticks, expansions and seeds: errands per tick on / off and K both ways.
+--shipped-k CONFIG...: instead, each config as shipped (its rules, queues, hints), with the
+fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped examples.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
@@ -91,7 +93,8 @@ def run(build, base, out, ticks, expansions, rules, tasks_extra=None):
     if SOLVER:
         cfg["planner"]["solver"] = SOLVER
     cfg["output"] = {"dir": out, "congestion": False}
-    cfg["rules"] = rules
+    if rules is not None:
+        cfg["rules"] = rules
     cfg["tasks"].update(tasks_extra or {})
     if QUEUES:
         cfg["tasks"]["queues"] = {"capacity": 1, "length": 8}
@@ -163,6 +166,26 @@ def urgency(a, build, tmp):
     return 0 if clean else 1
 
 
+def shipped_k(a, build, tmp):
+    """K of each shipped lifelong example as it is (its rules, queues and hints), scaled ticks."""
+    clean = True
+    print("| config | ticks | errands/tick | K (stall max / p99) | errand ticks max | errands | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|")
+    for base in a.shipped_k:
+        ticks = a.ticks if "small" in base else a.large_ticks
+        out = os.path.join(tmp, os.path.basename(base).split(".")[0] + "_shipped")
+        m, err = run(build, base, out, ticks, a.expansions, None)
+        if m is None:
+            print(f"# {base}: {err}", file=sys.stderr)
+            return 1
+        clean = clean and run_clean(m)
+        l = m["lifelong"]
+        print(f"| {base} | {m['ticks']} | {l['errandThroughput']:.3f} | {k_cols(m)} | {l['numErrandFinished']} | "
+              f"{m['violations']} | {m['teleports_or_jumps']} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -177,6 +200,7 @@ def main():
     ap.add_argument("--executor", choices=["lockstep", "adg", "adg-follow"])
     ap.add_argument("--solver")
     ap.add_argument("--urgency", action="store_true")
+    ap.add_argument("--shipped-k", nargs="+", metavar="CONFIG")
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])
@@ -193,6 +217,8 @@ def main():
         return station_closure(a, build, tmp)
     if a.urgency:
         return urgency(a, build, tmp)
+    if a.shipped_k:
+        return shipped_k(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:
