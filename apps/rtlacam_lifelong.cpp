@@ -53,6 +53,10 @@ int main(int argc, char** argv)
   app.add_flag("--reassign,!--no-reassign", reassign,
                "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
                "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
+  bool urgency = false;
+  app.add_flag("--urgency,!--no-urgency", urgency,
+               "priority hints to the planner (tasks/urgency.hpp): a stalled errand's holder and a low-battery agent "
+               "win conflicts at each epoch start (default off here; on in rtlacam-sumo)");
   app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
   app.add_option("--queue-capacity", queues.capacity,
                  "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "
@@ -130,6 +134,7 @@ int main(int argc, char** argv)
       tm->set_parking(g, std::vector<planner::Vertex>(cells.begin(), cells.end()));
     }
     bc.apply(g, *tm);
+    tm->set_urgency({urgency, urgency});
 
     LifelongOptions opt;
     sc.apply(app, g, starts.size(), action_model == "rotation", opt.solver);

@@ -6,7 +6,8 @@ identical but for the battery: none (no fleet.battery: the baseline), charging (
 battery, AGVs charge below the threshold between tasks and, below fleet.battery.critical or
 the distance-aware reserve, mid-task), charging without the reserve (reserve_margin: 0),
 charging without rematched claims (rematch: false), charging without the critical level, the
-reserve and the rematch, drain only
+reserve and the rematch, charging without the planner priority of low AGVs
+(tasks.urgency.battery: false; tasks/urgency.hpp), drain only
 (fleet.battery.charging: false: the same drain, no charging errands).
 --per-m-wh / --critical override the config's drain and critical level (aggressive
 settings: --per-m-wh 1.5 --critical 0.25); --seeds runs every variant once per fleet.seed
@@ -17,7 +18,7 @@ empty; every run must end clean (0 violations, 0 jumps / re-syncs; the script sa
 with charging no AGV may run empty.
 
   scripts/bench_charging.py [--build build] [--ticks 1000] [--expansions 50] [--agvs 16]
-                            [--per-m-wh X] [--critical X] [--seeds 1,2,3,4]
+                            [--per-m-wh X] [--critical X] [--seeds 1,2,3,4] [--quick]
 """
 import argparse
 import json
@@ -32,7 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BASE = "config/small_charging_lifelong.yaml"
 
 
-def run(build, out, ticks, expansions, agvs, battery, seed=None):
+def run(build, out, ticks, expansions, agvs, battery, seed=None, urgency=None):
     cfg = yaml.safe_load(open(os.path.join(ROOT, BASE)))
     here = os.path.dirname(os.path.join(ROOT, BASE))
     for k in ("net", "additional"):
@@ -48,6 +49,8 @@ def run(build, out, ticks, expansions, agvs, battery, seed=None):
     else:
         cfg["fleet"]["battery"] = battery
     cfg["run"]["max_ticks"] = ticks
+    if urgency is not None:
+        cfg["tasks"]["urgency"] = urgency
     cfg["run"]["progress_s"] = 0
     cfg["output"] = {"dir": out, "congestion": False}
     path = out + ".yaml"
@@ -67,6 +70,7 @@ def main():
     ap.add_argument("--agvs", type=int, default=16)
     ap.add_argument("--per-m-wh", type=float)
     ap.add_argument("--critical", type=float)
+    ap.add_argument("--quick", action="store_true", help="only no battery, charging, and charging with the battery priority off")
     ap.add_argument("--seeds", default="", help="comma-separated fleet.seed values (default: the config's)")
     a = ap.parse_args()
     build = os.path.abspath(a.build)
@@ -76,10 +80,17 @@ def main():
         shipped["per_m_wh"] = a.per_m_wh
     if a.critical is not None:
         shipped["critical"] = a.critical
-    variants = [("no battery", None), ("charging", dict(shipped)), ("charging, rematch off", dict(shipped, rematch=False)),
+    # The task layer's priority hints (tasks/urgency.hpp) are on unless a variant says otherwise.
+    no_hint = {"battery": False}
+    variants = [("no battery", None), ("charging", dict(shipped)),
+                ("charging, battery priority off", dict(shipped), no_hint),
+                ("charging, rematch off", dict(shipped, rematch=False)),
                 ("charging, reserve off", dict(shipped, reserve_margin=0)),
                 ("charging, critical, reserve and rematch off", dict(shipped, critical=0, reserve_margin=0, rematch=False)),
                 ("drain only", dict(shipped, charging=False))]
+    variants = [v if len(v) == 3 else (v[0], v[1], None) for v in variants]
+    if a.quick:
+        variants = variants[:3]
     seeds = [int(x) for x in a.seeds.split(",") if x] or [None]
     print(f"# {BASE}, {a.agvs} AGVs, {a.ticks} ticks, {a.expansions} expansions per SUMO step; battery {shipped}; "
           f"fleet seeds {a.seeds or 'the config'}")
@@ -88,9 +99,9 @@ def main():
     clean = True
     for seed in seeds:
         base = None
-        for label, battery in variants:
+        for label, battery, urgency in variants:
             out = os.path.join(tmp, f"{seed}_" + label.replace(" ", "_").replace(",", ""))
-            m = run(build, out, a.ticks, a.expansions, a.agvs, battery, seed)
+            m = run(build, out, a.ticks, a.expansions, a.agvs, battery, seed, urgency)
             rate = m["lifelong"]["errandThroughput"]
             base = rate if base is None else base
             b = m.get("battery", {})

@@ -20,6 +20,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--skip-large] [--skip-one-way] [--skip-small] [--queues]
                          [--station-closure] [--executor lockstep|adg|adg-follow]
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
+                         [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
@@ -27,6 +28,11 @@ AGV waits), against no closure; prints the tasks handed back.
 --solver: every run with this planner.solver (default: the config's, rtlacam); a rotation
 solver (pibt-rot, epibt, wppl) gets the controller's rotation defaults (guidance arrows for
 pibt-rot and epibt) and restarts on the rules' graph from the AGVs' cells and headings.
+--urgency: instead, the task layer's priority hints (tasks/urgency.hpp) on and off, rules
+off, on each of --urgency-configs (default: the large two-way and one-way warehouses and the
+small one), same ticks, expansions and seeds: errands per tick on / off and K both ways.
+--shipped-k CONFIG...: instead, each config as shipped (its rules, queues, hints), with the
+fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped examples.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
@@ -71,7 +77,7 @@ def run_clean(m):
     return m["violations"] == 0 and m["teleports_or_jumps"] == 0 and m.get("collisions", 0) == 0 and not m["error"]
 
 
-def run(build, base, out, ticks, expansions, rules):
+def run(build, base, out, ticks, expansions, rules, tasks_extra=None):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
     for k in ("net", "additional"):
@@ -87,7 +93,9 @@ def run(build, base, out, ticks, expansions, rules):
     if SOLVER:
         cfg["planner"]["solver"] = SOLVER
     cfg["output"] = {"dir": out, "congestion": False}
-    cfg["rules"] = rules
+    if rules is not None:
+        cfg["rules"] = rules
+    cfg["tasks"].update(tasks_extra or {})
     if QUEUES:
         cfg["tasks"]["queues"] = {"capacity": 1, "length": 8}
         cfg["planner"]["keep_priorities"] = True
@@ -132,6 +140,52 @@ def station_closure(a, build, tmp):
     return 0 if clean else 1
 
 
+def urgency(a, build, tmp):
+    """Priority hints on against off, per config (same ticks, seeds, expansions)."""
+    clean = True
+    print("| config | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errands done on / off |")
+    print("|---|---|---|---|---|---|---|---|")
+    for base in a.urgency_configs:
+        ticks = a.ticks if "small" in base else a.large_ticks
+        res = {}
+        for label, u in [("on", {"stalls": True, "battery": True}), ("off", {"stalls": False, "battery": False})]:
+            out = os.path.join(tmp, os.path.basename(base).split(".")[0] + "_urgency_" + label)
+            cfg_extra = {"urgency": u}
+            m, err = run(build, base, out, ticks, a.expansions, {"sumo": False, "watch_lanes": False}, cfg_extra)
+            if m is None:
+                print(f"# {base} {label}: {err}", file=sys.stderr)
+                return 1
+            clean = clean and run_clean(m)
+            res[label] = m
+        on, off = res["on"]["lifelong"], res["off"]["lifelong"]
+        ro, rf = on["errandThroughput"], off["errandThroughput"]
+        print(f"| {base} | {res['on']['ticks']} | {ro:.3f} | {rf:.3f} | {ro / rf if rf else 0:.2f} | "
+              f"{on['stallTicks']['max']} / {on['stallTicks']['p99']} | {off['stallTicks']['max']} / {off['stallTicks']['p99']} | "
+              f"{on['numErrandFinished']} / {off['numErrandFinished']} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
+def shipped_k(a, build, tmp):
+    """K of each shipped lifelong example as it is (its rules, queues and hints), scaled ticks."""
+    clean = True
+    print("| config | ticks | errands/tick | K (stall max / p99) | errand ticks max | errands | violations | jumps+resyncs |")
+    print("|---|---|---|---|---|---|---|---|")
+    for base in a.shipped_k:
+        ticks = a.ticks if "small" in base else a.large_ticks
+        out = os.path.join(tmp, os.path.basename(base).split(".")[0] + "_shipped")
+        m, err = run(build, base, out, ticks, a.expansions, None)
+        if m is None:
+            print(f"# {base}: {err}", file=sys.stderr)
+            return 1
+        clean = clean and run_clean(m)
+        l = m["lifelong"]
+        print(f"| {base} | {m['ticks']} | {l['errandThroughput']:.3f} | {k_cols(m)} | {l['numErrandFinished']} | "
+              f"{m['violations']} | {m['teleports_or_jumps']} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -145,6 +199,11 @@ def main():
     ap.add_argument("--station-closure", action="store_true")
     ap.add_argument("--executor", choices=["lockstep", "adg", "adg-follow"])
     ap.add_argument("--solver")
+    ap.add_argument("--urgency", action="store_true")
+    ap.add_argument("--shipped-k", nargs="+", metavar="CONFIG")
+    ap.add_argument("--urgency-configs", nargs="+",
+                    default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
+                             "config/small_warehouse_lifelong.yaml"])
     a = ap.parse_args()
     global QUEUES, EXECUTOR, SOLVER
     QUEUES, EXECUTOR, SOLVER = a.queues, a.executor, a.solver
@@ -156,6 +215,10 @@ def main():
     clean = True
     if a.station_closure:
         return station_closure(a, build, tmp)
+    if a.urgency:
+        return urgency(a, build, tmp)
+    if a.shipped_k:
+        return shipped_k(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:

@@ -426,13 +426,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node t = root["tasks"];
   r.keys(t, "tasks", {"mode", "goals", "seed", "pickups", "drops", "random", "list", "assignment", "assigner",
-                      "pool_size", "k_nearest", "reassign", "queues", "parking", "log"});
+                      "pool_size", "k_nearest", "reassign", "queues", "parking", "urgency", "log"});
   r.choice(t, "tasks", "mode", c.tasks.mode, {"one_shot", "lifelong"});
   r.get(t, "tasks", "seed", c.tasks.seed, "a non-negative integer");
   if (c.fleet.battery.on && !c.tasks.lifelong()) r.fail("fleet.battery", "only with tasks.mode: lifelong (charging errands are lifelong work)");
   if (!c.tasks.lifelong()) {
     for (const char* k : {"pickups", "drops", "random", "list", "assignment", "assigner", "pool_size", "k_nearest", "reassign",
-                          "queues", "parking", "log"})
+                          "queues", "parking", "urgency", "log"})
       if (t && t.IsMap() && t[k]) r.fail(std::string("tasks.") + k, "only with tasks.mode: lifelong");
     r.cells(t, "tasks", "goals", c.tasks.random_goals, c.tasks.goals);
     if (!c.tasks.random_goals && static_cast<int>(c.tasks.goals.size()) != c.fleet.count)
@@ -470,6 +470,16 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.integer(t, "tasks", "pool_size", c.tasks.pool_size, 0, 10000000);
     r.integer(t, "tasks", "k_nearest", c.tasks.k_nearest, 1, 1000000);
     r.flag(t, "tasks", "reassign", c.tasks.reassign);
+    if (const YAML::Node u = t["urgency"]) {
+      if (!u.IsMap()) r.fail("tasks.urgency", "expected a mapping {stalls: true|false|auto, battery: true|false}");
+      r.keys(u, "tasks.urgency", {"stalls", "battery"});
+      if (u["stalls"] && !(u["stalls"].IsScalar() && u["stalls"].Scalar() == "auto")) {
+        bool on = false;
+        r.get(u, "tasks.urgency", "stalls", on, "true, false or auto");
+        c.tasks.urgency_stalls = on;
+      }
+      r.flag(u, "tasks.urgency", "battery", c.tasks.urgency_battery);
+    }
     if (const YAML::Node q = t["queues"]) {
       if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A}");
       r.keys(q, "tasks.queues", {"capacity", "length", "admission"});

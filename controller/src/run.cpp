@@ -109,6 +109,8 @@ void Run::prepare()
     // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (move costs
     // included), closures or not: tables of their own, exact whatever the step's deadline.
     tm_->watch_stalls(c_.map_.graph);
+    const bool stalls = cfg_.tasks.urgency_stalls < 0 ? cfg_.tasks.queue_capacity > 0 : cfg_.tasks.urgency_stalls != 0;
+    tm_->set_urgency({stalls, cfg_.tasks.urgency_battery});
   }
   if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
     for (size_t i = 0; i < b->chargers().size(); ++i)
@@ -452,6 +454,7 @@ void Run::epoch_start(const planner::Config& executed, long tick)
     dist_cache_->set_deadline(tb.deadline_from(t0));
   }
   const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
+  tasks::hint_priorities(*tm_, *p_);  // stalled errands, low batteries (tasks/urgency.hpp)
   p_->set_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
   if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
   val_->set_goals(tm_->goals());

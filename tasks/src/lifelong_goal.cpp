@@ -1,6 +1,7 @@
 #include "tasks/lifelong_goal.hpp"
 
 #include "tasks/task_manager.hpp"
+#include "tasks/urgency.hpp"
 
 namespace tasks {
 
@@ -26,7 +27,15 @@ planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Co
 {
   std::vector<char> busy(tasks.num_agents());
   for (int a = 0; a < tasks.num_agents(); ++a) busy[a] = tasks.awaited(a);
-  return lifelong_goal_test(tasks.goals(), positions, busy);
+  // Battery urgency (urgency.hpp): while a low agent is off its goal, the epoch waits for a
+  // low one, so the search plans a way for it, not for whoever arrives first.
+  std::vector<char> urgent(tasks.num_agents());
+  bool any = false;
+  for (int a = 0; a < tasks.num_agents(); ++a) {
+    urgent[a] = busy[a] && battery_urgent(tasks, a);
+    any = any || (urgent[a] && positions[a] != tasks.goals()[a]);
+  }
+  return lifelong_goal_test(tasks.goals(), positions, any ? urgent : busy);
 }
 
 }  // namespace tasks

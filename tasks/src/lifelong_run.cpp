@@ -355,6 +355,7 @@ void LifelongRun::complete(Step& s, const planner::Config& real)
   // The epoch start is the next step's planning (StepBudget::epoch_start_ms; at 1 ms on
   // WAREHOUSE, none: the next step's precompute grows what it missed).
   bound_queries(planner::Budget::time_ms(sb_.epoch_start_ms()).deadline_from(t0));
+  if (replan) hint_priorities(tasks_, *p_);  // urgency.hpp
   if (replan) p_->set_goals(tasks_.goals(), lifelong_goal_test(tasks_, p_->current()));
   if (!ev.empty() && prefetch_) prefetch_upcoming();
   if (!ev.empty() && rot_prefetch_) prefetch_rotation();

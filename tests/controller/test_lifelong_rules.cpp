@@ -176,8 +176,78 @@ TEST(LifelongRules, UnderAggressiveDrainRematchedChargerClaimsKeepEveryAgvAboveE
   Config off = critical_config("rematch_off", 0.25, 1.5);
   off.fleet.battery.per_m_wh = 1.5;
   off.fleet.battery.rematch = false;
+  off.tasks.urgency_battery = false;  // the rematch alone (the priority below also saves them)
   Controller co(off);
   const Metrics mo = co.run();
   ctest_util::expect_checked_every_step(off, mo);
   EXPECT_GT(mo.battery.ran_empty, 0);
+}
+
+// The same aggressive drain (1.5 Wh/m, critical 0.25) over the whole small warehouse run
+// (scripts/bench_charging.py --agvs 4 --seeds 2: 600 ticks, 50 expansions per SUMO step).
+// Two busy AGVs low on charge met head-on on their ways and swapped PIBT priorities at
+// every epoch start (each restarts them from distance / N), so they backed off in turn
+// until empty. With the task layer's battery priority (tasks/urgency.hpp: a low agent's
+// hint grows as its charge falls) the emptier one goes first: none runs empty. Off
+// (tasks.urgency.battery: false): AGVs run empty.
+TEST(LifelongRules, LowChargeAgvsGetPlannerPriorityAndNoneRunsEmpty)
+{
+  auto run = [](bool priority) {
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_charging_lifelong.yaml");
+    cfg.output.dir = test::temp_dir(std::string("battery_priority_") + (priority ? "on" : "off"));
+    cfg.run.progress_s = 0;
+    cfg.run.max_ticks = 600;
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = 50;
+    cfg.sumo.outputs = {false, false, false, true};
+    cfg.fleet.count = 4;
+    cfg.fleet.seed = 2;
+    cfg.fleet.battery.per_m_wh = 1.5;
+    cfg.fleet.battery.critical = 0.25;
+    cfg.tasks.urgency_battery = priority;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ctest_util::expect_checked_every_step(cfg, m);
+    EXPECT_TRUE(m.battery.active);
+    return m;
+  };
+  const Metrics on = run(true);
+  EXPECT_EQ(on.battery.ran_empty, 0);
+  EXPECT_GT(on.battery.min_charge, 0.0);
+  EXPECT_GT(on.errands_finished, 30);
+  const Metrics off = run(false);
+  EXPECT_GT(off.battery.ran_empty, 0);
+}
+
+// Station queues on the small warehouse (config/small_warehouse_lifelong.yaml: 16 AGVs,
+// dead-end pick-up and drop stubs; queues {capacity 1, length 3}), 400 ticks, 50 expansions
+// per SUMO step. With the stall hint (tasks/urgency.hpp; tasks.urgency.stalls auto = on with
+// queues) the holder of an errand that has not got closer for a while wins conflicts at each
+// epoch start, where PIBT's own elapsed time restarts every epoch (keep_priorities off):
+// K (the longest stall) 38 and 83 errands. Off: K 68, 65 errands.
+TEST(LifelongRules, WithStationQueuesStalledErrandsGetPriorityAndStallLess)
+{
+  auto run = [](bool stalls) {
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
+    cfg.output.dir = test::temp_dir(std::string("stall_priority_") + (stalls ? "on" : "off"));
+    cfg.run.progress_s = 0;
+    cfg.run.max_ticks = 400;
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = 50;
+    cfg.sumo.outputs = {false, false, false, true};
+    cfg.rules.sumo = false;
+    cfg.rules.watch_lanes = 0;
+    cfg.tasks.queue_capacity = 1;
+    cfg.tasks.queue_length = 3;
+    if (!stalls) cfg.tasks.urgency_stalls = 0;  // default -1: on with the queues
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ctest_util::expect_checked_every_step(cfg, m);
+    return m;
+  };
+  const Metrics on = run(true);
+  EXPECT_LE(on.stalls.max_stall, 50);
+  const Metrics off = run(false);
+  EXPECT_GT(off.stalls.max_stall, on.stalls.max_stall);
+  EXPECT_GT(on.errands_finished, off.errands_finished);
 }

@@ -237,9 +237,11 @@ TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
   ctest_util::expect_no_sumo_collision(cfg.output.dir);
   EXPECT_EQ(m.rules.closure_changes, 4);  // 10, 40, 100, 160 s
   EXPECT_GT(m.errands_finished, 30);
-  // K = 250 ticks: no AGV spent longer on one errand (open ones counted to the end). The
-  // same 300 ticks without the rules: 180 (the dead-end station stubs hold AGVs too).
-  EXPECT_LE(m.max_errand_ticks, 250);
+  // K (lifelong.stallTicks.max, tasks/errand_stalls.hpp): no busy AGV's errand went longer
+  // than half the run without its AGV getting closer to it (open ones counted to the end).
+  // Measured 114 here (controller/README.md "Errand times and stalls").
+  EXPECT_GT(m.stalls.errands, 30);
+  EXPECT_LE(m.stalls.max_stall, 150);
 }
 
 TEST(Rules, AgvsOnCellsBeingClosedLeaveThemByTheEvacuationArcs)

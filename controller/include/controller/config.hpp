@@ -144,6 +144,11 @@ struct TasksSection {
   int pool_size = 0;                       // pool: revealed tasks; 0 = ceil(1.5 x fleet.count)
   int k_nearest = 32;                      // hungarian: candidate tasks per AGV
   bool reassign = false;                   // pool: a nearer free AGV may take an unopened task
+  // Priority hints to the planner (tasks/urgency.hpp): low batteries; stalled errands
+  // (1 on, 0 off, -1 auto: only with station queues -- without them the hinted crowd wedges
+  // the dead-end stubs: controller/README.md "Priority hints").
+  bool urgency_battery = true;
+  int urgency_stalls = -1;
   // Station queues (tasks/station_queues.hpp): AGVs admitted to one station at once (0: off),
   // queue cells per station, pool admission limit (0: capacity + length, -1: none).
   int queue_capacity = 0, queue_length = 4, queue_admission = 0;

@@ -72,6 +72,11 @@ class RealtimePlanner {
     (void)at, (void)goals, (void)test, (void)immobile;
     return false;
   }
+  // Priority hints (tasks/urgency.hpp): per agent, extra PIBT priority from the task layer (an
+  // errand that stalled, a low battery), larger = moves first. Takes effect at the next
+  // epoch start (set_goals, restart_at), never inside one: RT-LaCAM's tree of the epoch
+  // stays one complete search. Empty: none. Planners without priorities ignore it.
+  virtual void set_priority_hint(std::vector<float> hint) { (void)hint; }
   // Lifelong runs: cap the distance tables kept for goals no agent has now (0 = no cap).
   virtual void set_max_dist_tables(size_t n) { (void)n; }
   // Lifelong runs: keep the distance tables in `cache`, shared with the task layer and

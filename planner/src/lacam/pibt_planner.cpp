@@ -25,11 +25,16 @@ void PibtPlanner::set_goals(const Config& goals, GoalTest test)
   next_.assign(n, -1);
   planned_ = false;
   // Lifelong goal changes may keep the priorities: PIBT's memory of who waited longest.
-  if (keep_priorities_ && static_cast<int>(prio_.size()) == n) return;
-  prio_.assign(n, 0.0f);
-  prio_next_.assign(n, 0.0f);
-  order_.assign(n, 0);
-  init_priorities(current_.data(), n, dist_, prio_.data());
+  const bool keep = keep_priorities_ && static_cast<int>(prio_.size()) == n;
+  if (keep && static_cast<int>(hint_.size()) != n) return;
+  std::vector<float> tie(n);
+  init_priorities(current_.data(), n, dist_, tie.data());
+  if (!keep) {
+    prio_ = tie;
+    prio_next_.assign(n, 0.0f);
+  }
+  raise_to_hint(tie.data(), hint_, n, prio_.data());  // the task layer's hints (priority.hpp)
+  order_.resize(n);
   initial_order(prio_.data(), n, order_.data());
 }
 

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "planner/lacam/priority.hpp"
+
 namespace planner {
 
 RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, LacamOptions opt, ActionPreference* pref,
@@ -57,9 +59,20 @@ void RtLacam::restart(const Config& goals)
   GoalTest test = relaxed_goal_test(g_, current_, goals, immobile_, test_);
   // A new epoch may keep the agents' PIBT priorities (LacamOptions::keep_priorities).
   const HNode* root = lacam_.root();
-  if (keep_priorities_ && root && goals.size() == current_.size()) {
-    carried_.assign(root->priorities, root->priorities + lacam_.num_agents());
-    carried_order_.assign(root->order, root->order + lacam_.num_agents());
+  const int n = static_cast<int>(current_.size());
+  const bool keep = keep_priorities_ && root && goals.size() == current_.size();
+  if (static_cast<int>(hint_.size()) == n && goals.size() == current_.size()) {
+    // The task layer's hints raise the root's priorities (priority.hpp, raise_to_hint).
+    dist_.set_goals(goals);
+    tie_.resize(n);
+    init_priorities(current_.data(), n, dist_, tie_.data());
+    if (keep) carried_.assign(root->priorities, root->priorities + n);
+    else carried_ = tie_;
+    raise_to_hint(tie_.data(), hint_, n, carried_.data());
+    lacam_.reset(current_, goals, std::move(test), carried_.data());
+  } else if (keep) {
+    carried_.assign(root->priorities, root->priorities + n);
+    carried_order_.assign(root->order, root->order + n);
     lacam_.reset(current_, goals, std::move(test), carried_.data(), carried_order_.data());
   } else {
     lacam_.reset(current_, goals, std::move(test));

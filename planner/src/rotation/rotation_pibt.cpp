@@ -1,6 +1,7 @@
 #include "planner/rotation/rotation_pibt.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 
@@ -50,6 +51,12 @@ void RotationPibt::set_goals(const Config& goals, GoalTest test)
     // A new goal: its waiting time starts again; the distance breaks ties (far first).
     prio_[i] = static_cast<double>(h(static_cast<int>(i))) / 65536.0;
   }
+  // The task layer's hints (RealtimePlanner::set_priority_hint): a floor, as in
+  // planner/lacam/priority.hpp's raise_to_hint, over the tie part.
+  if (hint_.size() == goals.size())
+    for (size_t i = 0; i < goals.size(); ++i)
+      if (hint_[i] > 0)
+        prio_[i] = std::max(prio_[i], prio_[i] - static_cast<double>(static_cast<long>(prio_[i])) + std::round(hint_[i]));
   goals_ = goals;
   test_ = std::move(test);
   dist_.trim();

@@ -5,6 +5,9 @@
 // would be infeasible with shared goals (two agents sent to one station) and pointless in
 // a lifelong run, where the first completion changes the goals anyway.
 //
+// Battery urgency (urgency.hpp, battery_urgent): while an agent low on charge is pending,
+// only the low ones count ("some low agent stands on its goal").
+//
 // When no agent is pending (all idle or already on their cells) every configuration
 // passes: the planner may simply wait, and the completions at the end of the step start
 // the next epoch.

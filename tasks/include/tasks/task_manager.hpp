@@ -30,6 +30,7 @@
 #include "tasks/lorr_files.hpp"
 #include "tasks/battery.hpp"
 #include "tasks/errand_stalls.hpp"
+#include "tasks/urgency.hpp"
 #include "tasks/parking.hpp"
 #include "tasks/reachability.hpp"
 #include "tasks/station_queues.hpp"
@@ -69,6 +70,10 @@ class TaskManager {
   // (and before share_dist_cache, whose cache it then uses too).
   void watch_stalls(const planner::Graph& g);
   const ErrandStalls* stalls() const { return stalls_.get(); }
+  // Priority hints for the planner (urgency.hpp): off unless set.
+  void set_urgency(UrgencyOptions o) { urgency_ = o; }
+  const UrgencyOptions& urgency() const { return urgency_; }
+  long now() const { return now_; }  // the step of the last start() / update()
   // stalls()->summary() at the last update.
   ErrandStalls::Summary stall_summary() const { return stalls_ ? stalls_->summary(now_) : ErrandStalls::Summary{}; }
   // Agents that hold a task (and so have a real errand to reach).
@@ -185,6 +190,7 @@ class TaskManager {
   bool send_to_charge(const planner::Config& positions);
   void refresh_goals(const planner::Config& positions);
 
+  UrgencyOptions urgency_;
   long now_ = 0;  // step of the current start()/update(), for the history
   bool goals_changed_ = false;
   std::vector<char> at_goal_;  // queues / parking: stood on its goal at the last update

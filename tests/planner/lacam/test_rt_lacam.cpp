@@ -5,6 +5,7 @@
 #include "planner/lacam/lacam.hpp"
 #include "planner/movingai.hpp"
 #include "planner/lacam/naive_rt_lacam.hpp"
+#include "planner/lacam/pibt_planner.hpp"
 #include "planner/lacam/rt_lacam.hpp"
 #include "planner/lacam/runner.hpp"
 #include "planner/validator.hpp"
@@ -265,4 +266,36 @@ TEST(RtLacam, NewEpochCanRestartThePriorities)
   d.set_goals(goals);
   const HNode* fresh = rt.lacam().root();
   for (int i = 0; i < 50; ++i) EXPECT_FLOAT_EQ(fresh->priorities[i], d.get(i, rt.current()[i]) / 50.0f);
+}
+
+// Priority hints (RealtimePlanner::set_priority_hint, priority.hpp raise_to_hint): two
+// agents want the one cell between them (a shared lifelong goal). Their PIBT priorities tie
+// (distance 1 / N each), so agent 0 goes first; a hint on agent 1 at the epoch start lets
+// agent 1 in instead, in RT-LaCAM's first move and in PIBT's. Without the hint (or an empty
+// one) agent 0 moves.
+TEST(PriorityHint, AHintedAgentWinsTheContestedCellAtTheNextEpochStart)
+{
+  const Graph g = test::grid({"..."});
+  const Config s = test::at(g, {{0, 0}, {2, 0}}), t = test::at(g, {{1, 0}, {1, 0}});
+  const GoalTest someone = [&](const Vertex* C) { return C[0] == t[0] || C[1] == t[1]; };
+  auto first_move = [&](RealtimePlanner& p, std::vector<float> hint) {
+    p.set_priority_hint(std::move(hint));
+    p.set_goals(t, someone);
+    p.search(Budget::expansion_count(1));
+    const Config next = p.next();
+    EXPECT_EQ(validate_plan(g, s, t, {s, next}, false), "");
+    return next[1] == g.at(1, 0) ? 1 : next[0] == g.at(1, 0) ? 0 : -1;
+  };
+  for (bool keep : {false, true}) {
+    LacamOptions o;
+    o.keep_priorities = keep;
+    RtLacam plain(g, s, t, o, nullptr, someone);
+    EXPECT_EQ(first_move(plain, {}), 0) << "keep " << keep;
+    RtLacam hinted(g, s, t, o, nullptr, someone);
+    EXPECT_EQ(first_move(hinted, {0.0f, 3.0f}), 1) << "keep " << keep;
+    PibtPlanner pibt_plain(g, s, t, o, nullptr, someone);
+    EXPECT_EQ(first_move(pibt_plain, {}), 0) << "keep " << keep;
+    PibtPlanner pibt_hinted(g, s, t, o, nullptr, someone);
+    EXPECT_EQ(first_move(pibt_hinted, {0.0f, 3.0f}), 1) << "keep " << keep;
+  }
 }

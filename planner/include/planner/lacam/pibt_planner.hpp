@@ -22,6 +22,7 @@ class PibtPlanner : public RealtimePlanner {
   void set_immobile(int agent, bool immobile) override;
   void set_immobile(const std::vector<uint8_t>& immobile) override;  // one update for all
   bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
+  void set_priority_hint(std::vector<float> hint) override { hint_ = std::move(hint); }
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
@@ -37,6 +38,7 @@ class PibtPlanner : public RealtimePlanner {
   Config current_, goals_, next_;
   GoalTest test_;
   std::vector<float> prio_, prio_next_;
+  std::vector<float> hint_;  // the task layer's priority hints, applied at set_goals
   std::vector<int32_t> order_;
   std::vector<uint8_t> immobile_;  // agent -> 1 while immobile (immobile.hpp)
   bool planned_ = false;

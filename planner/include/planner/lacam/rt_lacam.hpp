@@ -66,6 +66,7 @@ class RtLacam : public RealtimePlanner {
   void share_dist_cache(std::shared_ptr<DistCache> c) override { dist_.share(std::move(c)); }
   void set_immobile(int agent, bool immobile) override;
   void set_immobile(const std::vector<uint8_t>& immobile) override;  // one restart for all
+  void set_priority_hint(std::vector<float> hint) override { hint_ = std::move(hint); }
   bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
   uint64_t restarts() const { return restarts_; }  // searches restarted at current() so far
 
@@ -94,6 +95,7 @@ class RtLacam : public RealtimePlanner {
   const HNode* promised_ = nullptr;      // what next() last returned: commit() moves there
   std::vector<float> carried_;           // priorities carried into a new epoch
   std::vector<int32_t> carried_order_;   // the agents' order under them
+  std::vector<float> hint_, tie_;        // the task layer's priority hints; dist/N at the epoch start
   bool keep_priorities_;
   const Graph& g_;
   std::vector<uint8_t> immobile_;        // agent -> 1 while immobile

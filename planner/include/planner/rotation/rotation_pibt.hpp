@@ -61,6 +61,7 @@ class RotationPibt : public RotationPlanner {
   const Config& next() override;  // the cells after the planned actions (turns keep the cell)
   void commit() override;
   void set_goals(const Config& goals, GoalTest test = {}) override;
+  void set_priority_hint(std::vector<float> hint) override { hint_ = std::move(hint); }  // applied at set_goals
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
 
   const Config& current() const override { return current_; }
@@ -127,6 +128,7 @@ class RotationPibt : public RotationPlanner {
   GoalTest test_;
   std::vector<RotationDist::Table*> goal_table_;
   std::vector<double> prio_;
+  std::vector<float> hint_;  // the task layer's priority hints
   std::vector<int32_t> order_;
   std::vector<int32_t> occ_now_, occ_next_;  // cell -> agent or -1
   std::vector<Vertex> decided_;               // per agent: its cell for this step's PIBT (-1: undecided)

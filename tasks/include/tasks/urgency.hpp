@@ -1,0 +1,58 @@
+#pragma once
+// Urgency: the task layer's priority hints for the planner (issue 24: errands that never
+// stall more than K ticks; no AGV running empty).
+//
+// PIBT's elapsed-time priority (Okumura et al., AIJ 2022) makes an agent that waits win
+// conflicts until it moves on; it resets at each new goal, and with keep_priorities off at
+// each lifelong epoch, which on a crowded net starts every few ticks. An errand whose holder
+// keeps losing conflicts then never gets done (large_oneway_lifelong, session 31: 135 of 200
+// AGVs never completed an errand in 500 ticks, K 494). The task layer knows what the
+// planner forgets: how long each errand has stalled (errand_stalls.hpp) and which agents
+// are low on charge (battery.hpp). At each epoch start it hands the planner one number per
+// agent, RealtimePlanner::set_priority_hint, a floor under its PIBT priority
+// (planner/lacam/priority.hpp, raise_to_hint):
+//  - stalls: a busy agent heading for its errand cell (not one waiting on a queue cell) gets
+//    the ticks its errand has gone without getting closer (ErrandStalls::stalled);
+//  - battery: an agent on its way to a charger, or holding a task while low (below the
+//    threshold or the distance-aware reserve), gets kBattery + kBattery x (1 - its charge
+//    fraction): above every stall, and the emptier one first (two low AGVs head-on: one
+//    yields, they no longer swap priorities and oscillate).
+// Hints only order conflicts; the planners' guarantees stay (RT-LaCAM's tree of an epoch is
+// one complete search whatever the root's priorities). Battery urgency also narrows the
+// epoch's goal test to the low agents (battery_urgent, below): still one complete search,
+// for a goal that one agent reaching its charger satisfies.
+#include <vector>
+
+#include "planner/realtime_planner.hpp"
+
+namespace tasks {
+
+class TaskManager;
+
+struct UrgencyOptions {
+  bool stalls = false;   // hint stalled errands (needs TaskManager::watch_stalls)
+  bool battery = false;  // hint low agents (needs a battery)
+  bool on() const { return stalls || battery; }
+};
+
+inline constexpr float kBatteryUrgency = 10000.0f;
+
+// Battery urgency on and agent a on its way to a charger, or busy while low. While such an
+// agent is off its goal, the epoch's goal test (lifelong_goal.hpp) waits for one of them:
+// a hint orders PIBT's conflicts, but RT-LaCAM follows the path to the first configuration
+// that passes the goal test, and with "any pending agent arrives" that path may drag a low
+// AGV up and down an aisle while another one arrives (bench_charging.py seed 2: three AGVs
+// in one aisle for 40 ticks, one ran empty).
+bool battery_urgent(const TaskManager& tm, int a);
+
+// One hint per agent at the last update() (empty when every option is off).
+std::vector<float> priority_hints(const TaskManager& tm);
+
+// Sets p's hints for its next epoch start (call right before set_goals / restart_at).
+inline void hint_priorities(const TaskManager& tm, planner::RealtimePlanner& p)
+{
+  std::vector<float> h = priority_hints(tm);
+  if (!h.empty()) p.set_priority_hint(std::move(h));
+}
+
+}  // namespace tasks
