@@ -201,11 +201,12 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
 
 def executed_path(path, speeds, dt, acc, dec, vmax):
     """The executed run's critical path, back from the last arrival: each move's completion and
-    start read from fcd (every move is one cell, 1 m: the fcd distance equals the plan's moves),
-    and at each step back the constraint met last -- the hand-over's arrival (a link), the
-    leader's start (a wait for a dependency), the AGV's own previous move. Returns seconds on the
-    path by kind: moves from rest and chained (their least time and the rest over it), waits for
-    the leader's start, other rests (before a reversal, a release held), and the link count."""
+    start read from fcd (every move is one cell, 1 m on these nets: the fcd distance equals the
+    plan's moves to 1 cm), and at each step back the constraint met last -- the hand-over's
+    arrival (a link), the leader's start (the AGV waited for it: the path goes on there), the
+    AGV's own previous move. Returns seconds on the path by kind: moves from rest and chained
+    (with their least times), rests not spent waiting for a leader's start (before a reversal,
+    a release held), and the link count."""
     steps = read_plan(path)
     n, T = len(steps[0]), len(steps)
     moves, per = [], [[] for _ in range(n)]
@@ -248,7 +249,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             rested[x] = had_rest or kk == 0
             start[x] = max(t0, last_rest) if rested[x] else t0
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
-    out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, dep_wait=0.0, rest=0.0,
+    out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
                links=0, n_from_rest=0, n_chained=0)
     x = max(end, key=lambda y: end[y])
     node = ("end", x)
@@ -274,10 +275,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
         else:
             t0 = end[prev[x]] if x in prev else 0.0
             if h is not None and abs(start[h] - start[x]) <= tol and start[h] > t0 + 1e-9:
-                out["dep_wait"] += start[x] - start[h] + (start[h] - t0 if False else 0)
                 # waited for the leader to start leaving: the path goes on through the leader's start
-                out["dep_wait"] += 0
-                out["dep_wait_raw"] = out.get("dep_wait_raw", 0) + start[x] - t0
                 node = ("start", h) if rested[h] else ("end", prev[h]) if h in prev else None
                 continue
             out["rest"] += start[x] - t0
@@ -305,11 +303,12 @@ def analyse(d):
         rows = {k: (r[0], r[1], 0.0, r[0] - r[1] - r[4], r[4], r[5]) for k, r in rows.items()}
         last = max(rows, key=lambda k: rows[k][0])
         tot = [sum(r[k] for r in rows.values()) for k in range(6)]
+    exe = executed_path(os.path.join(d, "plan.txt"), speeds, dt, acc, dec, vmax) if ex != "lockstep" else None
     crit = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax)
     crit_free = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, free_reversals=True)
     return dict(run=os.path.basename(d.rstrip("/")), executor=ex, makespan=m["makespan"], solved=m["solved"],
                 bound=m.get("bound_ticks"), last=last, last_row=rows[last], total=tot, shape=shape,
-                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free)
+                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free, exe=exe)
 
 
 def main():
@@ -361,6 +360,17 @@ def main():
         c, f = r["crit"], r["crit_free"]
         print(f"| {r['run']} | {r['makespan']} | {c[0]:.1f} | {c[3]} | {c[1]} | {c[2]} | {c[4]} | "
               f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} |")
+    print("\nThe executed critical path (physical executors), s: back from the last arrival through the constraint met"
+          " last; moves from rest and chained (their least time in brackets), rests not spent waiting for a"
+          " leader's start (before a reversal: the AGV must stop), links (arrivals in ADG order)\n")
+    print("| run | from rest (least) | n | chained (least) | n | rest before reversals | other rests | links |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for r in res:
+        e = r["exe"]
+        if e:
+            print(f"| {r['run']} | {e['from_rest']:.1f} ({e['from_rest_least']:.1f}) | {e['n_from_rest']} | "
+                  f"{e['chained']:.1f} ({e['chained_least']:.1f}) | {e['n_chained']} | {e.get('rest_reversal', 0):.1f} | "
+                  f"{e['rest'] - e.get('rest_reversal', 0):.1f} | {e['links']} |")
     for r in res:
         if r["time"]:
             print(f"\n{r['run']}: executor agent-steps by what bounds the speed (metrics.json executor.time): {r['time']}")

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "executor/adg.hpp"
+#include "executor/out_and_back.hpp"
 #include "grid.hpp"
 
 using executor::Adg;
@@ -244,4 +245,38 @@ TEST(Adg, DroppingTheDonePrefixKeepsEveryDecisionAndBoundsMemory)
   EXPECT_GT(small.first_action(), small.num_actions() - 200);  // dropped all but the recent
   EXPECT_LT(small.stored_actions(), 200);
   EXPECT_EQ(whole.stored_actions(), whole.num_actions());
+}
+
+// OutAndBack: u -> v -> u becomes waits on u when nobody else is on u meanwhile; not when
+// someone uses u (it made way), and never in what was already handed on.
+TEST(OutAndBack, CutsAStepAsideOnlyWhenNobodyUsesTheCellLeft)
+{
+  // Agent 0 steps 1 -> 2 and back; agent 1 stays on 5.
+  executor::OutAndBack ob({1, 5}, 2);
+  ob.push({2, 5});
+  ob.push({2, 5});
+  ob.push({1, 5});  // back: the two steps on 2 become waits on 1
+  EXPECT_EQ(ob.cuts(), 1);
+  ASSERT_TRUE(ob.full());
+  EXPECT_EQ(ob.pop(), (planner::Config{1, 5}));
+  EXPECT_EQ(ob.pop(), (planner::Config{1, 5}));
+  EXPECT_EQ(ob.pop(), (planner::Config{1, 5}));
+  EXPECT_TRUE(ob.empty());
+
+  // Agent 0 makes way: 1 -> 2 while agent 1 passes 0 -> 1 -> 3, then back to 1: kept.
+  executor::OutAndBack way({1, 0}, 4);
+  way.push({2, 1});
+  way.push({2, 3});
+  way.push({1, 3});
+  EXPECT_EQ(way.cuts(), 0);
+  EXPECT_EQ(way.size(), 3u);
+  EXPECT_FALSE(way.full());
+
+  // Handed-on steps stay as they were (lookahead 0: nothing held).
+  executor::OutAndBack late({1, 5}, 0);
+  late.push({2, 5});
+  EXPECT_EQ(late.pop(), (planner::Config{2, 5}));
+  late.push({1, 5});
+  EXPECT_EQ(late.cuts(), 0);
+  EXPECT_EQ(late.pop(), (planner::Config{1, 5}));
 }
