@@ -16,7 +16,9 @@ AGV's time to its last arrival (the last SUMO step it moved) into
              a reversal, a release, the plan);
 
 for the AGV that arrives last (its time is the makespan) and summed over the fleet, plus the
-count of stops. Beside it, per plan (plan.txt): steps, moves, the longest path in moves, the
+count of stops; then the plan's ADG critical path with each move's least physical time (a lower
+bound for any ADG executor on that plan) and, for physical executors, the executed critical path
+(moves from rest, chained moves, rests, links; from fcd). Beside it, per plan (plan.txt): steps, moves, the longest path in moves, the
 reversals (u -> v -> u) and the planned stops (a wait between two moves: an AGV that keeps the
 plan's waits comes to rest there). So one sees whether the plan executed is the same length as
 lock-step's, and whether the extra ticks are physics (ramps of stops the plan forces), the
