@@ -129,6 +129,7 @@ nlohmann::json Metrics::to_json() const
                    {"delay_agent_ticks", delay_agent_ticks},
                    {"delay_stops", delay_stops},
                    {"chained", chained},
+                   {"out_and_backs", out_and_backs},
                    {"followed", followed},
                    {"time", {{"cruise", time_cruise}, {"accel", time_accel}, {"follow", time_follow},
                              {"lane", time_lane}, {"end", time_end}, {"start_wait", time_start_wait},

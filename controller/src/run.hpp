@@ -23,6 +23,7 @@
 #include "stuck_replan.hpp"
 #include "executor/adg.hpp"
 #include "executor/delay_model.hpp"
+#include "executor/out_and_back.hpp"
 #include "planner/dist_cache.hpp"
 #include "planner/instance.hpp"
 #include "planner/stop_signal.hpp"
@@ -164,6 +165,9 @@ class Run {
   std::shared_ptr<planner::DistCache> dist_cache_;
   std::unique_ptr<executor::DelayModel> delays_;
   std::unique_ptr<StuckWatch> stuck_;  // run.replan_on_stuck (adg)
+  // adg, one-shot cell plans: the commits held back to cut out-and-backs (run.out_and_back);
+  // a replan drops what it holds.
+  std::unique_ptr<executor::OutAndBack> oab_;
   std::unique_ptr<FleetView> view_;
   std::unique_ptr<Congestion> congestion_;
   std::vector<AgvState> states_;

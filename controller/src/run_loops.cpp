@@ -164,6 +164,21 @@ void Run::loop_adg()
   // one step per tick, at the tick's first SUMO step, with the tick's budget (as in
   // lockstep: it cannot spread a step's search over SUMO steps).
   planner::RotationPlanner* rot = p_->rotation();
+  // Out-and-backs (executor/out_and_back.hpp): the commits pass through a lookahead of
+  // run.out_and_back configurations, beyond the window, where an AGV's u -> v -> u with u
+  // free meanwhile becomes waits on u. Only one-shot cell plans without rules: a lifelong
+  // errand or a rule may want the visit, and a rotation plan's turns go with its moves.
+  oab_ = std::make_unique<executor::OutAndBack>(
+      ins_.starts, !tm_ && !rot && !cmd_->headings() && !rules_ ? cfg_.run.out_and_back : 0);
+  // What leaves the lookahead is what is executed: validated, then to the ADG and the plan.
+  auto hand_on = [&](bool all) {
+    while (oab_->full() || (all && !oab_->empty())) {
+      const planner::Config c = oab_->pop();
+      if (!val_->step(c)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
+      adg.append(c);
+      c_.plan_.push_back(c);
+    }
+  };
   auto executed = [&] {
     planner::Config c(ins_.num_agents());
     for (int i = 0; i < ins_.num_agents(); ++i) c[i] = adg.at(i);
@@ -171,7 +186,7 @@ void Run::loop_adg()
   };
   for (;;) {
     // (An AGV waiting for a closed goal is not on its goal: rules.hpp.)
-    if (!tm_ && p_->at_goal() && adg.done() && std::find(waiting_.begin(), waiting_.end(), 1) == waiting_.end()) {
+    if (!tm_ && p_->at_goal() && adg.done() && oab_->empty() && std::find(waiting_.begin(), waiting_.end(), 1) == waiting_.end()) {
       m_.solved = true;
       break;
     }
@@ -213,12 +228,13 @@ void Run::loop_adg()
         plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
         if (none) break;
         ++commits;
-        if (!val_->step(next))
-          throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
-        adg.append(next);
-        c_.plan_.push_back(next);
         ++m_.commits;
+        oab_->push(next);
+        hand_on(false);
       }
+      // All committed (the goals), or the ADG ran dry while the planner found nothing new:
+      // what the lookahead holds goes on.
+      if (p_->at_goal() || adg.steps() == progress()) hand_on(true);
       // Steps every AGV has finished are final: no replan rewrites them.
       settle(c_.plan_.size() - 1 - static_cast<size_t>(adg.steps()) + static_cast<size_t>(adg.min_progress()));
       const double commit_ms = ms_since(t0);
@@ -269,6 +285,7 @@ void Run::loop_adg()
   m_.chained = drv.stats().chained;
   m_.followed = drv.stats().followed;
   m_.overshoot_m = drv.stats().overshoot;
+  m_.out_and_backs = oab_->cuts();
   const DriveStats::Time& t = drv.stats().time;
   m_.time_cruise = t.cruise, m_.time_accel = t.accel, m_.time_follow = t.follow;
   m_.time_lane = t.lane, m_.time_end = t.end, m_.time_start_wait = t.start_wait;

@@ -205,6 +205,7 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
     }
   adg = executor::Adg(at);
   for (const planner::Config& c : steps) adg.append(c);
+  if (oab_) oab_->reset(adg.tail());  // the old planner's commits held back: gone with it
   for (int i = 0; i < n; ++i) {
     if (mid[i].empty()) continue;
     std::vector<int> ids;

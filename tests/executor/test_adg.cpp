@@ -4,6 +4,7 @@
 #include <random>
 
 #include "executor/adg.hpp"
+#include "executor/out_and_back.hpp"
 #include "grid.hpp"
 
 using executor::Adg;
@@ -202,6 +203,7 @@ TEST(Adg, DroppingTheDonePrefixKeepsEveryDecisionAndBoundsMemory)
       ASSERT_EQ(small.progress(i), whole.progress(i));
       ASSERT_EQ(small.at(i), whole.at(i));
       ASSERT_EQ(small.chain_candidate(i), whole.chain_candidate(i));
+      ASSERT_EQ(small.done(), whole.done());
       if (id < 0) continue;
       ASSERT_EQ(small.released(id), whole.released(id));
       ASSERT_EQ(small.released_following(id), whole.released_following(id));
@@ -223,10 +225,58 @@ TEST(Adg, DroppingTheDonePrefixKeepsEveryDecisionAndBoundsMemory)
       }
     }
   }
+  // Executed to the end, both are done (a one-shot run ends on it: a dropped prefix once kept
+  // it false forever -- the huge warehouse ran on with every AGV on its goal).
+  for (int round = 0; round < 1000 && !whole.done(); ++round)
+    for (int i = 0; i < 10; ++i) {
+      const int id = whole.next_action(i);
+      if (id < 0) continue;
+      if (whole.action(id).state == State::Running) {
+        if (whole.may_finish(id)) small.finish(id), whole.finish(id);
+      } else if (whole.released_following(id)) {
+        small.start_following(id), whole.start_following(id);
+      }
+    }
+  EXPECT_TRUE(whole.done());
+  EXPECT_TRUE(small.done());
   EXPECT_EQ(small.num_actions(), whole.num_actions());
   EXPECT_EQ(small.actions_done(), whole.actions_done());
   EXPECT_GT(small.num_actions(), 5000);
   EXPECT_GT(small.first_action(), small.num_actions() - 200);  // dropped all but the recent
   EXPECT_LT(small.stored_actions(), 200);
   EXPECT_EQ(whole.stored_actions(), whole.num_actions());
+}
+
+// OutAndBack: u -> v -> u becomes waits on u when nobody else is on u meanwhile; not when
+// someone uses u (it made way), and never in what was already handed on.
+TEST(OutAndBack, CutsAStepAsideOnlyWhenNobodyUsesTheCellLeft)
+{
+  // Agent 0 steps 1 -> 2 and back; agent 1 stays on 5.
+  executor::OutAndBack ob({1, 5}, 2);
+  ob.push({2, 5});
+  ob.push({2, 5});
+  ob.push({1, 5});  // back: the two steps on 2 become waits on 1
+  EXPECT_EQ(ob.cuts(), 1);
+  ASSERT_TRUE(ob.full());
+  EXPECT_EQ(ob.pop(), (planner::Config{1, 5}));
+  EXPECT_EQ(ob.pop(), (planner::Config{1, 5}));
+  EXPECT_EQ(ob.pop(), (planner::Config{1, 5}));
+  EXPECT_TRUE(ob.empty());
+
+  // Agent 0 makes way: 1 -> 2 while agent 1 passes 0 -> 1 -> 3, then back to 1: kept.
+  executor::OutAndBack way({1, 0}, 4);
+  way.push({2, 1});
+  way.push({2, 3});
+  way.push({1, 3});
+  EXPECT_EQ(way.cuts(), 0);
+  EXPECT_EQ(way.size(), 3u);
+  EXPECT_FALSE(way.full());
+
+  // Handed-on steps stay as they were (lookahead 0: nothing held).
+  executor::OutAndBack late({1, 5}, 0);
+  late.push({2, 5});
+  EXPECT_EQ(late.pop(), (planner::Config{2, 5}));
+  late.push({1, 5});
+  EXPECT_EQ(late.cuts(), 0);
+  EXPECT_EQ(late.pop(), (planner::Config{1, 5}));
 }

@@ -122,7 +122,8 @@ class Adg {
   // min over agents is how far execution has got into the committed window.
   long long progress(int agent) const;
   long long min_progress() const;
-  bool done() const { return done_count_ == static_cast<long long>(actions_.size()); }
+  // Every action appended is done (done_count_ counts them all, also those compact() dropped).
+  bool done() const { return done_count_ == static_cast<long long>(num_actions()); }
   long long actions_done() const { return done_count_; }
 
  private:

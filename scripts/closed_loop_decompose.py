@@ -1,0 +1,382 @@
+#!/usr/bin/env python3
+"""Where a physical executor's time goes against lock-step's (issue 21), from SUMO's fcd and the
+executed plan.
+
+Runs one instance (bench_closed_loop.py's config plumbing: --config, --seed, --expansions, p = 0)
+under each executor with fcd on, or reads runs already made (--runs DIR ...), and splits every
+AGV's time to its last arrival (the last SUMO step it moved) into
+
+  distance   its path length at the vType's top speed (what no executor can beat);
+  ramps      what rest-to-rest trapezoids over its motion segments (maximal runs between two
+             steps at rest) cost beyond that: one pair of ramps per stop -- physics of the
+             stops it made;
+  slowdown   motion slower than those trapezoids: braking toward a held cell or a leader's
+             back and speeding up again without coming to rest;
+  rest       steps at rest before its last arrival (waiting for a dependency, a rest before
+             a reversal, a release, the plan);
+
+for the AGV that arrives last (its time is the makespan) and summed over the fleet, plus the
+count of stops; then the plan's ADG critical path with each move's least physical time (a lower
+bound for any ADG executor on that plan) and, for physical executors, the executed critical path
+(moves from rest, chained moves, rests, links; from fcd). Beside it, per plan (plan.txt): steps, moves, the longest path in moves, the
+reversals (u -> v -> u) and the planned stops (a wait between two moves: an AGV that keeps the
+plan's waits comes to rest there). So one sees whether the plan executed is the same length as
+lock-step's, and whether the extra ticks are physics (ramps of stops the plan forces), the
+executor (slowdown, rests with the dependency met), or waits.
+
+  scripts/closed_loop_decompose.py [--build build] [--config large_warehouse_agv.yaml]
+        [--seed 1] [--expansions 50] [--executors lockstep adg-follow[:key=value]]
+        [--max-ticks 1500] [--out DIR]
+  scripts/closed_loop_decompose.py --runs OUT1 OUT2 ...   (each with config.yaml, fcd.xml, plan.txt, metrics.json)
+"""
+import argparse
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench_executor import yaml_variant  # noqa: E402
+from bench_closed_loop import with_agv_vtype, set_run_keys  # noqa: E402
+from plan_stop_bound import rest_to_rest_s, read_plan  # noqa: E402
+
+
+def make_run(a, ex, out):
+    """The config of one row (p = 0) with fcd on, run once; returns the run's folder."""
+    name, _, sets = ex.partition(":")
+    cfg = yaml_variant(a.config, name, 0.0, window=a.window, max_ticks=a.max_ticks)
+    with_agv_vtype(cfg)
+    set_run_keys(cfg, sets, a.seed, a.expansions)
+    s = open(cfg).read()
+    os.unlink(cfg)
+    s = re.sub(r"fcd: \w+", "fcd: true", s)
+    s = s.replace("../sumo_scenarios", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "sumo_scenarios"))
+    os.makedirs(out, exist_ok=True)
+    open(os.path.join(out, "config.yaml"), "w").write(s)
+    t0 = time.time()
+    subprocess.run([os.path.join(a.build, "apps", "rtlacam-sumo"), os.path.join(out, "config.yaml"), "--out", out],
+                   capture_output=True, text=True)
+    print(f"ran {ex}: {time.time() - t0:.1f} s wall", file=sys.stderr)
+    return out
+
+
+def vtype(cfg_text):
+    m = re.search(r"vtype: \{([^}]*)\}", cfg_text)
+    kv = dict(x.strip().split(": ") for x in m.group(1).split(","))
+    st = re.search(r"step_length: ([0-9.]+)", cfg_text)
+    return float(kv["accel"]), float(kv["decel"]), float(kv["max_speed"]), float(st.group(1)) if st else 0.125
+
+
+def read_fcd(path):
+    """Per vehicle id, its speeds per SUMO step (fcd order)."""
+    speeds = {}
+    veh = re.compile(r'<vehicle id="([^"]+)".*? speed="([-0-9.]+)"')
+    with open(path) as f:
+        for line in f:
+            m = veh.search(line)
+            if m:
+                speeds.setdefault(m.group(1), []).append(float(m.group(2)))
+    return speeds
+
+
+def split_time(v, dt, acc, dec, vmax):
+    """One AGV's speeds -> (arrival s, distance s, ramps s, slowdown s, rest s, stops)."""
+    moving = [k for k, s in enumerate(v) if s > 1e-9]
+    if not moving:
+        return 0, 0, 0, 0, 0, 0
+    end = moving[-1] + 1  # steps up to the last arrival
+    dist = sum(v[:end]) * dt
+    rest = sum(1 for s in v[:end] if s <= 1e-9) * dt
+    tri = 0.0  # rest-to-rest trapezoids over the motion segments
+    stops = 0
+    k = 0
+    while k < end:
+        if v[k] <= 1e-9:
+            k += 1
+            continue
+        j = k
+        while j < end and v[j] > 1e-9:
+            j += 1
+        tri += rest_to_rest_s(sum(v[k:j]) * dt, acc, dec, vmax)
+        stops += 1
+        k = j
+    moving_s = end * dt - rest
+    return end * dt, dist / vmax, tri - dist / vmax, moving_s - tri, rest, stops
+
+
+def plan_shape(path):
+    """Plan steps, total moves, the longest path in moves, reversals, planned stops (waits between moves)."""
+    steps = read_plan(path)
+    n = len(steps[0])
+    moves = rev = waits = 0
+    longest = 0
+    for i in range(n):
+        seq = [s[i] for s in steps]
+        mv = [t for t in range(1, len(seq)) if seq[t] != seq[t - 1]]  # steps that end a move
+        moves += len(mv)
+        longest = max(longest, len(mv))
+        waits += sum(1 for a, b in zip(mv, mv[1:]) if b > a + 1)  # a wait between two moves
+        rev += sum(1 for a, b in zip(mv, mv[1:]) if seq[b] == seq[a - 1])  # back where it came from
+    return len(steps) - 1, moves, longest, rev, waits
+
+
+def critical_path(path, acc, dec, vmax, free_reversals=False):
+    """The plan's ADG (executor/adg.hpp: type 1 an AGV's moves in order, type 2 the move into v after
+    v's previous leave; waits dropped) with each move's least physical time -- 1 m at top speed
+    (cell / vmax), from rest (first move, and after a reversal, which needs rest) accelerating,
+    to rest (before a reversal, and the last move) braking -- and arrivals in ADG order: a move
+    ends no earlier than its hand-over's. The longest path is a lower bound on any ADG executor's
+    makespan for this plan with these kinematics (rotation groups, which start together, are
+    ignored: an estimate there). Returns (length s, on it: moves from rest, moves to rest, moves,
+    hand-over links)."""
+    steps = read_plan(path)
+    n, T = len(steps[0]), len(steps)
+    cell = 1.0
+    up = math.sqrt(2 * cell / acc)  # from rest, 1 m accelerating all the way (<= vmax at 1 m/s, 0.5 m/s^2)
+    up = up if acc * up <= vmax else cell / vmax + vmax / (2 * acc)
+    down = cell / vmax + vmax / (2 * dec)  # 1 m ending at rest from vmax
+    both = rest_to_rest_s(cell, acc, dec, vmax)
+    moves = []  # (agent, from, to)
+    per = [[] for _ in range(n)]
+    for t in range(1, T):
+        for i in range(n):
+            if steps[t][i] != steps[t - 1][i]:
+                per[i].append(len(moves))
+                moves.append((i, steps[t - 1][i], steps[t][i], t))
+    rest_before, rest_after = set(), set()
+    for i in range(n):
+        q = per[i]
+        if not q:
+            continue
+        rest_before.add(q[0])
+        rest_after.add(q[-1])
+        for a, b in zip(q, q[1:]):
+            if moves[b][2] == moves[a][1] and not free_reversals:
+                rest_after.add(a)
+                rest_before.add(b)
+    prev = {}
+    for i in range(n):
+        for a, b in zip(per[i], per[i][1:]):
+            prev[b] = a
+    last_leave, hand = {}, {}
+    k = 0
+    for t in range(1, T):
+        ids = []
+        while k < len(moves) and moves[k][3] == t:
+            ids.append(k)
+            k += 1
+        for x in ids:
+            last_leave[moves[x][1]] = x
+        for x in ids:
+            h = last_leave.get(moves[x][2])
+            if h is not None and moves[h][0] != moves[x][0]:
+                hand[x] = h
+    done = [0.0] * len(moves)
+    why = [None] * len(moves)
+    for x in range(len(moves)):  # ids are in plan order: dependencies come first
+        d = both if (x in rest_before and x in rest_after) else up if x in rest_before else \
+            down if x in rest_after else cell / vmax
+        c = done[prev[x]] + d if x in prev else d
+        why[x] = ("prev", prev.get(x), d)
+        h = hand.get(x)
+        if h is not None and done[h] > c:
+            c = done[h]
+            why[x] = ("hand", h, 0)
+        done[x] = c
+    x = max(range(len(moves)), key=lambda y: done[y])
+    length = done[x]
+    fr = to = mv = links = 0
+    while x is not None:
+        kind, y, _ = why[x]
+        if kind == "hand":
+            links += 1
+        else:
+            mv += 1
+            fr += x in rest_before
+            to += x in rest_after
+        x = y
+    return length, fr, to, mv, links
+
+
+def executed_path(path, speeds, dt, acc, dec, vmax):
+    """The executed run's critical path, back from the last arrival: each move's completion and
+    start read from fcd (every move is one cell, 1 m on these nets: the fcd distance equals the
+    plan's moves to 1 cm), and at each step back the constraint met last -- the hand-over's
+    arrival (a link), the leader's start (the AGV waited for it: the path goes on there), the
+    AGV's own previous move. Returns seconds on the path by kind: moves from rest and chained
+    (with their least times), rests not spent waiting for a leader's start (before a reversal,
+    a release held), and the link count."""
+    steps = read_plan(path)
+    n, T = len(steps[0]), len(steps)
+    moves, per = [], [[] for _ in range(n)]
+    for t in range(1, T):
+        for i in range(n):
+            if steps[t][i] != steps[t - 1][i]:
+                per[i].append(len(moves))
+                moves.append([i, steps[t - 1][i], steps[t][i], t])
+    prev, last_leave, hand = {}, {}, {}
+    for i in range(n):
+        for a, b in zip(per[i], per[i][1:]):
+            prev[b] = a
+    k = 0
+    for t in range(1, T):
+        ids = []
+        while k < len(moves) and moves[k][3] == t:
+            ids.append(k)
+            k += 1
+        for x in ids:
+            last_leave[moves[x][1]] = x
+        for x in ids:
+            h = last_leave.get(moves[x][2])
+            if h is not None and moves[h][0] != moves[x][0]:
+                hand[x] = h
+    end, start, rested = {}, {}, {}
+    for i in range(n):
+        v = speeds.get(f"agv{i}", [])
+        cum, j = 0.0, 0
+        last_rest = 0  # end time of the last step at rest
+        for kk, x in enumerate(per[i]):
+            t0 = end[per[i][kk - 1]] if kk else 0.0
+            had_rest = False
+            while j < len(v) and cum < kk + 1 - 0.02:
+                if v[j] <= 1e-9:
+                    last_rest = (j + 1) * dt
+                    had_rest = had_rest or last_rest > t0 + 1e-9
+                cum += v[j] * dt
+                j += 1
+            end[x] = j * dt
+            rested[x] = had_rest or kk == 0
+            start[x] = max(t0, last_rest) if rested[x] else t0
+    up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
+    out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
+               links=0, n_from_rest=0, n_chained=0)
+    x = max(end, key=lambda y: end[y])
+    node = ("end", x)
+    tol = dt + 1e-9
+    while node:
+        kind, x = node
+        h = hand.get(x)
+        if kind == "end":
+            if h is not None and end[h] >= end[x] - tol and end[h] <= end[x] + 1e-9:
+                out["links"] += 1
+                node = ("end", h)
+                continue
+            if rested[x]:
+                out["from_rest"] += end[x] - start[x]
+                out["from_rest_least"] += up
+                out["n_from_rest"] += 1
+                node = ("start", x)
+            else:
+                out["chained"] += end[x] - start[x]
+                out["chained_least"] += 1 / vmax
+                out["n_chained"] += 1
+                node = ("end", prev[x]) if x in prev else None
+        else:
+            t0 = end[prev[x]] if x in prev else 0.0
+            if h is not None and abs(start[h] - start[x]) <= tol and start[h] > t0 + 1e-9:
+                # waited for the leader to start leaving: the path goes on through the leader's start
+                node = ("start", h) if rested[h] else ("end", prev[h]) if h in prev else None
+                continue
+            out["rest"] += start[x] - t0
+            rev = x in prev and moves[x][2] == moves[prev[x]][1]
+            why = "rest_reversal" if rev else "rest_first" if x not in prev else \
+                "rest_leader_started_before" if h is not None and start[h] < start[x] - tol else \
+                "rest_leader_done_or_none"
+            out[why] = out.get(why, 0) + start[x] - t0
+            out["n_" + why] = out.get("n_" + why, 0) + 1
+            node = ("end", prev[x]) if x in prev else None
+    return out
+
+
+def analyse(d):
+    cfg = open(os.path.join(d, "config.yaml")).read()
+    acc, dec, vmax, dt = vtype(cfg)
+    m = json.load(open(os.path.join(d, "metrics.json")))
+    speeds = read_fcd(os.path.join(d, "fcd.xml"))
+    rows = {vid: split_time(v, dt, acc, dec, vmax) for vid, v in speeds.items()}
+    last = max(rows, key=lambda k: rows[k][0])
+    tot = [sum(r[k] for r in rows.values()) for k in range(6)]
+    shape = plan_shape(os.path.join(d, "plan.txt"))
+    ex = re.search(r"\n  executor: ([\w-]+)", cfg).group(1)
+    if ex == "lockstep":  # speeds jump within a step: no ramps, so stops cost nothing physically
+        rows = {k: (r[0], r[1], 0.0, r[0] - r[1] - r[4], r[4], r[5]) for k, r in rows.items()}
+        last = max(rows, key=lambda k: rows[k][0])
+        tot = [sum(r[k] for r in rows.values()) for k in range(6)]
+    exe = executed_path(os.path.join(d, "plan.txt"), speeds, dt, acc, dec, vmax) if ex != "lockstep" else None
+    crit = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax)
+    crit_free = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, free_reversals=True)
+    return dict(run=os.path.basename(d.rstrip("/")), executor=ex, makespan=m["makespan"], solved=m["solved"],
+                bound=m.get("bound_ticks"), last=last, last_row=rows[last], total=tot, shape=shape,
+                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free, exe=exe)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default="build")
+    ap.add_argument("--config", default="large_warehouse_agv.yaml")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--expansions", type=int, default=50)
+    ap.add_argument("--window", type=int, default=16)
+    ap.add_argument("--max-ticks", type=int, default=1500)
+    ap.add_argument("--executors", nargs="+", default=["lockstep", "adg-follow"])
+    ap.add_argument("--out", default=None, help="folder for the runs (default: a temporary one)")
+    ap.add_argument("--runs", nargs="+", default=None, help="analyse these run folders instead of running")
+    a = ap.parse_args()
+    if a.runs:
+        dirs = a.runs
+    else:
+        import tempfile
+        base = a.out or tempfile.mkdtemp(prefix="decompose_")
+        dirs = [make_run(a, ex, os.path.join(base, re.sub(r"[^\w.-]", "_", ex))) for ex in a.executors]
+    res = [analyse(d) for d in dirs]
+    print("Plans (plan.txt): steps, moves, longest path (moves), reversals, planned stops (waits between moves)\n")
+    print("| run | executor | makespan | bound | plan steps | moves | longest | reversals | planned stops |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    for r in res:
+        s = r["shape"]
+        print(f"| {r['run']} | {r['executor']} | {r['makespan']} | {r['bound']} | {s[0]} | {s[1]} | {s[2]} | {s[3]} | {s[4]} |")
+    print("\nTime to the last arrival, s (from fcd): distance at top speed + ramps of the stops + slowdown in motion"
+          " + rest; stops = motion segments\n")
+    print("| run | who | arrival | distance | ramps | slowdown | rest | stops |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|")
+    for r in res:
+        for who, row in ((f"last ({r['last']})", r["last_row"]), ("fleet sum", r["total"])):
+            print(f"| {r['run']} | {who} | {row[0]:.1f} | {row[1]:.1f} | {row[2]:.1f} | {row[3]:.1f} | {row[4]:.1f} | {row[5]} |")
+    print("\nShares of the fleet's time (sum over AGVs to their last arrival):\n")
+    print("| run | distance | ramps | slowdown | rest | s per move | stops per move |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    for r in res:
+        t = r["total"]
+        print(f"| {r['run']} | {t[1] / t[0]:.3f} | {t[2] / t[0]:.3f} | {t[3] / t[0]:.3f} | {t[4] / t[0]:.3f} | "
+              f"{t[0] / max(1, r['shape'][1]):.3f} | {t[5] / max(1, r['shape'][1]):.3f} |")
+    print("\nThe plan's ADG critical path with each move's least physical time (a lower bound for any ADG"
+          " executor on this plan), s; on it: moves (from rest / to rest), hand-over links; and the same with"
+          " reversals free (no rest)\n")
+    print("| run | makespan | critical path | moves | from rest | to rest | links | makespan / path |"
+          " path, reversals free |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for r in res:
+        c, f = r["crit"], r["crit_free"]
+        print(f"| {r['run']} | {r['makespan']} | {c[0]:.1f} | {c[3]} | {c[1]} | {c[2]} | {c[4]} | "
+              f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} |")
+    print("\nThe executed critical path (physical executors), s: back from the last arrival through the constraint met"
+          " last; moves from rest and chained (their least time in brackets), rests not spent waiting for a"
+          " leader's start (before a reversal: the AGV must stop), links (arrivals in ADG order)\n")
+    print("| run | from rest (least) | n | chained (least) | n | rest before reversals | other rests | links |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for r in res:
+        e = r["exe"]
+        if e:
+            print(f"| {r['run']} | {e['from_rest']:.1f} ({e['from_rest_least']:.1f}) | {e['n_from_rest']} | "
+                  f"{e['chained']:.1f} ({e['chained_least']:.1f}) | {e['n_chained']} | {e.get('rest_reversal', 0):.1f} | "
+                  f"{e['rest'] - e.get('rest_reversal', 0):.1f} | {e['links']} |")
+    for r in res:
+        if r["time"]:
+            print(f"\n{r['run']}: executor agent-steps by what bounds the speed (metrics.json executor.time): {r['time']}")
+
+
+if __name__ == "__main__":
+    main()
