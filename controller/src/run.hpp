@@ -28,6 +28,7 @@
 #include "planner/stop_signal.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
+#include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/task_manager.hpp"
 
@@ -171,6 +172,9 @@ class Run {
   std::vector<int> heading_count_;   // count_queues: AGVs heading to each cell this tick (zeroed after)
   uint64_t replan_expansions_ = 0;     // expansions of the planners replaced by replans
   tasks::LifelongResult life_;
+  // Lifelong: the task and epoch part shared with the grid's LifelongRun (start,
+  // completions on the executed cells, epoch starts, their counts in life_).
+  std::unique_ptr<tasks::LifelongEpochs> epochs_;
   planner::Budget budget_;
   int k_ = 1;
   int slice_ = 0;  // SUMO step within the tick (lockstep), for the rotation solvers' budget

@@ -2,17 +2,15 @@
 
 #include <utility>
 
-#include "tasks/lifelong_goal.hpp"
+#include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_run.hpp"
-#include "tasks/urgency.hpp"
 
 namespace tasks {
 
 std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p, long t)
 {
   std::vector<Event> events = tasks.update(t, p.current());
-  if (!events.empty() || tasks.goals_changed()) hint_priorities(tasks, p);
-  if (!events.empty() || tasks.goals_changed()) p.set_goals(tasks.goals(), lifelong_goal_test(tasks, p.current()));
+  if (!events.empty() || tasks.goals_changed()) start_epoch(tasks, p, tasks.goals());
   return events;
 }
 
