@@ -34,6 +34,9 @@ RUNS = [
     ("small queues adg-follow", "config/small_warehouse_lifelong.yaml", dict(QUEUES, run={"executor": "adg-follow"})),
     ("small charging", "config/small_charging_lifelong.yaml", {}),
     ("small charging adg-follow", "config/small_charging_lifelong.yaml", {"run": {"executor": "adg-follow"}}),
+    # A fast drain (bench_charging.py's aggressive settings): charging errands and battery hints.
+    ("small charging drained", "config/small_charging_lifelong.yaml",
+     {"fleet": {"count": 8, "battery": {"per_m_wh": 1.5, "critical": 0.25}}, "run": {"executor": "adg-follow"}}),
     ("small pibt-rot lockstep", "config/small_warehouse_lifelong.yaml", {"planner": {"solver": "pibt-rot"}}),
     ("small pibt-rot adg-follow", "config/small_warehouse_lifelong.yaml",
      {"planner": {"solver": "pibt-rot"}, "run": {"executor": "adg-follow"}}),
@@ -141,7 +144,9 @@ def main():
         y, m = run(a.after, base, over, a.ticks, a.expansions, os.path.join(work, slug + "-after"))
         same = json.dumps(x, sort_keys=True) == json.dumps(y, sort_keys=True)
         ll = m.get("lifelong", {})
-        print(f"{name:34s} {m['ticks']} ticks, {ll.get('numErrandFinished')} errands, {ll.get('epochs')} epochs, "
+        extra = f"{m['battery']['charging_errands']} charging errands, " if "battery" in m else ""
+        extra += f"{m['rules']['replans']} rule replans, " if m.get("rules", {}).get("replans") else ""
+        print(f"{name:34s} {m['ticks']} ticks, {ll.get('numErrandFinished')} errands, {ll.get('epochs')} epochs, {extra}"
               f"error '{m['error']}': " + ("identical" if same else "DIFFERENT at " + str(first_diff(x, y))), flush=True)
         bad += not same
     print(f"same_decisions_sumo: {len(runs) - bad}/{len(runs)} identical (timing fields aside; files in {work})")
