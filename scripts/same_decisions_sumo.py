@@ -43,6 +43,7 @@ RUNS = [
     ("small rules lockstep", "config/small_rules_lifelong.yaml", {}),
     ("small oneway", "config/small_oneway_lifelong.yaml", {}),
     ("large queues pibt-rot", "config/large_warehouse_queues.yaml", {}),
+    ("large parking", "config/large_warehouse_parking.yaml", {}),
 ]
 
 

@@ -297,16 +297,6 @@ void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
   for (uint8_t w : waiting_) m_.rules.waits += w;
 }
 
-void Run::errand_ticks()
-{
-  const planner::Config& g = tm_->goals();
-  if (errand_goal_.size() != g.size()) errand_goal_ = g, errand_start_.assign(g.size(), 0);
-  for (size_t i = 0; i < g.size(); ++i) {
-    if (g[i] != errand_goal_[i]) errand_goal_[i] = g[i], errand_start_[i] = m_.ticks;
-    m_.max_errand_ticks = std::max(m_.max_errand_ticks, m_.ticks - errand_start_[i]);
-  }
-}
-
 planner::Budget Run::plan_budget() const
 {
   planner::Budget b = budget_;
@@ -413,11 +403,16 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
 {
   life_.planner_ms.push_back(tick_planner_ms);
   if (!epoch_early()) epoch_start(executed, m_.ticks);
-  errand_ticks();
+  epochs_->count(m_.ticks, executed);  // goal ticks, queue and parking counts (tasks/lifelong_epochs.hpp)
+  const tasks::EpochCounts& n = epochs_->counts();
+  m_.max_errand_ticks = n.max_goal_ticks;
+  m_.max_heading = n.max_heading;
+  m_.queued_ticks = n.queued_ticks;
+  m_.idle_at_end = n.idle;
+  m_.parked_at_end = n.parked;
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
   m_.reassigned_for_closure = tm_->reassigned_for_closure();
-  count_queues(executed);
   if (const tasks::Battery* b = tm_->battery()) count_battery(*b), m_.battery.dropped_mid_task = tm_->dropped_for_charge();
 }
 
@@ -484,29 +479,6 @@ void Run::count_battery(const tasks::Battery& b)
     for (double c : q) lo = std::min(lo, c), hi = std::max(hi, c), sum += c;
     s.samples.push_back({m_.ticks, lo / cap, sum / q.size() / cap, hi / cap});
   }
-}
-
-void Run::count_queues(const planner::Config& executed)
-{
-  if (is_station_.empty()) {
-    is_station_.assign(c_.map_.graph.size(), 0);
-    for (const std::vector<planner::Vertex>& t : tm_->file().tasks)
-      for (planner::Vertex v : t) is_station_[v] = 1;
-  }
-  const planner::Config& goals = tm_->goals();
-  // A counter per cell, reset after use: no allocation per tick (1000 AGVs, 5000 ticks).
-  heading_count_.resize(is_station_.size(), 0);
-  m_.idle_at_end = m_.parked_at_end = 0;
-  for (int a = 0; a < tm_->num_agents(); ++a) {
-    if (tm_->heading(a) && is_station_[goals[a]])
-      m_.max_heading = std::max(m_.max_heading, ++heading_count_[goals[a]]);
-    if (tm_->busy(a) && !tm_->heading(a) && executed[a] == goals[a]) ++m_.queued_ticks;
-    if (!tm_->busy(a)) {
-      ++m_.idle_at_end;
-      m_.parked_at_end += tm_->parking() && tm_->parking()->is_parking(executed[a]);
-    }
-  }
-  for (int a = 0; a < tm_->num_agents(); ++a) heading_count_[goals[a]] = 0;
 }
 
 void Run::progress_line(const planner::Config& executed)

@@ -156,6 +156,7 @@ TEST(LifelongEpochs, ABackEndOfItsOwnRunsTheSameEpochsAsLifelongRun)
     const bool epoch = epochs.complete(t, p->current());
     if (epoch) epochs.start_epoch(*p);
     epochs.record(epoch);
+    epochs.count(t, p->current());
     completion_steps += !epochs.completed().empty();
   }
   EXPECT_EQ(got.events, want.events);
@@ -165,6 +166,15 @@ TEST(LifelongEpochs, ABackEndOfItsOwnRunsTheSameEpochsAsLifelongRun)
   EXPECT_GE(want.errands_finished, 10);
   // Goals that changed without a completion (the queue moved up) started epochs too.
   EXPECT_GT(got.epochs, 1 + completion_steps);
+  // The counts: one agent at a time heads for the station, the others wait on queue cells.
+  const EpochCounts& n = epochs.counts();
+  EXPECT_EQ(n.max_heading, 1);
+  EXPECT_GT(n.queued_ticks, 20);
+  EXPECT_LE(n.max_goal_ticks, steps);
+  int idle = 0;
+  for (int a = 0; a < tasks->num_agents(); ++a) idle += !tasks->busy(a);
+  EXPECT_EQ(n.idle, idle);
+  EXPECT_EQ(n.parked, 0);  // no parking cells
 }
 
 // Each epoch start hands the planner the task layer's priority hints first (urgency.hpp),

@@ -16,6 +16,9 @@
 //   prefetch  the goals to come, nearest agent first: the cell tables' and the rotation
 //             solvers' (cell, heading) tables
 //   record    epochs, the step's completions, the longest run of steps without one
+//   count     per step on the real cells: how long agents keep one goal, the crowd heading
+//             for one errand cell, agents waiting on their queue cells, idle and parked
+//             ones (the controller's metrics.json; rtlacam-lifelong does not write them yet)
 //
 // Why the rest stays with each back end: a grid step and a SUMO tick are timed apart
 // (StepBudget per step; the controller's budget per SUMO step, Run::step); the grid executes
@@ -43,6 +46,14 @@ namespace tasks {
 // end makes of them) with the lifelong goal test at p's current configuration.
 void start_epoch(const TaskManager& tasks, planner::RealtimePlanner& p, const planner::Config& goals);
 
+// count()'s results: the task layer's view of congestion at stations.
+struct EpochCounts {
+  long long max_goal_ticks = 0;  // longest any agent kept one goal, idle ones too (open ones to now)
+  int max_heading = 0;           // most busy agents heading for one errand cell at once
+  long long queued_ticks = 0;    // agent-steps busy, on their goal, that goal not the errand's cell (a queue)
+  int idle = 0, parked = 0;      // at the last count: agents without a task, those of them on a parking cell
+};
+
 class LifelongEpochs {
  public:
   // Counts into r (epochs, events, task_ms, setup_ms stays the caller's).
@@ -64,12 +75,20 @@ class LifelongEpochs {
   // The last complete()'s events into the result; `epoch`: a new epoch started.
   void record(bool epoch);
   long long max_gap() const { return max_gap_; }  // longest run of steps without a completion
+  // After step t's epoch phases, the agents on `real`.
+  void count(long t, const planner::Config& real);
+  const EpochCounts& counts() const { return counts_; }
 
  private:
   TaskManager& tasks_;
   LifelongResult& r_;
   std::vector<Event> ev_;
   long long last_completion_ = 0, max_gap_ = 0;
+  EpochCounts counts_;
+  std::vector<long long> goal_start_;  // count(): the step each agent's current goal began
+  planner::Config goal_;
+  std::vector<uint8_t> is_station_;  // the task file's errand cells
+  std::vector<int> heading_count_;   // agents heading to each cell this step (zeroed after use)
 };
 
 }  // namespace tasks
