@@ -2,17 +2,9 @@
 
 #include <utility>
 
-#include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_run.hpp"
 
 namespace tasks {
-
-std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& p, long t)
-{
-  std::vector<Event> events = tasks.update(t, p.current());
-  if (!events.empty() || tasks.goals_changed()) start_epoch(tasks, p, tasks.goals());
-  return events;
-}
 
 PlannerTimes summarize(std::vector<double> ms) { return planner::Latency::of(std::move(ms)); }
 

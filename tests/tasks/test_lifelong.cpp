@@ -62,13 +62,18 @@ TEST(Epochs, SetGoalsExactlyWhenAnErrandCompletes)
   const auto g = ttest::grid({"......"});
   auto file = ttest::task_file(g, {{{2, 0}}, {{5, 0}}, {{0, 0}}, {{4, 0}}});
   RoundRobin rr(file);
-  rr.start({0, 5});
+  LifelongResult r;
+  LifelongEpochs epochs(rr, r);  // the seam of every back end (lifelong_epochs.hpp)
+  epochs.start(g, {0, 5}, nullptr);
   Scripted p({{0, 5}, {1, 5}, {2, 4}, {2, 4}, {1, 3}, {0, 4}});
   std::vector<long> reset_steps;
   for (long t = 1; t <= 5; ++t) {
     p.commit();
     const int before = p.resets;
-    const auto ev = advance_epoch(rr, p, t);
+    const bool epoch = epochs.complete(t, p.current());
+    if (epoch) epochs.start_epoch(p);
+    epochs.record(epoch);
+    const std::vector<Event>& ev = epochs.completed();
     EXPECT_EQ(p.resets - before, ev.empty() ? 0 : 1) << "t=" << t;
     if (!ev.empty()) {
       reset_steps.push_back(t);
@@ -80,6 +85,8 @@ TEST(Epochs, SetGoalsExactlyWhenAnErrandCompletes)
   // t=3, t=4: nobody on a goal. t=5: agent 0 on x=0 (task 2).
   EXPECT_EQ(reset_steps, (std::vector<long>{1, 2, 5}));
   EXPECT_EQ(rr.errands_finished(), 4);
+  EXPECT_EQ(r.epochs, 4);  // the first goals' and three new ones'
+  EXPECT_EQ(r.events.size(), 4u);
 }
 
 TEST(Epochs, RtLacamKeepsItsTreeUntilACompletion)
