@@ -95,6 +95,7 @@ void Run::prepare()
     m_.costly_cells = 0;
     for (uint8_t k : c_.map_.graph.move_costs()) m_.costly_cells += k > 1;
   }
+  std::unique_ptr<tasks::FreeFlowBound> free_flow;  // lifelong: given to the task layer at its start
   if (cfg_.tasks.lifelong()) {
     tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
     // The free-flow bound (tasks/free_flow.hpp) prices an errand's shortest path as the
@@ -105,10 +106,8 @@ void Run::prepare()
       cost = [kin = kinematics(), cell = cfg_.grid.cell_length, tick = cfg_.run.tick_s](int moves) {
         return rest_to_rest_s(moves * cell, kin) / tick;
       };
-    tm_->set_free_flow(std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost));
-    // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (move costs
-    // included), closures or not: tables of their own, exact whatever the step's deadline.
-    tm_->watch_stalls(c_.map_.graph);
+    free_flow = std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost);
+    epochs_ = std::make_unique<tasks::LifelongEpochs>(*tm_, life_);
     const bool stalls = cfg_.tasks.urgency_stalls < 0 ? cfg_.tasks.queue_capacity > 0 : cfg_.tasks.urgency_stalls != 0;
     tm_->set_urgency({stalls, cfg_.tasks.urgency_battery});
   }
@@ -152,7 +151,9 @@ void Run::prepare()
   if (tm_) {
     // Duplicate goals are normal here (two AGVs sent to one station): the lifelong goal
     // test ("some AGV not yet arrived stands on its goal") never needs distinct goals.
-    tm_->start(ins_.starts);
+    // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (move costs
+    // included), closures or not: tables of their own, exact whatever the step's deadline.
+    epochs_->start(g, ins_.starts, std::move(free_flow));
     goals = tm_->goals();
     goal_test = tasks::lifelong_goal_test(*tm_, ins_.starts);
   }
@@ -178,10 +179,7 @@ void Run::prepare()
     throw ConfigError(cfg_.path + ": planner: " + e.what());
   }
   cap_dist_tables();
-  if (tm_) {
-    life_.setup_ms = ms_since(setup0);
-    life_.epochs = 1;
-  }
+  if (tm_) life_.setup_ms = ms_since(setup0);
   val_ = std::make_unique<planner::Validator>(g, ins_.starts, goals);
   delays_ = std::make_unique<executor::DelayModel>(cfg_.delays.spec, ins_.num_agents());
   if (cfg_.run.executor != "lockstep" && cfg_.run.replan_on_stuck && !cfg_.planner.rotation_solver())
@@ -299,16 +297,6 @@ void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
   for (uint8_t w : waiting_) m_.rules.waits += w;
 }
 
-void Run::errand_ticks()
-{
-  const planner::Config& g = tm_->goals();
-  if (errand_goal_.size() != g.size()) errand_goal_ = g, errand_start_.assign(g.size(), 0);
-  for (size_t i = 0; i < g.size(); ++i) {
-    if (g[i] != errand_goal_[i]) errand_goal_[i] = g[i], errand_start_[i] = m_.ticks;
-    m_.max_errand_ticks = std::max(m_.max_errand_ticks, m_.ticks - errand_start_[i]);
-  }
-}
-
 planner::Budget Run::plan_budget() const
 {
   planner::Budget b = budget_;
@@ -415,11 +403,16 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
 {
   life_.planner_ms.push_back(tick_planner_ms);
   if (!epoch_early()) epoch_start(executed, m_.ticks);
-  errand_ticks();
+  epochs_->count(m_.ticks, executed);  // goal ticks, queue and parking counts (tasks/lifelong_epochs.hpp)
+  const tasks::EpochCounts& n = epochs_->counts();
+  m_.max_errand_ticks = n.max_goal_ticks;
+  m_.max_heading = n.max_heading;
+  m_.queued_ticks = n.queued_ticks;
+  m_.idle_at_end = n.idle;
+  m_.parked_at_end = n.parked;
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
   m_.reassigned_for_closure = tm_->reassigned_for_closure();
-  count_queues(executed);
   if (const tasks::Battery* b = tm_->battery()) count_battery(*b), m_.battery.dropped_mid_task = tm_->dropped_for_charge();
 }
 
@@ -441,11 +434,7 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   // past it; later steps grow them), and the search gets only what is left (a resumable
   // expansion pauses at its deadline; the next steps go on with it).
   auto t0 = Clock::now();
-  const std::vector<tasks::Event> ev = tm_->update(tick, executed);
-  if (ev.empty() && !tm_->goals_changed()) {  // goals change without a completion only with station queues
-    life_.task_ms += ms_since(t0);
-    return;
-  }
+  if (!epochs_->complete(tick, executed)) return;
   const double c0 = planner::thread_cpu_ms();
   const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
   if (bounded) {
@@ -454,8 +443,8 @@ void Run::epoch_start(const planner::Config& executed, long tick)
     dist_cache_->set_deadline(tb.deadline_from(t0));
   }
   const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
-  tasks::hint_priorities(*tm_, *p_);  // stalled errands, low batteries (tasks/urgency.hpp)
-  p_->set_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), tasks::lifelong_goal_test(*tm_, p_->current()));
+  // Rules: goals a closure cuts off wait (rules.hpp).
+  epochs_->start_epoch(*p_, rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals());
   if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
   val_->set_goals(tm_->goals());
   planner::Budget b = plan_budget();
@@ -464,8 +453,7 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
   plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
   show_goals();  // the view's work, not the planner's
-  ++life_.epochs;
-  life_.events.insert(life_.events.end(), ev.begin(), ev.end());
+  epochs_->record(true);
   epoch_ms_ += ms_since(t0);
 }
 
@@ -491,29 +479,6 @@ void Run::count_battery(const tasks::Battery& b)
     for (double c : q) lo = std::min(lo, c), hi = std::max(hi, c), sum += c;
     s.samples.push_back({m_.ticks, lo / cap, sum / q.size() / cap, hi / cap});
   }
-}
-
-void Run::count_queues(const planner::Config& executed)
-{
-  if (is_station_.empty()) {
-    is_station_.assign(c_.map_.graph.size(), 0);
-    for (const std::vector<planner::Vertex>& t : tm_->file().tasks)
-      for (planner::Vertex v : t) is_station_[v] = 1;
-  }
-  const planner::Config& goals = tm_->goals();
-  // A counter per cell, reset after use: no allocation per tick (1000 AGVs, 5000 ticks).
-  heading_count_.resize(is_station_.size(), 0);
-  m_.idle_at_end = m_.parked_at_end = 0;
-  for (int a = 0; a < tm_->num_agents(); ++a) {
-    if (tm_->heading(a) && is_station_[goals[a]])
-      m_.max_heading = std::max(m_.max_heading, ++heading_count_[goals[a]]);
-    if (tm_->busy(a) && !tm_->heading(a) && executed[a] == goals[a]) ++m_.queued_ticks;
-    if (!tm_->busy(a)) {
-      ++m_.idle_at_end;
-      m_.parked_at_end += tm_->parking() && tm_->parking()->is_parking(executed[a]);
-    }
-  }
-  for (int a = 0; a < tm_->num_agents(); ++a) heading_count_[goals[a]] = 0;
 }
 
 void Run::progress_line(const planner::Config& executed)

@@ -6,6 +6,10 @@
 //   loop_adg()       run.executor: adg -- the ADG releases moves, AGVs drive physically
 //   finish()         metrics.json, the lifelong log, plan.txt
 // step() is the one SUMO step both loops share: planner slice, SUMO, event and safety checks.
+// Lifelong (tasks.mode: lifelong): the task and epoch phases are the grid's, through
+// tasks::LifelongEpochs (tasks/lifelong_epochs.hpp): start, completions on the executed
+// cells, the epoch start, the counts; what happens around them stays here (the SUMO step's
+// budget, rules' goals, the validator, goal markers).
 #include <algorithm>
 #include <memory>
 #include <optional>
@@ -29,6 +33,7 @@
 #include "planner/stop_signal.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
+#include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/task_manager.hpp"
 
@@ -75,8 +80,6 @@ class Run {
   // calls it at the tick's end, lockstep at its start (epoch_early).
   void epoch_start(const planner::Config& executed, long tick);
   bool epoch_early() const;
-  // Lifelong: the queue and parking counts of metrics.json (Metrics::max_heading ...).
-  void count_queues(const planner::Config& executed);
   // Lifelong with fleet.battery: the battery metrics, a warning for each AGV run empty.
   void count_battery(const tasks::Battery& b);
   void progress_line(const planner::Config& executed);
@@ -117,7 +120,6 @@ class Run {
   // closure cuts off goes back to the pool: tasks/task_manager.hpp).
   void closure_tasks();
   planner::Config rule_goals(const planner::Graph& g, const planner::Config& at);
-  void errand_ticks();  // lifelong: how long each AGV has been on its errand
   void write_congestion();
   // The tick limit, a SIGINT / SIGTERM (planner/stop_signal.hpp), or a one-shot instance the
   // search proved unsolvable (RT-LaCAM's DFS exhausted: waiting for max_ticks would change
@@ -153,8 +155,6 @@ class Run {
   std::unique_ptr<planner::Graph> rules_graph_;
   std::vector<uint8_t> zone_occ_, waiting_;  // zones the planner's graph blocks; agents waiting
   std::unique_ptr<planner::Graph> open_graph_;  // closure_tasks(); null while nothing is closed
-  std::vector<long long> errand_start_;  // lifelong: tick each AGV's current goal began
-  planner::Config errand_goal_;
   std::unique_ptr<planner::RealtimePlanner> p_;
   std::unique_ptr<planner::Validator> val_;
   // Stuck replans: the validator at the last final configuration C^val_final_at_ (a replan
@@ -171,10 +171,11 @@ class Run {
   std::unique_ptr<FleetView> view_;
   std::unique_ptr<Congestion> congestion_;
   std::vector<AgvState> states_;
-  std::vector<uint8_t> is_station_;  // lifelong: the task file's errand cells
-  std::vector<int> heading_count_;   // count_queues: AGVs heading to each cell this tick (zeroed after)
   uint64_t replan_expansions_ = 0;     // expansions of the planners replaced by replans
   tasks::LifelongResult life_;
+  // Lifelong: the task and epoch part shared with the grid's LifelongRun (start,
+  // completions on the executed cells, epoch starts, their counts in life_).
+  std::unique_ptr<tasks::LifelongEpochs> epochs_;
   planner::Budget budget_;
   int k_ = 1;
   int slice_ = 0;  // SUMO step within the tick (lockstep), for the rotation solvers' budget

@@ -46,10 +46,7 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
   const auto t0 = Clock::now();
   // One distance cache for the task layer, the heading preference and the planner.
   cache_ = std::make_shared<planner::DistCache>(g, opt.max_dist_tables ? opt.max_dist_tables : 2 * starts.size() + 256);
-  if (!tasks_.stalls()) tasks_.watch_stalls(g);  // errand times and stalls (errand_stalls.hpp)
-  tasks_.share_dist_cache(cache_);
-  tasks_.set_free_flow(std::make_unique<FreeFlowBound>(cache_));  // a move per step
-  tasks_.start(starts);
+  epochs_.start(g, starts, std::make_unique<FreeFlowBound>(cache_), cache_);  // free flow: a move per step
   // Rotation: PIBT breaks distance ties by the turns a move needs (unless a policy orders moves).
   planner::ActionPreference* pref = opt.solver.pref;
   if (rotation_ && !native_ && !pref && opt.heading_ties) {
@@ -73,12 +70,12 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
     for (size_t i = 0; i < starts.size(); ++i) first.push_back({tasks_.goals()[i], starts[i]});
     cache_->prefetch(first);
     cache_->precompute(Clock::time_point::max());
-    prefetch_upcoming();
+    epochs_.prefetch(*cache_, p_->current());
     cache_->precompute(Clock::time_point::max());
   }
   rot_prefetch_ = rot_ && opt.prefetch;
   if (rot_prefetch_) {  // preprocessing: the next goals' tables (the first ones grew in set_goals)
-    prefetch_rotation();
+    epochs_.prefetch(*rot_);
     rot_->precompute(Clock::time_point::max());
   }
   if (opt.graph_execution) {
@@ -97,37 +94,6 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
   may_skip_ = opt.skip_late_search && sb_.bounded && kind_ == planner::Solver::RtLacam;
   r_.setup_ms = ms_since(t0);
-  r_.epochs = 1;
-}
-
-// Queues the tables of the goals to come, most urgent first: agents nearest their current
-// goal (at the plan frontier). Each next goal's table must reach the current goal, where the
-// agent will be when it gets the next one.
-void LifelongRun::prefetch_upcoming()
-{
-  const planner::Config& at = p_->current();
-  std::vector<std::pair<int32_t, planner::DistCache::Want>> order;
-  for (const auto& u : tasks_.upcoming()) {
-    const planner::Vertex now = tasks_.goals()[u.agent];
-    order.push_back({cache_->table(now)->at(at[u.agent], cache_->graph()), {u.goal, now}});
-  }
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<planner::DistCache::Want> wants;
-  wants.reserve(order.size());
-  for (const auto& o : order) wants.push_back(o.second);
-  cache_->prefetch(wants);
-}
-
-// The rotation solvers: the same goals to come, for their own (cell, heading) tables; nearest agent first.
-void LifelongRun::prefetch_rotation()
-{
-  std::vector<std::pair<uint16_t, planner::Vertex>> order;
-  for (const auto& u : tasks_.upcoming()) order.push_back({rot_->h(u.agent), u.goal});
-  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  std::vector<planner::Vertex> goals;
-  goals.reserve(order.size());
-  for (const auto& o : order) goals.push_back(o.second);
-  rot_->prefetch(goals);
 }
 
 // Work for the steps' spare time: the cell tables' queue (prefetched goals and tables that
@@ -335,38 +301,32 @@ const planner::Config& LifelongRun::execute(Step& s)
 
 void LifelongRun::complete(Step& s, const planner::Config& real)
 {
-  // advance_epoch, split to time the task layer apart from the planner. Errands complete on
-  // the robots' real cells; the planner's new epoch starts at its own current configuration
-  // (the plan frontier under rotation).
-  auto t0 = Clock::now();
-  const std::vector<Event> ev = tasks_.update(s.rec.t, real);
-  r_.task_ms += ms_since(t0);
-  t0 = Clock::now();
+  // Errands complete on the robots' real cells (LifelongEpochs, the task layer's time); the
+  // planner's new epoch starts at its own current configuration (the plan frontier under
+  // rotation), timed apart as the next step's planning.
+  bool replan = epochs_.complete(s.rec.t, real);
+  const bool completed = !epochs_.completed().empty();
+  const auto t0 = Clock::now();
   const double cpu0 = thread_cpu_ms();
   const uint64_t pops0 = cache_->counters().query_pops;
   // Rotation: the plan frontier runs ahead of the robots, so it can reach a goal before the
   // robot does. Its epoch's goal test then holds and RT-LaCAM would only wait; a new epoch at
   // the frontier (that agent no longer pending) keeps the others' plans going. The robot
   // still completes the errand when it physically gets there.
-  const bool replan =
-      !ev.empty() || tasks_.goals_changed() || (exec_ && !graph_ && s.plan_now && p_->at_goal() && has_pending(tasks_, p_->current()));
-  if (!ev.empty()) last_completion_ = s.rec.t;
-  max_gap_ = std::max(max_gap_, s.rec.t - last_completion_);
+  replan = replan || (exec_ && !graph_ && s.plan_now && p_->at_goal() && has_pending(tasks_, p_->current()));
   // The epoch start is the next step's planning (StepBudget::epoch_start_ms; at 1 ms on
   // WAREHOUSE, none: the next step's precompute grows what it missed).
   bound_queries(planner::Budget::time_ms(sb_.epoch_start_ms()).deadline_from(t0));
-  if (replan) hint_priorities(tasks_, *p_);  // urgency.hpp
-  if (replan) p_->set_goals(tasks_.goals(), lifelong_goal_test(tasks_, p_->current()));
-  if (!ev.empty() && prefetch_) prefetch_upcoming();
-  if (!ev.empty() && rot_prefetch_) prefetch_rotation();
+  if (replan) epochs_.start_epoch(*p_);
+  if (completed && prefetch_) epochs_.prefetch(*cache_, p_->current());
+  if (completed && rot_prefetch_) epochs_.prefetch(*rot_);
   if (replan)
     sb_.carry(ms_since(t0), thread_cpu_ms() - cpu0, cache_->counters().query_pops - pops0);
   else
     sb_.carry(0, 0, 0);
-  if (replan) ++r_.epochs;
-  s.rec.completed = static_cast<int>(ev.size());
-  s.rec.new_epoch = !ev.empty();
-  r_.events.insert(r_.events.end(), ev.begin(), ev.end());
+  epochs_.record(replan);
+  s.rec.completed = static_cast<int>(epochs_.completed().size());
+  s.rec.new_epoch = completed;
 }
 
 void LifelongRun::record(Step& s)

@@ -1,12 +1,16 @@
 // The lifelong executor: progress epochs (a fresh tree exactly when an errand completes),
 // validator-clean runs of all three solvers on a 100-agent LoRR instance, duplicate goals,
-// and throughput that does not stay at zero where PIBT livelocks.
+// throughput that does not stay at zero where PIBT livelocks, and LifelongEpochs, the epoch
+// part a back end of its own (the SUMO controller) shares with LifelongRun.
 #include <gtest/gtest.h>
 
 #include <map>
 
 #include "planner/movingai.hpp"
+#include "tasks/greedy_assigner.hpp"
+#include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_goal.hpp"
+#include "tasks/lifelong_run.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks/roundrobin.hpp"
@@ -25,7 +29,8 @@ class Scripted : public planner::RealtimePlanner {
   planner::Status search(const planner::Budget&) override { return planner::Status::Searching; }
   const Config& next() override { return script_[std::min(k_ + 1, script_.size() - 1)]; }
   void commit() override { cur_ = next(), ++k_; }
-  void set_goals(const Config& g, planner::GoalTest) override { goals_ = g, ++resets; }
+  void set_goals(const Config& g, planner::GoalTest) override { goals_ = g, ++resets, calls += 'g'; }
+  void set_priority_hint(std::vector<float> h) override { hints.push_back(std::move(h)), calls += 'h'; }
   const Config& current() const override { return cur_; }
   const Config& goals() const override { return goals_; }
   bool at_goal() const override { return false; }
@@ -33,6 +38,8 @@ class Scripted : public planner::RealtimePlanner {
   size_t explored() const override { return 0; }
   std::string name() const override { return "scripted"; }
   int resets = 0;
+  std::vector<std::vector<float>> hints;  // set_priority_hint's, in order
+  std::string calls;                      // 'h' a hint, 'g' set_goals, in order
 
  private:
   std::vector<Config> script_;
@@ -55,13 +62,18 @@ TEST(Epochs, SetGoalsExactlyWhenAnErrandCompletes)
   const auto g = ttest::grid({"......"});
   auto file = ttest::task_file(g, {{{2, 0}}, {{5, 0}}, {{0, 0}}, {{4, 0}}});
   RoundRobin rr(file);
-  rr.start({0, 5});
+  LifelongResult r;
+  LifelongEpochs epochs(rr, r);  // the seam of every back end (lifelong_epochs.hpp)
+  epochs.start(g, {0, 5}, nullptr);
   Scripted p({{0, 5}, {1, 5}, {2, 4}, {2, 4}, {1, 3}, {0, 4}});
   std::vector<long> reset_steps;
   for (long t = 1; t <= 5; ++t) {
     p.commit();
     const int before = p.resets;
-    const auto ev = advance_epoch(rr, p, t);
+    const bool epoch = epochs.complete(t, p.current());
+    if (epoch) epochs.start_epoch(p);
+    epochs.record(epoch);
+    const std::vector<Event>& ev = epochs.completed();
     EXPECT_EQ(p.resets - before, ev.empty() ? 0 : 1) << "t=" << t;
     if (!ev.empty()) {
       reset_steps.push_back(t);
@@ -73,6 +85,8 @@ TEST(Epochs, SetGoalsExactlyWhenAnErrandCompletes)
   // t=3, t=4: nobody on a goal. t=5: agent 0 on x=0 (task 2).
   EXPECT_EQ(reset_steps, (std::vector<long>{1, 2, 5}));
   EXPECT_EQ(rr.errands_finished(), 4);
+  EXPECT_EQ(r.epochs, 4);  // the first goals' and three new ones'
+  EXPECT_EQ(r.events.size(), 4u);
 }
 
 TEST(Epochs, RtLacamKeepsItsTreeUntilACompletion)
@@ -99,6 +113,103 @@ TEST(Epochs, RtLacamKeepsItsTreeUntilACompletion)
   EXPECT_EQ(r.epochs, 1 + with_completions);
   EXPECT_EQ(r.planner_errors, 0) << r.first_error;
   EXPECT_GT(r.errands_finished, 0);
+}
+
+// LifelongEpochs (lifelong_epochs.hpp) is the task and epoch part that the grid's LifelongRun
+// and the SUMO controller share. A back end of its own -- here a loop that executes each
+// committed step at once, as the controller's lockstep does -- calling only LifelongEpochs
+// runs the same epochs as LifelongRun. Station queues change goals without a completion:
+// those start epochs too.
+TEST(LifelongEpochs, ABackEndOfItsOwnRunsTheSameEpochsAsLifelongRun)
+{
+  // A dead-end station at the top of a stub, a picking aisle below the cross aisle
+  // (test_station_queues.cpp's stub): one agent at a time in the stub, the rest queue.
+  const auto g = ttest::grid({"###.##", "###.##", "......", "###.##", "###.##", "###.##", "###.##", "......"});
+  auto file = ttest::task_file(g, {{{3, 0}, {0, 7}}, {{3, 0}, {5, 7}}});
+  const Config starts{g.at(0, 2), g.at(5, 2), g.at(1, 7), g.at(4, 7), g.at(0, 7), g.at(5, 7)};
+  auto pool = [&] {
+    auto p = std::make_unique<TaskPool>(file, g, 6, std::make_unique<GreedyAssigner>());
+    p->set_queues(g, {1, 3, 0});
+    p->set_urgency({true, false});  // stalled errands hinted at each epoch start
+    return p;
+  };
+  const long steps = 150;
+  LifelongOptions opt;
+  opt.steps = steps;
+  opt.budget = planner::Budget::expansion_count(30);
+  auto grid_tasks = pool();
+  LifelongRun run(g, starts, *grid_tasks, "rtlacam", 0, opt);
+  while (!run.done()) run.step();
+  const long long grid_gap = run.max_gap();
+  const LifelongResult want = run.finish();
+
+  // The other back end: the planner built as LifelongRun builds it, then per step search,
+  // commit, and the epoch phases.
+  auto tasks = pool();
+  LifelongResult got;
+  LifelongEpochs epochs(*tasks, got);
+  const size_t cap = 2 * starts.size() + 256;
+  auto cache = std::make_shared<planner::DistCache>(g, cap);
+  epochs.start(g, starts, std::make_unique<FreeFlowBound>(cache), cache);
+  planner::SolverOptions so = opt.solver;
+  so.max_dist_tables = cap;
+  auto p = planner::make_planner(planner::Solver::RtLacam, g, starts, tasks->goals(), so, lifelong_goal_test(*tasks, starts));
+  p->share_dist_cache(cache);
+  long completion_steps = 0;
+  for (long t = 1; t <= steps; ++t) {
+    p->search(opt.budget);
+    p->next();
+    p->commit();
+    const bool epoch = epochs.complete(t, p->current());
+    if (epoch) epochs.start_epoch(*p);
+    epochs.record(epoch);
+    epochs.count(t, p->current());
+    completion_steps += !epochs.completed().empty();
+  }
+  EXPECT_EQ(got.events, want.events);
+  EXPECT_EQ(got.epochs, want.epochs);
+  EXPECT_EQ(epochs.max_gap(), grid_gap);
+  EXPECT_EQ(tasks->errands_finished(), want.errands_finished);
+  EXPECT_GE(want.errands_finished, 10);
+  // Goals that changed without a completion (the queue moved up) started epochs too.
+  EXPECT_GT(got.epochs, 1 + completion_steps);
+  // The counts: one agent at a time heads for the station, the others wait on queue cells.
+  const EpochCounts& n = epochs.counts();
+  EXPECT_EQ(n.max_heading, 1);
+  EXPECT_GT(n.queued_ticks, 20);
+  EXPECT_LE(n.max_goal_ticks, steps);
+  int idle = 0;
+  for (int a = 0; a < tasks->num_agents(); ++a) idle += !tasks->busy(a);
+  EXPECT_EQ(n.idle, idle);
+  EXPECT_EQ(n.parked, 0);  // no parking cells
+}
+
+// Each epoch start hands the planner the task layer's priority hints first (urgency.hpp),
+// then the new goals.
+TEST(LifelongEpochs, EveryEpochStartHintsThePlannerBeforeItsNewGoals)
+{
+  const auto g = ttest::grid({"......"});
+  auto file = ttest::task_file(g, {{{2, 0}}, {{5, 0}}, {{0, 0}}, {{4, 0}}});
+  RoundRobin rr(file);
+  rr.set_urgency({true, false});
+  LifelongResult r;
+  LifelongEpochs epochs(rr, r);
+  epochs.start(g, {0, 5}, nullptr);
+  EXPECT_NE(rr.stalls(), nullptr);  // start() watches the errands' stalls
+  Scripted p({{0, 5}, {1, 5}, {2, 4}, {2, 4}, {1, 3}, {0, 4}});
+  for (long t = 1; t <= 5; ++t) {
+    p.commit();
+    const bool epoch = epochs.complete(t, p.current());
+    EXPECT_EQ(epoch, !epochs.completed().empty()) << "t=" << t;  // no queues: completions only
+    if (epoch) epochs.start_epoch(p);
+    epochs.record(epoch);
+    EXPECT_EQ(p.hints.size(), static_cast<size_t>(p.resets)) << "t=" << t;
+  }
+  EXPECT_EQ(p.resets, 3);  // t = 1, 2, 5 (Epochs.SetGoalsExactlyWhenAnErrandCompletes)
+  EXPECT_EQ(p.calls, "hghghg");
+  EXPECT_EQ(r.epochs, 4);
+  EXPECT_EQ(r.events.size(), 4u);
+  for (const auto& h : p.hints) EXPECT_EQ(h.size(), 2u);
 }
 
 // 100 agents on random-32-32-20 (MR23-I-04, RANDOM-01), a few hundred steps, every step

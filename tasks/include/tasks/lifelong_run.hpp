@@ -25,6 +25,10 @@
 //             (set_goals, timed as the next step's planning), upcoming goals prefetched
 //   record    the step's record and the run's counters
 //
+// start, complete and the epoch's bookkeeping are LifelongEpochs' (lifelong_epochs.hpp),
+// which the SUMO controller's lifelong mode calls too: the task and epoch logic is one; the
+// step budget and the execution are each back end's.
+//
 // The solver comes from the one factory (planner/solver.hpp) with LifelongOptions::solver;
 // the runner reads a rotation solver's actions through RealtimePlanner::rotation().
 #include <chrono>
@@ -37,6 +41,7 @@
 #include "planner/solver.hpp"
 #include "planner/stop_signal.hpp"
 #include "tasks/heading_preference.hpp"
+#include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/step_budget.hpp"
 #include "tasks/task_manager.hpp"
@@ -57,7 +62,7 @@ class LifelongRun {
   LifelongResult finish();   // the run's result (call once, after the last step)
 
   const planner::RealtimePlanner& planner() const { return *p_; }
-  long long max_gap() const { return max_gap_; }  // longest run of steps without a completion
+  long long max_gap() const { return epochs_.max_gap(); }  // longest run of steps without a completion
   // GraphExecution's counters (LifelongOptions::graph_execution), else all 0.
   executor::ExecStats exec_stats() const { return graph_ ? graph_->stats() : executor::ExecStats{}; }
 
@@ -82,8 +87,6 @@ class LifelongRun {
   void complete(Step& s, const planner::Config& real);
   void record(Step& s);
 
-  void prefetch_upcoming();
-  void prefetch_rotation();
   size_t pending() const;
   void precompute(planner::Clock::time_point deadline);
   void bound_queries(planner::DistCache::Deadline d);
@@ -93,6 +96,7 @@ class LifelongRun {
   TaskManager& tasks_;
   LifelongOptions opt_;
   LifelongResult r_;
+  LifelongEpochs epochs_{tasks_, r_};  // the task and epoch part, shared with the SUMO controller
   planner::Solver kind_;
   bool rotation_, native_, prefetch_, letters_, rot_prefetch_ = false, may_skip_ = false;
   planner::Clock::time_point wall0_;
@@ -102,7 +106,6 @@ class LifelongRun {
   planner::RotationPlanner* rot_ = nullptr;
   std::unique_ptr<executor::Execution> exec_;
   executor::GraphExecution* graph_ = nullptr;  // exec_, when it fills its window (graph_execution)
-  long long last_completion_ = 0, max_gap_ = 0;
   StepBudget sb_;
   int skipped_ = 0;  // searches skipped in a row
   long t_ = 0;

@@ -6,7 +6,8 @@
 //   search(budget); next()        -- plan (timed: plannerTimes)
 //   check the move (Validator)    -- any violation counts in numPlannerErrors
 //   commit()                      -- the agents are there
-//   advance_epoch(...)            -- errands completed? then new goals, new epoch
+//   complete, start_epoch         -- errands completed? then new goals, new epoch
+//                                    (LifelongEpochs, lifelong_epochs.hpp: every back end's seam)
 //
 // Progress epochs: goals change only when an errand completes. RT-LaCAM then restarts its
 // tree at the current configuration (set_goals); while nothing completes it keeps its tree,
@@ -49,12 +50,6 @@
 #include "tasks/task_manager.hpp"
 
 namespace tasks {
-
-// The seam for every executor (this runner, the SUMO controller): after the agents
-// committed step t, report their positions; on completions (or goals changed without one:
-// station queues, TaskManager::goals_changed) the planner gets the new goals and the
-// lifelong goal test (a fresh search tree). Returns the step's completions.
-std::vector<Event> advance_epoch(TaskManager& tasks, planner::RealtimePlanner& planner, long t);
 
 struct StepRecord {      // what one step did (for tests and progress output)
   long t = 0;
