@@ -318,6 +318,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
   max_unit_ms_ = 0;
   uint64_t done = 0;
   stalled_ = false;
+  if (threads_ && refining_ && !until_solved) threads_exchange();  // the iteration boundary
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
   if (refining_ && !until_solved && debt_ > 0) {
@@ -326,7 +327,6 @@ Status Lacam::search(const Budget& b, bool until_solved)
     done = paid;
     if (done >= b.expansions) return status_;
   }
-  if (threads_ && refining_ && !until_solved) threads_exchange();  // the iteration boundary
   bool first = true;
   // A LaCAM expansion may stop here (resumable), unless the cutoff is below pause_min_ms.
   const bool pausing = opt_.resumable && b.ms >= opt_.pause_min_ms;

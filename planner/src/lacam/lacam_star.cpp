@@ -123,14 +123,14 @@ Status Lacam::refine_expand()
     }
   }
   const bool all_goals = config_equal(goal_->C, goals_.data(), n_);
-  // Refiner threads (lacam_threads.cpp) make the LNS steps: here their windows are adopted
-  // and the path posted to them, before anything else.
+  // Refiner threads (lacam_threads.cpp): their windows are adopted and the path posted to
+  // them before anything else (the search's own LNS goes on as without them).
   const bool threads = threads_on() && all_goals && !best_.empty();
   if (threads && thread_step()) {
     last_step_ = Step::thread;
     return status_;
   }
-  const bool lns = !threads && opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
+  const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
   const bool guide = all_goals && !goal_test_ &&
                      (dive_ ||

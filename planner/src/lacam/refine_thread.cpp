@@ -30,7 +30,7 @@ uint64_t RefineThread::post(std::vector<Config> path, int64_t step0, const Confi
     posted_goals_ = goals;
     posted_version_ = ++version_;
     executed_ = step0;
-    out_.clear();
+    if (posted_.empty()) out_.clear();  // parked (a reset): the old tree's windows are void
     fresh_ = true;
     idle_ = false;
   }
@@ -159,7 +159,7 @@ bool RefineThread::step(int64_t executed, bool* improved)
   ++steps_;
   if (*improved) {
     ++improvements_;
-    if (!fresh_ && posted_version_ == job_) {
+    if (!fresh_) {
       out_.push_back(std::move(w));
       published_.notify_all();
     }

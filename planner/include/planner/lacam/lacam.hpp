@@ -288,6 +288,8 @@ class Lacam {
   uint64_t thread_windows() const;
   uint64_t thread_wins() const;
   uint64_t thread_refused() const;
+  uint64_t thread_posts() const;         // copies of the followed path posted to the workers
+  uint64_t refiner_improvements() const;  // improving LNS steps the workers made (all jobs)
   std::vector<std::pair<int64_t, int64_t>> thread_adoptions() const;
   // Tests: blocks until every worker has published a window or is idle, at most `ms` each.
   void wait_refiners(double ms) const;
