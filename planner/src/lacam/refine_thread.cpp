@@ -21,12 +21,13 @@ RefineThread::~RefineThread()
   worker_.join();
 }
 
-uint64_t RefineThread::post(std::vector<Config> path, int64_t step0, const Config& goals)
+uint64_t RefineThread::post(std::vector<Config> path, int64_t step0, const Config& goals, int lead)
 {
   {
     std::lock_guard<std::mutex> lk(mu_);
     posted_.swap(path);
     posted_step0_ = step0;
+    posted_lead_ = std::max(kLead, lead);
     posted_goals_ = goals;
     posted_version_ = ++version_;
     executed_ = step0;
@@ -77,6 +78,7 @@ void RefineThread::run()
       if (stop_) return;
       path_.swap(posted_);
       step0_ = posted_step0_;
+      lead_ = posted_lead_;
       job_ = posted_version_;
       if (goals_ != posted_goals_) {
         goals_ = posted_goals_;
@@ -108,13 +110,13 @@ void RefineThread::run()
 }
 
 // One LNS step as Lacam::lns_step's (soc): a delayed agent by roulette, a window that ends a
-// little after its last arrival, but starting kLead steps ahead of the executed step.
+// little after its last arrival, but starting lead_ steps ahead of the executed step.
 bool RefineThread::step(int64_t executed, bool* improved)
 {
   const int n = static_cast<int>(goals_.size());
   const int T = static_cast<int>(path_.size()) - 1;
   const int off = static_cast<int>(std::max<int64_t>(0, executed - step0_));
-  const int first = off + kLead;  // the earliest t0
+  const int first = off + lead_;  // the earliest t0
   if (first >= T) return false;
   const Config& root = path_[std::min(off, T)];
   int64_t total = 0;

@@ -42,7 +42,7 @@ struct RefineWindow {
 
 class RefineThread {
  public:
-  static constexpr int kLead = 8;  // a window starts this far ahead of the executed step
+  static constexpr int kLead = 8;  // a window starts at least this far ahead of the executed step
 
   // k agents per LNS step, windows of up to `window` steps; the worker starts idle.
   RefineThread(const Graph& g, int k, int window, LnsNeighbourhood nbh, uint64_t seed);
@@ -51,9 +51,10 @@ class RefineThread {
   RefineThread& operator=(const RefineThread&) = delete;
 
   // Search thread. A new job: `path` (the followed path; path[0] is the configuration at
-  // absolute step `step0`) towards `goals`. Windows of older jobs are dropped. Returns its
-  // version. An empty path parks the worker (a reset).
-  uint64_t post(std::vector<Config> path, int64_t step0, const Config& goals);
+  // absolute step `step0`) towards `goals`; windows start at least max(kLead, lead) steps
+  // ahead of the executed step (the search's insertion takes that long). Returns its
+  // version. An empty path parks the worker (a reset) and drops the windows not taken.
+  uint64_t post(std::vector<Config> path, int64_t step0, const Config& goals, int lead = kLead);
   // Tells the worker the last executed step, and moves the windows published since into
   // `out` (appended, in order). One lock.
   void exchange(int64_t executed, std::vector<RefineWindow>& out);
@@ -81,6 +82,7 @@ class RefineThread {
   std::vector<Config> path_;
   Config goals_;
   int64_t step0_ = 0;
+  int lead_ = kLead;
   uint64_t job_ = 0;                // version of path_
   std::vector<int32_t> last_;       // per agent: last index of path_ off its goal (-1 none)
   std::vector<Config> win_;         // scratch: a window
@@ -92,6 +94,7 @@ class RefineThread {
   bool stop_ = false, fresh_ = false, idle_ = true;
   std::vector<Config> posted_;
   int64_t posted_step0_ = 0;
+  int posted_lead_ = kLead;
   Config posted_goals_;
   uint64_t posted_version_ = 0;
   int64_t executed_ = 0;
