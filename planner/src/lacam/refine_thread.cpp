@@ -71,7 +71,9 @@ void RefineThread::run()
 {
   // Failures in a row before the worker waits for a new job (LaCAM*'s LNS gives up alike).
   constexpr int kMaxFailures = 1000;
+  Config goals;
   for (;;) {
+    goals.clear();
     {
       std::unique_lock<std::mutex> lk(mu_);
       cv_.wait(lk, [&] { return stop_ || fresh_; });
@@ -80,11 +82,14 @@ void RefineThread::run()
       step0_ = posted_step0_;
       lead_ = posted_lead_;
       job_ = posted_version_;
-      if (goals_ != posted_goals_) {
-        goals_ = posted_goals_;
-        dist_.set_goals(goals_);  // the worker's own tables: DistTable is not shared
-      }
+      goals.swap(posted_goals_);
       fresh_ = false;
+    }
+    // Outside the lock: a new goal set may mean building distance tables (the worker's own:
+    // DistTable is not shared), and the search must never wait for that.
+    if (!goals.empty() && goals != goals_) {
+      goals_ = goals;
+      dist_.set_goals(goals_);
     }
     const int n = static_cast<int>(goals_.size());
     last_.assign(n, -1);

@@ -14,10 +14,11 @@
 //
 // A window is the worker's path over [t0, t0 + W] after one improving LNS step, t0 counted in
 // executed steps since the search's reset (absolute), so that the search can place it on its
-// own path however far the agents moved meanwhile. The worker applies its windows in order to
-// its copy; the search applies them in the same order, so the two paths stay equal until the
-// search changes its path otherwise (it then posts again: a new version, older windows are
-// dropped). Windows start at least kLead steps ahead of the last executed step the worker
+// own path however far the agents moved meanwhile. The worker applies its windows to its copy;
+// the search makes LNS steps of its own too, so its path drifts from the copy: it adopts a
+// window where the two paths agree at both ends, validated and priced for every agent whose
+// moves differ (lacam_threads.cpp), and posts its path again once it changed and a few moves
+// passed. Windows start at least kLead steps ahead of the last executed step the worker
 // knows, so that the search can insert them before the agents get there.
 #include <condition_variable>
 #include <cstdint>
