@@ -173,12 +173,12 @@ struct LacamOptions {
   bool lg_refine = true;
   // Refiner threads (refine_thread.hpp; lacam3's refiner threads): with refine and
   // Objective::soc, this many workers run LNS on their own copies of the followed path while
-  // the search goes on, and the search adopts their improved windows at its iteration
-  // boundaries, each only while it still lies ahead of the executed configuration on the
-  // path followed and passes the validator (lacam_threads.cpp); the search then makes no LNS
-  // step of its own. Its per-iteration work stays gated by the budget: one lock per worker
-  // per search() call, and the validation, insertion and posting steps each only when their
-  // learnt cost fits. 0: none, the search alone (the same runs as without the option).
+  // the search goes on (its own LNS steps included), and the search adopts their improved
+  // windows at its iteration boundaries, each only where it still lies ahead of the executed
+  // configuration on the path followed, passes the validator and does not raise the standard
+  // SOC (lacam_threads.cpp). The search's per-iteration work stays gated by the budget: one
+  // lock per worker per search() call, and validating, inserting and posting each only when
+  // its learnt cost fits. 0: no worker, the same runs as without the option.
   int refine_threads = 0;
 };
 
