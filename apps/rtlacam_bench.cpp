@@ -14,8 +14,10 @@
 #include "planner/movingai.hpp"
 #include "planner/one_way_aisles.hpp"
 #include "planner/plan_io.hpp"
+#include "planner/lacam/rt_lacam.hpp"
 #include "planner/lacam/runner.hpp"
 #include "planner/solver.hpp"
+#include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
 #include "executor/rotation_execution.hpp"
@@ -114,6 +116,16 @@ int main(int argc, char** argv)
       ->capture_default_str()
       ->check(CLI::IsMember({"random", "blocking", "intersection", "adaptive"}));
   app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  std::string trace_best;
+  app.add_option("--trace-best", trace_best,
+                 "rtlacam: write per iteration 'iteration predicted_soc' here: the standard SOC of the executed moves "
+                 "followed by the path the planner follows now (-1 before a solution); diagnostics, slows the run");
+  int refine_threads = 0;
+  app.add_option("--refine-threads", refine_threads,
+                 "with --refine and --objective soc: refiner threads running LNS on copies of the followed path "
+                 "(refine_thread.hpp); 0 = none, the search makes its own LNS steps")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 64));
   app.add_flag("--scatter,!--no-scatter", scatter,
                "with --refine: space-utilisation optimisation guiding PIBT after the first solution (scatter.hpp)")
       ->capture_default_str();
@@ -165,6 +177,7 @@ int main(int argc, char** argv)
     lopt.lns_window = lns_window;
     lopt.lns_agents = lns_agents;
     lopt.lns_neighbourhood = parse_lns_neighbourhood(lns_nbh);
+    lopt.refine_threads = refine_threads;
     lopt.objective = parse_objective(objective);
     lopt.scatter = scatter;
     lopt.scatter_margin = scatter_margin;
@@ -214,6 +227,7 @@ int main(int argc, char** argv)
     }
 
     RunResult r;
+    nlohmann::json threads_json;  // refiner threads' counts (only with --refine-threads)
     if (!is_realtime(parse_solver(solver))) {
       r = run_full_horizon(g, ins.starts, ins.goals, lopt, ropt, pref.get());
     } else {
@@ -226,8 +240,37 @@ int main(int argc, char** argv)
       sopt.pref = pref.get();
       std::unique_ptr<RealtimePlanner> p = make_planner(parse_solver(solver), g, ins.starts, ins.goals, sopt);
       const double setup_ms = ms_since(t0);
+      std::ofstream trace;
+      if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && !trace_best.empty()) {
+        trace.open(trace_best);
+        if (!trace) throw InputError("--trace-best: cannot write " + trace_best);
+        ropt.record_plan = true;
+        // Outside the iterations' timing (runner.cpp calls it between them).
+        ropt.on_progress = [&, rt](const RunResult& s) {
+          const std::vector<Config> ahead = rt->lacam().best_path();
+          long long soc = -1;
+          if (!ahead.empty()) {
+            Validator v(g, ins.starts, ins.goals);
+            for (size_t t = 1; t < s.plan.size(); ++t) v.step(s.plan[t]);
+            for (size_t t = 1; t < ahead.size(); ++t) v.step(ahead[t]);
+            soc = v.ok() ? v.sum_of_costs() : -2;
+          }
+          trace << s.iterations << ' ' << soc << '\n';
+        };
+      }
       r = run_realtime(*p, g, ins.starts, ins.goals, ropt);
       r.total_planning_ms += setup_ms;
+      if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt) {  // refinement's counts
+        threads_json["lns_steps"] = rt->lacam().lns_cost().samples();  // timed LNS steps learnt from
+        threads_json["lns_max_window"] = rt->lacam().lns_max_window();
+        threads_json["dives"] = rt->lacam().dives();
+      }
+      if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && refine_threads > 0) {
+        threads_json["refine_threads"] = refine_threads;
+        threads_json["thread_windows"] = rt->lacam().thread_windows();  // adopted
+        threads_json["thread_wins"] = rt->lacam().thread_wins();        // of them, cheaper
+        threads_json["thread_refused"] = rt->lacam().thread_refused();
+      }
     }
 
     const long long soc_lb = ins.soc_lower_bound(g);
@@ -269,6 +312,7 @@ int main(int argc, char** argv)
     j["objective"] = objective;
     j["lns_agents"] = lns_agents;
     j["lns_neighbourhood"] = lns_nbh;
+    for (auto it = threads_json.begin(); it != threads_json.end(); ++it) j[it.key()] = it.value();
     j["scatter"] = scatter;
     j["scatter_margin"] = scatter_margin;
     j["scatter_lead"] = scatter_lead;

@@ -14,6 +14,7 @@ void BestPath::reset(const Config& goals)
   wait_.assign(n_, 0);
   cand_.clear();
   pricing_ = false;
+  ++version_;
 }
 
 int64_t BestPath::price(const std::vector<int32_t>& last) const
@@ -33,6 +34,7 @@ void BestPath::advance(const HNode* from, const HNode* to)
     cost_ = price(last_);
   } else if (!nodes_.empty() && nodes_[0] != to) {
     nodes_.clear();
+    ++version_;
   }
   if (pricing_) {
     if (cand_.size() >= 2 && cand_[1] == to) {
@@ -71,6 +73,7 @@ bool BestPath::price_node()
     nodes_.swap(cand_);
     last_.swap(last);
     cost_ = c;
+    ++version_;
   }
   cand_.clear();
   return true;
@@ -101,6 +104,7 @@ bool BestPath::splice(const HNode* from, const std::vector<HNode*>& window, cons
   nodes_.swap(p);
   last_.swap(last);
   cost_ = c;
+  ++version_;
   return true;
 }
 

@@ -27,6 +27,7 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
   lns_wanted_ = opt.lns;
+  start_threads();
 }
 
 void Lacam::set_immobile(const std::vector<uint8_t>& immobile)
@@ -55,6 +56,8 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   pending_.clear();
   pending_next_ = 0;
   pending_prev_ = nullptr;
+  root_step_ = 0;
+  threads_park();
   // A paused expansion belonged to the old tree. If none of that tree's expansions had ended,
   // the new tree's first one ends in its call: resets (goal changes) cannot keep every
   // expansion from ending.
@@ -315,6 +318,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
   max_unit_ms_ = 0;
   uint64_t done = 0;
   stalled_ = false;
+  if (threads_ && refining_ && !until_solved) threads_exchange();  // the iteration boundary
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
   if (refining_ && !until_solved && debt_ > 0) {
@@ -413,6 +417,7 @@ void Lacam::reroot(const HNode* child)
 {
   if (child == root_) return;
   ++reroots_;
+  ++root_step_;
   HNode* c = all_[child->id];  // non-const handle of the same node
   HNode* old = root_;
   if (!reversible(old, c)) {

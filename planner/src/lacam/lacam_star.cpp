@@ -123,6 +123,13 @@ Status Lacam::refine_expand()
     }
   }
   const bool all_goals = config_equal(goal_->C, goals_.data(), n_);
+  // Refiner threads (lacam_threads.cpp): their windows are adopted and the path posted to
+  // them before anything else (the search's own LNS goes on as without them).
+  const bool threads = threads_on() && all_goals && !best_.empty();
+  if (threads && thread_step()) {
+    last_step_ = Step::thread;
+    return status_;
+  }
   const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
   const bool guide = all_goals && !goal_test_ &&
@@ -196,6 +203,10 @@ Status Lacam::refine_expand()
       stalled_ = true;
       return status_;
     }
+  }
+  if (open_.empty() && threads) {  // the workers may still improve the path
+    stalled_ = true;
+    return status_;
   }
   if (open_.empty()) {  // nothing cheaper is reachable by LaCAM*
     refining_ = false;
@@ -326,7 +337,10 @@ bool Lacam::insert_step()
     }
   }
   // soc: the window is followed if it lowers the standard SOC, whatever the tree's loss says
-  if (soc_on()) best_.splice(splice_from_, spliced_, splice_set_);
+  if (soc_on()) {
+    const bool ok = best_.splice(splice_from_, spliced_, splice_set_);
+    if (threads_) thread_spliced(ok);  // a worker's window (lacam_threads.cpp), if it was one
+  }
   pending_.clear();
   pending_next_ = 0;
   pending_prev_ = nullptr;

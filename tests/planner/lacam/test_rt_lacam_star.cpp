@@ -4,6 +4,7 @@
 // configurations).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <limits>
 #include <map>
 #include <queue>
@@ -356,4 +357,39 @@ TEST(RtLacamStar, AnExpansionsBudgetBoundsLnsWork)
       EXPECT_TRUE(lc.check_costs(&why)) << why;
     }
   }
+}
+
+TEST(RtLacamStar, RefinerThreadWindowsAreAdoptedValidAndNeverCostlier)
+{
+  // A refiner thread (LacamOptions::refine_threads, refine_thread.hpp) runs LNS on a copy of
+  // the followed path; the search adopts its windows at its iteration boundaries. What is
+  // asserted does not depend on timing: before each of the first iterations the test waits
+  // for the worker to publish (or give up), so windows arrive however loaded the machine is;
+  // the windows adopted are those still ahead of the executed configuration, each keeps the
+  // followed path's standard SOC or lowers it (some lower it), and the executed plan is valid
+  // and reaches the goals. With 0 threads nothing is adopted (and this test fails).
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 120);
+  LacamOptions o = refine_opts(0);
+  o.refine_threads = 1;
+  RtLacam rt(g, r.starts, r.goals, o);
+  Validator v(g, r.starts, r.goals);
+  int steps = 0;
+  for (; steps < 2000 && !rt.at_goal(); ++steps) {
+    if (steps < 60) rt.lacam().wait_refiners(2000);
+    rt.step(Budget::expansion_count(100));
+    rt.commit();
+    ASSERT_TRUE(v.step(rt.current())) << v.error();
+  }
+  ASSERT_TRUE(rt.at_goal());
+  const auto adopted = rt.lacam().thread_adoptions();
+  std::printf("steps %d, posts %llu, worker improvements %llu, windows adopted %zu (cheaper %llu), refused %llu, "
+              "executed SOC %lld\n",
+              steps, static_cast<unsigned long long>(rt.lacam().thread_posts()),
+              static_cast<unsigned long long>(rt.lacam().refiner_improvements()), adopted.size(),
+              static_cast<unsigned long long>(rt.lacam().thread_wins()),
+              static_cast<unsigned long long>(rt.lacam().thread_refused()), v.sum_of_costs());
+  EXPECT_EQ(adopted.size(), rt.lacam().thread_windows());
+  for (const auto& [before, after] : adopted) EXPECT_LE(after, before);
+  EXPECT_GT(rt.lacam().thread_wins(), 0u);
 }

@@ -32,3 +32,23 @@ TEST(StepCost, AStepThatNeverFitsIsRetriedAfterForgetting)
   }
   EXPECT_EQ(skipped, 47);  // 0.95^47 * 11 < 1 <= 0.95^46 * 11
 }
+
+TEST(StepCost, ForgettingBeforeTheFirstSampleScalesThePrior)
+{
+  // A prior that never fits must decay too, or the step is never tried and so never
+  // measured (LNS at warehouse-10-20-10-2-1 N = 500, 1 ms: no step in a whole run). Callers
+  // re-set the prior each time (it follows another step's rate): forget() scales them all.
+  StepCost c;
+  c.set_prior(1.0);
+  int skipped = 0;
+  while (c.predict_ms(1) > 0.1 && skipped < 1000) {
+    c.forget();
+    c.set_prior(1.0);  // as Lacam does before each try
+    ++skipped;
+  }
+  EXPECT_LT(skipped, 100);  // 0.95^45 < 0.1
+  EXPECT_LE(c.predict_ms(1), 0.1);
+  c.record(1, 0.5);  // measured: the prior no longer counts
+  c.set_prior(1.0);
+  EXPECT_DOUBLE_EQ(c.rate(), 0.5);
+}

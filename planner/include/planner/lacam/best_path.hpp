@@ -31,6 +31,10 @@ class BestPath {
   // The last index of nodes() where agent i is off its goal (-1: never): it stays on its
   // goal from every later index on.
   int32_t last_off(int i) const { return last_[i]; }
+  // Counts the changes of the path other than advance()'s trimming of its first node (a new
+  // path adopted, a window spliced, the path dropped): a refiner thread's copy (refine_thread.hpp)
+  // is still the same path while this has not changed.
+  uint64_t version() const { return version_; }
 
   // The root moved from `from` to `to` (a neighbour): the waits follow; the path and the
   // candidate keep their tails if `to` is their second node, else they are dropped.
@@ -61,6 +65,7 @@ class BestPath {
   std::vector<int32_t> cand_end_;  // per agent: distance from the candidate's end of its last step off the goal, -1 unseen
   size_t scanned_ = 0;             // candidate nodes scanned, from the end
   bool pricing_ = false;
+  uint64_t version_ = 0;
 };
 
 }  // namespace planner

@@ -59,6 +59,7 @@
 // RT-LaCAM (search a little, move to root's child toward the top, reroot(), continue)
 // and naive RT-LaCAM (reset() every iteration).
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -170,6 +171,15 @@ struct LacamOptions {
   // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
   // apart) fits the iteration, else unguided. Dives and LNS are never guided.
   bool lg_refine = true;
+  // Refiner threads (refine_thread.hpp; lacam3's refiner threads): with refine and
+  // Objective::soc, this many workers run LNS on their own copies of the followed path while
+  // the search goes on (its own LNS steps included), and the search adopts their improved
+  // windows at its iteration boundaries, each only where it still lies ahead of the executed
+  // configuration on the path followed, passes the validator and does not raise the standard
+  // SOC (lacam_threads.cpp). The search's per-iteration work stays gated by the budget: one
+  // lock per worker per search() call, and validating, inserting and posting each only when
+  // its learnt cost fits. 0: no worker, the same runs as without the option.
+  int refine_threads = 0;
 };
 
 class Lacam {
@@ -177,6 +187,9 @@ class Lacam {
   // `dist` must outlive the search; it is shared so that naive RT-LaCAM and goal changes
   // reuse BFS tables. `pref` (optional) orders PIBT's candidate moves.
   Lacam(const Graph& g, DistTable& dist, LacamOptions opt = {}, ActionPreference* pref = nullptr);
+  ~Lacam();  // stops and joins the refiner threads
+  Lacam(const Lacam&) = delete;
+  Lacam& operator=(const Lacam&) = delete;
 
   // Drops the tree and starts a new search rooted at `start` towards `goals`. The root's
   // PIBT priorities are `priorities` when given (a lifelong epoch carries them over, so
@@ -268,6 +281,18 @@ class Lacam {
   // The largest window an LNS step of this object ran with.
   int lns_max_window() const { return lns_max_window_; }
   bool preparing() const { return preparing_; }  // refining, but g and h not yet computed for all
+  // Refiner threads (LacamOptions::refine_threads; lacam_threads.cpp), for statistics and
+  // tests: their windows adopted (spliced into the followed path), those that lowered its
+  // standard SOC, those refused (stale: the agents passed them or the path changed; or
+  // invalid), and the followed path's cost before and after each adoption.
+  uint64_t thread_windows() const;
+  uint64_t thread_wins() const;
+  uint64_t thread_refused() const;
+  uint64_t thread_posts() const;         // copies of the followed path posted to the workers
+  uint64_t refiner_improvements() const;  // improving LNS steps the workers made (all jobs)
+  std::vector<std::pair<int64_t, int64_t>> thread_adoptions() const;
+  // Tests: blocks until every worker has published a window or is idle, at most `ms` each.
+  void wait_refiners(double ms) const;
   // expansions() and explored() when the current search found its first solution
   uint64_t expansions_at_solution() const { return solved_expansions_; }
   size_t explored_at_solution() const { return solved_explored_; }
@@ -314,6 +339,13 @@ class Lacam {
   int steps_ahead(const HNode* x) const;  // x's depth on the best path, -1 if not on it
   void start_scatter(int lead);
   HNode* step_to(HNode* from, const Vertex* C);  // known or new node after `from`, linked and rewired
+  // Refiner threads (lacam_threads.cpp)
+  bool threads_on() const { return threads_ && soc_on() && opt_.lns; }
+  void start_threads();                     // the constructor: the workers, idle
+  void threads_exchange();                  // at a search() call's start: executed step, windows
+  bool thread_step();                       // adopt a window, or post the path; false: nothing to do
+  void thread_spliced(bool ok);             // insert_step() ended a worker's window
+  void threads_park();                      // reset(): the workers drop their jobs
 
   static constexpr int kMinLnsWindow = 4;  // shorter windows rarely leave room to improve
   static constexpr int kLnsLead = 2;       // soc: an LNS window starts this far ahead of the root
@@ -365,7 +397,7 @@ class Lacam {
   Clock::time_point deadline_ = Clock::time_point::max();
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
-  enum class Step { expansion, lg_expansion, lns, guide, prepare, insert, price, partial, warm, none };
+  enum class Step { expansion, lg_expansion, lns, guide, prepare, insert, price, partial, warm, thread, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
@@ -426,6 +458,12 @@ class Lacam {
   int64_t mc_f_ = INT64_MAX;
   Config mc_best_, mc_try_;
   uint64_t agents_planned_ = 0;
+  struct Threads;                   // the workers and what the search knows of them
+  struct ThreadsDeleter {           // defined where Threads is (lacam_threads.cpp)
+    void operator()(Threads* t) const;
+  };
+  std::unique_ptr<Threads, ThreadsDeleter> threads_;  // null without refine_threads
+  int64_t root_step_ = 0;           // moves executed since reset() (the workers' clock)
 };
 
 }  // namespace planner

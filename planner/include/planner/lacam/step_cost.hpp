@@ -7,6 +7,11 @@
 // A step that was not started because it did not fit calls forget(): the rate decays then too,
 // or one spike (a page fault, a preempted measurement) would keep a step out for good -- SUO
 // never finished a pass at 10 ms per iteration before this (warehouse-10-20-10-2-1 N = 400).
+// A prior (set_prior, re-set by the callers while nothing is measured, since it follows
+// another step's rate) decays the same way: forget() before the first sample scales every
+// later prior down. Without this a step whose prior never fits is never tried, so never
+// measured: LNS at warehouse-10-20-10-2-1 N = 500, 1 ms, whose prior (an expansion per time
+// step, 0.0003 ms per unit) was 10x its measured rate, made no step in a whole run.
 #include <algorithm>
 
 namespace planner {
@@ -25,8 +30,12 @@ class StepCost {
     rate_ = r >= rate_ ? r : rate_ + kDecay * (r - rate_);
     ++samples_;
   }
-  void forget() { rate_ *= 1 - kDecay; }
-  void set_prior(double ms_per_unit) { if (samples_ == 0) rate_ = ms_per_unit; }
+  void forget()
+  {
+    rate_ *= 1 - kDecay;
+    if (samples_ == 0) prior_scale_ *= 1 - kDecay;
+  }
+  void set_prior(double ms_per_unit) { if (samples_ == 0) rate_ = ms_per_unit * prior_scale_; }
   double rate() const { return rate_; }
   long samples() const { return samples_; }
 
@@ -34,6 +43,7 @@ class StepCost {
   static constexpr double kDecay = 0.05;  // about 20 steps to forget a spike
   double rate_;
   long samples_ = 0;
+  double prior_scale_ = 1;  // forget()s before the first sample
 };
 
 }  // namespace planner
