@@ -72,8 +72,7 @@ int main(int argc, char** argv)
       ->check(CLI::Range(-1, 10000000))
       ->capture_default_str();
   app.add_flag("--queue-fifo,!--no-queue-fifo", queues.fifo,
-               "station queues: agents beyond a queue are taken oldest request first (off: nearest first)")
-      ->capture_default_str();
+               "station queues: agents beyond a queue are taken oldest request first (default on; off: nearest first)");
   app.add_option("--parking", parking_file,
                  "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                  "(tasks/parking.hpp)");
