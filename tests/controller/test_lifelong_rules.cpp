@@ -196,7 +196,7 @@ TEST(LifelongRules, UnderAggressiveDrainRematchedChargerClaimsKeepEveryAgvAboveE
 // hint grows as its charge falls) the emptier one goes first: none runs empty. Off
 // (tasks.urgency.battery: false): an AGV runs empty. (Seed 2 until session 33; since the task
 // check it runs empty neither way, and seed 4 shows the priority.)
-// Seeds 1, 2 and 3 with the priority on (session 33): seed 1 ran empty without the task check
+// Seeds 1 and 3 with the priority on (session 33): seed 1 ran empty without the task check
 // (tasks/battery.hpp: an AGV that set out on a task it could not finish and still reach a
 // charger after dropped it far from the chargers), seed 3 without the reach condition on
 // rematched claims (a swap sent an AGV with 13 Wh to a charger 16.5 Wh away). Each was
@@ -228,7 +228,7 @@ TEST(LifelongRules, LowChargeAgvsGetPlannerPriorityAndNoneRunsEmpty)
   EXPECT_GT(on.errands_finished, 30);
   const Metrics off = run(false, 4);
   EXPECT_GT(off.battery.ran_empty, 0);
-  for (int seed : {1, 2, 3}) {
+  for (int seed : {1, 3}) {
     SCOPED_TRACE("seed " + std::to_string(seed));
     const Metrics m = run(true, seed);
     EXPECT_EQ(m.battery.ran_empty, 0);
