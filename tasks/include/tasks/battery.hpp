@@ -28,15 +28,16 @@
 // (turns along that way + 1, its first move may turn). The ways are one reverse Dijkstra
 // per charger on metres, at construction. 0: off (critical alone).
 //
-// A task only if it can be done (`task_check`, default; reserve_margin > 0, charging on): before an agent is given
-// a task, its charge must cover reserve_margin x (the task's moves -- to its first errand
-// and along its errands -- at the most one move can drain, `move_wh()`: the longest arc's
-// metres plus a turn, and the way from its last errand to the nearest charger). Otherwise it
-// goes to charge first (`charge_first`). An agent charged to `target` affords any task
-// (charging cannot give it more; the mid-task reserve catches it). The mid-task reserve alone came too late:
-// an agent that took a long task near the reserve's edge dropped it far from the chargers,
-// and when the nearest one was taken the next free one was out of its reach
-// (bench_charging.py --per-m-wh 1.5 --critical 0.25, seed 1: one AGV ran empty).
+// A task only if it can be done (`task_check`, default; reserve_margin > 0, charging on):
+// before a pool agent is given a task, its charge must cover reserve_margin x (the task's
+// moves -- to its first errand and along its errands -- at the most one move can drain,
+// `move_wh()`: the longest arc's metres plus a turn, and the way from its last errand to the
+// nearest charger). Otherwise it goes to charge first (`charge_first`). An agent charged to
+// `target` affords any task (charging cannot give it more; the mid-task reserve catches it).
+// The mid-task reserve alone came too late: an agent that took a long task near the
+// reserve's edge dropped it far from the chargers, and when the nearest one was taken the
+// next free one was out of its reach (bench_charging.py --per-m-wh 1.5 --critical 0.25,
+// seed 1: one AGV ran empty). Round-robin agents are not checked (their next task is fixed).
 //
 // Claims rematched (`rematch`, default on): two agents on their way to chargers swap their
 // claims when the swap makes the sum of their ways (metres) strictly shorter, checked at
@@ -45,8 +46,9 @@
 // empty (the planner restarts its search at every new goal elsewhere in the fleet; seen in
 // SUMO at 1.5 Wh/m). With the swap each heads for the charger on its own side. Every swap
 // shortens the sum strictly, so claims cannot swap back at the same cells. A swap is made
-// only if each agent's charge covers the way to its new charger. An agent whose charge reaches 0 counts as run empty (once); the model
-// does not stop it, the metric says the fleet was mis-sized (it must stay 0).
+// only if each agent's charge covers the way to its new charger. An agent whose charge
+// reaches 0 counts as run empty (once); the model does not stop it, the metric says the
+// fleet was mis-sized (it must stay 0).
 //
 // TaskManager owns one (TaskManager::set_battery) and excludes charging agents from
 // assignment (tasks/task_manager.hpp).
