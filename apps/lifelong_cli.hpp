@@ -245,7 +245,7 @@ struct BatteryCli {
   tasks::BatteryOptions o;
   double charge_w = 7200 * 0.95;  // the shipped chargingStations' power x efficiency
   std::string chargers_file;
-  bool no_charging = false, no_rematch = false;
+  bool no_charging = false, no_rematch = false, no_task_check = false;
   std::vector<CLI::Option*> opts;
 
   void bind(CLI::App& app)
@@ -266,6 +266,8 @@ struct BatteryCli {
     opts.push_back(app.add_option("--battery-charge-w", charge_w, "battery: each charger's power (W; 1 s steps)")->capture_default_str());
     opts.push_back(app.add_flag("--battery-no-charging", no_charging, "battery: drain only, no charging errands"));
     opts.push_back(app.add_flag("--battery-no-rematch", no_rematch, "battery: agents on their way to chargers never swap claims"));
+    opts.push_back(app.add_flag("--battery-no-task-check", no_task_check,
+                                "battery: give a task without checking that the charge covers it and the way on to a charger"));
     opts.push_back(app.add_option("--chargers", chargers_file, "battery: charger cells (the agents-file format: a count, then cell ids)"));
   }
 
@@ -283,6 +285,7 @@ struct BatteryCli {
     tasks::BatteryOptions b = o;
     b.charging = !no_charging;
     b.rematch = !no_rematch;
+    b.task_check = !no_task_check;
     std::vector<planner::Vertex> cells;
     if (!chargers_file.empty()) {
       const planner::Config c = tasks::load_lorr_agents(chargers_file, g);

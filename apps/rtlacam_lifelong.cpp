@@ -71,6 +71,8 @@ int main(int argc, char** argv)
                  "(0 = capacity + length, -1 = no limit)")
       ->check(CLI::Range(-1, 10000000))
       ->capture_default_str();
+  app.add_flag("--queue-fifo,!--no-queue-fifo", queues.fifo,
+               "station queues: agents beyond a queue are taken oldest request first (default on; off: nearest first)");
   app.add_option("--parking", parking_file,
                  "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                  "(tasks/parking.hpp)");

@@ -21,6 +21,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--station-closure] [--executor lockstep|adg|adg-follow]
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
+                         [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
@@ -33,6 +34,11 @@ off, on each of --urgency-configs (default: the large two-way and one-way wareho
 small one), same ticks, expansions and seeds: errands per tick on / off and K both ways.
 --shipped-k CONFIG...: instead, each config as shipped (its rules, queues, hints), with the
 fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped examples.
+--admission [--admission-configs CONFIG...] [--seeds 1,2]: instead, station admission
+(tasks/station_queues.hpp: queues {capacity 1, length 8}, pool admission, oldest request
+first, planner.keep_priorities) on against off (no queues), per config (default: the four
+large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansions:
+errands per tick on / off and K both ways.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
@@ -77,7 +83,7 @@ def run_clean(m):
     return m["violations"] == 0 and m["teleports_or_jumps"] == 0 and m.get("collisions", 0) == 0 and not m["error"]
 
 
-def run(build, base, out, ticks, expansions, rules, tasks_extra=None):
+def run(build, base, out, ticks, expansions, rules, tasks_extra=None, sections=None):
     cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
     here = os.path.dirname(os.path.join(ROOT, base))
     for k in ("net", "additional"):
@@ -96,6 +102,8 @@ def run(build, base, out, ticks, expansions, rules, tasks_extra=None):
     if rules is not None:
         cfg["rules"] = rules
     cfg["tasks"].update(tasks_extra or {})
+    for section, values in (sections or {}).items():
+        cfg[section].update(values)
     if QUEUES:
         cfg["tasks"]["queues"] = {"capacity": 1, "length": 8}
         cfg["planner"]["keep_priorities"] = True
@@ -166,6 +174,36 @@ def urgency(a, build, tmp):
     return 0 if clean else 1
 
 
+def admission(a, build, tmp):
+    """Station admission on against off, per config and fleet seed (same ticks, expansions)."""
+    clean = True
+    print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | busy-errand ticks max on / off |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    seeds = [int(x) for x in a.seeds.split(",") if x]
+    for base in a.admission_configs:
+        ticks = a.ticks if "small" in base else a.large_ticks
+        for seed in seeds:
+            res = {}
+            for label, q in [("on", {"capacity": 1, "length": 8}), ("off", {"capacity": 0})]:
+                out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_admission_{label}")
+                extra = {"queues": q}
+                m, err = run(build, base, out, ticks, a.expansions, None, extra,
+                             {"fleet": {"seed": seed}, "planner": {"keep_priorities": True}} if label == "on" else
+                             {"fleet": {"seed": seed}})
+                if m is None:
+                    print(f"# {base} {label}: {err}", file=sys.stderr)
+                    return 1
+                clean = clean and run_clean(m)
+                res[label] = m
+            on, off = res["on"]["lifelong"], res["off"]["lifelong"]
+            ro, rf = on["errandThroughput"], off["errandThroughput"]
+            print(f"| {base} | {seed} | {res['on']['ticks']} | {ro:.3f} | {rf:.3f} | {ro / rf if rf else 0:.2f} | "
+                  f"{on['stallTicks']['max']} / {on['stallTicks']['p99']} | {off['stallTicks']['max']} / {off['stallTicks']['p99']} | "
+                  f"{on['errandTicks']['max']} / {off['errandTicks']['max']} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def shipped_k(a, build, tmp):
     """K of each shipped lifelong example as it is (its rules, queues and hints), scaled ticks."""
     clean = True
@@ -201,6 +239,11 @@ def main():
     ap.add_argument("--solver")
     ap.add_argument("--urgency", action="store_true")
     ap.add_argument("--shipped-k", nargs="+", metavar="CONFIG")
+    ap.add_argument("--admission", action="store_true")
+    ap.add_argument("--admission-configs", nargs="+",
+                    default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
+                             "config/large_warehouse_queues.yaml", "config/large_warehouse_parking.yaml"])
+    ap.add_argument("--seeds", default="1,2", help="--admission: fleet seeds")
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])
@@ -219,6 +262,8 @@ def main():
         return urgency(a, build, tmp)
     if a.shipped_k:
         return shipped_k(a, build, tmp)
+    if a.admission:
+        return admission(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:

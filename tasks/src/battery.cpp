@@ -31,6 +31,29 @@ Battery::Battery(const planner::Graph& g, BatteryOptions options, std::vector<Ch
     for (planner::Vertex v : corridor) reserved_[v] = 1;
   }
   if ((options_.reserve_margin > 0 || options_.rematch) && options_.charging) plan_ways();
+  double longest = 0;
+  for (planner::Vertex v = 0; v < g.size(); ++v)
+    for (planner::Vertex u : g.neighbors(v))
+      longest = std::max(longest, std::hypot(xy_[u].first - xy_[v].first, xy_[u].second - xy_[v].second));
+  move_wh_ = options_.per_m_wh * longest + options_.per_turn_wh;
+}
+
+bool Battery::affords(int a, long long moves, planner::Vertex last) const
+{
+  if (!options_.task_check || options_.reserve_margin <= 0 || !options_.charging || way_wh_.empty() || charge_.empty())
+    return true;
+  if (charge_[a] >= options_.target * options_.capacity_wh - 1e-9) return true;  // as charged as it gets
+  double way = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < chargers_.size(); ++i) way = std::min(way, way_wh_[i][last]);
+  if (!std::isfinite(way)) return true;  // no charger reachable from there: the reserve cannot help
+  return charge_[a] >= options_.reserve_margin * (static_cast<double>(moves) * move_wh_ + way);
+}
+
+bool Battery::charge_first(int a)
+{
+  if (!options_.charging || charge_[a] >= options_.target * options_.capacity_wh - 1e-9) return false;
+  first_[a] = 1;
+  return true;
 }
 
 void Battery::plan_ways()
@@ -156,6 +179,7 @@ std::vector<int> Battery::step(const planner::Config& positions)
     charge_.assign(n, options_.initial * options_.capacity_wh);
     min_fraction_ = n > 0 ? options_.initial : 1;
     claim_.assign(n, -1);
+    first_.assign(n, 0);
     empty_.assign(n, 0);
     dir_x_.assign(n, 0);
     dir_y_.assign(n, 0);
@@ -183,6 +207,7 @@ std::vector<int> Battery::step(const planner::Config& positions)
       if (charge_[a] >= options_.target * options_.capacity_wh - 1e-9) {
         claimed_by_[claim_[a]] = -1;
         claim_[a] = -1;
+        first_[a] = 0;
         done.push_back(a);
       }
     }
@@ -201,7 +226,11 @@ void Battery::rematch(const planner::Config& positions)
     for (size_t j = i + 1; j < way.size(); ++j) {
       const int a = way[i], b = way[j], ca = claim_[a], cb = claim_[b];
       const planner::Vertex pa = positions[a], pb = positions[b];
-      if (way_m_[cb][pa] + way_m_[ca][pb] < way_m_[ca][pa] + way_m_[cb][pb] - 1e-9) {
+      // Only a swap both can drive: one that sends an agent to a charger beyond its charge
+      // trades a short way for an empty battery (bench_charging.py seed 3: 13 Wh left,
+      // swapped from a charger 5 m away to one 11 m away at 1.5 Wh/m).
+      const bool reach = way_wh_[cb][pa] <= charge_[a] && way_wh_[ca][pb] <= charge_[b];
+      if (reach && way_m_[cb][pa] + way_m_[ca][pb] < way_m_[ca][pa] + way_m_[cb][pb] - 1e-9) {
         std::swap(claim_[a], claim_[b]);
         claimed_by_[claim_[a]] = a, claimed_by_[claim_[b]] = b;
         ++swaps_;
@@ -212,7 +241,7 @@ void Battery::rematch(const planner::Config& positions)
 bool Battery::consider(int a, planner::Vertex at)
 {
   if (charging(a)) return true;
-  if (!options_.charging || !low(a)) return false;
+  if (!wants(a)) return false;
   const int c = nearest_free(at);
   if (c < 0) return false;  // every charger taken: wait idle, try again next step
   claim_[a] = c;

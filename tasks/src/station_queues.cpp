@@ -132,9 +132,11 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
 {
   const int n = static_cast<int>(errand.size());
   unplaced.assign(n, 0);
-  if (static_cast<int>(place_.size()) != n) place_.assign(n, -1);
+  if (static_cast<int>(place_.size()) != n) place_.assign(n, -1), asked_at_.assign(n, -1), asked_.assign(n, 0);
   for (int a = 0; a < n; ++a)
     if (place_[a] >= 0 && errand[a] != st_[place_[a]].cell) drop_place(a);
+  for (int a = 0; a < n; ++a)  // a request ends with its errand (done, or the task handed back)
+    if (asked_at_[a] >= 0 && errand[a] != st_[asked_at_[a]].cell) asked_at_[a] = -1;
   // Newcomers per station; stations with anybody at them.
   std::unordered_map<int, std::vector<int>> fresh;
   std::vector<int> touched;
@@ -168,7 +170,13 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
     }
     order.clear();
     for (int a : fresh[i]) order.push_back({dist_.from_goal(s.cell, positions[a]), a});
-    std::sort(order.begin(), order.end());
+    std::sort(order.begin(), order.end());  // nearest first
+    if (opt_.fifo) {  // stamp the new requests nearest first, then take the oldest first
+      for (const auto& [d, a] : order)
+        if (asked_at_[a] != i) asked_at_[a] = i, asked_[a] = requests_++;
+      std::stable_sort(order.begin(), order.end(),
+                       [&](const auto& x, const auto& y) { return asked_[x.second] < asked_[y.second]; });
+    }
     size_t k = 0;
     for (; k < order.size() && s.waiting.empty() && room(); ++k) {
       s.admitted.push_back(order[k].second);

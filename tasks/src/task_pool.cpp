@@ -116,17 +116,25 @@ void TaskPool::steal_rounds(const planner::Config& positions)
     std::vector<int64_t> held(cols.size(), kForbidden);  // holder's distance to the first errand
     for (size_t j = 0; j < cols.size(); ++j)
       if (const int b = slot(cols[j]).agent; b >= 0) held[j] = dist_.from_goal(slot(cols[j]).errands[0], positions[b]);
+    std::vector<char> poor(agents.size(), 0);  // some task was beyond its charge
     auto c = [&](int i, int j) -> int64_t {
       const Task& t = slot(cols[j]);
       if (!can_reach(positions[agents[i]], t.next_cell())) return kForbidden;
       const int64_t d = dist_.from_goal(t.next_cell(), positions[agents[i]]);
       if (t.agent >= 0 && d >= held[j]) return kForbidden;  // only a strictly nearer agent may take it
+      if (!affords(agents[i], d + chain_length(t), t)) {
+        poor[i] = 1;
+        return kForbidden;
+      }
       return d + chain_length(t);
     };
     const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()), c);
     std::vector<int> displaced;
     for (size_t i = 0; i < agents.size(); ++i) {
-      if (match[i] < 0 || c(static_cast<int>(i), match[i]) >= kForbidden) continue;
+      if (match[i] < 0 || c(static_cast<int>(i), match[i]) >= kForbidden) {
+        if (poor[i]) charge_instead(agents[i], positions[agents[i]]);
+        continue;
+      }
       const int s = cols[match[i]];
       if (const int b = slot(s).agent; b >= 0) {
         release(b);
@@ -152,13 +160,22 @@ void TaskPool::assign_free(const planner::Config& positions)
   planner::Config in_use;
   for (int s : cols) in_use.push_back(slot(s).errands[slot(s).next]);
   dist_.set_goals(in_use);  // marks their tables in use; evicts idle ones over the cap
-  auto c = [&](int i, int j) {
+  std::vector<char> poor(agents.size(), 0);  // some task was beyond its charge
+  auto c = [&](int i, int j) -> int64_t {
     const Task& t = slot(cols[j]);
-    return can_reach(positions[agents[i]], t.next_cell()) ? cost(positions[agents[i]], t) : kForbidden;
+    if (!can_reach(positions[agents[i]], t.next_cell())) return kForbidden;
+    const int64_t moves = cost(positions[agents[i]], t);
+    if (!affords(agents[i], moves, t)) {
+      poor[i] = 1;
+      return kForbidden;
+    }
+    return moves;
   };
   const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()), c);
-  for (size_t i = 0; i < agents.size(); ++i)
+  for (size_t i = 0; i < agents.size(); ++i) {
     if (match[i] >= 0 && c(static_cast<int>(i), match[i]) < kForbidden) give(agents[i], cols[match[i]]);
+    else if (poor[i]) charge_instead(agents[i], positions[agents[i]]);  // no work it can finish: charge first
+  }
 }
 
 }  // namespace tasks

@@ -218,6 +218,7 @@ TEST(Battery, TheReserveSendsAnAgentToChargeWhileTheWayBackIsStillCovered)
     o.critical = 0.1;
     o.target = 0.9;
     o.reserve_margin = margin;
+    o.task_check = false;  // the mid-task reserve alone (the task check: below)
     tm->set_battery(g, o, {{g.at(0, 1), 4.0, "c"}}, centres(g));
     if (margin > 0) {  // the way: metres and turns (one turn at (0, 0), plus the first move's)
       EXPECT_DOUBLE_EQ(tm->battery()->way_wh(0, g.at(8, 0)), 0.5 * 9);
@@ -277,5 +278,79 @@ TEST(Battery, AgentsOnTheirWayToChargersSwapClaimsThatCross)
     }
     b.step(at);  // no further swap: the sum is already the shorter one
     EXPECT_EQ(b.swaps(), rematch ? 1 : 0);
+  }
+}
+
+// A swap only where both can drive it: a corridor x = 0..6 with a dead-end charger below
+// each end, 5 Wh each. Agent 0 at x = 2 claims the left charger (3 m); agent 1 at x = 1 gets
+// the right one (6 m): crossed. The swap would shorten the sum (5 + 2 m against 3 + 6 m),
+// but at 1.2 Wh/m agent 0's new way (6 Wh) is beyond its 5 Wh: no swap. At 1 Wh/m (5 Wh)
+// it is within: the swap is made.
+TEST(Battery, ClaimsSwapOnlyWhenEachAgentsChargeCoversItsNewWay)
+{
+  const planner::Graph g = ttest::grid({".......", ".#####."});
+  for (double per_m : {1.2, 1.0}) {
+    SCOPED_TRACE("per_m_wh " + std::to_string(per_m));
+    BatteryOptions o;
+    o.capacity_wh = 10;
+    o.initial = 0.5;
+    o.threshold = 0.6;  // both low from the start
+    o.per_m_wh = per_m;
+    Battery b(g, o, {{g.at(0, 1), 1.0, "left"}, {g.at(6, 1), 1.0, "right"}}, centres(g));
+    const Config at{g.at(2, 0), g.at(1, 0)};
+    b.step(at);
+    ASSERT_TRUE(b.consider(0, at[0]));
+    ASSERT_TRUE(b.consider(1, at[1]));
+    ASSERT_EQ(b.goal(0), g.at(0, 1));
+    ASSERT_EQ(b.goal(1), g.at(6, 1));
+    b.step(at);  // nobody moved: the rematch alone
+    EXPECT_EQ(b.swaps(), per_m > 1.1 ? 0 : 1);
+    EXPECT_EQ(b.goal(0), g.at(per_m > 1.1 ? 0 : 6, 1));
+  }
+}
+
+// The task check: a corridor x = 0..15 with a dead-end charger below its left end, one task
+// (15, 0) -> (14, 0) (16 moves at 0.5 Wh/m: 8 Wh; then 7.5 Wh back to the charger) for an
+// agent at (0, 0) with 10 of 20 Wh: above the threshold (6 Wh) and the reserve at its cell.
+// With the check (1.5 x 15.5 Wh > 10 Wh) it charges first, to 20 Wh, then does the task
+// without dropping it. Without, it sets out and hands the task back at x = 8 (the reserve
+// trips: 6 Wh < 1.5 x 4.5 Wh), having driven 16 m for nothing.
+TEST(Battery, AnAgentThatCannotAffordATaskAndTheWayToAChargerChargesBeforeItTakesIt)
+{
+  const planner::Graph g = ttest::grid({"................", ".###############"});
+  auto file = ttest::task_file(g, {{{15, 0}, {14, 0}}});
+  for (bool check : {true, false}) {
+    SCOPED_TRACE(check ? "task check" : "no task check");
+    auto tm = std::make_unique<TaskPool>(file, g, 1, std::make_unique<GreedyAssigner>());
+    BatteryOptions o;
+    o.capacity_wh = 20;
+    o.initial = 0.5;
+    o.per_m_wh = 0.5;
+    o.threshold = 0.3;
+    o.critical = 0.1;
+    o.target = 1.0;
+    o.task_check = check;
+    tm->set_battery(g, o, {{g.at(0, 1), 4.0, "c"}}, centres(g));
+    Config at{g.at(0, 0)};
+    tm->start(at);
+    EXPECT_EQ(tm->busy(0), !check);
+    EXPECT_EQ(tm->charging(0), check);
+    long finished_at = -1;
+    for (long t = 1; t <= 60 && finished_at < 0; ++t) {
+      at[0] = step_to_goal(g, at[0], tm->goals()[0]);
+      tm->update(t, at);
+      if (tm->tasks_finished() > 0) finished_at = t;
+    }
+    EXPECT_EQ(tm->battery()->ran_empty(), 0);
+    if (check) {
+      // 1 step onto the charger, 2 more charging (4 Wh a step), 17 moves (out of the stub,
+      // to x = 15, back to x = 14).
+      EXPECT_EQ(tm->dropped_for_charge(), 0);
+      EXPECT_EQ(finished_at, 21);
+    } else {
+      // Out to x = 8 (8 steps), back onto the charger (9), 4 more charging, then the 17 moves.
+      EXPECT_EQ(tm->dropped_for_charge(), 1);
+      EXPECT_EQ(finished_at, 39);
+    }
   }
 }

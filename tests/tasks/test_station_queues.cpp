@@ -98,6 +98,44 @@ TEST(StationQueues, AdmitsTheNearestQueuesTheRestAndLetsTheNextInWhenTheWayIsCle
   EXPECT_EQ(goals[0], qc[2]);
 }
 
+// Beyond the queue, first asked first taken: a far agent is not overtaken forever by nearer
+// newcomers (with `fifo` off it is: the old nearest-first order starves it).
+TEST(StationQueues, BeyondTheQueueTheOldestRequestGoesFirstSoNoErrandWaitsForever)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  // The round in which agent 0 (far away) is admitted; -1: not within the rounds.
+  auto admitted_round = [&](bool fifo) {
+    QueueOptions o{1, 1, 0};
+    o.fifo = fifo;
+    StationQueues q(g, {s}, o);
+    // a0 at the far end (10 moves from S), a1 and a2 near; a3..a5 come near later.
+    Config pos{g.at(0, 7), g.at(4, 2), g.at(5, 2), g.at(1, 2), g.at(2, 2), g.at(0, 2)};
+    std::vector<Vertex> errand{s, s, s, -1, -1, -1};
+    Config goals(pos.size());
+    std::vector<char> unplaced;
+    auto apply = [&] {
+      for (size_t a = 0; a < pos.size(); ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
+      q.apply(errand, pos, goals, unplaced);
+    };
+    apply();
+    EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+    EXPECT_EQ(unplaced[0], 1);
+    for (int r = 1; r <= 3; ++r) {
+      // The admitted agent completes and leaves; a newcomer nearer than a0 asks.
+      const int done = q.admitted(0).front();
+      errand[done] = -1;
+      pos[done] = g.at(1 + r, 7);
+      errand[2 + r] = s;
+      apply();
+      if (q.admitted(0) == std::vector<int>{0}) return r;
+    }
+    return -1;
+  };
+  EXPECT_EQ(admitted_round(true), 2);    // queued in round 1 (before a3), in at round 2
+  EXPECT_EQ(admitted_round(false), -1);  // nearest first: a3, a4, a5 each overtake it
+}
+
 namespace {
 
 struct QueueRun {

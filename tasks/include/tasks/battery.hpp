@@ -28,14 +28,27 @@
 // (turns along that way + 1, its first move may turn). The ways are one reverse Dijkstra
 // per charger on metres, at construction. 0: off (critical alone).
 //
+// A task only if it can be done (`task_check`, default; reserve_margin > 0, charging on):
+// before a pool agent is given a task, its charge must cover reserve_margin x (the task's
+// moves -- to its first errand and along its errands -- at the most one move can drain,
+// `move_wh()`: the longest arc's metres plus a turn, and the way from its last errand to the
+// nearest charger). Otherwise it goes to charge first (`charge_first`). An agent charged to
+// `target` affords any task (charging cannot give it more; the mid-task reserve catches it).
+// The mid-task reserve alone came too late: an agent that took a long task near the
+// reserve's edge dropped it far from the chargers, and when the nearest one was taken the
+// next free one was out of its reach (bench_charging.py --per-m-wh 1.5 --critical 0.25,
+// seed 1: one AGV ran empty). Round-robin agents are not checked (their next task is fixed).
+//
 // Claims rematched (`rematch`, default on): two agents on their way to chargers swap their
 // claims when the swap makes the sum of their ways (metres) strictly shorter, checked at
 // every step() for every pair not yet standing on its charger. Without it, two agents head-on
 // in a one-lane aisle, each with its charger behind the other, can oscillate there until
 // empty (the planner restarts its search at every new goal elsewhere in the fleet; seen in
 // SUMO at 1.5 Wh/m). With the swap each heads for the charger on its own side. Every swap
-// shortens the sum strictly, so claims cannot swap back at the same cells. An agent whose charge reaches 0 counts as run empty (once); the model
-// does not stop it, the metric says the fleet was mis-sized (it must stay 0).
+// shortens the sum strictly, so claims cannot swap back at the same cells. A swap is made
+// only if each agent's charge covers the way to its new charger. An agent whose charge
+// reaches 0 counts as run empty (once); the model does not stop it, the metric says the
+// fleet was mis-sized (it must stay 0).
 //
 // TaskManager owns one (TaskManager::set_battery) and excludes charging agents from
 // assignment (tasks/task_manager.hpp).
@@ -61,6 +74,7 @@ struct BatteryOptions {
   double target = 0.9;       // it leaves the charger at this fraction
   double reserve_margin = 1.5;  // low / critical also below this x the energy to the nearest charger; 0: off
   bool rematch = true;          // agents on their way swap claims when that shortens both ways' sum
+  bool task_check = true;       // a task only if the charge covers it and the way on to a charger (with the margin)
   bool charging = true;      // false: drain only (no charging errands)
 };
 
@@ -104,7 +118,15 @@ class Battery {
   double way_wh(int i, planner::Vertex v) const { return way_wh_[i][v]; }
   long long swaps() const { return swaps_; }  // claims swapped (rematch)
   // Low with charging on: it takes no task until it has charged.
-  bool wants(int a) const { return options_.charging && low(a); }
+  bool wants(int a) const { return options_.charging && (low(a) || first_[a]); }
+  // The task check (above): can agent a drive `moves` moves and then, from `last`, reach the
+  // nearest charger, with the reserve margin? Always true with the reserve or charging off.
+  bool affords(int a, long long moves, planner::Vertex last) const;
+  // The most one move can drain: per_m_wh x the longest arc + per_turn_wh.
+  double move_wh() const { return move_wh_; }
+  // Agent a could not afford the task it was matched with: it charges before it takes one
+  // (wants() until it leaves a charger). False (nothing done) when it is charged to target.
+  bool charge_first(int a);
   bool is_charger(planner::Vertex v) const { return charger_of_[v] >= 0; }
   // A charger and, at a dead end, the corridor cells that lead to it: an idle agent resting
   // there would block the way in (the TaskManager's parking keeps idle agents off them).
@@ -142,6 +164,8 @@ class Battery {
   std::vector<std::vector<double>> way_m_;   // per charger, per vertex: metres of the way there (rematch)
   long long swaps_ = 0;
   std::vector<double> charge_;
+  std::vector<char> first_;      // per agent: charge_first() until it leaves a charger
+  double move_wh_ = 0;
   std::vector<int> claim_;       // per agent: charger index, -1
   std::vector<char> empty_;
   std::vector<int> emptied_;

@@ -24,6 +24,14 @@
 // Stations, pockets and queue cells are `reserved()`: idle agents do not rest there
 // (tasks/parking.hpp). All queues are laid out at construction, stations in cell order.
 //
+// Admission order (`fifo`, default): an agent's request at a station is stamped when its
+// errand there first comes up (requests of one apply() nearest first), and the agents not
+// yet placed are taken oldest request first, so a newcomer nearer the station never
+// overtakes one already waiting beyond the queue and every request is served after the
+// ones before it. With `fifo` off they are ranked nearest first at every apply(): an agent
+// far away may never get in while nearer ones keep coming. (With pool admission at its
+// default nobody is beyond a queue and the two orders are the same.)
+//
 // Goals change only when the task manager calls apply() (its start() and update(), every
 // step while queues are on: a way out that clears is no completion); the task manager
 // then starts a new epoch if any goal changed (TaskManager::goals_changed).
@@ -42,6 +50,7 @@ struct QueueOptions {
   int length = 4;     // queue cells per station (fewer where the net has no room), >= 0
   int admission = 0;  // pool mode: tasks held at once with an errand left at one station;
                       // 0 = capacity + its queue cells (nobody beyond the queue), -1 = no limit
+  bool fifo = true;   // not yet placed: oldest request first (false: nearest first)
   bool on() const { return capacity > 0; }
 };
 
@@ -91,6 +100,9 @@ class StationQueues {
   std::vector<uint8_t> reserved_;  // per vertex: station, pocket or queue cell
   std::vector<int> pocket_of_;     // per vertex: the station whose pocket it is in, -1
   std::vector<int> place_;         // per agent: station index it is admitted or queued at, -1
+  std::vector<int> asked_at_;      // per agent: the station of its open request (fifo), -1
+  std::vector<long> asked_;        // per agent: that request's stamp (a counter of requests)
+  long requests_ = 0;
   planner::DistTable dist_;        // distances to stations (ranking newcomers)
 };
 

@@ -152,6 +152,18 @@ class TaskManager {
   bool needs_charge(int agent) const { return battery_ && (battery_->charging(agent) || battery_->wants(agent)); }
   // Free for a task: holds none and needs no charge.
   bool assignable(int agent) const { return holding_[agent] < 0 && !needs_charge(agent); }
+  // Battery on: can `agent` drive `moves` moves (to t's next errand and along the rest) and
+  // then still reach a charger from t's last errand (Battery::affords)? True without one.
+  bool affords(int agent, int64_t moves, const Task& t) const
+  {
+    return !battery_ || battery_->affords(agent, moves, t.errands.back());
+  }
+  // `agent` could afford none of the tasks it was matched against: it charges first
+  // (Battery::charge_first; nothing when it is already charged to target).
+  void charge_instead(int agent, planner::Vertex at)
+  {
+    if (battery_ && battery_->charge_first(agent)) battery_->consider(agent, at);
+  }
 
   // Task storage: slots hold live tasks; holding_[agent] indexes a slot or is -1.
   int add_task(Task t);                // returns its slot
