@@ -370,7 +370,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     FleetSection::Battery& x = c.fleet.battery;
     if (!b.IsMap()) r.fail("fleet.battery", "expected a mapping {capacity_wh, per_m_wh, per_turn_wh, threshold, target, ...}");
     r.keys(b, "fleet.battery", {"capacity_wh", "initial", "per_m_wh", "per_turn_wh", "threshold", "critical", "target", "charge_w",
-                                "charging", "sample_ticks", "reserve_margin", "rematch"});
+                                "charging", "sample_ticks", "reserve_margin", "rematch", "task_check"});
     x.on = true;
     r.number(b, "fleet.battery", "capacity_wh", x.capacity_wh, 0, true);
     r.number(b, "fleet.battery", "per_m_wh", x.per_m_wh, 0);
@@ -378,6 +378,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     if (b["charge_w"]) r.number(b, "fleet.battery", "charge_w", x.charge_w, 0, true);
     r.number(b, "fleet.battery", "reserve_margin", x.reserve_margin, 0);
     r.flag(b, "fleet.battery", "rematch", x.rematch);
+    r.flag(b, "fleet.battery", "task_check", x.task_check);
     r.flag(b, "fleet.battery", "charging", x.charging);
     r.integer(b, "fleet.battery", "sample_ticks", x.sample_ticks, 1, 1000000);
     for (auto [k, v] : {std::pair<const char*, double*>{"initial", &x.initial}, {"threshold", &x.threshold}, {"target", &x.target}}) {
@@ -481,8 +482,9 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
       r.flag(u, "tasks.urgency", "battery", c.tasks.urgency_battery);
     }
     if (const YAML::Node q = t["queues"]) {
-      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A}");
-      r.keys(q, "tasks.queues", {"capacity", "length", "admission"});
+      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A, fifo: B}");
+      r.keys(q, "tasks.queues", {"capacity", "length", "admission", "fifo"});
+      r.flag(q, "tasks.queues", "fifo", c.tasks.queue_fifo);
       r.integer(q, "tasks.queues", "capacity", c.tasks.queue_capacity, 0, 1000000);
       r.integer(q, "tasks.queues", "length", c.tasks.queue_length, 0, 1000000);
       r.integer(q, "tasks.queues", "admission", c.tasks.queue_admission, -1, 10000000);

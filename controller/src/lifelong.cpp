@@ -109,6 +109,7 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
   q.capacity = t.queue_capacity;
   q.length = t.queue_length;
   q.admission = t.queue_admission;
+  q.fifo = t.queue_fifo;
   tm->set_queues(map.graph, q);
   if (t.parking) tm->set_parking(map.graph, parking_cells(cfg, map));
   if (cfg.fleet.battery.on) {
@@ -122,6 +123,7 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
     o.critical = b.critical;
     o.reserve_margin = b.reserve_margin;
     o.rematch = b.rematch;
+    o.task_check = b.task_check;
     o.target = b.target;
     o.charging = b.charging;
     std::vector<std::pair<double, double>> xy;

@@ -187,6 +187,14 @@ TEST(ControllerLifelong, StationQueuesAdmitOneAgvPerStation)
   EXPECT_GE(m.errands_finished, 10);
   const nlohmann::json mj = read_json(cfg.output.dir + "/metrics.json");
   EXPECT_EQ(mj["lifelong"]["queues"]["maxHeading"], m.max_heading);
+  // tasks.queues.fifo reaches the task layer's queues (default: oldest request first).
+  for (bool fifo : {true, false}) {
+    Config q = cfg;
+    q.tasks.queue_fifo = fifo;
+    const auto tm = make_task_manager(q, c.map(), make_task_file(q, c.map()));
+    ASSERT_NE(tm->queues(), nullptr);
+    EXPECT_EQ(tm->queues()->options().fifo, fifo);
+  }
 }
 
 // Parking (tasks.parking, tasks/parking.hpp): idle AGVs end on parking cells, not where
@@ -227,7 +235,11 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 2, admission: 1}\n"),
             "t.yaml: tasks.queues.admission: must be >= capacity (2), 0 or -1, got 1");
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: 3\n"),
-            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A}");
+            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A, fifo: B}");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, fifo: maybe}\n"),
+            "t.yaml: tasks.queues.fifo: expected true or false, got 'maybe'");
+  EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_fifo);
+  EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, fifo: false}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_fifo);
   EXPECT_EQ(config_error(kNetAdd + ll + "  parking: maybe\n"),
             "t.yaml: tasks.parking: expected true (the parkingAreas of sumo.additional), false or a list of cells, got 'maybe'");
   EXPECT_EQ(config_error(kNetAdd + "fleet: {count: 2}\ntasks: {parking: true}\n"),

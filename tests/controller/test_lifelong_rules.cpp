@@ -10,6 +10,7 @@
 #include <map>
 
 #include "controller/config.hpp"
+#include "controller/lifelong.hpp"
 #include "controller/controller.hpp"
 #include "controller_test_util.hpp"
 #include "temp_path.hpp"
@@ -145,6 +146,20 @@ TEST(LifelongRules, AnAgvBelowTheCriticalChargeMidTaskChargesAndNoneRunsEmpty)
   ctest_util::expect_checked_every_step(off, mo);
   EXPECT_EQ(mo.battery.dropped_mid_task, 0);
   EXPECT_GT(mo.battery.ran_empty, 0);
+
+  // fleet.battery.task_check reaches the task layer's battery (default on).
+  for (bool check : {true, false}) {
+    Config x = cfg;
+    x.fleet.battery.task_check = check;
+    const auto tm = make_task_manager(x, c.map(), make_task_file(x, c.map()));
+    ASSERT_NE(tm->battery(), nullptr);
+    EXPECT_EQ(tm->battery()->options().task_check, check);
+  }
+  EXPECT_FALSE(parse_config("sumo:\n  net: ../sumo_scenarios/small_charging.net.xml\n"
+                            "  additional: ../sumo_scenarios/small_charging.add.xml\n"
+                            "fleet:\n  count: 2\n  battery: {task_check: false}\ntasks: {mode: lifelong}\n",
+                            "t.yaml", RTLACAM_CONFIGS)
+                   .fleet.battery.task_check);
 }
 
 // Aggressive drain (1.5 Wh/m, critical 0.25): two AGVs going to charge meet head-on in one

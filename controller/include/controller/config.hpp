@@ -75,6 +75,7 @@ struct FleetSection {
     double critical = 0.1;   // below it mid-task: the task goes back, the AGV charges (< threshold; 0: off)
     double reserve_margin = 1.5;  // also low / critical below this x the energy to the nearest charger (0: off)
     bool rematch = true;          // AGVs on their way to chargers swap claims when that shortens their ways
+    bool task_check = true;       // a task only if the charge covers it and the way on to a charger
     double charge_w = -1;    // -1: every chargingStation must give its power
     bool charging = true;    // false: drain only (no charging errands)
     int sample_ticks = 10;   // metrics.json battery.samples: min/mean/max charge every this many ticks
@@ -152,6 +153,7 @@ struct TasksSection {
   // Station queues (tasks/station_queues.hpp): AGVs admitted to one station at once (0: off),
   // queue cells per station, pool admission limit (0: capacity + length, -1: none).
   int queue_capacity = 0, queue_length = 4, queue_admission = 0;
+  bool queue_fifo = true;  // beyond a queue, the oldest request first (tasks::QueueOptions::fifo)
   // Parking (tasks/parking.hpp): off, the sumo.additional parkingAreas (parking_auto), or a list.
   bool parking = false, parking_auto = false;
   std::vector<CellRef> parking_cells;
