@@ -19,6 +19,9 @@ import tempfile
 
 import yaml
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from same_decisions import first_diff  # noqa: E402  (the grid twin's comparison, shared)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 DELAYS = {"kind": "bernoulli", "p": 0.01, "duration_s": [1, 5], "seed": 0}
@@ -91,28 +94,6 @@ def strip(x):
     if isinstance(x, list):
         return [strip(v) for v in x]
     return x
-
-
-def first_diff(a, b, path=""):
-    if type(a) != type(b):
-        return path or "."
-    if isinstance(a, dict):
-        for k in sorted(set(a) | set(b)):
-            if k not in a or k not in b:
-                return f"{path}.{k} (missing on one side)"
-            d = first_diff(a[k], b[k], f"{path}.{k}")
-            if d:
-                return d
-        return None
-    if isinstance(a, list):
-        if len(a) != len(b):
-            return f"{path} (length {len(a)} vs {len(b)})"
-        for i, (u, v) in enumerate(zip(a, b)):
-            d = first_diff(u, v, f"{path}[{i}]")
-            if d:
-                return d
-        return None
-    return None if a == b else f"{path}: {a!r} vs {b!r}"
 
 
 def run(binary, base, over, ticks, expansions, out):
