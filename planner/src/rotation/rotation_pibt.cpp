@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "planner/priority_hint.hpp"
+
 namespace planner {
 
 RotationPibt::RotationPibt(const Graph& g, const Config& starts, const Config& goals, uint64_t seed, GoalTest test,
@@ -51,12 +53,11 @@ void RotationPibt::set_goals(const Config& goals, GoalTest test)
     // A new goal: its waiting time starts again; the distance breaks ties (far first).
     prio_[i] = static_cast<double>(h(static_cast<int>(i))) / 65536.0;
   }
-  // The task layer's hints (RealtimePlanner::set_priority_hint): a floor, as in
-  // planner/lacam/priority.hpp's raise_to_hint, over the tie part.
+  // The task layer's hints (RealtimePlanner::set_priority_hint): a floor over the tie part
+  // (planner/priority_hint.hpp), as the LaCAM family's raise_to_hint.
   if (hint_.size() == goals.size())
     for (size_t i = 0; i < goals.size(); ++i)
-      if (hint_[i] > 0)
-        prio_[i] = std::max(prio_[i], prio_[i] - static_cast<double>(static_cast<long>(prio_[i])) + std::round(hint_[i]));
+      prio_[i] = hint_floor(prio_[i], prio_[i] - static_cast<double>(static_cast<long>(prio_[i])), hint_[i]);
   goals_ = goals;
   test_ = std::move(test);
   dist_.trim();

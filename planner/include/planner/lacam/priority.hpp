@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "planner/dist_table.hpp"
+#include "planner/priority_hint.hpp"
 
 namespace planner {
 
@@ -45,15 +46,13 @@ inline void insert_by_priority(const float* prio, int32_t* order, int begin, int
 
 // Priority hints (RealtimePlanner::set_priority_hint): the task layer's urgency, a floor
 // under an agent's priority at an epoch start: max(priority, tie + round(hint)), `tie` its
-// initial priority (dist/N). Whole numbers keep the tie part, so the agent falls back to it
-// when it reaches its goal, as PIBT's own elapsed time does; a carried priority above the
-// floor stays (keep_priorities). Unlike PIBT's elapsed time, the hint survives goal changes:
+// initial priority (dist/N) (planner/priority_hint.hpp); a carried priority above the floor
+// stays (keep_priorities). Unlike PIBT's elapsed time, the hint survives goal changes:
 // an errand stalled for 300 ticks beats one opened 5 ticks ago in every epoch.
 inline void raise_to_hint(const float* tie, const std::vector<float>& hint, int n, float* prio)
 {
   if (static_cast<int>(hint.size()) != n) return;
-  for (int i = 0; i < n; ++i)
-    if (hint[i] > 0) prio[i] = std::max(prio[i], tie[i] + std::round(hint[i]));
+  for (int i = 0; i < n; ++i) prio[i] = hint_floor(prio[i], tie[i], hint[i]);
 }
 
 // Sorts `order` (a permutation of 0..n-1) by descending priority. Insertion sort: the
