@@ -42,8 +42,8 @@ bool Battery::affords(int a, long long moves, planner::Vertex last) const
 {
   if (!options_.task_check || options_.reserve_margin <= 0 || !options_.charging || way_wh_.empty() || charge_.empty())
     return true;
-  if (charge_[a] >= options_.target * options_.capacity_wh - 1e-9) return true;  // as charged as it gets
-  double way = std::numeric_limits<double>::infinity();
+  if (at_target(a)) return true;  // as charged as it gets
+  double way = std::numeric_limits<double>::infinity();  // to the nearest charger, claimed or not
   for (size_t i = 0; i < chargers_.size(); ++i) way = std::min(way, way_wh_[i][last]);
   if (!std::isfinite(way)) return true;  // no charger reachable from there: the reserve cannot help
   return charge_[a] >= options_.reserve_margin * (static_cast<double>(moves) * move_wh_ + way);
@@ -51,7 +51,7 @@ bool Battery::affords(int a, long long moves, planner::Vertex last) const
 
 bool Battery::charge_first(int a)
 {
-  if (!options_.charging || charge_[a] >= options_.target * options_.capacity_wh - 1e-9) return false;
+  if (!options_.charging || at_target(a)) return false;
   first_[a] = 1;
   return true;
 }
@@ -204,7 +204,7 @@ std::vector<int> Battery::step(const planner::Config& positions)
     } else if (claim_[a] >= 0 && chargers_[claim_[a]].cell == v) {
       ++charging_ticks_;
       charge_[a] = std::min(options_.capacity_wh, charge_[a] + chargers_[claim_[a]].wh_per_step);
-      if (charge_[a] >= options_.target * options_.capacity_wh - 1e-9) {
+      if (at_target(a)) {
         claimed_by_[claim_[a]] = -1;
         claim_[a] = -1;
         first_[a] = 0;

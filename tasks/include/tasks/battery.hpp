@@ -149,6 +149,8 @@ class Battery {
 
  private:
   int nearest_free(planner::Vertex from);  // a charger index, -1: none free
+  // At target: charging ends, and no task check or charge_first() applies.
+  bool at_target(int a) const { return charge_[a] >= options_.target * options_.capacity_wh - 1e-9; }
   void plan_ways();                        // way_m_, way_wh_ (the reserve, rematch)
   void rematch(const planner::Config& positions);
 
