@@ -111,6 +111,9 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
   q.admission = t.queue_admission;
   q.fifo = t.queue_fifo;
   tm->set_queues(map.graph, q);
+  // tasks.urgency: stalls `auto` (-1) means on only with station queues (see config.hpp).
+  const bool stalls = t.urgency_stalls < 0 ? t.queue_capacity > 0 : t.urgency_stalls != 0;
+  tm->set_urgency({stalls, t.urgency_battery});
   if (t.parking) tm->set_parking(map.graph, parking_cells(cfg, map));
   if (cfg.fleet.battery.on) {
     const FleetSection::Battery& b = cfg.fleet.battery;

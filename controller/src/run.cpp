@@ -108,8 +108,6 @@ void Run::prepare()
       };
     free_flow = std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost);
     epochs_ = std::make_unique<tasks::LifelongEpochs>(*tm_, life_);
-    const bool stalls = cfg_.tasks.urgency_stalls < 0 ? cfg_.tasks.queue_capacity > 0 : cfg_.tasks.urgency_stalls != 0;
-    tm_->set_urgency({stalls, cfg_.tasks.urgency_battery});
   }
   if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
     for (size_t i = 0; i < b->chargers().size(); ++i)

@@ -26,7 +26,8 @@ std::vector<planner::Vertex> parking_cells(const Config& cfg, const gridify::Cel
 std::vector<tasks::Charger> chargers(const Config& cfg, const gridify::CellMap& map);
 
 // tasks.assignment: roundrobin, or pool with tasks.assigner and tasks.pool_size; then
-// tasks.queues (station queues at the errand cells), tasks.parking and fleet.battery.
+// tasks.queues (station queues at the errand cells), tasks.urgency (priority hints),
+// tasks.parking and fleet.battery.
 std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
                                                       std::shared_ptr<const tasks::TaskFile> file);
 
