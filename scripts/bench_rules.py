@@ -148,28 +148,45 @@ def station_closure(a, build, tmp):
     return 0 if clean else 1
 
 
+def on_off(build, base, out, ticks, expansions, variants):
+    """The same config run "on" and "off": variants = {label: (rules, tasks_extra, sections)}.
+    Returns ({label: metrics}, clean), or (None, error) when a run was refused."""
+    res, clean = {}, True
+    for label, (rules, tasks_extra, sections) in variants.items():
+        m, err = run(build, base, f"{out}_{label}", ticks, expansions, rules, tasks_extra, sections)
+        if m is None:
+            return None, f"{label}: {err}"
+        clean = clean and run_clean(m)
+        res[label] = m
+    return res, clean
+
+
+def on_off_cols(res):
+    """errands/tick on | off | on / off | K on | K off (stall ticks max / p99)."""
+    on, off = res["on"]["lifelong"], res["off"]["lifelong"]
+    ro, rf = on["errandThroughput"], off["errandThroughput"]
+    return (f"{ro:.3f} | {rf:.3f} | {ro / rf if rf else 0:.2f} | "
+            f"{on['stallTicks']['max']} / {on['stallTicks']['p99']} | {off['stallTicks']['max']} / {off['stallTicks']['p99']}")
+
+
 def urgency(a, build, tmp):
     """Priority hints on against off, per config (same ticks, seeds, expansions)."""
     clean = True
     print("| config | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errands done on / off |")
     print("|---|---|---|---|---|---|---|---|")
+    rules = {"sumo": False, "watch_lanes": False}
     for base in a.urgency_configs:
         ticks = a.ticks if "small" in base else a.large_ticks
-        res = {}
-        for label, u in [("on", {"stalls": True, "battery": True}), ("off", {"stalls": False, "battery": False})]:
-            out = os.path.join(tmp, os.path.basename(base).split(".")[0] + "_urgency_" + label)
-            cfg_extra = {"urgency": u}
-            m, err = run(build, base, out, ticks, a.expansions, {"sumo": False, "watch_lanes": False}, cfg_extra)
-            if m is None:
-                print(f"# {base} {label}: {err}", file=sys.stderr)
-                return 1
-            clean = clean and run_clean(m)
-            res[label] = m
-        on, off = res["on"]["lifelong"], res["off"]["lifelong"]
-        ro, rf = on["errandThroughput"], off["errandThroughput"]
-        print(f"| {base} | {res['on']['ticks']} | {ro:.3f} | {rf:.3f} | {ro / rf if rf else 0:.2f} | "
-              f"{on['stallTicks']['max']} / {on['stallTicks']['p99']} | {off['stallTicks']['max']} / {off['stallTicks']['p99']} | "
-              f"{on['numErrandFinished']} / {off['numErrandFinished']} |", flush=True)
+        out = os.path.join(tmp, os.path.basename(base).split(".")[0] + "_urgency")
+        res, ok = on_off(build, base, out, ticks, a.expansions,
+                         {"on": (rules, {"urgency": {"stalls": True, "battery": True}}, None),
+                          "off": (rules, {"urgency": {"stalls": False, "battery": False}}, None)})
+        if res is None:
+            print(f"# {base} {ok}", file=sys.stderr)
+            return 1
+        clean = clean and ok
+        print(f"| {base} | {res['on']['ticks']} | {on_off_cols(res)} | "
+              f"{res['on']['lifelong']['numErrandFinished']} / {res['off']['lifelong']['numErrandFinished']} |", flush=True)
     print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 
@@ -183,23 +200,17 @@ def admission(a, build, tmp):
     for base in a.admission_configs:
         ticks = a.ticks if "small" in base else a.large_ticks
         for seed in seeds:
-            res = {}
-            for label, q in [("on", {"capacity": 1, "length": 8}), ("off", {"capacity": 0})]:
-                out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_admission_{label}")
-                extra = {"queues": q}
-                m, err = run(build, base, out, ticks, a.expansions, None, extra,
-                             {"fleet": {"seed": seed}, "planner": {"keep_priorities": True}} if label == "on" else
-                             {"fleet": {"seed": seed}})
-                if m is None:
-                    print(f"# {base} {label}: {err}", file=sys.stderr)
-                    return 1
-                clean = clean and run_clean(m)
-                res[label] = m
-            on, off = res["on"]["lifelong"], res["off"]["lifelong"]
-            ro, rf = on["errandThroughput"], off["errandThroughput"]
-            print(f"| {base} | {seed} | {res['on']['ticks']} | {ro:.3f} | {rf:.3f} | {ro / rf if rf else 0:.2f} | "
-                  f"{on['stallTicks']['max']} / {on['stallTicks']['p99']} | {off['stallTicks']['max']} / {off['stallTicks']['p99']} | "
-                  f"{on['errandTicks']['max']} / {off['errandTicks']['max']} |", flush=True)
+            out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_admission")
+            res, ok = on_off(build, base, out, ticks, a.expansions,
+                             {"on": (None, {"queues": {"capacity": 1, "length": 8}},
+                                     {"fleet": {"seed": seed}, "planner": {"keep_priorities": True}}),
+                              "off": (None, {"queues": {"capacity": 0}}, {"fleet": {"seed": seed}})})
+            if res is None:
+                print(f"# {base} {ok}", file=sys.stderr)
+                return 1
+            clean = clean and ok
+            print(f"| {base} | {seed} | {res['on']['ticks']} | {on_off_cols(res)} | "
+                  f"{res['on']['lifelong']['errandTicks']['max']} / {res['off']['lifelong']['errandTicks']['max']} |", flush=True)
     print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 
