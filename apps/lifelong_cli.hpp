@@ -4,6 +4,7 @@
 // planner::InputError messages, and described in the run's JSON (describe).
 //   SolverCli  --solver, --seed, --policy and every solver's options (planner/solver.hpp)
 //   ExecCli    --executor and the delay model (executor/: grid4 plans, and the rotation solvers' with headings)
+//   TaskCli    the task layer (tasks/task_layer.hpp): mode, assigner, queues, parking, urgency and
 //   BatteryCli --battery-* and --chargers: batteries and charging errands (tasks/battery.hpp)
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -23,6 +24,8 @@
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_files.hpp"
+#include "tasks/lorr_problem.hpp"
+#include "tasks/task_layer.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace cli {
@@ -243,7 +246,7 @@ struct ExecCli {
 // Any of these options turns the battery on.
 struct BatteryCli {
   tasks::BatteryOptions o;
-  double charge_w = 7200 * 0.95;  // the shipped chargingStations' power x efficiency
+  double charge_w = tasks::BatterySetup{}.charge_w;
   std::string chargers_file;
   bool no_charging = false, no_rematch = false, no_task_check = false;
   std::vector<CLI::Option*> opts;
@@ -278,28 +281,106 @@ struct BatteryCli {
     return false;
   }
 
-  // Sets the battery of `tm` (before start) when on(). Throws InputError naming the option.
-  void apply(const planner::Graph& g, tasks::TaskManager& tm) const
+  // The battery of the task layer (checked when it is set: make_task_layer).
+  void fill(const planner::Graph& g, tasks::BatterySetup& b) const
   {
-    if (!on()) return;
-    tasks::BatteryOptions b = o;
-    b.charging = !no_charging;
-    b.rematch = !no_rematch;
-    b.task_check = !no_task_check;
-    std::vector<planner::Vertex> cells;
+    b.on = on();
+    if (!b.on) return;
+    b.options = o;
+    b.options.charging = !no_charging;
+    b.options.rematch = !no_rematch;
+    b.options.task_check = !no_task_check;
+    b.charge_w = charge_w;
     if (!chargers_file.empty()) {
       const planner::Config c = tasks::load_lorr_agents(chargers_file, g);
-      cells.assign(c.begin(), c.end());
+      b.charger_cells.assign(c.begin(), c.end());
     }
+  }
+
+  // make_task_layer's "battery.key: what" under this group's option names.
+  static planner::InputError error(const std::string& what)
+  {
+    const std::string rest = what.substr(what.find('.') + 1);
+    const std::string key = rest.substr(0, rest.find(':'));
+    std::string name = key == "chargers" ? "--chargers" : "--battery-" + key;
+    for (char& ch : name) ch = ch == '_' ? '-' : ch;
+    return planner::InputError(name + rest.substr(key.size()));
+  }
+};
+
+// The task layer (tasks/task_layer.hpp): --mode, --assigner, --pool-size, --k-nearest,
+// --reassign, --urgency, --queue-*, --parking and the battery (BatteryCli); make() fills
+// tasks::TaskLayerOptions and builds it with tasks::make_task_layer, as the controller's YAML
+// and Python do.
+struct TaskCli {
+  std::string mode, assigner = "greedy", parking_file;
+  int pool_size = 0;  // 0: the problem's (LorrProblem::pool_size)
+  tasks::TaskLayerOptions o;
+  bool urgency = false;
+  BatteryCli battery;
+
+  void bind(CLI::App& app)
+  {
+    app.add_option("--mode", mode, "roundrobin | pool (default: roundrobin for 2023 roundrobin problems, else pool)")
+        ->check(CLI::IsMember({"roundrobin", "pool"}));
+    app.add_option("--assigner", assigner, "pool mode: greedy | hungarian")
+        ->check(CLI::IsMember({"greedy", "hungarian"}))
+        ->capture_default_str();
+    app.add_option("--pool-size", pool_size, "pool mode: tasks revealed at once (default: the problem's numTasksReveal x teamSize)")
+        ->check(CLI::PositiveNumber);
+    app.add_flag("--reassign,!--no-reassign", o.reassign,
+                 "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
+                 "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
+    app.add_flag("--urgency,!--no-urgency", urgency,
+                 "priority hints to the planner (tasks/urgency.hpp): a stalled errand's holder and a low-battery agent "
+                 "win conflicts at each epoch start (default off here; on in rtlacam-sumo)");
+    app.add_option("--k-nearest", o.k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--queue-capacity", o.queues.capacity,
+                   "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "
+                   "(tasks/station_queues.hpp); 0 = off")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--queue-length", o.queues.length, "station queues: queue cells per station")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--queue-admission", o.queues.admission,
+                   "station queues, pool mode: tasks held at once with an errand left at one station "
+                   "(0 = capacity + length, -1 = no limit)")
+        ->check(CLI::Range(-1, 10000000))
+        ->capture_default_str();
+    app.add_flag("--queue-fifo,!--no-queue-fifo", o.queues.fifo,
+                 "station queues: agents beyond a queue are taken oldest request first (default on; off: nearest first)");
+    app.add_option("--parking", parking_file,
+                   "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
+                   "(tasks/parking.hpp)");
+    battery.bind(app);
+  }
+
+  // The task manager of `pr`'s tasks on `g` (mode: the problem's default unless --mode).
+  // Throws InputError naming the option.
+  std::unique_ptr<tasks::TaskManager> make(const tasks::LorrProblem& pr, const planner::Graph& g,
+                                           std::shared_ptr<const tasks::TaskFile> file)
+  {
+    if (mode.empty()) mode = pr.default_mode();
+    o.mode = mode;
+    o.assigner = assigner;
+    o.pool_size = pool_size > 0 ? pool_size : pr.pool_size();
+    if (o.queues.admission > 0 && o.queues.admission < o.queues.capacity)
+      throw planner::InputError("--queue-admission " + std::to_string(o.queues.admission) +
+                                ": must be >= --queue-capacity, 0 or -1");
+    o.urgency = {urgency, urgency};
+    if (!parking_file.empty()) {
+      // The agents-file reader: a count, cell ids, each on the map and distinct.
+      const planner::Config cells = tasks::load_lorr_agents(parking_file, g);
+      o.parking = {true, std::vector<planner::Vertex>(cells.begin(), cells.end())};
+    }
+    battery.fill(g, o.battery);
     try {
-      tm.set_grid_battery(g, b, cells, charge_w);
+      return tasks::make_task_layer(std::move(file), g, o);
     } catch (const std::invalid_argument& e) {
       const std::string what = e.what();
-      const std::string key = what.substr(0, what.find(':'));
-      const std::string opt = key == "chargers" ? "--chargers" : "--battery-" + key;
-      std::string name = opt;
-      for (char& ch : name) ch = ch == '_' ? '-' : ch;
-      throw planner::InputError(name + what.substr(key.size()));
+      if (what.rfind("battery.", 0) == 0) throw BatteryCli::error(what);
+      throw planner::InputError(what);
     }
   }
 };

@@ -16,66 +16,31 @@
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_instance.hpp"
-#include "tasks/roundrobin.hpp"
-#include "tasks/task_pool.hpp"
 
 using namespace tasks;
 
 int main(int argc, char** argv)
 {
   CLI::App app{"Lifelong MAPF on a League of Robot Runners problem: task layer + real-time planner"};
-  std::string problem_file, mode, assigner = "greedy", out_file, action_model = "grid4";
+  std::string problem_file, out_file, action_model = "grid4";
   int rotation_window = 8;
   bool no_heading_ties = false;
   std::string heading_cost = "turns";
   size_t max_dist_tables = 0;
-  bool reassign = false, prefetch = true, bound_queries = true;
+  bool prefetch = true, bound_queries = true;
   bool skip_late_search = false;
   double expansion_deviations = 4;
   long steps = -1;
   double budget_ms = 100, progress_s = 2;
   uint64_t budget_expansions = 0;
-  int k_nearest = 32, agents = 0;
-  tasks::QueueOptions queues;
-  std::string parking_file;
+  int agents = 0;
   bool quiet = false;
   cli::SolverCli sc;  // --solver, --seed, --policy and every solver's options
   cli::ExecCli xc;    // --executor and the delays
-  cli::BatteryCli bc; // --battery-*, --chargers
+  cli::TaskCli tc;    // the task layer: --mode, --assigner, --queue-*, --parking, --urgency, --battery-*, ...
   app.add_option("--problem", problem_file, "LoRR problem JSON")->required();
   app.add_option("--steps", steps, "steps to simulate (default: the instance's simulation_time)");
   app.add_option("--agents", agents, "use only the first N agents of the team (default: teamSize)")->check(CLI::PositiveNumber);
-  app.add_option("--mode", mode, "roundrobin | pool (default: roundrobin for 2023 roundrobin problems, else pool)")
-      ->check(CLI::IsMember({"roundrobin", "pool"}));
-  app.add_option("--assigner", assigner, "pool mode: greedy | hungarian")
-      ->check(CLI::IsMember({"greedy", "hungarian"}))
-      ->capture_default_str();
-  app.add_flag("--reassign,!--no-reassign", reassign,
-               "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
-               "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
-  bool urgency = false;
-  app.add_flag("--urgency,!--no-urgency", urgency,
-               "priority hints to the planner (tasks/urgency.hpp): a stalled errand's holder and a low-battery agent "
-               "win conflicts at each epoch start (default off here; on in rtlacam-sumo)");
-  app.add_option("--k-nearest", k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--queue-capacity", queues.capacity,
-                 "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "
-                 "(tasks/station_queues.hpp); 0 = off")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--queue-length", queues.length, "station queues: queue cells per station")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  app.add_option("--queue-admission", queues.admission,
-                 "station queues, pool mode: tasks held at once with an errand left at one station "
-                 "(0 = capacity + length, -1 = no limit)")
-      ->check(CLI::Range(-1, 10000000))
-      ->capture_default_str();
-  app.add_flag("--queue-fifo,!--no-queue-fifo", queues.fifo,
-               "station queues: agents beyond a queue are taken oldest request first (default on; off: nearest first)");
-  app.add_option("--parking", parking_file,
-                 "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
-                 "(tasks/parking.hpp)");
   app.add_flag("--prefetch,!--no-prefetch", prefetch,
                "grow the distance tables of upcoming goals in each step's spare budget (default on)");
   app.add_flag("--bound-queries,!--exact-queries", bound_queries,
@@ -107,9 +72,9 @@ int main(int argc, char** argv)
   app.add_option("--out", out_file, "write the full LoRR / PlanViz log (paths, events, tasks) here");
   app.add_option("--progress-s", progress_s, "seconds between progress lines on stderr; 0 = none")->capture_default_str();
   app.add_flag("--quiet", quiet, "no progress lines");
+  tc.bind(app);
   sc.bind(app);
   xc.bind(app);
-  bc.bind(app);
   cli::add_version(app, "rtlacam-lifelong");
   RTLACAM_PARSE(app, argc, argv);
   planner::install_stop_handlers();  // SIGINT / SIGTERM: stop stepping, write the log, exit 130 / 143
@@ -120,23 +85,10 @@ int main(int argc, char** argv)
     const planner::Graph& g = in.g;
     const planner::Config& starts = in.starts;
     const std::shared_ptr<const TaskFile>& file = in.tasks;
-    if (mode.empty()) mode = pr.default_mode();
     if (steps < 0) steps = pr.simulation_time;
     if (steps < 0) throw planner::input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass --steps");
 
-    std::unique_ptr<TaskManager> tm;
-    if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
-    else tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner, k_nearest), reassign);
-    if (queues.admission > 0 && queues.admission < queues.capacity)
-      throw planner::InputError("--queue-admission " + std::to_string(queues.admission) + ": must be >= --queue-capacity, 0 or -1");
-    tm->set_queues(g, queues);
-    if (!parking_file.empty()) {
-      // The agents-file reader: a count, cell ids, each on the map and distinct.
-      const planner::Config cells = load_lorr_agents(parking_file, g);
-      tm->set_parking(g, std::vector<planner::Vertex>(cells.begin(), cells.end()));
-    }
-    bc.apply(g, *tm);
-    tm->set_urgency({urgency, urgency});
+    const std::unique_ptr<TaskManager> tm = tc.make(pr, g, file);
 
     LifelongOptions opt;
     sc.apply(app, g, starts.size(), action_model == "rotation", opt.solver);
@@ -180,7 +132,7 @@ int main(int argc, char** argv)
     else
       xr.life = run_lifelong(g, starts, *tm, sc.solver, sc.seed, opt);
     const LifelongResult& r = xr.life;
-    RunInfo info{problem_file, sc.solver, mode, assigner, pr.team_size, budget_ms, sc.seed};
+    RunInfo info{problem_file, sc.solver, tc.mode, tc.assigner, pr.team_size, budget_ms, sc.seed};
     nlohmann::json j = out_file.empty() ? lifelong_log(info, r) : lorr_log(info, r, *tm, g);
     sc.describe(j);
     if (opt.graph_execution)

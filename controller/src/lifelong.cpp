@@ -3,10 +3,8 @@
 #include <cmath>
 
 #include "controller/fleet.hpp"
-#include "tasks/assigner.hpp"
-#include "tasks/roundrobin.hpp"
 #include "tasks/task_builder.hpp"
-#include "tasks/task_pool.hpp"
+#include "tasks/task_layer.hpp"
 
 namespace controller {
 namespace {
@@ -94,46 +92,54 @@ std::shared_ptr<const tasks::TaskFile> make_task_file(const Config& cfg, const g
       tasks::random_task_file(pools, t.count, t.errands, t.seed, cfg.path + ": tasks.random"));
 }
 
+tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::CellMap& map)
+{
+  const TasksSection& t = cfg.tasks;
+  tasks::TaskLayerOptions o;
+  o.mode = t.assignment;
+  o.assigner = t.assigner;
+  o.k_nearest = t.k_nearest;
+  o.pool_size = t.pool_size > 0 ? t.pool_size : static_cast<int>(std::ceil(1.5 * cfg.fleet.count));
+  o.reassign = t.reassign;
+  o.queues.capacity = t.queue_capacity;
+  o.queues.length = t.queue_length;
+  o.queues.admission = t.queue_admission;
+  o.queues.fifo = t.queue_fifo;
+  // tasks.urgency: stalls `auto` (-1) means on only with station queues (see config.hpp).
+  o.urgency.stalls = t.urgency_stalls < 0 ? t.queue_capacity > 0 : t.urgency_stalls != 0;
+  o.urgency.battery = t.urgency_battery;
+  o.parking.on = t.parking;
+  if (t.parking) o.parking.cells = parking_cells(cfg, map);
+  const FleetSection::Battery& b = cfg.fleet.battery;
+  o.battery.on = b.on;
+  if (b.on) {
+    tasks::BatteryOptions& x = o.battery.options;
+    x.capacity_wh = b.capacity_wh;
+    x.initial = b.initial;
+    x.per_m_wh = b.per_m_wh;
+    x.per_turn_wh = b.per_turn_wh;
+    x.threshold = b.threshold;
+    x.critical = b.critical;
+    x.reserve_margin = b.reserve_margin;
+    x.rematch = b.rematch;
+    x.task_check = b.task_check;
+    x.target = b.target;
+    x.charging = b.charging;
+    o.battery.chargers = chargers(cfg, map);
+    for (const gridify::Cell& c : map.cells) o.battery.xy.emplace_back(c.x, c.y);
+  }
+  return o;
+}
+
 std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
                                                       std::shared_ptr<const tasks::TaskFile> file)
 {
-  const TasksSection& t = cfg.tasks;
-  std::unique_ptr<tasks::TaskManager> tm;
-  if (t.assignment == "roundrobin") {
-    tm = std::make_unique<tasks::RoundRobin>(std::move(file));
-  } else {
-    const int pool = t.pool_size > 0 ? t.pool_size : static_cast<int>(std::ceil(1.5 * cfg.fleet.count));
-    tm = std::make_unique<tasks::TaskPool>(std::move(file), map.graph, pool, tasks::make_assigner(t.assigner, t.k_nearest), t.reassign);
+  try {
+    return tasks::make_task_layer(std::move(file), map.graph, task_layer_options(cfg, map));
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();  // "battery.key: ..." is fleet.battery's, the rest tasks'
+    throw ConfigError(cfg.path + ": " + (what.rfind("battery.", 0) == 0 ? "fleet." : "tasks.") + what);
   }
-  tasks::QueueOptions q;
-  q.capacity = t.queue_capacity;
-  q.length = t.queue_length;
-  q.admission = t.queue_admission;
-  q.fifo = t.queue_fifo;
-  tm->set_queues(map.graph, q);
-  // tasks.urgency: stalls `auto` (-1) means on only with station queues (see config.hpp).
-  const bool stalls = t.urgency_stalls < 0 ? t.queue_capacity > 0 : t.urgency_stalls != 0;
-  tm->set_urgency({stalls, t.urgency_battery});
-  if (t.parking) tm->set_parking(map.graph, parking_cells(cfg, map));
-  if (cfg.fleet.battery.on) {
-    const FleetSection::Battery& b = cfg.fleet.battery;
-    tasks::BatteryOptions o;
-    o.capacity_wh = b.capacity_wh;
-    o.initial = b.initial;
-    o.per_m_wh = b.per_m_wh;
-    o.per_turn_wh = b.per_turn_wh;
-    o.threshold = b.threshold;
-    o.critical = b.critical;
-    o.reserve_margin = b.reserve_margin;
-    o.rematch = b.rematch;
-    o.task_check = b.task_check;
-    o.target = b.target;
-    o.charging = b.charging;
-    std::vector<std::pair<double, double>> xy;
-    for (const gridify::Cell& c : map.cells) xy.emplace_back(c.x, c.y);
-    tm->set_battery(map.graph, o, chargers(cfg, map), std::move(xy));
-  }
-  return tm;
 }
 
 }  // namespace controller

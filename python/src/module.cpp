@@ -17,12 +17,10 @@
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
-#include "tasks/assigner.hpp"
 #include "tasks/lifelong_log.hpp"
 #include "tasks/lifelong_runner.hpp"
 #include "tasks/lorr_instance.hpp"
-#include "tasks/roundrobin.hpp"
-#include "tasks/task_pool.hpp"
+#include "tasks/task_layer.hpp"
 
 namespace py = pybind11;
 using namespace planner;
@@ -63,51 +61,100 @@ py::dict run_result(const RunResult& r)
   return d;
 }
 
+// A dict argument's keys, each handed to `set` (unknown keys: InputError naming `what`).
+template <class Set>
+void each_key(const py::object& d, const std::string& what, Set set)
+{
+  for (const auto& [k, v] : d.cast<py::dict>()) {
+    const std::string key = py::str(k);
+    if (!set(key, v)) throw InputError(what + ": unknown key '" + key + "'");
+  }
+}
+
+// The task layer from keyword arguments (tasks/task_layer.hpp), with the YAML's names:
+// queues = tasks.queues, urgency = tasks.urgency, parking = tasks.parking (cell ids),
+// battery = fleet.battery (+ charge_w, on `chargers`, as rtlacam-lifelong --battery-*).
+tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::string& mode, const std::string& assigner,
+                                   int pool_size, int k_nearest, bool reassign, const py::object& queues,
+                                   const py::object& urgency, const py::object& parking, const py::object& battery,
+                                   const std::vector<Vertex>& chargers)
+{
+  tasks::TaskLayerOptions o;
+  o.mode = mode.empty() ? pr.default_mode() : mode;
+  o.assigner = assigner;
+  o.pool_size = pool_size > 0 ? pool_size : pr.pool_size();
+  o.k_nearest = k_nearest;
+  o.reassign = reassign;
+  if (!queues.is_none())
+    each_key(queues, "queues", [&](const std::string& k, const py::handle& v) {
+      if (k == "capacity") o.queues.capacity = v.cast<int>();
+      else if (k == "length") o.queues.length = v.cast<int>();
+      else if (k == "admission") o.queues.admission = v.cast<int>();
+      else if (k == "fifo") o.queues.fifo = v.cast<bool>();
+      else return false;
+      return true;
+    });
+  if (!urgency.is_none())
+    each_key(urgency, "urgency", [&](const std::string& k, const py::handle& v) {
+      if (k == "stalls" && py::isinstance<py::str>(v)) {
+        // "auto": on with station queues (the YAML's default, tasks.urgency.stalls).
+        if (v.cast<std::string>() != "auto") throw InputError("urgency.stalls: True, False or 'auto'");
+        o.urgency.stalls = o.queues.on();
+      } else if (k == "stalls") o.urgency.stalls = v.cast<bool>();
+      else if (k == "battery") o.urgency.battery = v.cast<bool>();
+      else return false;
+      return true;
+    });
+  if (!parking.is_none()) o.parking = {true, parking.cast<std::vector<Vertex>>()};
+  if (!battery.is_none()) {
+    // rtlacam-lifelong's --battery-* options, under the YAML names of fleet.battery.
+    o.battery.on = true;
+    o.battery.charger_cells = chargers;
+    tasks::BatteryOptions& b = o.battery.options;
+    each_key(battery, "battery", [&](const std::string& k, const py::handle& v) {
+      if (k == "charging") b.charging = v.cast<bool>();
+      else if (k == "capacity_wh") b.capacity_wh = v.cast<double>();
+      else if (k == "initial") b.initial = v.cast<double>();
+      else if (k == "per_m_wh") b.per_m_wh = v.cast<double>();
+      else if (k == "per_turn_wh") b.per_turn_wh = v.cast<double>();
+      else if (k == "threshold") b.threshold = v.cast<double>();
+      else if (k == "critical") b.critical = v.cast<double>();
+      else if (k == "reserve_margin") b.reserve_margin = v.cast<double>();
+      else if (k == "rematch") b.rematch = v.cast<bool>();
+      else if (k == "task_check") b.task_check = v.cast<bool>();
+      else if (k == "target") b.target = v.cast<double>();
+      else if (k == "charge_w") o.battery.charge_w = v.cast<double>();
+      else return false;
+      return true;
+    });
+  } else if (!chargers.empty()) {
+    throw InputError("chargers: only with battery={...}");
+  }
+  return o;
+}
+
 // The lifelong runner on a LoRR problem, as rtlacam-lifelong runs it; returns its JSON log.
 py::object lifelong(const std::string& problem_file, const std::string& solver, long steps, double budget_ms,
-                    uint64_t budget_expansions, std::string mode, const std::string& assigner, uint64_t seed,
+                    uint64_t budget_expansions, const std::string& mode, const std::string& assigner, uint64_t seed,
                     int agents, bool reassign, const std::string& policy_file, const py::object& battery,
-                    const std::vector<Vertex>& chargers)
+                    const std::vector<Vertex>& chargers, int pool_size, int k_nearest, const py::object& queues,
+                    const py::object& urgency, const py::object& parking)
 {
   using namespace tasks;
   const LorrInstance in = load_lorr_instance(problem_file, agents, "agents=");
   const LorrProblem& pr = in.problem;
   const Graph& g = in.g;
   const Config& starts = in.starts;
-  const std::shared_ptr<const TaskFile>& file = in.tasks;
-  if (mode.empty()) mode = pr.default_mode();
   if (steps < 0) steps = pr.simulation_time;
   if (steps < 0) throw input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass steps=");
+  const TaskLayerOptions layer =
+      task_layer(pr, mode, assigner, pool_size, k_nearest, reassign, queues, urgency, parking, battery, chargers);
   std::unique_ptr<TaskManager> tm;
-  if (mode == "roundrobin") tm = std::make_unique<RoundRobin>(file);
-  else if (mode == "pool") tm = std::make_unique<TaskPool>(file, g, pr.pool_size(), make_assigner(assigner), reassign);
-  else throw std::invalid_argument("mode must be roundrobin or pool, not '" + mode + "'");
-  if (!battery.is_none()) {
-    // rtlacam-lifelong's --battery-* options, under the YAML names of fleet.battery.
-    BatteryOptions b;
-    double charge_w = 7200 * 0.95;
-    for (const auto& [k, v] : battery.cast<py::dict>()) {
-      const std::string key = py::str(k);
-      if (key == "charging") b.charging = v.cast<bool>();
-      else if (key == "capacity_wh") b.capacity_wh = v.cast<double>();
-      else if (key == "initial") b.initial = v.cast<double>();
-      else if (key == "per_m_wh") b.per_m_wh = v.cast<double>();
-      else if (key == "per_turn_wh") b.per_turn_wh = v.cast<double>();
-      else if (key == "threshold") b.threshold = v.cast<double>();
-      else if (key == "critical") b.critical = v.cast<double>();
-      else if (key == "reserve_margin") b.reserve_margin = v.cast<double>();
-      else if (key == "rematch") b.rematch = v.cast<bool>();
-      else if (key == "target") b.target = v.cast<double>();
-      else if (key == "charge_w") charge_w = v.cast<double>();
-      else throw InputError("battery: unknown key '" + key + "'");
-    }
-    try {
-      tm->set_grid_battery(g, b, chargers, charge_w);
-    } catch (const std::invalid_argument& e) {
-      throw InputError(std::string("battery.") + e.what());
-    }
-  } else if (!chargers.empty()) {
-    throw InputError("chargers: only with battery={...}");
+  try {
+    tm = make_task_layer(in.tasks, g, layer);
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();  // the YAML's key names; mode is tasks.assignment there
+    throw InputError(what.rfind("assignment:", 0) == 0 ? "mode" + what.substr(10) : what);
   }
   policy::Model model;
   std::unique_ptr<policy::PolicyPreference> pref;
@@ -125,7 +172,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
     py::gil_scoped_release unlocked;  // a long run: let other Python threads go on
     r = run_lifelong(g, starts, *tm, solver, seed, opt);
   }
-  nlohmann::json j = lifelong_log(RunInfo{problem_file, solver, mode, assigner, pr.team_size, budget_ms, seed}, r);
+  nlohmann::json j = lifelong_log(RunInfo{problem_file, solver, layer.mode, assigner, pr.team_size, budget_ms, seed}, r);
   if (pref) j["policy"] = policy_file;
   add_task_fields(j, *tm);
   return to_python(j);
@@ -286,7 +333,14 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("budget_ms") = 100.0, py::arg("budget_expansions") = 0, py::arg("mode") = "",
         py::arg("assigner") = "greedy", py::arg("seed") = 0, py::arg("agents") = 0, py::arg("reassign") = false,
         py::arg("policy") = "", py::arg("battery") = py::none(), py::arg("chargers") = std::vector<Vertex>{},
+        py::arg("pool_size") = 0, py::arg("k_nearest") = 32, py::arg("queues") = py::none(),
+        py::arg("urgency") = py::none(), py::arg("parking") = py::none(),
         "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
-        "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, reserve_margin, rematch, "
-        "target, charge_w, charging) on `chargers` (cell ids), as rtlacam-lifelong --battery-* --chargers");
+        "The task layer takes the SUMO controller's YAML options (tasks.*, fleet.battery): mode (tasks.assignment: "
+        "roundrobin | pool; default the problem's), assigner, pool_size (0: the problem's), k_nearest, reassign; "
+        "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo); urgency: a dict of tasks.urgency's "
+        "(stalls: True | False | 'auto', battery; default both off, as rtlacam-lifelong); parking: parking cell ids; "
+        "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, "
+        "reserve_margin, rematch, task_check, target, charge_w, charging) on `chargers` (cell ids), as "
+        "rtlacam-lifelong --battery-* --chargers");
 }

@@ -58,3 +58,54 @@ def test_lifelong_battery_charging_keeps_agents_above_empty():
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, battery=dict(threshold=0.9, target=0.5, charging=False))
     with pytest.raises(ValueError, match="battery: unknown key 'volts'"):
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, battery=dict(volts=24))
+
+
+def test_lifelong_takes_every_task_layer_option_of_the_yaml():
+    # The controller's tasks.* and fleet.battery keys, through the one task-layer factory
+    # (tasks/task_layer.hpp): the same log as rtlacam-lifelong with the same options.
+    app = os.path.join(ROOT, "build", "apps", "rtlacam-lifelong")
+    if not os.path.exists(app):
+        pytest.skip("rtlacam-lifelong not built in build/")
+    g = rtlacam.load_map(os.path.join(os.path.dirname(PROBLEM), "maps", "random-32-32-20.map"))
+    cells = [v for v in range(0, g.size, g.size // 8)][:8]
+    lines = open(os.path.join(os.path.dirname(PROBLEM), "agents", "random_32_32_20_100.agents")).read().split()
+    park = [int(x) for x in lines[22:30]]  # LoRR cells (row x width + column) of agents 21..28
+    park_v = [g.at(c % g.width, c // g.width) for c in park]
+    args = dict(solver="rtlacam", steps=120, budget_ms=1000, budget_expansions=20, seed=1, agents=20, mode="pool",
+                assigner="hungarian", k_nearest=4, pool_size=5, reassign=True,
+                queues=dict(capacity=1, length=2, admission=-1, fifo=False), urgency=dict(stalls="auto", battery=True),
+                parking=park_v, battery=dict(capacity_wh=100, initial=0.45, per_m_wh=0.5, task_check=False, rematch=False,
+                                             charge_w=36000), chargers=cells)
+    log = rtlacam.lifelong(PROBLEM, **args)
+    assert log["mode"] == "pool" and log["assigner"] == "hungarian" and log["reassign"] is True
+    assert log["queues"]["maxHeading"] <= 1
+    assert log["parking"]["idleAtEnd"] >= 10 and log["parking"]["parkedAtEnd"] >= 4
+    assert "battery" in log and log["numPlannerErrors"] == 0
+    parking_file = os.path.join(os.environ.get("TMPDIR", "/tmp"), "rtlacam_py_parking.txt")
+    chargers_file = os.path.join(os.environ.get("TMPDIR", "/tmp"), "rtlacam_py_chargers.txt")
+    with open(parking_file, "w") as f:
+        f.write("\n".join(map(str, [8] + park)) + "\n")
+    with open(chargers_file, "w") as f:
+        f.write("\n".join(map(str, [8] + [g.xy(v)[1] * g.width + g.xy(v)[0] for v in cells])) + "\n")
+    out = subprocess.run([app, "--problem", PROBLEM, "--solver", "rtlacam", "--steps", "120", "--budget-ms", "1000",
+                          "--budget-expansions", "20", "--seed", "1", "--agents", "20", "--mode", "pool",
+                          "--assigner", "hungarian", "--k-nearest", "4", "--pool-size", "5", "--reassign",
+                          "--queue-capacity", "1", "--queue-length", "2", "--queue-admission", "-1", "--no-queue-fifo",
+                          "--urgency", "--parking", parking_file, "--battery-capacity-wh", "100",
+                          "--battery-initial", "0.45", "--battery-per-m-wh", "0.5", "--battery-no-task-check",
+                          "--battery-no-rematch", "--battery-charge-w", "36000", "--chargers", chargers_file, "--quiet"],
+                         capture_output=True, text=True, check=True)
+    ref = json.loads(out.stdout)
+    for k in ("numTaskFinished", "numErrandFinished", "maxErrandTicks", "queues", "parking", "battery", "stallTicks"):
+        assert log[k] == ref[k], k
+    # Each part reaches the run: without the queues, parking or the task check off, the run differs.
+    def sig(x):
+        return [x[k] for k in ("events", "maxErrandTicks", "queues", "parking", "battery")]
+    for off in (dict(queues=None), dict(parking=None), dict(battery=dict(args["battery"], task_check=True))):
+        assert sig(rtlacam.lifelong(PROBLEM, **dict(args, **off))) != sig(log), off
+    with pytest.raises(ValueError, match="queues: unknown key 'cap'"):
+        rtlacam.lifelong(PROBLEM, steps=5, agents=5, queues=dict(cap=1))
+    with pytest.raises(ValueError, match="queues.admission: must be >= capacity"):
+        rtlacam.lifelong(PROBLEM, steps=5, agents=5, queues=dict(capacity=3, admission=2))
+    with pytest.raises(ValueError, match="mode: must be roundrobin or pool"):
+        rtlacam.lifelong(PROBLEM, steps=5, agents=5, mode="fifo")

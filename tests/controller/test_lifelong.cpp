@@ -440,3 +440,79 @@ TEST(ControllerLifelong, EpochStartsReadLowerBoundsPastTheStepDeadline)
     EXPECT_GT(estimates[1], 0) << ex << ": epoch_in_budget on, yet the epoch starts read exact distances";
   }
 }
+
+// planner.prefetch (tasks::LifelongEpochs::prefetch, as rtlacam-lifelong --prefetch): the
+// tables of the goals to come are grown before the run, and at epoch starts the new next
+// goals are queued for the SUMO steps' spare budget. Exact tables either way, so the
+// decisions stay those of a run without it. Deterministic: 20 expansions per SUMO step; a
+// 1000 ms budget no step reaches leaves each step's rest to the queued tables, a 0 ms one
+// (no time limit) none. Off: nothing grows ahead of a query. (A 0 ms and a 1000 ms budget
+// are not the same search: RT-LaCAM's expansion reserve is on with a time budget only.)
+TEST(ControllerLifelong, PrefetchGrowsTheNextGoalsTablesAndKeepsTheDecisions)
+{
+  std::vector<std::vector<planner::Config>> plans;
+  long long pops[3] = {0, 0, 0};
+  int i = 0;
+  for (const auto& [prefetch, budget_ms] : std::vector<std::pair<bool, double>>{{false, 1000}, {true, 0}, {true, 1000}}) {
+    Config cfg = lifelong_config("prefetch" + std::to_string(i), 150);
+    cfg.planner.prefetch = prefetch;
+    cfg.planner.budget_ms = budget_ms;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    expect_clean_lifelong_run(cfg, c, m);
+    EXPECT_GE(m.epochs, 5);
+    pops[i++] = m.precompute_pops;
+    EXPECT_EQ(read_json(cfg.output.dir + "/metrics.json")["lifelong"]["precomputePops"].get<long long>(), m.precompute_pops);
+    plans.push_back(c.plan());
+  }
+  EXPECT_EQ(pops[0], 0);
+  EXPECT_GT(pops[1], 0);         // before the run
+  EXPECT_GT(pops[2], pops[1]);   // and in the steps, for the goals each epoch start queued
+  EXPECT_TRUE(plans[0] == plans[2]);  // the same budget, the same moves
+}
+
+// The task layer of the YAML is tasks::make_task_layer's (one factory for the controller,
+// rtlacam-lifelong and Python): every part of TaskLayerOptions comes from its key.
+TEST(ControllerLifelong, YamlFillsTheOneTaskLayerFactory)
+{
+  Config y = parse_config(kNetAdd +
+                              "fleet: {count: 6, seed: 4}\n"
+                              "tasks:\n  mode: lifelong\n  assignment: pool\n  assigner: hungarian\n  k_nearest: 5\n"
+                              "  pool_size: 3\n  reassign: true\n  random: {count: 50, errands: 2}\n"
+                              "  queues: {capacity: 2, length: 3, admission: 7, fifo: false}\n"
+                              "  urgency: {stalls: false, battery: false}\n"
+                              "  parking: [{lane: c0r0_c0r1_0, pos: 2}, {lane: c3r0_c3r1_0, pos: 2}]\n",
+                          "t.yaml", RTLACAM_CONFIGS);
+  const Config cfg = lifelong_config("layer", 5);
+  y.output = cfg.output;
+  y.run = cfg.run;
+  y.planner = cfg.planner;
+  Controller c(y);
+  ASSERT_EQ(c.run().error, "");  // the net gridified: the map the cells resolve on
+  const tasks::TaskLayerOptions o = task_layer_options(y, c.map());
+  EXPECT_EQ(o.mode, "pool");
+  EXPECT_EQ(o.assigner, "hungarian");
+  EXPECT_EQ(o.k_nearest, 5);
+  EXPECT_EQ(o.pool_size, 3);
+  EXPECT_TRUE(o.reassign);
+  EXPECT_EQ(o.queues.capacity, 2);
+  EXPECT_EQ(o.queues.length, 3);
+  EXPECT_EQ(o.queues.admission, 7);
+  EXPECT_FALSE(o.queues.fifo);
+  EXPECT_FALSE(o.urgency.stalls);
+  EXPECT_TRUE(o.parking.on);
+  EXPECT_EQ(o.parking.cells, parking_cells(y, c.map()));
+  EXPECT_FALSE(o.battery.on);
+  const auto tm = make_task_manager(y, c.map(), make_task_file(y, c.map()));
+  EXPECT_EQ(tm->mode(), "pool");
+  ASSERT_NE(tm->queues(), nullptr);
+  EXPECT_EQ(tm->queues()->options().admission, 7);
+  EXPECT_FALSE(tm->queues()->options().fifo);
+  ASSERT_NE(tm->parking(), nullptr);
+  EXPECT_EQ(tm->parking()->cells(), o.parking.cells);
+  // Pool size 0: ceil(1.5 x fleet.count); stalls auto: on with queues.
+  y.tasks.pool_size = 0;
+  y.tasks.urgency_stalls = -1;
+  EXPECT_EQ(task_layer_options(y, c.map()).pool_size, 9);
+  EXPECT_TRUE(task_layer_options(y, c.map()).urgency.stalls);
+}

@@ -5,6 +5,7 @@
 #include "tasks/hungarian_assigner.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/roundrobin.hpp"
+#include "tasks/task_layer.hpp"
 #include "tasks/task_pool.hpp"
 #include "tasks_test_util.hpp"
 
@@ -243,4 +244,74 @@ TEST(FreeFlowBound, ACostPricesMovesAsTheExecutorDrivesThem)
   rr.update(1, {5, 0});                  // both: 5 moves each
   EXPECT_DOUBLE_EQ(rr.free_flow()->steps(), 2 * (2.0 * 5 + 3.0));
   EXPECT_DOUBLE_EQ(rr.free_flow()->errands_per_step(), 2.0 * 2 / 26.0);
+}
+
+// make_task_layer: the one factory of the controller's YAML, rtlacam-lifelong and Python.
+// Each part of TaskLayerOptions reaches the manager with its option struct whole; bad
+// fields are one "key: what" naming the YAML key.
+TEST(TaskLayer, EveryPartOfTheOptionsReachesTheManager)
+{
+  const planner::Graph g = ttest::grid({"......", "......"});
+  auto file = ttest::task_file(g, {{{1, 0}, {4, 1}}, {{4, 0}, {1, 1}}, {{5, 0}, {0, 1}}});
+  TaskLayerOptions o;
+  std::unique_ptr<TaskManager> plain = make_task_layer(file, g, o);
+  EXPECT_EQ(plain->mode(), "roundrobin");
+  EXPECT_EQ(plain->queues(), nullptr);
+  EXPECT_EQ(plain->parking(), nullptr);
+  EXPECT_EQ(plain->battery(), nullptr);
+  EXPECT_FALSE(plain->urgency().on());
+
+  o.mode = "pool";
+  o.pool_size = 2;
+  o.queues.capacity = 1;
+  o.queues.length = 2;
+  o.queues.admission = -1;
+  o.queues.fifo = false;
+  o.urgency = {true, false};
+  o.parking = {true, {g.at(0, 0), g.at(5, 1)}};
+  o.battery.on = true;
+  o.battery.options.task_check = false;
+  o.battery.options.rematch = false;
+  o.battery.charger_cells = {g.at(2, 1)};
+  o.battery.charge_w = 3600;
+  std::unique_ptr<TaskManager> tm = make_task_layer(file, g, o);
+  EXPECT_EQ(tm->mode(), "pool");
+  ASSERT_NE(tm->queues(), nullptr);
+  EXPECT_EQ(tm->queues()->options().capacity, 1);
+  EXPECT_EQ(tm->queues()->options().length, 2);
+  EXPECT_EQ(tm->queues()->options().admission, -1);
+  EXPECT_FALSE(tm->queues()->options().fifo);
+  EXPECT_TRUE(tm->urgency().stalls);
+  EXPECT_FALSE(tm->urgency().battery);
+  ASSERT_NE(tm->parking(), nullptr);
+  EXPECT_EQ(tm->parking()->cells(), o.parking.cells);
+  ASSERT_NE(tm->battery(), nullptr);
+  EXPECT_FALSE(tm->battery()->options().task_check);
+  EXPECT_FALSE(tm->battery()->options().rematch);
+  ASSERT_EQ(tm->battery()->chargers().size(), 1u);
+  EXPECT_EQ(tm->battery()->chargers()[0].cell, g.at(2, 1));
+  EXPECT_DOUBLE_EQ(tm->battery()->chargers()[0].wh_per_step, 1.0);  // 3600 W for 1 s
+
+  auto error = [&](TaskLayerOptions bad) {
+    try {
+      make_task_layer(file, g, bad);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  TaskLayerOptions bad = o;
+  bad.queues.admission = 0;
+  bad.queues.capacity = 3;
+  bad.queues.admission = 2;
+  EXPECT_EQ(error(bad), "queues.admission: must be >= capacity (3), 0 or -1, got 2");
+  bad = o;
+  bad.mode = "fifo";
+  EXPECT_EQ(error(bad), "assignment: must be roundrobin or pool, not 'fifo'");
+  bad = o;
+  bad.pool_size = 0;
+  EXPECT_EQ(error(bad), "pool_size: must be >= 1, got 0");
+  bad = o;
+  bad.battery.options.threshold = 0.95;
+  EXPECT_EQ(error(bad).rfind("battery.threshold: must be < target", 0), 0u) << error(bad);
 }

@@ -2,12 +2,14 @@
 // The task layer of a lifelong controller run (tasks.mode: lifelong), built from the YAML
 // task spec: errand cells resolved on the gridified net (cell ids, station / junction ids,
 // SUMO lane positions), random or listed tasks, then the tasks library's RoundRobin or
-// TaskPool. Errors are ConfigErrors naming the key path.
+// TaskPool (tasks::make_task_layer, the one factory of every front end). Errors are
+// ConfigErrors naming the key path.
 #include <memory>
 
 #include "controller/config.hpp"
 #include "gridify/cell_map.hpp"
 #include "tasks/lorr_files.hpp"
+#include "tasks/task_layer.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace controller {
@@ -25,9 +27,13 @@ std::vector<planner::Vertex> parking_cells(const Config& cfg, const gridify::Cel
 // cell, and charging on with no station.
 std::vector<tasks::Charger> chargers(const Config& cfg, const gridify::CellMap& map);
 
-// tasks.assignment: roundrobin, or pool with tasks.assigner and tasks.pool_size; then
-// tasks.queues (station queues at the errand cells), tasks.urgency (priority hints),
-// tasks.parking and fleet.battery.
+// The YAML's task layer as tasks::TaskLayerOptions (tasks/task_layer.hpp): tasks.assignment,
+// tasks.assigner, tasks.pool_size (0: ceil(1.5 x fleet.count)), tasks.k_nearest,
+// tasks.reassign, tasks.queues, tasks.urgency (stalls auto: on with queues), tasks.parking
+// and fleet.battery with the net's chargers and cell centres.
+tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::CellMap& map);
+
+// tasks::make_task_layer of those options; its errors as ConfigErrors naming the key.
 std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const gridify::CellMap& map,
                                                       std::shared_ptr<const tasks::TaskFile> file);
 

@@ -18,6 +18,13 @@
 
 namespace tasks {
 
+// Parking of a run (task_layer.hpp): off, or on with its cells (empty: idle agents only
+// leave reserved cells).
+struct ParkingOptions {
+  bool on = false;
+  std::vector<planner::Vertex> cells;
+};
+
 class Parking {
  public:
   // `cells`: the parking cells (may be empty: then only the reserved-cell rule applies).
