@@ -402,7 +402,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node p = root["planner"];
   r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "swap", "policy", "keep_priorities", "refine",
-                        "dive", "lane_costs", "rotation"});
+                        "dive", "lane_costs", "prefetch", "rotation"});
   // Every real-time solver; lacam plans once, offline, and cannot follow SUMO.
   const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
@@ -422,6 +422,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.flag(p, "planner", "refine", c.planner.refine);
   r.flag(p, "planner", "dive", c.planner.dive);
   r.flag(p, "planner", "lane_costs", c.planner.lane_costs);
+  r.flag(p, "planner", "prefetch", c.planner.prefetch);
   if (c.planner.budget_ms == 0 && c.planner.expansions == 0)
     r.fail("planner.budget_ms", "0 needs planner.expansions > 0 (some limit per SUMO step)");
 

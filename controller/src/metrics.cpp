@@ -53,6 +53,7 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["stallTicks"] = {{"max", stalls.max_stall}, {"p99", stalls.p99_stall}};
     j["lifelong"]["reassignedForClosure"] = reassigned_for_closure;
     j["lifelong"]["epochDistEstimates"] = epoch_estimates;
+    j["lifelong"]["precomputePops"] = precompute_pops;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
     // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
     j["lifelong"]["freeFlowBound"] = free_flow_bound;

@@ -202,6 +202,14 @@ void Run::prepare()
     // Only watched lanes: the planner stays the one built above until one closes.
     if (rules_->configured()) rules_restart(ins_.starts);
   }
+  // Preprocessing (as the grid's, before the first step): the next goals' tables; the first
+  // ones grew when the planner was built.
+  prefetch_ = tm_ && cfg_.planner.prefetch;
+  if (prefetch_) {
+    const auto t0 = Clock::now();
+    prefetch_goals(true);
+    life_.setup_ms += ms_since(t0);
+  }
   // adg: the replans (stuck AGVs, rules) re-validate the cut plan from the final prefix.
   if (stuck_ || (rules_ && cfg_.run.executor != "lockstep")) val_final_.emplace(g, ins_.starts, goals);
 }
@@ -345,16 +353,18 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
     if (skip) {
       ++searches_skipped_;
     } else {
-      if (bounded) {
-        planner::Budget tb = b;
-        tb.ms = std::max(0.0, b.ms - reserve_.ms(b.ms));
-        dist_cache_->set_deadline(tb.deadline_from(t0));
-      }
+      const auto end = b.deadline_from(t0);  // the step's: the search gets what the prefetched tables leave
+      planner::Budget tb = b;
+      tb.ms = std::max(0.0, b.ms - reserve_.ms(b.ms));
+      if (bounded && cell_prefetch()) b.ms = std::max(0.0, b.ms - precompute_first(b, t0));
+      if (bounded) dist_cache_->set_deadline(tb.deadline_from(t0));
       const double s0 = planner::thread_cpu_ms();
       const uint64_t e0 = p_->expansions();
       p_->search(b);
       reserve_.record(planner::thread_cpu_ms() - s0, p_->expansions() - e0);
       if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+      // The search ended early: the rest of the step grows the tables to come.
+      if (bounded && cell_prefetch() && dist_cache_->pending() > 0 && Clock::now() < end) dist_cache_->precompute(end);
     }
   }
   plan_cpu_step_.push_back(planner::thread_cpu_ms() - c0 + plan_cpu_pending_);
@@ -377,6 +387,29 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
   safety_->check(last_poses_, allowed, cmd_->ids(), sumo_->time(), exclusive, groups);
   if (rule_check_) rule_check_->check(last_poses_, cmd_->ids(), sumo_->time());
   exec_step_.push_back(ms_since(t0));
+}
+
+void Run::prefetch_goals(bool now)
+{
+  if (cell_prefetch()) {
+    epochs_->prefetch(*dist_cache_, p_->current());
+    if (now) dist_cache_->precompute(Clock::time_point::max());
+  } else if (planner::RotationPlanner* rot = prefetch_ ? p_->rotation() : nullptr) {
+    epochs_->prefetch(*rot);
+    if (now) rot->precompute(Clock::time_point::max());
+  }
+}
+
+double Run::precompute_first(const planner::Budget& b, planner::Clock::time_point t0)
+{
+  if (dist_cache_->pending() == 0) return 0;
+  // Tables first: an expansion that meets an incomplete table would pay its BFS anyway, all
+  // at once. It leaves room for the one expansion the search always makes.
+  const double share = std::min(0.5 * b.ms, b.ms - reserve_.ms(b.ms));
+  if (share <= 0) return 0;
+  const auto t1 = Clock::now();
+  dist_cache_->precompute(planner::Budget::time_ms(share).deadline_from(t0));
+  return ms_since(t1);
 }
 
 void Run::start_sumo()
@@ -444,6 +477,7 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   // Rules: goals a closure cuts off wait (rules.hpp).
   epochs_->start_epoch(*p_, rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals());
   if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
+  if (!epochs_->completed().empty()) prefetch_goals(false);  // queued: later steps grow them
   val_->set_goals(tm_->goals());
   planner::Budget b = plan_budget();
   if (bounded) b.ms = std::max(0.0, b.ms - plan_cpu_pending_ - (planner::thread_cpu_ms() - c0));

@@ -80,6 +80,17 @@ class Run {
   // calls it at the tick's end, lockstep at its start (epoch_early).
   void epoch_start(const planner::Config& executed, long tick);
   bool epoch_early() const;
+  // Lifelong, planner.prefetch: the goals to come into the planner's distance tables
+  // (tasks::LifelongEpochs::prefetch), grown at once when `now` (before the run, as the
+  // grid's preprocessing), else in the SUMO steps' spare budget (step(), and the rotation
+  // solvers' slices). Cell tables only while the planner uses dist_cache_ (not on a rules
+  // graph, whose planner has tables of its own).
+  void prefetch_goals(bool now);
+  // step(), cell solvers with a time budget: the prefetched tables first, up to half of the
+  // step's budget `b` less one expansion (the grid's StepBudget::precompute_share); returns
+  // the time it took.
+  double precompute_first(const planner::Budget& b, planner::Clock::time_point t0);
+  bool cell_prefetch() const { return prefetch_ && dist_cache_ && !rules_graph_; }
   // Lifelong with fleet.battery: the battery metrics, a warning for each AGV run empty.
   void count_battery(const tasks::Battery& b);
   void progress_line(const planner::Config& executed);
@@ -176,6 +187,7 @@ class Run {
   // Lifelong: the task and epoch part shared with the grid's LifelongRun (start,
   // completions on the executed cells, epoch starts, their counts in life_).
   std::unique_ptr<tasks::LifelongEpochs> epochs_;
+  bool prefetch_ = false;  // lifelong and planner.prefetch
   planner::Budget budget_;
   int k_ = 1;
   int slice_ = 0;  // SUMO step within the tick (lockstep), for the rotation solvers' budget

@@ -352,6 +352,8 @@ void Run::finish()
     if (const tasks::FreeFlowBound* ff = tm_->free_flow()) m_.free_flow_bound = ff->errands_per_step();
     m_.stalls = tm_->stall_summary();
     if (m_.violations > 0) life_.first_error = m_.error;
+    life_.counts = epochs_->counts();
+    if (dist_cache_) m_.precompute_pops = static_cast<long long>(dist_cache_->counters().precompute_pops);  // the log's maxErrandTicks, queues and parking, as metrics.json's
     tasks::RunInfo info;
     info.problem = cfg_.path;
     info.solver = p_->name();

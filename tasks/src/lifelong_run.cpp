@@ -325,6 +325,8 @@ void LifelongRun::complete(Step& s, const planner::Config& real)
   else
     sb_.carry(0, 0, 0);
   epochs_.record(replan);
+  epochs_.count(s.rec.t, real);  // goal ticks, station crowd, queue and parking counts (as the controller's)
+  r_.counts = epochs_.counts();
   s.rec.completed = static_cast<int>(epochs_.completed().size());
   s.rec.new_epoch = completed;
 }

@@ -162,3 +162,42 @@ TEST(LifelongCli, BadBatteryOptionsAreOneLineErrors)
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "rtlacam-lifelong: --battery-critical: must be >= 0 and < threshold (0.3), got 0.4\n");
 }
+
+// The log carries the task layer's counts, named as in the SUMO controller's metrics.json
+// "lifelong" (tasks::LifelongEpochs::count): the longest an agent kept one goal, the most
+// busy agents heading for one errand cell, agent-steps on a queue cell, idle and parked
+// agents at the end. 20 agents, 5 tasks revealed at once (--pool-size): most are idle, and
+// with --parking (8 cells) they wait there; one agent per station with --queue-capacity 1.
+TEST(LifelongCli, LogHasTheControllersLifelongCounts)
+{
+  const std::string dir = ttest::kData + "/2024/random.domain";
+  std::ifstream agents(dir + "/agents/random_32_32_20_100.agents");
+  std::string line;
+  std::vector<std::string> cells;
+  while (std::getline(agents, line))
+    if (!line.empty() && line[0] != '#') cells.push_back(line);
+  ASSERT_GE(cells.size(), 29u);
+  std::string parking = "8\n";
+  for (int i = 21; i < 29; ++i) parking += cells[i] + "\n";
+  const std::string file = test::temp_file("parking.txt", parking);
+  const std::string base = "--problem " + dir + "/RANDOM-01.json --agents 20 --steps 150 --budget-ms 1000 "
+                           "--budget-expansions 20 --seed 1 --quiet --mode pool --pool-size 5 ";
+  CliRun r = run_cli(base + "--parking " + file + " --queue-capacity 1 --queue-length 2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("maxErrandTicks")) << r.out;
+  EXPECT_GT(j["maxErrandTicks"].get<long long>(), 10);
+  EXPECT_EQ(j["queues"]["maxHeading"], 1);  // --queue-capacity 1
+  EXPECT_GE(j["parking"]["idleAtEnd"].get<int>(), 15);  // 20 agents, 5 tasks
+  EXPECT_GE(j["parking"]["parkedAtEnd"].get<int>(), 4);
+  EXPECT_LE(j["parking"]["parkedAtEnd"].get<int>(), 8);
+  EXPECT_TRUE(j.contains("stallTicks"));
+  EXPECT_GT(j["numErrandFinished"].get<int>(), 5);
+  // Without parking and queues: nobody parked, and the crowd at a station is not capped.
+  r = run_cli(base);
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["parking"]["parkedAtEnd"], 0);
+  EXPECT_EQ(j["queues"]["queuedTicks"], 0);
+  EXPECT_GE(j["parking"]["idleAtEnd"].get<int>(), 15);
+}

@@ -121,6 +121,10 @@ struct PlannerSection {
   // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top
   // speed, v_fast the fastest cell's (controller/lane_costs.hpp; planner Graph::set_move_costs).
   bool lane_costs = true;
+  // Lifelong: the distance tables of the goals to come (the next errand of each task, a
+  // round-robin agent's next task) are grown before the run and in each SUMO step's spare
+  // budget, as rtlacam-lifelong --prefetch does (tasks::LifelongEpochs::prefetch).
+  bool prefetch = true;
   RotationSection rotation;
   bool rotation_solver() const;  // solver plans rotation actions (planner::plans_rotation)
 };

@@ -103,6 +103,10 @@ struct Metrics {
   // step's deadline had passed (run.epoch_in_budget; 0 with it off: those reads are exact),
   // metrics.json lifelong.epochDistEstimates.
   long long epoch_estimates = 0;
+  // planner.prefetch: BFS vertices grown ahead of their queries in the cell solvers' shared
+  // distance tables (before the run and in the SUMO steps' spare budget), metrics.json
+  // lifelong.precomputePops (0 with it off).
+  long long precompute_pops = 0;
   // Lifelong with closures: tasks an AGV handed back because a closure cut it off its next
   // errand (tasks/task_manager.hpp), metrics.json lifelong.reassignedForClosure.
   long long reassigned_for_closure = 0;

@@ -18,14 +18,14 @@
 //   record    epochs, the step's completions, the longest run of steps without one
 //   count     per step on the real cells: how long agents keep one goal, the crowd heading
 //             for one errand cell, agents waiting on their queue cells, idle and parked
-//             ones (the controller's metrics.json; rtlacam-lifelong does not write them yet)
+//             ones (EpochCounts: the controller's metrics.json and rtlacam-lifelong's log)
 //
 // Why the rest stays with each back end: a grid step and a SUMO tick are timed apart
 // (StepBudget per step; the controller's budget per SUMO step, Run::step); the grid executes
 // on Execution (delays, rotation windows), SUMO on the Commander, Driver, ADG and Safety over
 // physical AGVs, with traffic rules that change the epoch's goals (closed goals wait) and a
-// search slice, the validator's goals and goal markers after set_goals. The controller does
-// not prefetch (its runs were never measured with it; behaviour unchanged).
+// search slice, the validator's goals and goal markers after set_goals. Both prefetch: the
+// grid in its StepBudget's spare time, the controller in its SUMO steps' (run.prefetch).
 #include <memory>
 #include <vector>
 
@@ -45,14 +45,6 @@ namespace tasks {
 // The epoch start itself: p's priority hints, then `goals` (the task layer's, or what a back
 // end makes of them) with the lifelong goal test at p's current configuration.
 void start_epoch(const TaskManager& tasks, planner::RealtimePlanner& p, const planner::Config& goals);
-
-// count()'s results: the task layer's view of congestion at stations.
-struct EpochCounts {
-  long long max_goal_ticks = 0;  // longest any agent kept one goal, idle ones too (open ones to now)
-  int max_heading = 0;           // most busy agents heading for one errand cell at once
-  long long queued_ticks = 0;    // agent-steps busy, on their goal, that goal not the errand's cell (a queue)
-  int idle = 0, parked = 0;      // at the last count: agents without a task, those of them on a parking cell
-};
 
 class LifelongEpochs {
  public:

@@ -115,6 +115,14 @@ struct LifelongOptions {
 using PlannerTimes = planner::Latency;  // one p99 definition for all layers
 PlannerTimes summarize(std::vector<double> ms);
 
+// LifelongEpochs::count()'s results: the task layer's view of congestion at stations.
+struct EpochCounts {
+  long long max_goal_ticks = 0;  // longest any agent kept one goal, idle ones too (open ones to now)
+  int max_heading = 0;           // most busy agents heading for one errand cell at once
+  long long queued_ticks = 0;    // agent-steps busy, on their goal, that goal not the errand's cell (a queue)
+  int idle = 0, parked = 0;      // at the last count: agents without a task, those of them on a parking cell
+};
+
 struct LifelongResult {
   long steps = 0;
   long errands_finished = 0, tasks_finished = 0;
@@ -146,6 +154,7 @@ struct LifelongResult {
   std::vector<int> final_headings;   // rotation only
   long window_full = 0;              // rotation: steps the planner waited for the slowest robot
   long searches_skipped = 0;         // steps with no room for an expansion (skip_late_search)
+  EpochCounts counts;                // at the end (LifelongEpochs::count after every step)
 };
 
 // Starts the tasks at `starts`, builds `solver` (planner::make_planner, any name of
