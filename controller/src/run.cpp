@@ -404,8 +404,9 @@ double Run::precompute_first(const planner::Budget& b, planner::Clock::time_poin
 {
   if (dist_cache_->pending() == 0) return 0;
   // Tables first: an expansion that meets an incomplete table would pay its BFS anyway, all
-  // at once. It leaves room for the one expansion the search always makes.
-  const double share = std::min(0.5 * b.ms, b.ms - reserve_.ms(b.ms));
+  // at once. It leaves room for the one expansion the search always makes. The share is the
+  // grid's (LifelongOptions::precompute_share, StepBudget).
+  const double share = std::min(tasks::LifelongOptions{}.precompute_share * b.ms, b.ms - reserve_.ms(b.ms));
   if (share <= 0) return 0;
   const auto t1 = Clock::now();
   dist_cache_->precompute(planner::Budget::time_ms(share).deadline_from(t0));

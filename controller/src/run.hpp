@@ -86,9 +86,9 @@ class Run {
   // solvers' slices). Cell tables only while the planner uses dist_cache_ (not on a rules
   // graph, whose planner has tables of its own).
   void prefetch_goals(bool now);
-  // step(), cell solvers with a time budget: the prefetched tables first, up to half of the
-  // step's budget `b` less one expansion (the grid's StepBudget::precompute_share); returns
-  // the time it took.
+  // step(), cell solvers with a time budget: the prefetched tables first, up to the grid's
+  // share of the step's budget `b` (LifelongOptions::precompute_share, 0.5) less one
+  // expansion; returns the time it took.
   double precompute_first(const planner::Budget& b, planner::Clock::time_point t0);
   bool cell_prefetch() const { return prefetch_ && dist_cache_ && !rules_graph_; }
   // Lifelong with fleet.battery: the battery metrics, a warning for each AGV run empty.

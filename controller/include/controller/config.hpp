@@ -123,8 +123,12 @@ struct PlannerSection {
   bool lane_costs = true;
   // Lifelong: the distance tables of the goals to come (the next errand of each task, a
   // round-robin agent's next task) are grown before the run and in each SUMO step's spare
-  // budget, as rtlacam-lifelong --prefetch does (tasks::LifelongEpochs::prefetch).
-  bool prefetch = true;
+  // budget, as rtlacam-lifelong --prefetch does (tasks::LifelongEpochs::prefetch). Off by
+  // default: on the huge warehouse (1000 AGVs, 1 ms, 300 ticks) it cut the epoch starts'
+  // lower-bound reads 2-9x but not the errands per tick (lockstep gm 0.996x of off,
+  // adg-follow gm 0.912x, 5 pairs each; scripts/bench_prefetch.py, controller/README.md
+  // "Prefetch").
+  bool prefetch = false;
   RotationSection rotation;
   bool rotation_solver() const;  // solver plans rotation actions (planner::plans_rotation)
 };

@@ -25,7 +25,8 @@
 // on Execution (delays, rotation windows), SUMO on the Commander, Driver, ADG and Safety over
 // physical AGVs, with traffic rules that change the epoch's goals (closed goals wait) and a
 // search slice, the validator's goals and goal markers after set_goals. Both prefetch: the
-// grid in its StepBudget's spare time, the controller in its SUMO steps' (run.prefetch).
+// grid in its StepBudget's spare time, the controller in its SUMO steps' (planner.prefetch,
+// off by default there: controller/README.md "Prefetch").
 #include <memory>
 #include <vector>
 
