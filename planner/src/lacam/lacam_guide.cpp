@@ -66,18 +66,41 @@ bool Lacam::scatter_step()
     scatter_probed_ = true;
     const uint64_t m = reroots_ - scatter_reroots0_;
     const uint64_t passes = static_cast<uint64_t>(std::max(1, opt_.scatter_dive_passes));
-    double moves = static_cast<double>(m * n * passes) / scatter_.planned();
-    if (opt_.scatter_lead_dive && m > 0 && guide_spent_ > 0) {
-      // The guided dive must land before the agents reach its start too: it takes a PIBT
-      // call per step of the path from there, at the guide work per move measured so far.
-      int depth = 0;
-      for (const HNode* h = goal_; h && h != root_; h = h->parent) ++depth;
-      const int rest = std::max(0, depth - std::max(0, steps_ahead(scatter_root_)));
-      const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
-      moves += rest * step / (guide_spent_ / static_cast<double>(m));
+    const double suo = static_cast<double>(m * n * passes) / scatter_.planned();  // moves, from here
+    if (!opt_.scatter_lead_dive || m == 0 || guide_spent_ <= 0) {
+      const int need = static_cast<int>(suo * 5 / 4) + 2;
+      if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+      return true;
     }
-    const int need = static_cast<int>(moves * 5 / 4) + 2;
-    if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+    // The guided dive must land before the agents reach its start too: it takes a PIBT call
+    // per step of the path's rest from there, at the guide work per move measured so far.
+    // SUO from further ahead is cheaper: its A*s are about as long as the agents' distances
+    // left, so its passes scale with their sum there. The lead is the least L that covers
+    // both from the node L steps ahead (binary search; the condition only loosens with L).
+    std::vector<const HNode*> p;  // the best path, the root first
+    for (const HNode* h = goal_; h; h = h->parent) p.push_back(h);
+    std::reverse(p.begin(), p.end());
+    const int depth = static_cast<int>(p.size()) - 1;
+    const auto left = [&](const HNode* h) {
+      int64_t d = 0;
+      for (int i = 0; i < n_; ++i) d += dist_.get(i, h->C[i]);
+      return static_cast<double>(std::max<int64_t>(d, 1));
+    };
+    const double here = left(scatter_root_);
+    const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
+    const double per_move = guide_spent_ / static_cast<double>(m);
+    const auto covered = [&](int L) {
+      const double moves = suo * left(p[L]) / here + (depth - L) * step / per_move;
+      return L >= static_cast<int>(moves * 5 / 4) + 2;
+    };
+    const int now = std::max(0, steps_ahead(scatter_root_));
+    if (now >= depth || covered(now)) return true;
+    int lo = now, hi = depth;  // covered(hi) or hi == depth
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      (covered(mid) ? hi : lo) = mid;
+    }
+    start_scatter(hi);
   }
   return true;
 }
