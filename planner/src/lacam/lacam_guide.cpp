@@ -153,7 +153,8 @@ void Lacam::start_dive(HNode* from)
   int depth = 0;
   for (const HNode* h = goal_; h && h != root_; h = h->parent) ++depth;
   dive_limit_ = 2 * depth + 16;
-  dive_guided_len_ = std::max(1, depth - std::max(0, steps_ahead(from)));
+  // A scatter path may be up to scatter_margin longer than a shortest one.
+  dive_guided_len_ = std::max(1, depth - std::max(0, steps_ahead(from)) + opt_.scatter_margin);
   if (!opt_.scatter_dive_guard) dive_guided_len_ = dive_limit_;
 }
 
@@ -182,7 +183,8 @@ void Lacam::dive_step()
     }
     ++steps;
     // Scatter paths can livelock a rollout (measured: 10 agents off their goals after 3000
-    // steps); past the length of the path it must beat, PIBT goes on by distances alone.
+    // steps); past the length of the path it must beat (+ the margin), PIBT goes on by
+    // distances alone.
     const Scatter* guide = pibt_.scatter();
     if (dive_len_ >= dive_guided_len_) pibt_.set_scatter(nullptr);
     const bool ok = pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_);

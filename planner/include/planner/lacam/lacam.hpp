@@ -136,7 +136,7 @@ struct LacamOptions {
   int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
   bool dive = false;
   // A guided dive drops the scatter guidance once it is as long as the rest of the path it
-  // must beat, and goes on by PIBT's distances. Scatter successors can livelock a rollout
+  // must beat plus scatter_margin, and goes on by PIBT's distances. Scatter successors can livelock a rollout
   // (warehouse-10-20-10-2-1 N = 400, 1 ms: 10 agents still off their goals after 3000 steps),
   // and then every guided dive ran into its limit and lost, which also stopped SUO.
   bool scatter_dive_guard = true;
