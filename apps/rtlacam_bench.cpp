@@ -41,6 +41,8 @@ int main(int argc, char** argv)
   bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
       scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
+  bool scatter_dive_guard = LacamOptions{}.scatter_dive_guard, reprice = LacamOptions{}.reprice,
+       scatter_lead_dive = LacamOptions{}.scatter_lead_dive;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -138,6 +140,12 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_flag("--dive,!--no-dive", dive, "with --refine: PIBT rollouts from the root, inserted and rewired")
       ->capture_default_str();
+  app.add_flag("--scatter-dive-guard,!--no-scatter-dive-guard", scatter_dive_guard,
+               "a guided dive goes on by distances once as long as the rest of the best path (lacam.hpp)");
+  app.add_flag("--scatter-lead-dive,!--no-scatter-lead-dive", scatter_lead_dive,
+               "SUO's lead check also counts the guided dive after its passes (lacam.hpp)");
+  app.add_flag("--reprice,!--no-reprice", reprice,
+               "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
   app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
@@ -186,6 +194,9 @@ int main(int argc, char** argv)
     lopt.scatter_dive_passes = scatter_dive_passes;
     lopt.dive = dive;
     lopt.scatter_first = scatter_first;
+    lopt.scatter_dive_guard = scatter_dive_guard;
+    lopt.reprice = reprice;
+    lopt.scatter_lead_dive = scatter_lead_dive;
     lopt.resumable = resumable;
     lopt.pause_min_ms = pause_min_ms;
     lopt.mc_rollouts = mc_rollouts;
@@ -264,6 +275,11 @@ int main(int argc, char** argv)
         threads_json["lns_steps"] = rt->lacam().lns_cost().samples();  // timed LNS steps learnt from
         threads_json["lns_max_window"] = rt->lacam().lns_max_window();
         threads_json["dives"] = rt->lacam().dives();
+        threads_json["dive_wins"] = rt->lacam().dive_wins();
+        threads_json["dive_stalls"] = rt->lacam().dive_stalls();
+        threads_json["reprices"] = rt->lacam().reprices();
+        threads_json["late_dives"] = rt->lacam().late_dives();
+        threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
       }
       if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && refine_threads > 0) {
         threads_json["refine_threads"] = refine_threads;
@@ -320,6 +336,9 @@ int main(int argc, char** argv)
     j["scatter_dive_passes"] = scatter_dive_passes;
     j["dive"] = dive;
     j["scatter_first"] = scatter_first;
+    j["scatter_dive_guard"] = scatter_dive_guard;
+    j["reprice"] = reprice;
+    j["scatter_lead_dive"] = scatter_lead_dive;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

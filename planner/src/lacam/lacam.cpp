@@ -430,7 +430,12 @@ void Lacam::reroot(const HNode* child)
   old->parent = c;
   c->parent = nullptr;
   root_ = c;
+  const bool pricing = best_.pricing();
   best_.advance(old, c);
+  // A candidate the agents left (the followed path is not its tree path, e.g. after an LNS
+  // splice) is dropped unpriced: its goal is priced again from the new root, else a cheaper
+  // goal found meanwhile (a winning dive) would never be followed.
+  if (pricing && !best_.pricing() && opt_.reprice) priced_version_ = goal_version_ - 1, ++reprices_;
   if (refining_ && !preparing_) {  // timed: search() keeps the next one's cost free
     const double c0 = thread_cpu_ms();
     rebase(c, old, false);

@@ -39,6 +39,8 @@ void Lacam::start_scatter(int lead)
                  opt_.scatter_max_passes);
   scatter_started_ = true;
   scatter_reroots0_ = reroots_;
+  scatter_lead_ = steps_ahead(scatter_root_);
+  guide_spent_ = 0;
 }
 
 // SUO work until the deadline or the budget left; charged work / N expansions. Returns false
@@ -64,8 +66,41 @@ bool Lacam::scatter_step()
     scatter_probed_ = true;
     const uint64_t m = reroots_ - scatter_reroots0_;
     const uint64_t passes = static_cast<uint64_t>(std::max(1, opt_.scatter_dive_passes));
-    const int need = static_cast<int>(m * n * passes / static_cast<uint64_t>(scatter_.planned()) * 5 / 4) + 2;
-    if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+    const double suo = static_cast<double>(m * n * passes) / scatter_.planned();  // moves, from here
+    if (!opt_.scatter_lead_dive || m == 0 || guide_spent_ <= 0) {
+      const int need = static_cast<int>(suo * 5 / 4) + 2;
+      if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+      return true;
+    }
+    // The guided dive must land before the agents reach its start too: it takes a PIBT call
+    // per step of the path's rest from there, at the guide work per move measured so far.
+    // SUO from further ahead is cheaper: its A*s are about as long as the agents' distances
+    // left, so its passes scale with their sum there. The lead is the least L that covers
+    // both from the node L steps ahead (binary search; the condition only loosens with L).
+    std::vector<const HNode*> p;  // the best path, the root first
+    for (const HNode* h = goal_; h; h = h->parent) p.push_back(h);
+    std::reverse(p.begin(), p.end());
+    const int depth = static_cast<int>(p.size()) - 1;
+    const auto left = [&](const HNode* h) {
+      int64_t d = 0;
+      for (int i = 0; i < n_; ++i) d += dist_.get(i, h->C[i]);
+      return static_cast<double>(std::max<int64_t>(d, 1));
+    };
+    const double here = left(scatter_root_);
+    const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
+    const double per_move = guide_spent_ / static_cast<double>(m);
+    const auto covered = [&](int L) {
+      const double moves = suo * left(p[L]) / here + (depth - L) * step / per_move;
+      return L >= static_cast<int>(moves * 5 / 4) + 2;
+    };
+    const int now = std::max(0, steps_ahead(scatter_root_));
+    if (now >= depth || covered(now)) return true;
+    int lo = now, hi = depth;  // covered(hi) or hi == depth
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      (covered(mid) ? hi : lo) = mid;
+    }
+    start_scatter(hi);
   }
   return true;
 }
@@ -112,10 +147,15 @@ void Lacam::guide_step()
 void Lacam::start_dive(HNode* from)
 {
   dive_ = from;
+  dive_ahead_ = steps_ahead(from);
+  dive_reroots0_ = reroots_;
   dive_len_ = 0;
   int depth = 0;
   for (const HNode* h = goal_; h && h != root_; h = h->parent) ++depth;
   dive_limit_ = 2 * depth + 16;
+  // A scatter path may be up to scatter_margin longer than a shortest one.
+  dive_guided_len_ = std::max(1, depth - std::max(0, steps_ahead(from)) + opt_.scatter_margin);
+  if (!opt_.scatter_dive_guard) dive_guided_len_ = dive_limit_;
 }
 
 // Continues the running dive by PIBT steps until it reaches the goals, fails, or the
@@ -127,6 +167,7 @@ void Lacam::dive_step()
     // A guided dive that does not beat the best path: SUO does not pay here, its share of
     // the budget goes back to LNS and LaCAM* (no more passes; PIBT keeps the guidance).
     if (guided_dive_ && !won) scatter_stopped_ = true;
+    if (guided_dive_ && dive_ahead_ > 0 && reroots_ - dive_reroots0_ > static_cast<uint64_t>(dive_ahead_)) ++late_dives_;
     guided_dive_ = false;
     dive_ = nullptr;
     first_dive_done_ = true;
@@ -136,11 +177,19 @@ void Lacam::dive_step()
   };
   while (dive_) {
     if (dive_len_ >= dive_limit_) {
+      ++dive_stalls_;
       end(false);
       break;
     }
     ++steps;
-    if (!pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_)) {
+    // Scatter paths can livelock a rollout (measured: 10 agents off their goals after 3000
+    // steps); past the length of the path it must beat (+ the margin), PIBT goes on by
+    // distances alone.
+    const Scatter* guide = pibt_.scatter();
+    if (dive_len_ >= dive_guided_len_) pibt_.set_scatter(nullptr);
+    const bool ok = pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_);
+    pibt_.set_scatter(guide);
+    if (!ok) {
       end(false);
       break;
     }
@@ -157,3 +206,4 @@ void Lacam::dive_step()
 }
 
 }  // namespace planner
+

@@ -155,6 +155,7 @@ Status Lacam::refine_expand()
     guide_step();
     deadline_ = deadline;
     if (timed_) guide_tail_.record(1, std::max(0.0, thread_cpu_ms() - c0 - room0));
+    guide_spent_ += timed_ ? thread_cpu_ms() - c0 : static_cast<double>(units_);
     last_step_ = Step::guide;
     return status_;
   }

@@ -128,9 +128,22 @@ struct LacamOptions {
   // move on while it is computed, and the guided dive starts there. Adapted once, after an
   // eighth of the first pass (lacam_guide.cpp), when SUO proves slower than that.
   int scatter_lead = 30;
+  // The lead's check also counts the guided dive that follows the passes (a PIBT call per
+  // step, at the guide's measured work per move), not the passes alone: at N = 600 the
+  // dive took ~22 iterations and the agents passed its start meanwhile. Off: passes only.
+  bool scatter_lead_dive = true;
   int scatter_dive_passes = 2;  // the first guided dive waits for this many passes (lacam3: >= 2)
   int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
   bool dive = false;
+  // A guided dive drops the scatter guidance once it is as long as the rest of the path it
+  // must beat plus scatter_margin, and goes on by PIBT's distances. Scatter successors can livelock a rollout
+  // (warehouse-10-20-10-2-1 N = 400, 1 ms: 10 agents still off their goals after 3000 steps),
+  // and then every guided dive ran into its limit and lost, which also stopped SUO.
+  bool scatter_dive_guard = true;
+  // Objective::soc: a goal path whose pricing the agents' moves cut short (best_path.hpp,
+  // advance) is priced again from the new root. Off: dropped until the goal's g drops again
+  // (the earlier behaviour: a winning dive's path was often never followed).
+  bool reprice = true;
   // SUO before the first solution (lacam3's order; counts against the iterations' budget).
   // It changes PIBT and so the tree: the first solution is then not LaCAM's.
   bool scatter_first = false;
@@ -223,6 +236,12 @@ class Lacam {
   const Scatter& scatter() const { return scatter_; }
   uint64_t dives() const { return dives_; }           // completed dives, and those that lowered g(goal)
   uint64_t dive_wins() const { return dive_wins_; }
+  uint64_t dive_stalls() const { return dive_stalls_; }  // dives that ran into their length limit
+  uint64_t reprices() const { return reprices_; }  // goal paths priced again (LacamOptions::reprice)
+  // Guided dives that ended after the agents had passed their start (its nodes then hang
+  // behind the root); the lead SUO last started at, in steps ahead of the root then.
+  uint64_t late_dives() const { return late_dives_; }
+  int scatter_lead() const { return scatter_lead_; }
   size_t bytes_reserved() const;
 
   // LaCAM*'s edge cost: agents that move or leave/are off their goal (symmetric).
@@ -385,7 +404,13 @@ class Lacam {
   uint64_t reroots_ = 0, scatter_reroots0_ = 0;  // reroots, and their count when SUO started
   HNode* dive_ = nullptr;       // the running dive's last node (null: none)
   int dive_len_ = 0, dive_limit_ = 0, dive_failures_ = 0;
-  uint64_t dives_ = 0, dive_wins_ = 0;
+  int dive_guided_len_ = 0;        // a dive's steps with scatter guidance; unguided after them
+  double guide_spent_ = 0;         // guide work since SUO started: CPU ms (timed) or budget units
+  int dive_ahead_ = 0;             // the running dive's start: steps ahead of the root then
+  uint64_t dive_reroots0_ = 0;     // reroots when it started
+  int scatter_lead_ = 0;           // steps ahead of the root the running SUO started
+  uint64_t late_dives_ = 0;
+  uint64_t dives_ = 0, dive_wins_ = 0, dive_stalls_ = 0, reprices_ = 0;
   uint64_t left_ = UINT64_MAX;  // expansions-budget units left to the running search() call
   uint64_t refine_iterations_ = 0, guide_iterations_ = 0;
   int lns_failures_ = 0;  // in a row; LNS alone gives up after many

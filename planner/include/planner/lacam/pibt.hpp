@@ -53,6 +53,7 @@ class Pibt {
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
   void set_scatter(const Scatter* s) { scatter_ = s; }
+  const Scatter* scatter() const { return scatter_; }
   // Local guidance (local_guidance.hpp; null = none): each generation first plans every
   // agent's windowed space-time path in priority order (a phase of resume(), stoppable
   // between two agents), and an agent's first step on it comes first among its candidates,
