@@ -113,7 +113,11 @@ std::unique_ptr<tasks::TaskManager> make_task_manager(const Config& cfg, const g
   tm->set_queues(map.graph, q);
   // tasks.urgency: stalls `auto` (-1) means on only with station queues (see config.hpp).
   const bool stalls = t.urgency_stalls < 0 ? t.queue_capacity > 0 : t.urgency_stalls != 0;
-  tm->set_urgency({stalls, t.urgency_battery});
+  tasks::UrgencyOptions u{stalls, t.urgency_battery};
+  u.swap_after = t.urgency_swap_after;
+  u.head_after = t.urgency_head_after;
+  u.load_cost = t.urgency_load_cost;
+  tm->set_urgency(u);
   if (t.parking) tm->set_parking(map.graph, parking_cells(cfg, map));
   if (cfg.fleet.battery.on) {
     const FleetSection::Battery& b = cfg.fleet.battery;
