@@ -104,7 +104,10 @@ void TaskPool::hand_over_stalled(const planner::Config& positions)
     const int a = k.agent;
     if (swapped[a]) continue;
     const planner::Vertex cell = task_of(a)->next_cell();
+    // Only nearer than the errand has been: a handover never lets the stall metric's new
+    // holder (errand_stalls.hpp) start farther away than the errand already was.
     int32_t best = dist_.from_goal(cell, positions[a]);
+    if (const int32_t b = st->best(task_of(a)->id); b >= 0) best = std::min(best, b);
     int pick = -1;
     for (const Cand& o : c) {
       const int b = o.agent;

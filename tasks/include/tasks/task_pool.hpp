@@ -67,7 +67,8 @@ class TaskPool : public TaskManager {
   // cells from its station's stub). The errand, not the agent, is what waits. So an
   // errand not yet opened, stalled >= T ticks (ErrandStalls), passes to the nearest agent
   // strictly nearer its cell that heads for the same cell with a task not yet opened and
-  // stalled less; that agent's task passes back. Both goals stay what they were, so the
+  // stalled less, and nearer than the errand has ever been (ErrandStalls::best: passing it
+  // on never undoes its progress); that agent's task passes back. Both goals stay, so the
   // planner, its epoch and the traffic are untouched: within a station's crowd the oldest
   // errand rides with the agent nearest to being served (first come, first served per
   // station). The most stalled errand picks first; an agent swaps at most once a step.
