@@ -289,7 +289,7 @@ TEST(LifelongRules, WithStationQueuesStalledErrandsGetPriorityAndStallLess)
 // tasks.urgency {swap_after: 30, head_after: 60} (tasks/urgency.hpp) -- a pick-up errand
 // stalled 30 ticks passes to a nearer AGV bound for the same station, the most stalled AGV
 // per station gets planner priority, and an AGV leaving a station's dead-end stub goes
-// first. K (the longest stall) 90 and 178 errands; off: K 153, 172 errands.
+// first. K (the longest stall) 97 and 176 errands; off: K 153, 172 errands.
 TEST(LifelongRules, StallRulesBoundTheLongestStallWithoutLosingErrands)
 {
   auto run = [](bool on) {
