@@ -161,3 +161,26 @@ TEST(ErrandStalls, HeadHintsGoToTheMostStalledAgentPerCellAndToAgentsLeavingAPoc
     EXPECT_EQ(h[2], 0.0f);
   }
 }
+
+// Station load (UrgencyOptions::load_cost): agent 0 holds a task at (0, 0); agent 1 finishes
+// its task at (3, 0) and is matched again: the free task at (0, 0) is 3 moves away, the one
+// at (7, 0) 4. Off, it takes the nearer; with load_cost 10 the (0, 0) task costs 3 + 10 x 1
+// (one task already held there), and it takes the one at (7, 0).
+TEST(ErrandStalls, StationLoadSteersTheMatchingToAStationNobodyIsBoundFor)
+{
+  const planner::Graph g = ttest::grid({".........."});
+  auto file = ttest::task_file(g, {{{0, 0}}, {{3, 0}}, {{0, 0}}, {{7, 0}}});
+  for (int w : {10, 0}) {
+    SCOPED_TRACE("load_cost " + std::to_string(w));
+    TaskPool tm(file, g, 3, std::make_unique<GreedyAssigner>());
+    UrgencyOptions u;
+    u.load_cost = w;
+    tm.set_urgency(u);
+    const Config at{g.at(1, 0), g.at(3, 0)};
+    tm.start(at);
+    ASSERT_EQ(tm.goals()[0], g.at(0, 0));
+    ASSERT_EQ(tm.goals()[1], g.at(3, 0));
+    tm.update(1, at);  // agent 1 done; task 3 (7, 0) revealed
+    EXPECT_EQ(tm.goals()[1], w > 0 ? g.at(7, 0) : g.at(0, 0));
+  }
+}
