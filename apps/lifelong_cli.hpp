@@ -334,6 +334,20 @@ struct TaskCli {
     app.add_flag("--urgency,!--no-urgency", urgency,
                  "priority hints to the planner (tasks/urgency.hpp): a stalled errand's holder and a low-battery agent "
                  "win conflicts at each epoch start (default off here; on in rtlacam-sumo)");
+    app.add_option("--stall-swap-after", o.urgency.swap_after,
+                   "pool mode: a pick-up errand stalled this many ticks passes to a nearer agent heading for the "
+                   "same station cell (tasks.urgency.swap_after; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--stall-head-after", o.urgency.head_after,
+                   "per station cell, the agent stalled this many ticks outside its stub gets priority, and agents in a "
+                   "stub that is not theirs leave first (tasks.urgency.head_after; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    app.add_option("--station-load-cost", o.urgency.load_cost,
+                   "pool mode: extra moves charged per task already bound for a station (tasks.urgency.load_cost; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("--k-nearest", o.k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--queue-capacity", o.queues.capacity,
                    "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "
@@ -368,7 +382,7 @@ struct TaskCli {
     if (o.queues.admission > 0 && o.queues.admission < o.queues.capacity)
       throw planner::InputError("--queue-admission " + std::to_string(o.queues.admission) +
                                 ": must be >= --queue-capacity, 0 or -1");
-    o.urgency = {urgency, urgency};
+    o.urgency.stalls = o.urgency.battery = urgency;
     if (!parking_file.empty()) {
       // The agents-file reader: a count, cell ids, each on the map and distinct.
       const planner::Config cells = tasks::load_lorr_agents(parking_file, g);

@@ -22,6 +22,8 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
+                         [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
+                          [--head-after 60] [--load-cost 0]]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
@@ -39,6 +41,10 @@ fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped e
 first, planner.keep_priorities) on against off (no queues), per config (default: the four
 large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansions:
 errands per tick on / off and K both ways.
+--stall-rules: instead, the task layer's stall rules (tasks/urgency.hpp: stall handover
+swap_after, head hints head_after with agents leaving a dead-end pocket first, station load
+load_cost) on against all off, per config (default: the large two-way and one-way warehouses)
+and fleet seed, same ticks (--large-ticks) and expansions: errands per tick on / off and K.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
@@ -235,6 +241,33 @@ def shipped_k(a, build, tmp):
     return 0 if clean else 1
 
 
+def stall_rules(a, build, tmp):
+    """Stall handover, head hints and station load (tasks/urgency.hpp: swap_after, head_after,
+    load_cost) on against off, per config and fleet seed (same ticks, expansions)."""
+    clean = True
+    on = {"swap_after": a.swap_after, "head_after": a.head_after, "load_cost": a.load_cost}
+    print(f"# on: tasks.urgency {on}; off: all 0")
+    print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    seeds = [int(x) for x in a.seeds.split(",") if x]
+    for base in a.stall_configs:
+        ticks = a.ticks if "small" in base else a.large_ticks
+        for seed in seeds:
+            out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_stall")
+            res, ok = on_off(build, base, out, ticks, a.expansions,
+                             {"on": (None, {"urgency": dict(on)}, {"fleet": {"seed": seed}}),
+                              "off": (None, {"urgency": {"swap_after": 0, "head_after": 0, "load_cost": 0}},
+                                      {"fleet": {"seed": seed}})})
+            if res is None:
+                print(f"# {base} {ok}", file=sys.stderr)
+                return 1
+            clean = clean and ok
+            print(f"| {base} | {seed} | {res['on']['ticks']} | {on_off_cols(res)} | "
+                  f"{res['on']['lifelong']['errandTicks']['max']} / {res['off']['lifelong']['errandTicks']['max']} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -254,7 +287,13 @@ def main():
     ap.add_argument("--admission-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/large_warehouse_queues.yaml", "config/large_warehouse_parking.yaml"])
-    ap.add_argument("--seeds", default="1,2", help="--admission: fleet seeds")
+    ap.add_argument("--seeds", default="1,2", help="--admission, --stall-rules: fleet seeds")
+    ap.add_argument("--stall-rules", action="store_true")
+    ap.add_argument("--stall-configs", nargs="+",
+                    default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml"])
+    ap.add_argument("--swap-after", type=int, default=30)
+    ap.add_argument("--head-after", type=int, default=60)
+    ap.add_argument("--load-cost", type=int, default=0)
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])
@@ -275,6 +314,8 @@ def main():
         return shipped_k(a, build, tmp)
     if a.admission:
         return admission(a, build, tmp)
+    if a.stall_rules:
+        return stall_rules(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:

@@ -108,6 +108,9 @@ tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::Cel
   // tasks.urgency: stalls `auto` (-1) means on only with station queues (see config.hpp).
   o.urgency.stalls = t.urgency_stalls < 0 ? t.queue_capacity > 0 : t.urgency_stalls != 0;
   o.urgency.battery = t.urgency_battery;
+  o.urgency.swap_after = t.urgency_swap_after;
+  o.urgency.head_after = t.urgency_head_after;
+  o.urgency.load_cost = t.urgency_load_cost;
   o.parking.on = t.parking;
   if (t.parking) o.parking.cells = parking_cells(cfg, map);
   const FleetSection::Battery& b = cfg.fleet.battery;

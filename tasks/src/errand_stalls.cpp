@@ -47,6 +47,12 @@ long long ErrandStalls::stalled(long t, long task) const
   return it == open_.end() ? 0 : t - it->second.mark;
 }
 
+int32_t ErrandStalls::best(long task) const
+{
+  const auto it = open_.find(task);
+  return it == open_.end() ? -1 : it->second.best;
+}
+
 ErrandStalls::Summary ErrandStalls::summary(long t) const
 {
   std::vector<long long> open = open_ticks_, stall = stall_ticks_;

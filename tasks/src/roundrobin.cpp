@@ -2,19 +2,28 @@
 
 namespace tasks {
 
-void RoundRobin::on_start(const planner::Config&)
+void RoundRobin::on_start(const planner::Config& positions)
 {
-  for (int a = 0; a < num_agents(); ++a) give(a, add_task(make_task(a)));
+  for (int a = 0; a < num_agents(); ++a) next_task(a, a, positions[a]);
 }
 
 void RoundRobin::on_finished(int agent, const Task& task)
 {
+  next_task(agent, task.id + num_agents(), task.errands.back());  // it stands on its last errand
+}
+
+void RoundRobin::next_task(int agent, long id, planner::Vertex at)
+{
+  Task t = make_task(id);
+  // The battery's task check (battery.hpp; the pool does it when it matches): a task whose
+  // moves and the way on to a charger the charge does not cover waits until it has charged.
+  if (!needs_charge(agent) && !affords(agent, task_moves(at, t), t)) charge_instead(agent, at);
   if (needs_charge(agent)) {
     deferred_.resize(num_agents(), -1);
-    deferred_[agent] = task.id + num_agents();
+    deferred_[agent] = id;
     return;
   }
-  give(agent, add_task(make_task(task.id + num_agents())));
+  give(agent, add_task(std::move(t)));
 }
 
 void RoundRobin::on_dropped(int agent, int s)

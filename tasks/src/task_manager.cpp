@@ -20,6 +20,14 @@ void TaskManager::start(const planner::Config& positions)
 void TaskManager::watch_stalls(const planner::Graph& g)
 {
   stalls_ = std::make_unique<ErrandStalls>(g);
+  pocket_.assign(g.size(), -1);
+  for (const std::vector<planner::Vertex>& t : file_->tasks)
+    for (planner::Vertex v : t) {
+      if (pocket_[v] >= 0) continue;
+      pocket_[v] = v;
+      for (planner::Vertex u : dead_end_corridor(g, v))
+        if (pocket_[u] < 0) pocket_[u] = v;
+    }
 }
 
 void TaskManager::observe_stalls(const planner::Config& positions)
@@ -76,8 +84,32 @@ std::vector<Event> TaskManager::update(long t, const planner::Config& positions)
       at_goal_[a] = at;
     }
   }
+  exchange_tasks(positions);
   observe_stalls(positions);
   return events;
+}
+
+int64_t TaskManager::task_moves(planner::Vertex from, const Task& t)
+{
+  if (!task_dist_) return 0;
+  int64_t moves = 0;
+  planner::Vertex at = from;
+  for (size_t k = static_cast<size_t>(t.next); k < t.errands.size(); ++k) {
+    const int32_t d = task_dist_->from_goal(t.errands[k], at);
+    if (d == planner::DistCache::kInf) return 0;
+    moves += d;
+    at = t.errands[k];
+  }
+  return moves;
+}
+
+void TaskManager::swap_tasks(int a, int b)
+{
+  std::swap(holding_[a], holding_[b]);
+  slots_[holding_[a]].agent = a;
+  slots_[holding_[b]].agent = b;
+  assignments_.push_back({now_, a, slots_[holding_[a]].id});
+  assignments_.push_back({now_, b, slots_[holding_[b]].id});
 }
 
 const Task* TaskManager::task_of(int agent) const
@@ -203,6 +235,7 @@ void TaskManager::set_battery(const planner::Graph& g, BatteryOptions options, s
                               std::vector<std::pair<double, double>> xy)
 {
   battery_ = std::make_unique<Battery>(g, options, std::move(chargers), std::move(xy));
+  task_dist_ = std::make_unique<planner::DistTable>(g, 256);  // a table per errand cell, LRU-capped
   reserved_.assign(g.size(), 0);
   // Agents waiting for a charger idle for long: off the errand stations and their dead ends,
   // where the traffic to the stations would push them about (and drain them) the whole time.

@@ -59,6 +59,69 @@ void TaskPool::top_up(const planner::Config& positions)
     usable += reachable(slot(add_task(make_task(next_id_++))));
 }
 
+std::vector<int64_t> TaskPool::load_costs(const std::vector<int>& cols)
+{
+  std::vector<int64_t> out(cols.size(), 0);
+  const int w = urgency().load_cost;
+  if (w <= 0) return out;
+  load_.resize(static_cast<size_t>(dist_.cache()->graph().size()), 0);
+  std::vector<planner::Vertex> touched;
+  for (int s : live_slots()) {
+    const Task& t = slot(s);
+    if (t.agent < 0) continue;
+    for (size_t e = static_cast<size_t>(t.next); e < t.errands.size(); ++e) {
+      if (load_[t.errands[e]]++ == 0) touched.push_back(t.errands[e]);
+    }
+  }
+  for (size_t j = 0; j < cols.size(); ++j) {
+    const Task& t = slot(cols[j]);
+    for (size_t e = static_cast<size_t>(t.next); e < t.errands.size(); ++e) out[j] += static_cast<int64_t>(w) * load_[t.errands[e]];
+  }
+  for (planner::Vertex v : touched) load_[v] = 0;
+  return out;
+}
+
+void TaskPool::hand_over_stalled(const planner::Config& positions)
+{
+  const int T = urgency().swap_after;
+  const ErrandStalls* st = stalls();
+  if (T <= 0 || !st) return;
+  // Agents heading for the cell of a task's first errand, with its stall.
+  struct Cand {
+    int agent;
+    long long stall;
+  };
+  std::vector<Cand> c;
+  for (int a = 0; a < num_agents(); ++a)
+    if (heading(a) && !task_of(a)->opened()) c.push_back({a, st->stalled(now(), task_of(a)->id)});
+  std::vector<Cand> over;
+  for (const Cand& k : c)
+    if (k.stall >= T) over.push_back(k);
+  if (over.empty()) return;
+  std::sort(over.begin(), over.end(), [](const Cand& x, const Cand& y) { return x.stall != y.stall ? x.stall > y.stall : x.agent < y.agent; });
+  std::vector<char> swapped(num_agents(), 0);
+  for (const Cand& k : over) {
+    const int a = k.agent;
+    if (swapped[a]) continue;
+    const planner::Vertex cell = task_of(a)->next_cell();
+    // Only nearer than the errand has been: a handover never lets the stall metric's new
+    // holder (errand_stalls.hpp) start farther away than the errand already was.
+    int32_t best = dist_.from_goal(cell, positions[a]);
+    if (const int32_t b = st->best(task_of(a)->id); b >= 0) best = std::min(best, b);
+    int pick = -1;
+    for (const Cand& o : c) {
+      const int b = o.agent;
+      if (b == a || swapped[b] || o.stall >= k.stall || task_of(b)->next_cell() != cell) continue;
+      const int32_t d = dist_.from_goal(cell, positions[b]);
+      if (d < best) best = d, pick = b;
+    }
+    if (pick < 0) continue;
+    swap_tasks(a, pick);
+    swapped[a] = swapped[pick] = 1;
+    ++handovers_;
+  }
+}
+
 void TaskPool::after_step(const planner::Config& positions)
 {
   top_up(positions);
@@ -117,6 +180,7 @@ void TaskPool::steal_rounds(const planner::Config& positions)
     for (size_t j = 0; j < cols.size(); ++j)
       if (const int b = slot(cols[j]).agent; b >= 0) held[j] = dist_.from_goal(slot(cols[j]).errands[0], positions[b]);
     std::vector<char> poor(agents.size(), 0);  // some task was beyond its charge
+    const std::vector<int64_t> extra = load_costs(cols);
     auto c = [&](int i, int j) -> int64_t {
       const Task& t = slot(cols[j]);
       if (!can_reach(positions[agents[i]], t.next_cell())) return kForbidden;
@@ -126,7 +190,7 @@ void TaskPool::steal_rounds(const planner::Config& positions)
         poor[i] = 1;
         return kForbidden;
       }
-      return d + chain_length(t);
+      return d + chain_length(t) + extra[j];
     };
     const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()), c);
     std::vector<int> displaced;
@@ -161,6 +225,7 @@ void TaskPool::assign_free(const planner::Config& positions)
   for (int s : cols) in_use.push_back(slot(s).errands[slot(s).next]);
   dist_.set_goals(in_use);  // marks their tables in use; evicts idle ones over the cap
   std::vector<char> poor(agents.size(), 0);  // some task was beyond its charge
+  const std::vector<int64_t> extra = load_costs(cols);
   auto c = [&](int i, int j) -> int64_t {
     const Task& t = slot(cols[j]);
     if (!can_reach(positions[agents[i]], t.next_cell())) return kForbidden;
@@ -169,7 +234,7 @@ void TaskPool::assign_free(const planner::Config& positions)
       poor[i] = 1;
       return kForbidden;
     }
-    return moves;
+    return moves + extra[j];
   };
   const std::vector<int> match = assigner_->assign(static_cast<int>(agents.size()), static_cast<int>(cols.size()), c);
   for (size_t i = 0; i < agents.size(); ++i) {

@@ -1,6 +1,7 @@
 #include "tasks/urgency.hpp"
 
 #include <algorithm>
+#include <unordered_map>
 
 #include "tasks/task_manager.hpp"
 
@@ -12,12 +13,31 @@ bool battery_urgent(const TaskManager& tm, int a)
   return b && (b->charging(a) || (tm.busy(a) && b->low(a)));
 }
 
-std::vector<float> priority_hints(const TaskManager& tm)
+std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* positions)
 {
   const UrgencyOptions& o = tm.urgency();
   if (!o.on()) return {};
   const int n = tm.num_agents();
   std::vector<float> h(n, 0.0f);
+  if (o.head_after > 0 && !o.stalls && tm.stalls() && positions) {
+    // The head of each errand cell's crowd: its most stalled heading agent outside the
+    // cell's pocket, if >= head_after; and every agent on its way out of a pocket.
+    const planner::Config& at = *positions;
+    std::unordered_map<planner::Vertex, std::pair<long long, int>> head;  // cell -> (stall, agent)
+    for (int a = 0; a < n; ++a) {
+      const planner::Vertex p = tm.pocket(at[a]);
+      if (p >= 0 && tm.pocket(tm.goals()[a]) != p) {
+        h[a] = kLeavingUrgency;
+        continue;
+      }
+      if (!tm.heading(a) || p >= 0) continue;
+      const long long s = tm.stalls()->stalled(tm.now(), tm.task_of(a)->id);
+      if (s < o.head_after) continue;
+      auto& hd = head[tm.task_of(a)->next_cell()];
+      if (s > hd.first || (s == hd.first && a < hd.second)) hd = {s, a};
+    }
+    for (const auto& [cell, hd] : head) h[hd.second] = static_cast<float>(hd.first);
+  }
   const ErrandStalls* st = o.stalls ? tm.stalls() : nullptr;
   const Battery* b = o.battery ? tm.battery() : nullptr;
   for (int a = 0; a < n; ++a) {

@@ -240,6 +240,20 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
             "t.yaml: tasks.queues.fifo: expected true or false, got 'maybe'");
   EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_fifo);
   EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, fifo: false}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_fifo);
+  // The stall rules (tasks/urgency.hpp): integers >= 0, read into the task layer's options.
+  EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {swap_after: -1}\n"),
+            "t.yaml: tasks.urgency.swap_after: must be in 0..1000000000, got -1");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {head_after: soon}\n"),
+            "t.yaml: tasks.urgency.head_after: expected an integer, got 'soon'");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {load_cost: -2}\n"),
+            "t.yaml: tasks.urgency.load_cost: must be in 0..1000000, got -2");
+  {
+    const Config c = parse_config(kNetAdd + ll + "  urgency: {swap_after: 30, head_after: 60, load_cost: 10}\n", "t.yaml",
+                                  RTLACAM_CONFIGS);
+    EXPECT_EQ(c.tasks.urgency_swap_after, 30);
+    EXPECT_EQ(c.tasks.urgency_head_after, 60);
+    EXPECT_EQ(c.tasks.urgency_load_cost, 10);
+  }
   EXPECT_EQ(config_error(kNetAdd + ll + "  parking: maybe\n"),
             "t.yaml: tasks.parking: expected true (the parkingAreas of sumo.additional), false or a list of cells, got 'maybe'");
   EXPECT_EQ(config_error(kNetAdd + "fleet: {count: 2}\ntasks: {parking: true}\n"),

@@ -283,3 +283,33 @@ TEST(LifelongRules, WithStationQueuesStalledErrandsGetPriorityAndStallLess)
   EXPECT_GT(off.stalls.max_stall, on.stalls.max_stall);
   EXPECT_GT(on.errands_finished, off.errands_finished);
 }
+
+// The stall rules on the small warehouse (config/small_warehouse_lifelong.yaml: 16 AGVs,
+// dead-end pick-up and drop stubs, no queues), 600 ticks, 50 expansions per SUMO step:
+// tasks.urgency {swap_after: 30, head_after: 60} (tasks/urgency.hpp) -- a pick-up errand
+// stalled 30 ticks passes to a nearer AGV bound for the same station, the most stalled AGV
+// per station gets planner priority, and an AGV leaving a station's dead-end stub goes
+// first. K (the longest stall) 97 and 176 errands; off: K 153, 172 errands.
+TEST(LifelongRules, StallRulesBoundTheLongestStallWithoutLosingErrands)
+{
+  auto run = [](bool on) {
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
+    cfg.output.dir = test::temp_dir(std::string("stall_rules_") + (on ? "on" : "off"));
+    cfg.run.progress_s = 0;
+    cfg.run.max_ticks = 600;
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = 50;
+    cfg.sumo.outputs = {false, false, false, true};
+    cfg.tasks.urgency_swap_after = on ? 30 : 0;
+    cfg.tasks.urgency_head_after = on ? 60 : 0;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ctest_util::expect_checked_every_step(cfg, m);
+    return m;
+  };
+  const Metrics on = run(true);
+  EXPECT_LE(on.stalls.max_stall, 100);
+  const Metrics off = run(false);
+  EXPECT_GT(off.stalls.max_stall, 140);
+  EXPECT_GE(on.errands_finished, off.errands_finished);
+}

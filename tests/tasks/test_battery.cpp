@@ -354,3 +354,38 @@ TEST(Battery, AnAgentThatCannotAffordATaskAndTheWayToAChargerChargesBeforeItTake
     }
   }
 }
+
+TEST(Battery, ARoundRobinAgentThatCannotAffordItsNextTaskChargesBeforeItTakesIt)
+{
+  // As above, with the task fixed by round-robin: the task check defers it until the agent
+  // has charged; without the check the agent sets off and hands it back halfway.
+  const planner::Graph g = ttest::grid({"................", ".###############"});
+  auto file = ttest::task_file(g, {{{15, 0}, {14, 0}}});
+  for (bool check : {true, false}) {
+    SCOPED_TRACE(check ? "task check" : "no task check");
+    RoundRobin rr(file);
+    BatteryOptions o;
+    o.capacity_wh = 20;
+    o.initial = 0.5;
+    o.per_m_wh = 0.5;
+    o.threshold = 0.3;
+    o.critical = 0.1;
+    o.target = 1.0;
+    o.task_check = check;
+    rr.set_battery(g, o, {{g.at(0, 1), 4.0, "c"}}, centres(g));
+    Config at{g.at(0, 0)};
+    rr.start(at);
+    EXPECT_EQ(rr.busy(0), !check);
+    EXPECT_EQ(rr.charging(0), check);
+    long finished_at = -1;
+    for (long t = 1; t <= 60 && finished_at < 0; ++t) {
+      at[0] = step_to_goal(g, at[0], rr.goals()[0]);
+      rr.update(t, at);
+      if (rr.tasks_finished() > 0) finished_at = t;
+    }
+    EXPECT_EQ(rr.battery()->ran_empty(), 0);
+    EXPECT_EQ(rr.dropped_for_charge(), check ? 0 : 1);
+    EXPECT_EQ(finished_at, check ? 21 : 39);
+    // Its next task (the same line, the file has one) is checked the same way at (14, 0).
+  }
+}

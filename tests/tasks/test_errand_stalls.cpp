@@ -5,6 +5,7 @@
 #include "tasks/errand_stalls.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/task_pool.hpp"
+#include "tasks/urgency.hpp"
 #include "tasks/greedy_assigner.hpp"
 #include "tasks_test_util.hpp"
 
@@ -80,4 +81,106 @@ TEST(ErrandStalls, TheTaskManagerCountsBusyAgentsOnly)
   EXPECT_EQ(m.errands, 2);  // and the next task's, given at step 15
   EXPECT_EQ(m.max_open, 15);  // 10 waiting + 5 moves
   EXPECT_EQ(m.max_stall, 11);  // from the start's mark to the first move at step 11
+}
+
+// Stall handover (UrgencyOptions::swap_after, task_pool.hpp): two agents head for one
+// pick-up cell at x = 0; B moves once (its errand makes progress), A never does. At step
+// T = 5 A's errand has stalled 5 ticks and B's 4, and B is nearer: B takes A's task and A
+// B's, their goals unchanged. The errand then makes progress with B's next move.
+TEST(ErrandStalls, AStalledErrandPassesToANearerAgentHeadingForTheSameCell)
+{
+  const planner::Graph g = ttest::grid({".........."});
+  auto file = ttest::task_file(g, {{{0, 0}, {9, 0}}, {{0, 0}, {8, 0}}});
+  for (int T : {5, 0}) {
+    SCOPED_TRACE("swap_after " + std::to_string(T));
+    TaskPool tm(file, g, 2, std::make_unique<GreedyAssigner>());
+    UrgencyOptions u;
+    u.swap_after = T;
+    tm.set_urgency(u);
+    tm.watch_stalls(g);
+    const int A = 0, B = 1;
+    Config at{g.at(6, 0), g.at(3, 0)};
+    tm.start(at);
+    ASSERT_TRUE(tm.busy(A) && tm.busy(B));
+    const long a_task = tm.task_of(A)->id, b_task = tm.task_of(B)->id;
+    at[B] = g.at(2, 0);
+    for (long t = 1; t <= 5; ++t) {
+      tm.update(t, at);
+      if (t < 5) EXPECT_EQ(tm.task_of(A)->id, a_task) << "step " << t;
+    }
+    EXPECT_EQ(tm.goals(), (Config{g.at(0, 0), g.at(0, 0)}));  // nobody's goal changed
+    if (T == 0) {
+      EXPECT_EQ(tm.task_of(A)->id, a_task);
+      EXPECT_EQ(tm.handovers(), 0);
+      continue;
+    }
+    EXPECT_EQ(tm.task_of(B)->id, a_task);
+    EXPECT_EQ(tm.task_of(A)->id, b_task);
+    EXPECT_EQ(tm.handovers(), 1);
+    EXPECT_EQ(tm.stalls()->stalled(5, a_task), 5);  // a new holder: no progress yet
+    at[B] = g.at(1, 0);
+    tm.update(6, at);
+    EXPECT_EQ(tm.stalls()->stalled(6, a_task), 0);  // B got closer
+    EXPECT_EQ(tm.task_of(B)->id, a_task);           // and keeps it
+  }
+}
+
+// Head hints (UrgencyOptions::head_after): a dead-end pocket (1, 2) with a pick-up station,
+// below a loop of aisles; the drop station (0, 1) is on the loop. Agent 0 starts on the
+// pick-up station, picks up at step 1 and must leave: it gets kLeavingUrgency. Agents 1
+// (never moves) and 2 (one move closer at step 1) head for the pick-up station from the
+// loop: at step 3 only the most stalled, agent 1, gets a hint (its 3 stall ticks); agent 2
+// (2 ticks) none. Off (head_after 0): no hints at all.
+TEST(ErrandStalls, HeadHintsGoToTheMostStalledAgentPerCellAndToAgentsLeavingAPocket)
+{
+  const planner::Graph g = ttest::grid({".....", "..#..", "#.###"});
+  auto file = ttest::task_file(g, {{{1, 2}, {0, 1}}, {{1, 2}, {0, 1}}, {{1, 2}, {0, 1}}});
+  for (int H : {2, 0}) {
+    SCOPED_TRACE("head_after " + std::to_string(H));
+    TaskPool tm(file, g, 3, std::make_unique<GreedyAssigner>());
+    UrgencyOptions u;
+    u.head_after = H;
+    tm.set_urgency(u);
+    tm.watch_stalls(g);
+    Config at{g.at(1, 2), g.at(4, 0), g.at(4, 1)};
+    tm.start(at);
+    EXPECT_EQ(tm.pocket(g.at(1, 2)), g.at(1, 2));
+    EXPECT_EQ(tm.pocket(g.at(1, 1)), -1);  // a junction
+    EXPECT_EQ(tm.pocket(g.at(3, 0)), -1);
+    at[2] = g.at(3, 1);
+    for (long t = 1; t <= 3; ++t) tm.update(t, at);
+    ASSERT_EQ(tm.goals()[0], g.at(0, 1));  // picked up: on its way out
+    const std::vector<float> h = priority_hints(tm, &at);
+    if (H == 0) {
+      EXPECT_TRUE(h.empty());
+      continue;
+    }
+    ASSERT_EQ(h.size(), 3u);
+    EXPECT_EQ(h[0], kLeavingUrgency);
+    EXPECT_EQ(h[1], 3.0f);
+    EXPECT_EQ(h[2], 0.0f);
+  }
+}
+
+// Station load (UrgencyOptions::load_cost): agent 0 holds a task at (0, 0); agent 1 finishes
+// its task at (3, 0) and is matched again: the free task at (0, 0) is 3 moves away, the one
+// at (7, 0) 4. Off, it takes the nearer; with load_cost 10 the (0, 0) task costs 3 + 10 x 1
+// (one task already held there), and it takes the one at (7, 0).
+TEST(ErrandStalls, StationLoadSteersTheMatchingToAStationNobodyIsBoundFor)
+{
+  const planner::Graph g = ttest::grid({".........."});
+  auto file = ttest::task_file(g, {{{0, 0}}, {{3, 0}}, {{0, 0}}, {{7, 0}}});
+  for (int w : {10, 0}) {
+    SCOPED_TRACE("load_cost " + std::to_string(w));
+    TaskPool tm(file, g, 3, std::make_unique<GreedyAssigner>());
+    UrgencyOptions u;
+    u.load_cost = w;
+    tm.set_urgency(u);
+    const Config at{g.at(1, 0), g.at(3, 0)};
+    tm.start(at);
+    ASSERT_EQ(tm.goals()[0], g.at(0, 0));
+    ASSERT_EQ(tm.goals()[1], g.at(3, 0));
+    tm.update(1, at);  // agent 1 done; task 3 (7, 0) revealed
+    EXPECT_EQ(tm.goals()[1], w > 0 ? g.at(7, 0) : g.at(0, 0));
+  }
 }

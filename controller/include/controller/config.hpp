@@ -166,6 +166,15 @@ struct TasksSection {
   bool parking = false, parking_auto = false;
   std::vector<CellRef> parking_cells;
   std::string log = "lifelong.json";       // in output.dir
+  // Stall handover (tasks::UrgencyOptions::swap_after, tasks/task_pool.hpp): a pool errand not
+  // yet opened and stalled this many ticks passes to a nearer AGV heading for the same cell (0: off).
+  int urgency_swap_after = 0;
+  // Head hints (tasks::UrgencyOptions::head_after): per errand cell, the AGV whose errand has
+  // stalled longest (if >= this many ticks) gets planner priority (0: off).
+  int urgency_head_after = 0;
+  // Station load in the pool's matching (tasks::UrgencyOptions::load_cost): moves a task costs
+  // per task already held with an errand left at each of its errand cells (0: off).
+  int urgency_load_cost = 0;
 
   bool lifelong() const { return mode == "lifelong"; }
 };

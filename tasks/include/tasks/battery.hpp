@@ -37,7 +37,8 @@
 // The mid-task reserve alone came too late: an agent that took a long task near the
 // reserve's edge dropped it far from the chargers, and when the nearest one was taken the
 // next free one was out of its reach (bench_charging.py --per-m-wh 1.5 --critical 0.25,
-// seed 1: one AGV ran empty). Round-robin agents are not checked (their next task is fixed).
+// seed 1: one AGV ran empty). A round-robin agent's next task is fixed: one it cannot afford
+// waits until the agent has charged (roundrobin.hpp).
 //
 // Claims rematched (`rematch`, default on): two agents on their way to chargers swap their
 // claims when the swap makes the sum of their ways (metres) strictly shorter, checked at

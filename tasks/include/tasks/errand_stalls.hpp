@@ -49,6 +49,9 @@ class ErrandStalls {
 
   // Stall ticks so far of the open errand of `task` (0 when none is open).
   long long stalled(long t, long task) const;
+  // The nearest the holder of `task`'s open errand has been to its cell (a new holder starts
+  // from its own distance); -1 when none is open.
+  int32_t best(long task) const;
 
   struct Summary {
     long long errands = 0;                    // completed + still open

@@ -26,6 +26,7 @@
 
 #include "planner/config.hpp"
 #include "planner/dist_cache.hpp"
+#include "planner/dist_table.hpp"
 #include "tasks/free_flow.hpp"
 #include "tasks/lorr_files.hpp"
 #include "tasks/battery.hpp"
@@ -70,6 +71,9 @@ class TaskManager {
   // (and before share_dist_cache, whose cache it then uses too).
   void watch_stalls(const planner::Graph& g);
   const ErrandStalls* stalls() const { return stalls_.get(); }
+  // watch_stalls on: the errand cell whose dead-end pocket (the cell and the corridor that
+  // joins it to the net, battery.hpp dead_end_corridor) holds v; -1 elsewhere.
+  planner::Vertex pocket(planner::Vertex v) const { return v < static_cast<planner::Vertex>(pocket_.size()) ? pocket_[v] : -1; }
   // Priority hints for the planner (urgency.hpp): off unless set.
   void set_urgency(UrgencyOptions o) { urgency_ = o; }
   const UrgencyOptions& urgency() const { return urgency_; }
@@ -145,6 +149,11 @@ class TaskManager {
   // `agent` handed back the task in slot `s` (drop_task): the pool matches it again in
   // after_step(); a mode that keeps tasks per agent may hold on to it.
   virtual void on_dropped(int agent, int s) { (void)agent, (void)s; }
+  // Once per update(), after the goals are set and before the stalls are observed: a mode
+  // may exchange tasks between agents whose goals stay the same (TaskPool: stall handover).
+  virtual void exchange_tasks(const planner::Config& positions) { (void)positions; }
+  // Agents a and b exchange their tasks (both busy), recorded as two assignments.
+  void swap_tasks(int a, int b);
   // Can an agent at `from` reach errand cell `to` (always, when nothing is closed)?
   bool can_reach(planner::Vertex from, planner::Vertex to) const { return !reach_ || reach_->reaches(from, to); }
   bool closures() const { return reach_ != nullptr; }  // set_open_graph gave a graph
@@ -158,6 +167,11 @@ class TaskManager {
   {
     return !battery_ || battery_->affords(agent, moves, t.errands.back());
   }
+  // Battery on: the moves an agent at `from` needs for t -- to its next errand and along the
+  // rest (shortest paths on the agents' graph); 0 without a battery or where a leg is
+  // unreachable (nothing to judge). The modes without distances of their own (round-robin)
+  // price their task check with it.
+  int64_t task_moves(planner::Vertex from, const Task& t);
   // `agent` could afford none of the tasks it was matched against: it charges first
   // (Battery::charge_first; nothing when it is already charged to target).
   void charge_instead(int agent, planner::Vertex at)
@@ -189,8 +203,10 @@ class TaskManager {
   std::unique_ptr<Parking> parking_;
   std::unique_ptr<FreeFlowBound> free_flow_;
   std::unique_ptr<Battery> battery_;
+  std::unique_ptr<planner::DistTable> task_dist_;  // set_battery: task_moves()
   std::unique_ptr<Reachability> reach_;  // set_open_graph; null: nothing closed
   std::unique_ptr<ErrandStalls> stalls_;  // watch_stalls
+  std::vector<planner::Vertex> pocket_;   // watch_stalls: pocket()
   void observe_stalls(const planner::Config& positions);
   bool rematch_ = false;                 // the open graph changed: match free agents again
   long reassigned_for_closure_ = 0, dropped_for_charge_ = 0;

@@ -34,6 +34,7 @@ class TaskPool : public TaskManager {
   const TaskAssigner& assigner() const { return *assigner_; }
   bool reassigns() const { return reassign_; }
   long reassignments() const { return reassignments_; }  // tasks that changed agent
+  long handovers() const { return handovers_; }  // stall handovers (UrgencyOptions::swap_after)
 
   // Cost of `agent` at `pos` taking a task: distance to its first errand + its chain.
   int64_t cost(planner::Vertex pos, const Task& t);
@@ -48,6 +49,7 @@ class TaskPool : public TaskManager {
   void on_start(const planner::Config& positions) override;
   void on_finished(int agent, const Task& task) override;
   void after_step(const planner::Config& positions) override;
+  void exchange_tasks(const planner::Config& positions) override { hand_over_stalled(positions); }
 
  private:
   void assign_free(const planner::Config& positions);
@@ -58,12 +60,31 @@ class TaskPool : public TaskManager {
   // holds fewer than the limit of held tasks with an errand left there; assigned ones stay.
   std::vector<int> admissible(const std::vector<int>& cols) const;
   int chain_length(const Task& t);
+  // Stall handover (UrgencyOptions::swap_after = T > 0). In a crowd at a station, which
+  // agent gets in next is decided by the planner's priorities, which reset at every epoch:
+  // the nearest agent wins, and one at the back can lose for the whole run while newcomers
+  // pass it (large_warehouse_lifelong: a pick-up errand stalled 469 of 500 ticks three
+  // cells from its station's stub). The errand, not the agent, is what waits. So an
+  // errand not yet opened, stalled >= T ticks (ErrandStalls), passes to the nearest agent
+  // strictly nearer its cell that heads for the same cell with a task not yet opened and
+  // stalled less, and nearer than the errand has ever been (ErrandStalls::best: passing it
+  // on never undoes its progress); that agent's task passes back. Both goals stay, so the
+  // planner, its epoch and the traffic are untouched: within a station's crowd the oldest
+  // errand rides with the agent nearest to being served (first come, first served per
+  // station). The most stalled errand picks first; an agent swaps at most once a step.
+  // Opened errands (a load on board) never move.
+  void hand_over_stalled(const planner::Config& positions);
+  // UrgencyOptions::load_cost x (tasks held with an errand left at each remaining errand
+  // cell of task cols[j]), per j: the matching spreads the fleet over the stations.
+  std::vector<int64_t> load_costs(const std::vector<int>& cols);
+  std::vector<int> load_;  // per vertex, scratch (all 0 between calls)
 
   planner::DistTable dist_;  // per errand cell, lazily (true graph distances, LRU-capped)
   int pool_size_;
   std::unique_ptr<TaskAssigner> assigner_;
   bool reassign_;
   long reassignments_ = 0;
+  long handovers_ = 0;
   long next_id_ = 0;
   std::vector<int> chain_by_line_;  // -1: not yet computed
 };
