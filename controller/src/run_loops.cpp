@@ -169,7 +169,7 @@ void Run::loop_adg()
   // free meanwhile becomes waits on u. Only one-shot cell plans without rules: a lifelong
   // errand or a rule may want the visit, and a rotation plan's turns go with its moves.
   oab_ = std::make_unique<executor::OutAndBack>(
-      ins_.starts, !tm_ && !rot && !cmd_->headings() && !rules_ ? cfg_.run.out_and_back : 0);
+      ins_.starts, !tm_ && !rot && !cmd_->headings() && !rules_ ? cfg_.run.out_and_back : 0, cfg_.run.cut_loops);
   // What leaves the lookahead is what is executed: validated, then to the ADG and the plan.
   auto hand_on = [&](bool all) {
     while (oab_->full() || (all && !oab_->empty())) {

@@ -24,7 +24,12 @@ bool OutAndBack::cut(int i, size_t e)
   const planner::Vertex u = at(e)[i], v = at(e - 1)[i];
   if (u == v) return false;
   size_t s = e - 1;
-  while (s >= 1 && at(s - 1)[i] == v) --s;
+  if (loops_) {
+    // The agent's last stay on u before e: it is off u over [s, e - 1].
+    while (s >= 1 && at(s - 1)[i] != u) --s;
+  } else {
+    while (s >= 1 && at(s - 1)[i] == v) --s;
+  }
   if (s < 1 || at(s - 1)[i] != u) return false;
   for (size_t k = s; k < e; ++k)
     for (size_t j = 0; j < at(k).size(); ++j)

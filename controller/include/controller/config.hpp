@@ -185,6 +185,8 @@ struct RunSection {
   // (beyond run.window) to cut an AGV's out-and-back u -> v -> u into waits on u when nobody
   // else uses u meanwhile (executor/out_and_back.hpp); 0: off.
   int out_and_back = 8;
+  // With out_and_back: cut every excursion u -> ... -> u (u free meanwhile), not only u -> v -> u.
+  bool cut_loops = true;
   // Lane speed limits: lockstep stretches a step over the ticks its slowest move needs at its
   // lane's speed; adg: the Driver's DriveParams::lane_speeds. false: a cell per tick regardless.
   bool lane_speeds = true;
