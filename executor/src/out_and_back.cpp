@@ -31,9 +31,14 @@ bool OutAndBack::cut(int i, size_t e)
     while (s >= 1 && at(s - 1)[i] == v) --s;
   }
   if (s < 1 || at(s - 1)[i] != u) return false;
-  for (size_t k = s; k < e; ++k)
-    for (size_t j = 0; j < at(k).size(); ++j)
-      if (static_cast<int>(j) != i && at(k)[j] == u) return false;  // someone else uses u meanwhile
+  for (size_t k = s; k < e; ++k) {
+    if (limits_.keep && limits_.keep(i, at(k)[i])) return false;  // a visit that must stay
+    for (size_t j = 0; j < at(k).size(); ++j) {
+      if (static_cast<int>(j) == i) continue;
+      if (at(k)[j] == u) return false;  // someone else uses u meanwhile
+      if (limits_.exclusive && limits_.exclusive(u, at(k)[j])) return false;  // or u's zone
+    }
+  }
   for (size_t k = s; k < e; ++k) buf_[k - 1][i] = u;
   ++cuts_;
   return true;

@@ -24,21 +24,39 @@
 // inner out-and-back first); a pass through v by someone else kept both reversals.
 //
 // Only configurations still in the lookahead change: those handed on (to the ADG) are fixed.
-// Not for lifelong runs (an out-and-back may be an errand's visit) nor for headings (a
-// rotation plan's turns belong to its moves).
+//
+// Beyond one-shot cell plans (OutAndBackLimits, session 34):
+//   - lifelong runs: an excursion may be an errand's visit; `keep` names the visits that must
+//     stay (the agent's goal), and an excursion through one is not cut;
+//   - one-at-a-time zones (rules): staying on u keeps the agent in u's zone, so an excursion
+//     is cut only if nobody else is in a zone of u meanwhile (`exclusive`), besides on u.
+// Headings (rotation solvers): not used there (Run::loop_adg) -- they commit one step per
+// tick, so the lookahead lags their execution and empties whenever the ADG runs dry; measured
+// fewer errands with it.
 #include <cstddef>
 #include <deque>
+#include <functional>
+#include <utility>
 
 #include "planner/config.hpp"
 
 namespace executor {
+
+// What else a cut must respect (empty functions: nothing).
+struct OutAndBackLimits {
+  std::function<bool(int agent, planner::Vertex cell)> keep;         // a visit that must stay
+  std::function<bool(planner::Vertex u, planner::Vertex w)> exclusive;  // u, w not held by two AGVs at once (u != w)
+};
 
 class OutAndBack {
  public:
   // tail: the last configuration handed on (the start); lookahead: configurations held back
   // (0: none, every push is handed on at once unchanged).
   // loops: cut every excursion back to u (above), not only u -> v -> u.
-  OutAndBack(const planner::Config& tail, int lookahead, bool loops = true) : tail_(tail), lookahead_(lookahead), loops_(loops) {}
+  OutAndBack(const planner::Config& tail, int lookahead, bool loops = true, OutAndBackLimits limits = {})
+      : tail_(tail), lookahead_(lookahead), loops_(loops), limits_(std::move(limits))
+  {
+  }
 
   // A committed configuration (valid after the last one pushed). Cuts what it completes.
   void push(const planner::Config& c);
@@ -65,6 +83,7 @@ class OutAndBack {
   std::deque<planner::Config> buf_;
   int lookahead_;
   bool loops_;
+  OutAndBackLimits limits_;
   long long cuts_ = 0;
 };
 
