@@ -486,8 +486,8 @@ long long lifelong_errands(const std::string& name, const std::string& config, i
 TEST(FollowFlow, CuttingOutAndBacksInLifelongRunsFinishesMoreErrands)
 {
   long long cuts = 0, none = 0;
-  const long long on = lifelong_errands("flow_ll_on", "small_warehouse_lifelong_agv.yaml", 300, nullptr, &cuts);
-  const long long off = lifelong_errands("flow_ll_off", "small_warehouse_lifelong_agv.yaml", 300,
+  const long long on = lifelong_errands("flow_ll_on", "small_warehouse_lifelong_agv.yaml", 200, nullptr, &cuts);
+  const long long off = lifelong_errands("flow_ll_off", "small_warehouse_lifelong_agv.yaml", 200,
                                          [](Config& c) { c.run.out_and_back = 0; }, &none);
   EXPECT_GT(cuts, 0);
   EXPECT_EQ(none, 0);
