@@ -85,7 +85,12 @@ def main():
         cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
         with_agv_vtype(cfg)
         set_run_keys(cfg, sets, seed, a.expansions)
-        m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
+        try:
+            m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
+        except FileNotFoundError:  # no metrics.json: the instance was refused (e.g. a zone holding two goals)
+            print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | - | - | - | - | - | refused (no metrics.json) | - | - | - |",
+                  flush=True)
+            continue
         life = m.get("lifelong")
         if life:
             val, bound, ratio = life["errandThroughput"], life["freeFlowBound"], life["errandThroughputOverFreeFlow"]

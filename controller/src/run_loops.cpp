@@ -165,11 +165,24 @@ void Run::loop_adg()
   // lockstep: it cannot spread a step's search over SUMO steps).
   planner::RotationPlanner* rot = p_->rotation();
   // Out-and-backs (executor/out_and_back.hpp): the commits pass through a lookahead of
-  // run.out_and_back configurations, beyond the window, where an AGV's u -> v -> u with u
-  // free meanwhile becomes waits on u. Only one-shot cell plans without rules: a lifelong
-  // errand or a rule may want the visit, and a rotation plan's turns go with its moves.
-  oab_ = std::make_unique<executor::OutAndBack>(
-      ins_.starts, !tm_ && !rot && !cmd_->headings() && !rules_ ? cfg_.run.out_and_back : 0);
+  // run.out_and_back configurations, beyond the window, where an AGV's excursion
+  // u -> ... -> u with u free meanwhile becomes waits on u. Lifelong: never through the AGV's
+  // goal (an errand's visit); rules (only with run.out_and_back_rules): nobody else in u's
+  // zone meanwhile either. Not rotation solvers: they commit one step per tick, and with the
+  // cut small_warehouse_lifelong_agv under pibt-rot did fewer errands (session 34).
+  executor::OutAndBackLimits limits;
+  if (tm_) limits.keep = [this](int i, planner::Vertex v) { return p_->goals()[i] == v; };
+  if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) {
+    const std::vector<std::vector<int>>* zone_of = &rules_->zones_of();
+    limits.exclusive = [zone_of](planner::Vertex u, planner::Vertex w) {
+      for (int z : (*zone_of)[u])
+        for (int y : (*zone_of)[w])
+          if (z == y) return true;
+      return false;
+    };
+  }
+  oab_ = std::make_unique<executor::OutAndBack>(ins_.starts, !rot && (!rules_ || cfg_.run.out_and_back_rules) ? cfg_.run.out_and_back : 0, cfg_.run.cut_loops,
+                                                std::move(limits));
   // What leaves the lookahead is what is executed: validated, then to the ADG and the plan.
   auto hand_on = [&](bool all) {
     while (oab_->full() || (all && !oab_->empty())) {

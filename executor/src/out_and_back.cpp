@@ -24,11 +24,21 @@ bool OutAndBack::cut(int i, size_t e)
   const planner::Vertex u = at(e)[i], v = at(e - 1)[i];
   if (u == v) return false;
   size_t s = e - 1;
-  while (s >= 1 && at(s - 1)[i] == v) --s;
+  if (loops_) {
+    // The agent's last stay on u before e: it is off u over [s, e - 1].
+    while (s >= 1 && at(s - 1)[i] != u) --s;
+  } else {
+    while (s >= 1 && at(s - 1)[i] == v) --s;
+  }
   if (s < 1 || at(s - 1)[i] != u) return false;
-  for (size_t k = s; k < e; ++k)
-    for (size_t j = 0; j < at(k).size(); ++j)
-      if (static_cast<int>(j) != i && at(k)[j] == u) return false;  // someone else uses u meanwhile
+  for (size_t k = s; k < e; ++k) {
+    if (limits_.keep && limits_.keep(i, at(k)[i])) return false;  // a visit that must stay
+    for (size_t j = 0; j < at(k).size(); ++j) {
+      if (static_cast<int>(j) == i) continue;
+      if (at(k)[j] == u) return false;  // someone else uses u meanwhile
+      if (limits_.exclusive && limits_.exclusive(u, at(k)[j])) return false;  // or u's zone
+    }
+  }
   for (size_t k = s; k < e; ++k) buf_[k - 1][i] = u;
   ++cuts_;
   return true;

@@ -280,3 +280,57 @@ TEST(OutAndBack, CutsAStepAsideOnlyWhenNobodyUsesTheCellLeft)
   EXPECT_EQ(late.cuts(), 0);
   EXPECT_EQ(late.pop(), (planner::Config{1, 5}));
 }
+
+// Loops (OutAndBack's `loops`): any excursion u -> ... -> u with nobody else on u meanwhile
+// becomes waits on u -- here u -> v -> w -> v -> u while agent 1 passes through v (so the inner
+// v -> w -> v is not cut), and once round a block u -> v -> w -> x -> u. With loops off
+// neither is cut.
+TEST(OutAndBack, CutsEveryExcursionBackToAFreeCellWithLoops)
+{
+  for (const bool loops : {true, false}) {
+    // Agent 0: 1 -> 2 -> 3 -> 2 -> 1; agent 1: 7 -> 2 (while agent 0 is on 3) -> 8.
+    executor::OutAndBack ob({1, 7}, 4, loops);
+    ob.push({2, 7});
+    ob.push({3, 2});
+    ob.push({2, 8});
+    ob.push({1, 8});
+    EXPECT_EQ(ob.cuts(), loops ? 1 : 0) << loops;
+    const std::vector<planner::Config> cut = {{1, 7}, {1, 2}, {1, 8}, {1, 8}};
+    const std::vector<planner::Config> kept = {{2, 7}, {3, 2}, {2, 8}, {1, 8}};
+    for (size_t k = 0; k < 4; ++k) EXPECT_EQ(ob.pop(), loops ? cut[k] : kept[k]) << loops << " " << k;
+
+    // Round a block: 1 -> 2 -> 3 -> 4 -> 1, agent 1 stays on 9.
+    executor::OutAndBack block({1, 9}, 4, loops);
+    for (planner::Vertex v : {2, 3, 4, 1}) block.push({v, 9});
+    EXPECT_EQ(block.cuts(), loops ? 1 : 0) << loops;
+    for (planner::Vertex v : {2, 3, 4, 1}) EXPECT_EQ(block.pop()[0], loops ? 1 : v) << loops;
+  }
+  // Agent 1 passes u = 1 while agent 0 goes round the block: kept.
+  executor::OutAndBack busy({1, 9}, 4, true);
+  busy.push({2, 9});
+  busy.push({3, 1});
+  busy.push({4, 5});
+  busy.push({1, 5});
+  EXPECT_EQ(busy.cuts(), 0);
+}
+
+// Limits: a visit `keep` names (a lifelong errand's goal) is never cut, nor an excursion while
+// someone else is in u's one-at-a-time zone (`exclusive`); without them both are cut.
+TEST(OutAndBack, KeepsGoalVisitsAndZonesWithLimits)
+{
+  for (const bool limited : {true, false}) {
+    executor::OutAndBackLimits goal;
+    if (limited) goal.keep = [](int i, planner::Vertex v) { return i == 0 && v == 2; };  // agent 0's goal: 2
+    executor::OutAndBack ob({1, 9}, 4, true, goal);
+    ob.push({2, 9});
+    ob.push({1, 9});
+    EXPECT_EQ(ob.cuts(), limited ? 0 : 1) << limited;
+
+    executor::OutAndBackLimits zone;  // cells 1 and 5 form one zone
+    if (limited) zone.exclusive = [](planner::Vertex u, planner::Vertex w) { return (u == 1 && w == 5) || (u == 5 && w == 1); };
+    executor::OutAndBack z({1, 6}, 4, true, zone);
+    z.push({2, 5});  // agent 1 passes the zone while agent 0 is out of it
+    z.push({1, 7});
+    EXPECT_EQ(z.cuts(), limited ? 0 : 1) << limited;
+  }
+}

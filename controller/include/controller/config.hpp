@@ -198,10 +198,17 @@ struct RunSection {
   bool same_step_starts = true;      // a move released by another start in a step starts in it
   bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
   bool gap_handover = true;          // a follower may reach the cell before its leader arrives (body gap only)
-  // adg, one-shot cell plans without rules: commits held back this many configurations
-  // (beyond run.window) to cut an AGV's out-and-back u -> v -> u into waits on u when nobody
-  // else uses u meanwhile (executor/out_and_back.hpp); 0: off.
+  // adg, cell plans (one-shot and lifelong; not rotation solvers): commits held back this many
+  // configurations (beyond run.window) to cut an AGV's out-and-back u -> v -> u into waits on u
+  // when nobody else uses u meanwhile (executor/out_and_back.hpp); lifelong: never through the
+  // AGV's goal; 0: off.
   int out_and_back = 8;
+  // With out_and_back: cut every excursion u -> ... -> u (u free meanwhile), not only u -> v -> u.
+  bool cut_loops = true;
+  // With out_and_back and rules (controller/rules.hpp): cut there too (nobody else in u's
+  // one-at-a-time zone meanwhile either). Off by default: measured neutral on small_rules
+  // (one-shot and lifelong, session 34), so rules runs keep their plans.
+  bool out_and_back_rules = false;
   // Lane speed limits: lockstep stretches a step over the ticks its slowest move needs at its
   // lane's speed; adg: the Driver's DriveParams::lane_speeds. false: a cell per tick regardless.
   bool lane_speeds = true;

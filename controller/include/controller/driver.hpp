@@ -209,6 +209,8 @@ class Driver {
   bool start_moves(int i, bool count);
   // Finishes agent i's running moves its front has reached, in ADG order (may_finish); true if any.
   bool arrive(int i, const VehiclePose& pose);
+  // Action id's rotation group (if any) has every other member done or with its front on its target.
+  bool group_arrived(int id) const;
   // The zone mutex (set_zones): may agent i move from -> to now? Records gated_[i] if not.
   bool zone_free(int i, planner::Vertex from, planner::Vertex to);
   // Follow mode: the distance agent i's front still covers braking at `decel` in whole steps

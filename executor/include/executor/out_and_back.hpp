@@ -17,21 +17,46 @@
 // joins the planner's at the lookahead's ends. The caller validates each configuration it
 // hands on all the same (planner::Validator).
 //
+// Loops (`loops`, session 34): the same holds for any excursion that leaves u and comes back to
+// it -- u -> v -> w -> v -> u, or around a block u -> v -> w -> x -> u -- with nobody else on u
+// meanwhile: the agent waits on u, frees every cell of the excursion and makes no move in it.
+// Without it, u -> v -> w -> v -> u is cut only when v is free while the agent is on w (the
+// inner out-and-back first); a pass through v by someone else kept both reversals.
+//
 // Only configurations still in the lookahead change: those handed on (to the ADG) are fixed.
-// Not for lifelong runs (an out-and-back may be an errand's visit) nor for headings (a
-// rotation plan's turns belong to its moves).
+//
+// Beyond one-shot cell plans (OutAndBackLimits, session 34):
+//   - lifelong runs: an excursion may be an errand's visit; `keep` names the visits that must
+//     stay (the agent's goal), and an excursion through one is not cut;
+//   - one-at-a-time zones (rules): staying on u keeps the agent in u's zone, so an excursion
+//     is cut only if nobody else is in a zone of u meanwhile (`exclusive`), besides on u.
+// Headings (rotation solvers): not used there (Run::loop_adg) -- they commit one step per
+// tick, so the lookahead lags their execution and empties whenever the ADG runs dry; measured
+// fewer errands with it.
 #include <cstddef>
 #include <deque>
+#include <functional>
+#include <utility>
 
 #include "planner/config.hpp"
 
 namespace executor {
 
+// What else a cut must respect (empty functions: nothing).
+struct OutAndBackLimits {
+  std::function<bool(int agent, planner::Vertex cell)> keep;         // a visit that must stay
+  std::function<bool(planner::Vertex u, planner::Vertex w)> exclusive;  // u, w not held by two AGVs at once (u != w)
+};
+
 class OutAndBack {
  public:
   // tail: the last configuration handed on (the start); lookahead: configurations held back
   // (0: none, every push is handed on at once unchanged).
-  OutAndBack(const planner::Config& tail, int lookahead) : tail_(tail), lookahead_(lookahead) {}
+  // loops: cut every excursion back to u (above), not only u -> v -> u.
+  OutAndBack(const planner::Config& tail, int lookahead, bool loops = true, OutAndBackLimits limits = {})
+      : tail_(tail), lookahead_(lookahead), loops_(loops), limits_(std::move(limits))
+  {
+  }
 
   // A committed configuration (valid after the last one pushed). Cuts what it completes.
   void push(const planner::Config& c);
@@ -50,13 +75,15 @@ class OutAndBack {
   long long cuts() const { return cuts_; }  // out-and-backs cut so far
 
  private:
-  // Cuts agent i's out-and-back returning at buf_[e] if there is one; true if cut.
+  // Cuts agent i's out-and-back (with loops_: excursion) returning at buf_[e] if there is one; true if cut.
   bool cut(int i, size_t e);
   const planner::Config& at(size_t k) const { return k == 0 ? tail_ : buf_[k - 1]; }  // 0: tail
 
   planner::Config tail_;
   std::deque<planner::Config> buf_;
   int lookahead_;
+  bool loops_;
+  OutAndBackLimits limits_;
   long long cuts_ = 0;
 };
 
