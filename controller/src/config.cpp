@@ -544,8 +544,9 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.flag(u, "run", "out_and_back_rules", c.run.out_and_back_rules);
   r.flag(u, "run", "lane_speeds", c.run.lane_speeds);
   r.flag(u, "run", "epoch_in_budget", c.run.epoch_in_budget);
-  // Not yet with adg-follow: the replan's cut plan assumes the strict hand-over order
-  // (stuck_replan.hpp); measured to give vertex conflicts in the cut plan with following.
+  // A stuck replan needs an ADG to cut the plan at (stuck_replan.hpp); lock-step has none.
+  // With adg-follow a rotation group's members finish together (Driver::group_arrived), so the
+  // cut plan is valid there too (the vertex conflicts measured before that fix are gone).
   if (c.run.executor == "lockstep" && u && u["replan_on_stuck"] && c.run.replan_on_stuck)
     r.fail("run.replan_on_stuck", "only with run.executor: adg or adg-follow");
   // A stuck replan rebuilds a cell planner around immobile AGVs (stuck_replan.hpp); the
