@@ -348,6 +348,11 @@ struct TaskCli {
                    "pool mode: extra moves charged per task already bound for a station (tasks.urgency.load_cost; 0 = off)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
+    app.add_option("--pocket-cost", o.urgency.pocket_cost,
+                   "PIBT ranks an agent's move into another station's dead-end stub this many moves worse "
+                   "(tasks.urgency.pocket_cost; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("--k-nearest", o.k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--queue-capacity", o.queues.capacity,
                    "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "

@@ -23,7 +23,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
-                          [--head-after 60] [--load-cost 0]]
+                          [--head-after 60] [--load-cost 0] [--pocket-cost 100]]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
@@ -43,7 +43,7 @@ large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansio
 errands per tick on / off and K both ways.
 --stall-rules: instead, the task layer's stall rules (tasks/urgency.hpp: stall handover
 swap_after, head hints head_after with agents leaving a dead-end pocket first, station load
-load_cost) on against all off, per config (default: the large two-way and one-way warehouses)
+load_cost, foreign-pocket cost pocket_cost) on against all off, per config (default: the large two-way and one-way warehouses)
 and fleet seed, same ticks (--large-ticks) and expansions: errands per tick on / off and K.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
@@ -243,9 +243,9 @@ def shipped_k(a, build, tmp):
 
 def stall_rules(a, build, tmp):
     """Stall handover, head hints and station load (tasks/urgency.hpp: swap_after, head_after,
-    load_cost) on against off, per config and fleet seed (same ticks, expansions)."""
+    load_cost, pocket_cost) on against off, per config and fleet seed (same ticks, expansions)."""
     clean = True
-    on = {"swap_after": a.swap_after, "head_after": a.head_after, "load_cost": a.load_cost}
+    on = {"swap_after": a.swap_after, "head_after": a.head_after, "load_cost": a.load_cost, "pocket_cost": a.pocket_cost}
     print(f"# on: tasks.urgency {on}; off: all 0")
     print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -256,7 +256,7 @@ def stall_rules(a, build, tmp):
             out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_stall")
             res, ok = on_off(build, base, out, ticks, a.expansions,
                              {"on": (None, {"urgency": dict(on)}, {"fleet": {"seed": seed}}),
-                              "off": (None, {"urgency": {"swap_after": 0, "head_after": 0, "load_cost": 0}},
+                              "off": (None, {"urgency": {"swap_after": 0, "head_after": 0, "load_cost": 0, "pocket_cost": 0}},
                                       {"fleet": {"seed": seed}})})
             if res is None:
                 print(f"# {base} {ok}", file=sys.stderr)
@@ -294,6 +294,7 @@ def main():
     ap.add_argument("--swap-after", type=int, default=30)
     ap.add_argument("--head-after", type=int, default=60)
     ap.add_argument("--load-cost", type=int, default=0)
+    ap.add_argument("--pocket-cost", type=int, default=100)
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])

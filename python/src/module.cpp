@@ -102,10 +102,13 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
         o.urgency.stalls = o.queues.on();
       } else if (k == "stalls") o.urgency.stalls = v.cast<bool>();
       else if (k == "battery") o.urgency.battery = v.cast<bool>();
-      else if (k == "swap_after" || k == "head_after" || k == "load_cost") {
+      else if (k == "swap_after" || k == "head_after" || k == "load_cost" || k == "pocket_cost") {
         const int n = v.cast<int>();
         if (n < 0) throw InputError("urgency." + k + ": must be >= 0, not " + std::to_string(n));
-        (k == "swap_after" ? o.urgency.swap_after : k == "head_after" ? o.urgency.head_after : o.urgency.load_cost) = n;
+        (k == "swap_after"   ? o.urgency.swap_after
+         : k == "head_after" ? o.urgency.head_after
+         : k == "load_cost"  ? o.urgency.load_cost
+                             : o.urgency.pocket_cost) = n;
       } else return false;
       return true;
     });
@@ -343,7 +346,7 @@ PYBIND11_MODULE(_rtlacam, m)
         "The task layer takes the SUMO controller's YAML options (tasks.*, fleet.battery): mode (tasks.assignment: "
         "roundrobin | pool; default the problem's), assigner, pool_size (0: the problem's), k_nearest, reassign; "
         "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo); urgency: a dict of tasks.urgency's "
-        "(stalls: True | False | 'auto', battery, swap_after, head_after, load_cost; default all off, as rtlacam-lifelong); parking: parking cell ids; "
+        "(stalls: True | False | 'auto', battery, swap_after, head_after, load_cost, pocket_cost; default all off, as rtlacam-lifelong); parking: parking cell ids; "
         "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, "
         "reserve_margin, rematch, task_check, target, charge_w, charging) on `chargers` (cell ids), as "
         "rtlacam-lifelong --battery-* --chargers");

@@ -21,12 +21,15 @@ void TaskManager::watch_stalls(const planner::Graph& g)
 {
   stalls_ = std::make_unique<ErrandStalls>(g);
   pocket_.assign(g.size(), -1);
+  dead_end_pocket_.assign(g.size(), -1);
   for (const std::vector<planner::Vertex>& t : file_->tasks)
     for (planner::Vertex v : t) {
       if (pocket_[v] >= 0) continue;
       pocket_[v] = v;
-      for (planner::Vertex u : dead_end_corridor(g, v))
+      for (planner::Vertex u : dead_end_corridor(g, v)) {
         if (pocket_[u] < 0) pocket_[u] = v;
+        if (dead_end_pocket_[u] < 0) dead_end_pocket_[u] = v;
+      }
     }
 }
 

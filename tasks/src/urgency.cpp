@@ -50,4 +50,10 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
   return h;
 }
 
+void hint_pockets(const TaskManager& tm, planner::RealtimePlanner& p)
+{
+  const int cost = tm.urgency().pocket_cost;
+  if (cost > 0 && !tm.dead_end_pockets().empty()) p.set_pockets(tm.dead_end_pockets(), static_cast<float>(cost));
+}
+
 }  // namespace tasks

@@ -313,3 +313,33 @@ TEST(LifelongRules, StallRulesBoundTheLongestStallWithoutLosingErrands)
   EXPECT_GT(off.stalls.max_stall, 140);
   EXPECT_GE(on.errands_finished, off.errands_finished);
 }
+
+// tasks.urgency.pocket_cost (Pibt::set_pockets) on the shipped large one-way warehouse: its
+// two-way top cross aisle runs between one-way picking aisles, so its only side cells are
+// the stations' dead-end stubs, and without the cost head-on AGVs push each other into other
+// stations' stubs, which then block those stations (traced: three AGVs bound elsewhere in
+// one stub, its own crowd stalled outside). 250 ticks, 50 expansions (deterministic):
+// on 1.244 errands/tick, K 140; off (pocket_cost 0, the other stall rules kept) 0.564, K 240.
+TEST(LifelongRules, ForeignPocketCostKeepsAgvsOutOfOtherStationsStubs)
+{
+  auto run = [](bool on) {
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/large_oneway_lifelong.yaml");
+    EXPECT_EQ(cfg.tasks.urgency_pocket_cost, 100);  // shipped on
+    cfg.output.dir = test::temp_dir(std::string("pocket_cost_") + (on ? "on" : "off"));
+    cfg.run.progress_s = 0;
+    cfg.run.max_ticks = 250;
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = 50;
+    cfg.sumo.outputs = {false, false, false, true};
+    if (!on) cfg.tasks.urgency_pocket_cost = 0;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ctest_util::expect_checked_every_step(cfg, m);
+    return m;
+  };
+  const Metrics on = run(true);
+  const Metrics off = run(false);
+  EXPECT_LE(on.stalls.max_stall, 170);
+  EXPECT_GT(off.stalls.max_stall, 200);
+  EXPECT_GE(on.errands_finished, off.errands_finished * 3 / 2);
+}

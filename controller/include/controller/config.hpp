@@ -175,6 +175,9 @@ struct TasksSection {
   // Station load in the pool's matching (tasks::UrgencyOptions::load_cost): moves a task costs
   // per task already held with an errand left at each of its errand cells (0: off).
   int urgency_load_cost = 0;
+  // Foreign-pocket cost (tasks::UrgencyOptions::pocket_cost): moves PIBT adds to an AGV's move
+  // into a dead-end station stub that is not its errand's (0: off).
+  int urgency_pocket_cost = 0;
 
   bool lifelong() const { return mode == "lifelong"; }
 };

@@ -77,6 +77,10 @@ class RealtimePlanner {
   // epoch start (set_goals, restart_at), never inside one: RT-LaCAM's tree of the epoch
   // stays one complete search. Empty: none. Planners without priorities ignore it.
   virtual void set_priority_hint(std::vector<float> hint) { (void)hint; }
+  // Foreign-pocket cost (Pibt::set_pockets): PIBT ranks a move into a dead-end pocket other
+  // than the agent's goal's `cost` moves worse. Like hints, it only orders PIBT's candidates.
+  // Planners without PIBT ignore it.
+  virtual void set_pockets(std::vector<Vertex> pocket, float cost) { (void)pocket, (void)cost; }
   // Lifelong runs: cap the distance tables kept for goals no agent has now (0 = no cap).
   virtual void set_max_dist_tables(size_t n) { (void)n; }
   // Lifelong runs: keep the distance tables in `cache`, shared with the task layer and

@@ -143,7 +143,7 @@ bool Pibt::plan(int32_t i, Rng& rng)
   for (int k = 0; k < K; ++k) C[k] = nb[k];
   C[K] = v;
   for (int k = 0; k <= K; ++k)
-    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + extra_cost(v, C[k]) + rng.uniform();
+    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + extra_cost(v, C[k]) + pocket_cost(i, v, C[k]) + rng.uniform();
   if (scatter_ && scatter_->ready()) {
     const Vertex s = scatter_->next(i, v);
     for (int k = 0; k <= K; ++k)

@@ -74,6 +74,9 @@ class TaskManager {
   // watch_stalls on: the errand cell whose dead-end pocket (the cell and the corridor that
   // joins it to the net, battery.hpp dead_end_corridor) holds v; -1 elsewhere.
   planner::Vertex pocket(planner::Vertex v) const { return v < static_cast<planner::Vertex>(pocket_.size()) ? pocket_[v] : -1; }
+  // watch_stalls on: pocket() of the errand cells at a dead end only (a station in a through
+  // aisle is no pocket to keep out of); the planner's foreign-pocket labels (urgency.hpp).
+  const std::vector<planner::Vertex>& dead_end_pockets() const { return dead_end_pocket_; }
   // Priority hints for the planner (urgency.hpp): off unless set.
   void set_urgency(UrgencyOptions o) { urgency_ = o; }
   const UrgencyOptions& urgency() const { return urgency_; }
@@ -207,6 +210,7 @@ class TaskManager {
   std::unique_ptr<Reachability> reach_;  // set_open_graph; null: nothing closed
   std::unique_ptr<ErrandStalls> stalls_;  // watch_stalls
   std::vector<planner::Vertex> pocket_;   // watch_stalls: pocket()
+  std::vector<planner::Vertex> dead_end_pocket_;  // watch_stalls: dead_end_pockets()
   void observe_stalls(const planner::Config& positions);
   bool rematch_ = false;                 // the open graph changed: match free agents again
   long reassigned_for_closure_ = 0, dropped_for_charge_ = 0;

@@ -53,6 +53,14 @@ struct UrgencyOptions {
   // Station load in the pool's matching (0: off): a task costs, besides its moves, this many
   // moves per task already held with an errand left at each of its remaining errand cells.
   int load_cost = 0;
+  // Foreign-pocket cost (0: off; needs watch_stalls): PIBT ranks an agent's move into a
+  // station's dead-end stub (TaskManager::dead_end_pockets) that is not its errand's this many
+  // moves worse (RealtimePlanner::set_pockets). Traced on large_oneway_lifelong: a two-way
+  // cross aisle between one-way picking aisles is a corridor whose only side cells are
+  // the stubs, so head-on AGVs pushed each other into other stations' stubs (three AGVs
+  // bound elsewhere filling one station's stub, its own AGVs stalled outside). Only orders
+  // PIBT's candidates: a foreign stub stays a last resort, and the search stays complete.
+  int pocket_cost = 0;
   bool on() const { return stalls || battery || head_after > 0; }
 };
 
@@ -73,11 +81,15 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
 // Agents leaving a dead-end pocket (head hints): above every stall, below battery urgency.
 inline constexpr float kLeavingUrgency = 5000.0f;
 
+// pocket_cost on: hands p the foreign-pocket labels and cost (RealtimePlanner::set_pockets).
+void hint_pockets(const TaskManager& tm, planner::RealtimePlanner& p);
+
 // Sets p's hints for its next epoch start (call right before set_goals / restart_at).
 inline void hint_priorities(const TaskManager& tm, planner::RealtimePlanner& p)
 {
   std::vector<float> h = priority_hints(tm, &p.current());
   if (!h.empty()) p.set_priority_hint(std::move(h));
+  hint_pockets(tm, p);
 }
 
 }  // namespace tasks

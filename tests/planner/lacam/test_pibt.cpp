@@ -152,6 +152,44 @@ TEST(Pibt, MoveCostsRouteAnAgentRoundASlowShortcut)
   EXPECT_EQ(cost_moves, 8u);
 }
 
+// Foreign pockets (Pibt::set_pockets, tasks.urgency.pocket_cost): agent 1 stands on its goal
+// in a corridor beside a dead-end cell, agent 0 pushes it. Both free cells are one move from
+// its goal, so the random tie-break sends it into the dead end about half the time; with the
+// cell labelled a pocket that is not its goal's, never. An agent whose goal is in the pocket
+// still enters it.
+TEST(Pibt, AForeignPocketIsTheLastResortOfAPushedAgent)
+{
+  Graph g = test::grid({".....", "@@.@@"});
+  const Vertex stub = g.at(2, 1);
+  auto into_stub = [&](bool pockets, Config goals) {
+    const Config from = test::at(g, {{3, 0}, {2, 0}});
+    DistTable d(g);
+    d.set_goals(goals);
+    Pibt pibt(g, d);
+    pibt.set_goals(goals);
+    if (pockets) {
+      std::vector<Vertex> pocket(g.size(), -1);
+      pocket[stub] = stub;
+      pibt.set_pockets(pocket, 100.0f);
+    }
+    std::vector<int32_t> order = {0, 1};
+    int n = 0;
+    for (uint64_t seed = 0; seed < 40; ++seed) {
+      Rng rng(seed);
+      Config to(2);
+      EXPECT_TRUE(pibt.generate(from.data(), order.data(), nullptr, to.data(), rng));
+      EXPECT_EQ(to[0], g.at(2, 0));
+      n += to[1] == stub;
+    }
+    return n;
+  };
+  const Config goals = test::at(g, {{0, 0}, {2, 0}});
+  EXPECT_GT(into_stub(false, goals), 5);
+  EXPECT_EQ(into_stub(true, goals), 0);
+  // Agent 1 bound for the stub: its own pocket costs nothing.
+  EXPECT_EQ(into_stub(true, test::at(g, {{0, 0}, {2, 1}})), 40);
+}
+
 // Completeness does not depend on the costs: the cases that need search are solved with
 // random move costs too.
 TEST(Pibt, LacamStaysCompleteUnderMoveCosts)

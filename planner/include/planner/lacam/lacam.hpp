@@ -216,6 +216,7 @@ class Lacam {
   // in place, their constraints only let them stay, and LNS refinement is off while any
   // is. Takes effect at the next reset(): a tree built without the mask has moves for them.
   void set_immobile(const std::vector<uint8_t>& immobile);
+  void set_pockets(std::vector<Vertex> pocket, float cost) { pibt_.set_pockets(std::move(pocket), cost); }  // Pibt::set_pockets
 
   Status expand();                   // one LaCAM (or, once solved, LaCAM*) iteration
   // Expands until solved (with refine: until refinement ends), exhausted or out of budget

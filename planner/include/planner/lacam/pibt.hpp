@@ -49,6 +49,15 @@ class Pibt {
     immobile_ = immobile;
     pending_ = false;  // a paused generation set up its detours for the old mask
   }
+  // Foreign pockets (dead-end station stubs; the task layer labels them, tasks.urgency
+  // pocket_cost): pocket[v] labels the cells of each dead end (-1 elsewhere); an agent moving
+  // into a pocket other than its goal's, from outside it, pays `cost` on top of the move's
+  // distance. Empty or 0: off.
+  void set_pockets(std::vector<Vertex> pocket, float cost)
+  {
+    pocket_ = std::move(pocket);
+    pocket_cost_ = cost;
+  }
   bool swap() const { return swap_; }
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
@@ -97,6 +106,12 @@ class Pibt {
   // d(u) + cost(u) - 1 ranks by the time to the goal through u; staying keeps d(v). 0
   // without move costs, so the unit ranking is unchanged.
   float extra_cost(Vertex v, Vertex u) const { return u == v ? 0.0f : static_cast<float>(g_.move_cost(u) - 1); }
+  float pocket_cost(int32_t i, Vertex v, Vertex u) const
+  {
+    if (pocket_cost_ <= 0.0f || pocket_.empty()) return 0.0f;
+    const Vertex p = pocket_[u];
+    return p >= 0 && p != pocket_[v] && p != pocket_[goals_[i]] ? pocket_cost_ : 0.0f;
+  }
 
   const Graph& g_;
   DistTable& d_;
@@ -115,6 +130,8 @@ class Pibt {
   std::vector<Vertex> cand_;        // agent * stride_ + k
   std::vector<float> key_;          // scratch for sorting candidates
   std::vector<uint8_t> immobile_;   // agent -> 1 if immobile (empty: none)
+  std::vector<Vertex> pocket_;      // vertex -> its dead-end pocket, or -1 (set_pockets)
+  float pocket_cost_ = 0.0f;
   DetourTable detour_;              // distances around the immobile agents
   std::vector<uint32_t> cut_off_stamp_;  // agent -> generate() call cut_off_ was set in
   std::vector<uint8_t> cut_off_;         // agent -> no path around the immobile agents

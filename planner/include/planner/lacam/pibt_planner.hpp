@@ -23,6 +23,7 @@ class PibtPlanner : public RealtimePlanner {
   void set_immobile(const std::vector<uint8_t>& immobile) override;  // one update for all
   bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
   void set_priority_hint(std::vector<float> hint) override { hint_ = std::move(hint); }
+  void set_pockets(std::vector<Vertex> pocket, float cost) override { pibt_.set_pockets(std::move(pocket), cost); }
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }

@@ -67,6 +67,7 @@ class RtLacam : public RealtimePlanner {
   void set_immobile(int agent, bool immobile) override;
   void set_immobile(const std::vector<uint8_t>& immobile) override;  // one restart for all
   void set_priority_hint(std::vector<float> hint) override { hint_ = std::move(hint); }
+  void set_pockets(std::vector<Vertex> pocket, float cost) override { lacam_.set_pockets(std::move(pocket), cost); }
   bool restart_at(const Config& at, const Config& goals, GoalTest test, const std::vector<uint8_t>& immobile) override;
   uint64_t restarts() const { return restarts_; }  // searches restarted at current() so far
 
