@@ -454,7 +454,7 @@ class Lacam {
   // warehouse-10-20-10-2-1 N = 600 (0.07-0.25 ms), and dives gated by expand_cost_ overran
   // 1 ms iterations by up to 0.6 ms.
   StepCost dive_cost_;
-  StepCost restart_cost_;         // start_scatter (SUO's reset), measured at its first start
+  StepCost restart_cost_;         // the lead probe with SUO's restart (lead_probe)
   bool preparing_ = false;        // start_refining() still costing nodes
   size_t prepare_next_ = 0;       // the next node to cost
   std::vector<HNode*> path_nodes_;  // scratch: the best path's nodes (LNS)
