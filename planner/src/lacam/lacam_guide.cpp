@@ -64,6 +64,9 @@ bool Lacam::scatter_step()
   // N = 1000 (the first start's cost, which builds the occupancy lists, is not a restart's).
   // Untimed runs probe after the slice, as before (the same runs).
   if (timed_ && lead_probe_due()) {
+    // Prior: SUO's reset (O(|V|) + the paths' cells) and the probe's O(N log depth), about
+    // two expansions (measured: 0.59-0.69 ms at warehouse-20-40-10-2-2 N = 1000).
+    restart_cost_.set_prior(2 * expand_cost_.rate());
     if (!fits(restart_cost_.predict_ms(1))) {
       restart_cost_.forget();
       stalled_ = true;  // in a later call
