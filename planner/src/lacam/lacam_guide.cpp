@@ -81,7 +81,6 @@ bool Lacam::scatter_step()
   const uint64_t max_work = left_ >= UINT64_MAX / n ? UINT64_MAX : left_ * n;
   // Timed, a complete pass is published by its own slices, resumable like the A*s (untimed
   // runs publish at once, as before: the same runs).
-  units_ = 1;
   if (scatter_.pass_complete()) scatter_.publish(deadline_);
   else scatter_.step(deadline_, max_work, !timed_);
   units_ = std::max<uint64_t>(1, scatter_.work() / n);
