@@ -81,9 +81,10 @@ bool Lacam::scatter_step()
   const uint64_t max_work = left_ >= UINT64_MAX / n ? UINT64_MAX : left_ * n;
   // Timed, a complete pass is published by its own slices, resumable like the A*s (untimed
   // runs publish at once, as before: the same runs).
+  const uint64_t w0 = scatter_.pass_complete() ? scatter_.work() : 0;  // publish() adds to it
   if (scatter_.pass_complete()) scatter_.publish(deadline_);
   else scatter_.step(deadline_, max_work, !timed_);
-  units_ = std::max<uint64_t>(1, scatter_.work() / n);
+  units_ = std::max<uint64_t>(1, (scatter_.work() - w0) / n);
   if (scatter_.ready()) pibt_.set_scatter(&scatter_);
   if (!timed_ && lead_probe_due()) lead_probe();
   return true;
