@@ -49,11 +49,14 @@ int main(int argc, char** argv)
   app.add_option("--solver", solver, solver_names(false, true) + " (cspibt: pibt ordered by --policy)")
       ->check(CLI::IsMember(solver_list(false, true)))
       ->capture_default_str();
-  app.add_option("--cutoff-ms", cutoff_ms, "planning budget per iteration (wall clock)")
-      ->check(cli::finite_range(0, 3.6e6))
-      ->capture_default_str();
+  auto* cutoff_opt = app.add_option("--cutoff-ms", cutoff_ms,
+                                    "planning budget per iteration (wall clock); with --budget-expansions only when "
+                                    "given too")
+                         ->check(cli::finite_range(0, 3.6e6))
+                         ->capture_default_str();
   app.add_option("--budget-expansions", budget_expansions,
-                 "planning budget per iteration in LaCAM expansions (deterministic); 0 = none");
+                 "planning budget per iteration in LaCAM expansions, alone (deterministic runs) unless --cutoff-ms is "
+                 "given too (then whichever ends first); 0 = none");
   app.add_option("--timeout-s", timeout_s, "limit on the cumulative planning time")
       ->check(cli::finite_range(0, 1e7))
       ->capture_default_str();
@@ -208,7 +211,10 @@ int main(int argc, char** argv)
     lopt.lg_collision_weight = lg_weight;
     lopt.lg_refine = lg_refine;
     RunOptions ropt;
-    ropt.per_iteration = Budget::time_ms(cutoff_ms);
+    // An expansions budget alone is deterministic: the default 1 ms wall cutoff would cut its
+    // iterations by the machine's speed and load.
+    const bool wall = budget_expansions == 0 || cutoff_opt->count() > 0;
+    ropt.per_iteration = wall ? Budget::time_ms(cutoff_ms) : Budget::unlimited();
     if (reserve) ropt.per_iteration.reserve_ms = 1e-6;  // on; the costliest expansion so far sets it
     if (budget_expansions > 0) ropt.per_iteration.expansions = budget_expansions;
     ropt.timeout_ms = timeout_s * 1000.0;
@@ -307,7 +313,7 @@ int main(int argc, char** argv)
     j["max_iteration_cpu_ms"] = r.max_iteration_cpu_ms;
     j["p99_iteration_cpu_ms"] = r.p99_iteration_cpu_ms;
     j["solver"] = solver;
-    j["cutoff_ms"] = cutoff_ms;
+    j["cutoff_ms"] = wall ? nlohmann::json(cutoff_ms) : nlohmann::json(nullptr);  // null: no wall cutoff
     j["budget_expansions"] = budget_expansions;
     j["reserve"] = reserve;
     j["resumable"] = resumable;
@@ -374,7 +380,7 @@ int main(int argc, char** argv)
       h.soc_lb = soc_lb;
       h.makespan = r.makespan;
       h.comp_time_ms = r.total_planning_ms;
-      h.extra = {{"cutoff_ms", std::to_string(cutoff_ms)}, {"seed", std::to_string(seed)},
+      h.extra = {{"cutoff_ms", wall ? std::to_string(cutoff_ms) : std::string("none")}, {"seed", std::to_string(seed)},
                  {"sum_of_loss", std::to_string(r.sum_of_loss)}};
       write_file(out_file, [&](std::ostream& out) { write_plan(out, g, ins.starts, ins.goals, r.plan, h); });
     }

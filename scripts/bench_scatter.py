@@ -6,6 +6,8 @@ the ratio to the first variant and to lacam3 10 s.
 
   scripts/bench_scatter.py [--cutoff-ms 1] [--scens 5] [--variant NAME=FLAGS ...] [--budget-expansions K]
 
+--budget-expansions K > 0 replaces the wall cutoff (deterministic runs).
+
 FLAGS starting with "bin=PATH" run that binary instead of --bin (old vs new code in one window):
   --variant old="bin=/tmp/rtlacam-bench-old --scatter" --variant new=--scatter
 """
@@ -37,8 +39,9 @@ for m, n in cells:
             fl = flags.split()
             binary = fl.pop(0)[4:] if fl and fl[0].startswith("bin=") else a.bin
             cmd = [binary, "--map", f"{a.movingai}/{m}.map", "--scen", f"{a.movingai}/{m}-random-{k}.scen", "-N", str(n),
-                   "--solver", "rtlacam", "--cutoff-ms", a.cutoff_ms, "--budget-expansions", a.budget_expansions,
-                   "--refine", "--seed", "0", "--timeout-s", "20", "--json", "--progress-s", "0"] + fl
+                   "--solver", "rtlacam", "--refine", "--seed", "0", "--timeout-s", "20", "--json", "--progress-s", "0"] + fl
+            # an expansions budget alone (deterministic), else the wall cutoff
+            cmd += ["--budget-expansions", a.budget_expansions] if a.budget_expansions != "0" else ["--cutoff-ms", a.cutoff_ms]
             out = subprocess.run(cmd, capture_output=True, text=True).stdout.strip().splitlines()
             j = json.loads(out[-1])
             r = j["soc"] / j["soc_lb"] if j["solved"] else float("inf")

@@ -107,3 +107,22 @@ TEST(BenchCli, ProgressLinesGoToStderrOnlyForLongRuns)
     EXPECT_NE(r.out.find("\"solved\":true"), std::string::npos) << r.out;
   }
 }
+
+// --budget-expansions alone is the whole budget of an iteration (deterministic runs): the
+// default 1 ms wall cutoff does not cut it too. Checked with the earlier behaviour (the wall
+// cutoff kept): "cutoff_ms" 1, and two runs made 130 and 61 expansions (here: 210 both).
+TEST(BenchCli, AnExpansionsBudgetAloneHasNoWallCutoff)
+{
+  const std::string base = "--map " + kMap + " --scen " + kScen + " -N 100 --solver rtlacam --json --max-steps 3 ";
+  const auto expansions = [](const std::string& out) {
+    const auto at = out.find("\"expansions\":");
+    return at == std::string::npos ? -1L : std::stol(out.substr(at + 13));
+  };
+  Result a = run(base + "--budget-expansions 3000"), b = run(base + "--budget-expansions 3000");
+  ASSERT_TRUE(a.code == 0 || a.code == 4) << a.err;  // 4: not at the goals after 3 steps
+  EXPECT_NE(a.out.find("\"cutoff_ms\":null"), std::string::npos) << a.out;
+  EXPECT_GT(expansions(a.out), 0) << a.out;
+  EXPECT_EQ(expansions(a.out), expansions(b.out)) << "two runs of the same expansions budget differ";
+  Result both = run(base + "--budget-expansions 3000 --cutoff-ms 1");  // both given: whichever ends first
+  EXPECT_NE(both.out.find("\"cutoff_ms\":1"), std::string::npos) << both.out;
+}

@@ -25,7 +25,7 @@ int64_t BestPath::price(const std::vector<int32_t>& last) const
   return c;
 }
 
-void BestPath::advance(const HNode* from, const HNode* to)
+bool BestPath::advance(const HNode* from, HNode* to, bool carry)
 {
   for (int i = 0; i < n_; ++i) wait_[i] = from->C[i] == goals_[i] && to->C[i] == goals_[i] ? wait_[i] + 1 : 0;
   if (nodes_.size() >= 2 && nodes_[1] == to) {
@@ -40,10 +40,14 @@ void BestPath::advance(const HNode* from, const HNode* to)
     if (cand_.size() >= 2 && cand_[1] == to) {
       cand_.erase(cand_.begin());
       scanned_ = std::min(scanned_, cand_.size());
+    } else if (carry && !cand_.empty() && cand_[0] == from) {
+      cand_.insert(cand_.begin(), to);
+      return true;
     } else if (cand_.empty() || cand_[0] != to) {
       pricing_ = false;
     }
   }
+  return false;
 }
 
 void BestPath::start_candidate(std::vector<HNode*> p)

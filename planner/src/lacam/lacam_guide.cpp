@@ -57,52 +57,86 @@ bool Lacam::scatter_step()
     if (scatter_.ready()) pibt_.set_scatter(&scatter_);
     return false;
   }
-  const uint64_t n = static_cast<uint64_t>(std::max(n_, 1));
-  const uint64_t max_work = left_ >= UINT64_MAX / n ? UINT64_MAX : left_ * n;
-  scatter_.step(deadline_, max_work);
-  units_ = std::max<uint64_t>(1, scatter_.work() / n);
-  if (scatter_.ready()) pibt_.set_scatter(&scatter_);
-  if (!scatter_probed_ && goal_ && scatter_.passes() == 0 && scatter_.planned() >= std::max(1, n_ / 8)) {
-    scatter_probed_ = true;
-    const uint64_t m = reroots_ - scatter_reroots0_;
-    const uint64_t passes = static_cast<uint64_t>(std::max(1, opt_.scatter_dive_passes));
-    const double suo = static_cast<double>(m * n * passes) / scatter_.planned();  // moves, from here
-    if (!opt_.scatter_lead_dive || m == 0 || guide_spent_ <= 0) {
-      const int need = static_cast<int>(suo * 5 / 4) + 2;
-      if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+  // Timed, the lead probe is a step of its own at the start of a call, when its cost (with
+  // SUO's restart) fits: run after the slice, at its deadline, it overran 1 ms iterations by
+  // 0.2-0.3 ms (warehouse-10-20-10-2-1 N = 600). The pass waits for it: a pass that went on
+  // past the probe's point kept the lead at 30 and cost 10 % SOC at warehouse-20-40-10-2-2
+  // N = 1000 (the first start's cost, which builds the occupancy lists, is not a restart's).
+  // Untimed runs probe after the slice, as before (the same runs).
+  if (timed_ && lead_probe_due()) {
+    // Prior: SUO's reset (O(|V|) + the paths' cells) and the probe's O(N log depth), about
+    // two expansions (measured: 0.59-0.69 ms at warehouse-20-40-10-2-2 N = 1000).
+    restart_cost_.set_prior(2 * expand_cost_.rate());
+    if (!fits(restart_cost_.predict_ms(1))) {
+      restart_cost_.forget();
+      stalled_ = true;  // in a later call
       return true;
     }
-    // The guided dive must land before the agents reach its start too: it takes a PIBT call
-    // per step of the path's rest from there, at the guide work per move measured so far.
-    // SUO from further ahead is cheaper: its A*s are about as long as the agents' distances
-    // left, so its passes scale with their sum there. The lead is the least L that covers
-    // both from the node L steps ahead (binary search; the condition only loosens with L).
-    std::vector<const HNode*> p;  // the best path, the root first
-    for (const HNode* h = goal_; h; h = h->parent) p.push_back(h);
-    std::reverse(p.begin(), p.end());
-    const int depth = static_cast<int>(p.size()) - 1;
-    const auto left = [&](const HNode* h) {
-      int64_t d = 0;
-      for (int i = 0; i < n_; ++i) d += dist_.get(i, h->C[i]);
-      return static_cast<double>(std::max<int64_t>(d, 1));
-    };
-    const double here = left(scatter_root_);
-    const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
-    const double per_move = guide_spent_ / static_cast<double>(m);
-    const auto covered = [&](int L) {
-      const double moves = suo * left(p[L]) / here + (depth - L) * step / per_move;
-      return L >= static_cast<int>(moves * 5 / 4) + 2;
-    };
-    const int now = std::max(0, steps_ahead(scatter_root_));
-    if (now >= depth || covered(now)) return true;
-    int lo = now, hi = depth;  // covered(hi) or hi == depth
-    while (hi - lo > 1) {
-      const int mid = (lo + hi) / 2;
-      (covered(mid) ? hi : lo) = mid;
-    }
-    start_scatter(hi);
+    const double c0 = thread_cpu_ms();
+    lead_probe();
+    restart_cost_.record(1, thread_cpu_ms() - c0);
+    return true;
   }
+  const uint64_t n = static_cast<uint64_t>(std::max(n_, 1));
+  const uint64_t max_work = left_ >= UINT64_MAX / n ? UINT64_MAX : left_ * n;
+  // Timed, a complete pass is published by its own slices, resumable like the A*s (untimed
+  // runs publish at once, as before: the same runs).
+  const uint64_t w0 = scatter_.pass_complete() ? scatter_.work() : 0;  // publish() adds to it
+  if (scatter_.pass_complete()) scatter_.publish(deadline_);
+  else scatter_.step(deadline_, max_work, !timed_);
+  units_ = std::max<uint64_t>(1, (scatter_.work() - w0) / n);
+  if (scatter_.ready()) pibt_.set_scatter(&scatter_);
+  if (!timed_ && lead_probe_due()) lead_probe();
   return true;
+}
+
+bool Lacam::lead_probe_due() const
+{
+  return !scatter_probed_ && goal_ && scatter_.passes() == 0 && scatter_.planned() >= std::max(1, n_ / 8);
+}
+
+// The lead check of scatter_step (above), and SUO's restart further ahead when it is short.
+void Lacam::lead_probe()
+{
+  scatter_probed_ = true;
+  const uint64_t n = static_cast<uint64_t>(std::max(n_, 1));
+  const uint64_t m = reroots_ - scatter_reroots0_;
+  const uint64_t passes = static_cast<uint64_t>(std::max(1, opt_.scatter_dive_passes));
+  const double suo = static_cast<double>(m * n * passes) / scatter_.planned();  // moves, from here
+  if (!opt_.scatter_lead_dive || m == 0 || guide_spent_ <= 0) {
+    const int need = static_cast<int>(suo * 5 / 4) + 2;
+    if (m > 0 && need > steps_ahead(scatter_root_)) start_scatter(need);
+    return;
+  }
+  // The guided dive must land before the agents reach its start too: it takes a PIBT call
+  // per step of the path's rest from there, at the guide work per move measured so far.
+  // SUO from further ahead is cheaper: its A*s are about as long as the agents' distances
+  // left, so its passes scale with their sum there. The lead is the least L that covers
+  // both from the node L steps ahead (binary search; the condition only loosens with L).
+  std::vector<const HNode*> p;  // the best path, the root first
+  for (const HNode* h = goal_; h; h = h->parent) p.push_back(h);
+  std::reverse(p.begin(), p.end());
+  const int depth = static_cast<int>(p.size()) - 1;
+  const auto left = [&](const HNode* h) {
+    int64_t d = 0;
+    for (int i = 0; i < n_; ++i) d += dist_.get(i, h->C[i]);
+    return static_cast<double>(std::max<int64_t>(d, 1));
+  };
+  const double here = left(scatter_root_);
+  const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
+  const double per_move = guide_spent_ / static_cast<double>(m);
+  const auto covered = [&](int L) {
+    const double moves = suo * left(p[L]) / here + (depth - L) * step / per_move;
+    return L >= static_cast<int>(moves * 5 / 4) + 2;
+  };
+  const int now = std::max(0, steps_ahead(scatter_root_));
+  if (now >= depth || covered(now)) return;
+  int lo = now, hi = depth;  // covered(hi) or hi == depth
+  while (hi - lo > 1) {
+    const int mid = (lo + hi) / 2;
+    (covered(mid) ? hi : lo) = mid;
+  }
+  start_scatter(hi);
 }
 
 int Lacam::steps_ahead(const HNode* x) const
@@ -187,6 +221,7 @@ void Lacam::dive_step()
     // distances alone.
     const Scatter* guide = pibt_.scatter();
     if (dive_len_ >= dive_guided_len_) pibt_.set_scatter(nullptr);
+    const double q0 = timed_ ? thread_cpu_ms() : 0.0;
     const bool ok = pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_);
     pibt_.set_scatter(guide);
     if (!ok) {
@@ -195,12 +230,13 @@ void Lacam::dive_step()
     }
     const int64_t g_goal = goal_->g;
     dive_ = step_to(dive_, scratch_.data());
+    if (timed_) dive_cost_.record(1, thread_cpu_ms() - q0);
     ++dive_len_;
     if (dive_ == goal_) {
       end(goal_->g < g_goal);
       break;
     }
-    if (steps >= left_ || (timed_ && !fits(expand_cost_.predict_ms(1)))) break;  // a step is one PIBT call
+    if (steps >= left_ || (timed_ && !fits(dive_cost_.predict_ms(1)))) break;
   }
   units_ = std::max<uint64_t>(1, steps);
 }

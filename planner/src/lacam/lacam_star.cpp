@@ -140,8 +140,11 @@ Status Lacam::refine_expand()
   // the guide gets a third of them (half without LNS); the rest as before.
   const bool urgent = opt_.scatter && !first_dive_done_;
   const bool guide_turn = guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns));
-  const bool guide_fits = !timed_ || fits(guide_tail_.predict_ms(1) + expand_cost_.predict_ms(1));
-  if (guide_turn && !guide_fits) guide_tail_.forget();
+  // A guide step is at least one SUO slice or one dive step (dive_cost_, a PIBT call's prior).
+  dive_cost_.set_prior(expand_cost_.rate());
+  const double unit = std::max(expand_cost_.predict_ms(1), dive_cost_.predict_ms(1));
+  const bool guide_fits = !timed_ || fits(guide_tail_.predict_ms(1) + unit);
+  if (guide_turn && !guide_fits) guide_tail_.forget(), dive_cost_.forget();
   if (guide_turn && guide_fits) {
     // SUO and dives stop at their deadline, but past it by up to a pass's publication: they
     // get the call's deadline less the largest such overshoot seen (decaying, step_cost.hpp),

@@ -38,6 +38,7 @@ void Scatter::clear()
   paths_.clear();
   published_.clear();
   next_.clear();
+  staged_ = 0;
   passes_ = 0;
   collisions_ = published_collisions_ = 0;
 }
@@ -259,36 +260,54 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
 
 void Scatter::end_pass()
 {
-  ++passes_;
-  if (passes_ == 1 || collisions_ <= published_collisions_) {
-    published_ = paths_;
-    published_collisions_ = collisions_;
-    next_.assign(n_, {});
-    for (int i = 0; i < n_; ++i) {
-      const auto& p = published_[i];
-      auto& nx = next_[i];
+  publish(Clock::time_point::max());
+}
+
+// The pass is published into staging copies agent by agent (the guidance in use stays whole
+// until they are swapped in): O(the paths' cells) in all, 0.4-2 ms at once for N = 600-1000.
+bool Scatter::publish(Clock::time_point deadline)
+{
+  if (passes_ == 0 || collisions_ <= published_collisions_) {  // a better pass (the first one)
+    staged_paths_.resize(n_);
+    staged_next_.resize(n_);
+    while (staged_ < n_) {
+      const int i = staged_++;
+      const auto& p = paths_[i];
+      staged_paths_[i] = p;
+      auto& nx = staged_next_[i];
+      nx.clear();
       for (size_t t = 0; t + 1 < p.size(); ++t) nx.emplace_back(p[t], p[t + 1]);
       std::sort(nx.begin(), nx.end());
       work_ += p.size();
+      if ((staged_ & 15) == 0 && staged_ < n_ && Clock::now() >= deadline) return false;
     }
+    published_.swap(staged_paths_);
+    next_.swap(staged_next_);
+    published_collisions_ = collisions_;
   }
+  staged_ = 0;
+  ++passes_;
   // lacam3: at least two passes, then on while the collision count drops.
   if (collisions_ == 0 || (max_passes_ > 0 && passes_ >= max_passes_) || (passes_ >= 2 && collisions_ >= pass_start_collisions_)) {
     done_ = true;
-    return;
+    return true;
   }
   pass_start_collisions_ = collisions_;
   pos_ = 0;
   rng_.shuffle(order_.data(), n_);
+  return true;
 }
 
-bool Scatter::step(Clock::time_point deadline, uint64_t max_work)
+bool Scatter::step(Clock::time_point deadline, uint64_t max_work, bool end_passes)
 {
   work_ = 0;
-  while (!done_) {
+  while (!done_ && pos_ < n_) {
     if (!in_astar_) begin_agent();
     if (!run_astar(deadline, max_work)) break;  // paused inside the A*
-    if (++pos_ == n_) end_pass();
+    if (++pos_ == n_) {
+      if (!end_passes) break;
+      end_pass();
+    }
     if (work_ >= max_work || Clock::now() >= deadline) break;
   }
   return done_;

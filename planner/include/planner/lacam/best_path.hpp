@@ -37,8 +37,12 @@ class BestPath {
   uint64_t version() const { return version_; }
 
   // The root moved from `from` to `to` (a neighbour): the waits follow; the path and the
-  // candidate keep their tails if `to` is their second node, else they are dropped.
-  void advance(const HNode* from, const HNode* to);
+  // candidate keep their tails if `to` is their second node, else they are dropped -- but
+  // with `carry` a candidate that starts at `from` goes on from `to` back to `from` (the
+  // tree path after a reroot, the move being reversible). Its scan runs from the end, so
+  // nothing scanned is lost, and a candidate that is always cut by the next move still
+  // gets priced. Returns true when it carried one.
+  bool advance(const HNode* from, HNode* to, bool carry = false);
 
   // Starts pricing `p` (the root first, a goal node last); price_node() scans it.
   void start_candidate(std::vector<HNode*> p);

@@ -141,8 +141,9 @@ struct LacamOptions {
   // and then every guided dive ran into its limit and lost, which also stopped SUO.
   bool scatter_dive_guard = true;
   // Objective::soc: a goal path whose pricing the agents' moves cut short (best_path.hpp,
-  // advance) is priced again from the new root. Off: dropped until the goal's g drops again
-  // (the earlier behaviour: a winning dive's path was often never followed).
+  // advance) is priced on from the new root (its tree path then, back through the old root).
+  // Off: dropped until the goal's g drops again (the earlier behaviour: a winning dive's path
+  // was often never followed).
   bool reprice = true;
   // SUO before the first solution (lacam3's order; counts against the iterations' budget).
   // It changes PIBT and so the tree: the first solution is then not LaCAM's.
@@ -238,7 +239,7 @@ class Lacam {
   uint64_t dives() const { return dives_; }           // completed dives, and those that lowered g(goal)
   uint64_t dive_wins() const { return dive_wins_; }
   uint64_t dive_stalls() const { return dive_stalls_; }  // dives that ran into their length limit
-  uint64_t reprices() const { return reprices_; }  // goal paths priced again (LacamOptions::reprice)
+  uint64_t reprices() const { return reprices_; }  // moves a candidate was carried over (LacamOptions::reprice)
   // Guided dives that ended after the agents had passed their start (its nodes then hang
   // behind the root); the lead SUO last started at, in steps ahead of the root then.
   uint64_t late_dives() const { return late_dives_; }
@@ -354,6 +355,8 @@ class Lacam {
   bool generate_best(const HNode* H, const Constraint* L);  // one-shot, mc_rollouts rollouts, into scratch_
   void guide_step();                        // scatter work, else a dive step (lacam_guide.cpp)
   bool scatter_step();                      // false once SUO is done (or off)
+  bool lead_probe_due() const;
+  void lead_probe();
   void dive_step();
   void start_dive(HNode* from);
   int steps_ahead(const HNode* x) const;  // x's depth on the best path, -1 if not on it
@@ -447,6 +450,12 @@ class Lacam {
   size_t pending_next_ = 0;
   HNode* pending_prev_ = nullptr; // the node they continue from
   StepCost guide_tail_;           // how far past its deadline a SUO / dive step ran (ms)
+  // One dive step: a PIBT call, guided by SUO's paths or not, and step_to's link and rewiring
+  // of a known node. Learnt apart from expand_cost_: a guided call cost 2-8x an expansion at
+  // warehouse-10-20-10-2-1 N = 600 (0.07-0.25 ms), and dives gated by expand_cost_ overran
+  // 1 ms iterations by up to 0.6 ms.
+  StepCost dive_cost_;
+  StepCost restart_cost_;         // the lead probe with SUO's restart (lead_probe)
   bool preparing_ = false;        // start_refining() still costing nodes
   size_t prepare_next_ = 0;       // the next node to cost
   std::vector<HNode*> path_nodes_;  // scratch: the best path's nodes (LNS)

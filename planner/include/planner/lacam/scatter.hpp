@@ -40,8 +40,16 @@ class Scatter {
   // effect at the next reset().
   void set_bucket_queue(bool on) { bucket_next_ = on; }
 
-  // Works until done, `deadline`, or about `max_work` units; true once done.
-  bool step(Clock::time_point deadline, uint64_t max_work = UINT64_MAX);
+  // Works until done, `deadline`, or about `max_work` units; true once done. With
+  // `end_passes` false a step stops once a pass is complete and leaves its publication (O(the
+  // paths' cells)) to publish(), which resumes at its own deadline (RT-LaCAM*'s timed runs).
+  bool step(Clock::time_point deadline, uint64_t max_work = UINT64_MAX, bool end_passes = true);
+  bool pass_complete() const { return pos_ == n_ && !done_; }  // publish() is due
+  // Publishes the complete pass (when it has fewer collisions) until done or `deadline`
+  // (checked every 16 agents); true once the pass has ended and the next one began (or SUO is
+  // done). end_pass(): all at once.
+  bool publish(Clock::time_point deadline);
+  void end_pass();
   bool done() const { return done_; }
   bool ready() const { return !next_.empty(); }  // a complete pass has been published
   uint64_t work() const { return work_; }         // of the last step()
@@ -74,7 +82,6 @@ class Scatter {
   void withdraw(int i);
   void begin_agent();
   bool run_astar(Clock::time_point deadline, uint64_t max_work);  // true when the agent is done
-  void end_pass();
 
   const Graph& g_;
   DistTable& dist_;
@@ -84,6 +91,10 @@ class Scatter {
   std::vector<std::vector<Vertex>> paths_;      // being improved
   std::vector<std::vector<Vertex>> published_;  // of the last complete pass
   std::vector<std::vector<std::pair<Vertex, Vertex>>> next_;  // per agent, sorted (v, successor)
+  // A publication in progress: agents [0, staged_) copied into the staging pair.
+  std::vector<std::vector<Vertex>> staged_paths_;
+  std::vector<std::vector<std::pair<Vertex, Vertex>>> staged_next_;
+  int staged_ = 0;
   // body_[v][t]: agents at v at time t; last_[v]: arrival times of paths ending at v.
   std::vector<std::vector<std::vector<int32_t>>> body_;
   std::vector<std::vector<int32_t>> last_;
