@@ -26,7 +26,7 @@ class SumoBackend {
   // finds the same lane at the same position: only fewer far lanes are scored. 0.1 m (10x
   // the 1 cm the point may lie off the lane): the lane search (libsumo
   // collectObjectsInRange over a box of 2 x radius) finds fewer neighbours than at 1 m
-  // (huge warehouse, pibt-rot: controller/README.md "Cost per tick").
+  // (huge warehouse, pibt-rot: controller/README.md, "Headings", "Cost").
   static constexpr double kAngleMatchRadius = 0.1;
 
 
