@@ -450,10 +450,12 @@ bool Driver::arrive(int i, const VehiclePose& pose)
   return any;
 }
 
-std::vector<std::vector<planner::Vertex>> Driver::allowed() const
+const std::vector<std::vector<planner::Vertex>>& Driver::allowed() const
 {
-  std::vector<std::vector<planner::Vertex>> out(agv_.size());
+  std::vector<std::vector<planner::Vertex>>& out = allowed_;
+  out.resize(agv_.size());
   for (int i = 0; i < static_cast<int>(agv_.size()); ++i) {
+    out[i].clear();
     out[i].push_back(adg_.at(i));
     for (int id : agv_[i].run) out[i].push_back(adg_.action(id).to);
   }

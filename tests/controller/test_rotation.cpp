@@ -206,6 +206,52 @@ TEST(ControllerRotation, SetAngleMatchesOnlyLanesNearItsPoint)
   sumo->close();
 }
 
+TEST(ControllerRotation, HeldAgvsKeepPoseAndAngleWithOneRouteCallPerHold)
+{
+  // Commander::orient: an AGV turning or held at its heading's angle gets a moveToXY every
+  // SUMO step, which cuts its route to the current edge; the route that goes on past the lane
+  // is set again only when the hold starts (not every step: a replaceRoute in SUMO). Its
+  // pose and angle hold all the same -- also on a junction cell, whose front stands at its
+  // lane's end (a route ending there would let it arrive).
+  Config c = small_rotation("pibt-rot", "ctl_rot_hold_route");
+  const gridify::CellMap map = gridify::gridify(c.sumo.net);
+  planner::Vertex v = -1, w = -1;
+  for (planner::Vertex u = 0; u < static_cast<planner::Vertex>(map.cells.size()) && v < 0; ++u)
+    if (map.cells[u].kind == gridify::CellKind::Aisle) v = u;
+  ASSERT_GE(v, 0);
+  for (planner::Vertex u = 0; u < static_cast<planner::Vertex>(map.cells.size()) && w < 0; ++u)
+    if (map.cells[u].kind == gridify::CellKind::Junction &&
+        std::abs(map.cells[u].x - map.cells[v].x) + std::abs(map.cells[u].y - map.cells[v].y) > 4)
+      w = u;
+  ASSERT_GE(w, 0);
+  std::unique_ptr<SumoBackend> sumo = make_libsumo_backend();
+  Commander cmd(map, *sumo, c.run.tick_s);
+  sumo->start(sumo_args(c, c.output.dir, write_vtype_file(c, c.output.dir, c.grid.cell_length), false));
+  cmd.insert({v, w});
+  sumo->step();
+  const std::vector<VehiclePose> at = {sumo->pose("agv0"), sumo->pose("agv1")};
+  cmd.use_headings(cmd.start_headings({v, w}), 4);
+  const long long routes = cmd.stats().route;
+  cmd.begin_turn(0, 'R');
+  cmd.begin_turn(1, 'C');
+  for (int s = 0; s < 12; ++s) {  // 4 steps of turn, then 8 held at the new angle
+    cmd.orient();
+    sumo->step();
+    for (int i = 0; i < 2; ++i) {
+      const VehiclePose p = sumo->pose(cmd.ids()[i]);
+      EXPECT_EQ(p.lane, at[i].lane) << "AGV " << i << ", step " << s;
+      EXPECT_NEAR(p.pos, at[i].pos, 1.1e-3) << "AGV " << i << ", step " << s;
+      if (s >= 3)
+        EXPECT_NEAR(std::remainder(cmd.angle(i) - Commander::sumo_angle(cmd.heading(i)), 360.0), 0.0, 1e-6)
+            << "AGV " << i << ", step " << s;
+    }
+  }
+  EXPECT_EQ(sumo->vehicles().size(), 2u) << "an AGV left the network (arrived at its route's end)";
+  EXPECT_EQ(cmd.stats().angle, 24);
+  EXPECT_EQ(cmd.stats().route - routes, 2) << "the route is set when a hold starts, not every step";
+  sumo->close();
+}
+
 TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
 {
   const std::string sumo = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n", net = sumo + "fleet: {count: 3}\n";

@@ -156,7 +156,9 @@ class Driver {
   // After it: each AGV's progress and speed as SUMO reports them; finish the moves it completed.
   void after_step(const std::vector<VehiclePose>& poses);
   // Cells agent i may occupy now: where it stands for the ADG plus its running moves' targets.
-  std::vector<std::vector<planner::Vertex>> allowed() const;
+  // Valid until the next call (one buffer, refilled: a SUMO step's 1000 small vectors are
+  // not allocated again each step).
+  const std::vector<std::vector<planner::Vertex>>& allowed() const;
   // Per AGV, the rotation group (executor::Adg) it takes part in -- of its running move, or
   // of its last move while other members still drive -- -1 if none: Safety lets the members
   // of one group share cell claims while they rotate.
@@ -245,6 +247,7 @@ class Driver {
   DriveStats st_;
   const std::vector<std::vector<int>>* zone_of_ = nullptr;
   std::vector<int> gated_;
+  mutable std::vector<std::vector<planner::Vertex>> allowed_;  // allowed()'s buffer
 };
 
 }  // namespace controller

@@ -23,8 +23,11 @@ class SumoBackend {
   // (matchThreshold; SUMO's default, 100 m, cost 2-6 ms a call on the 1000-AGV warehouse
   // and made pibt-rot runs there 1-4 s per tick). The point is on the AGV's own lane (1 cm
   // off at most) and that lane wins the match by its id whatever else lies near, so a metre
-  // finds the same lane at the same position: only fewer far lanes are scored.
-  static constexpr double kAngleMatchRadius = 1.0;
+  // finds the same lane at the same position: only fewer far lanes are scored. 0.1 m (10x
+  // the 1 cm the point may lie off the lane): the lane search (libsumo
+  // collectObjectsInRange over a box of 2 x radius) finds fewer neighbours than at 1 m
+  // (huge warehouse, pibt-rot: controller/README.md, "Headings", "Cost").
+  static constexpr double kAngleMatchRadius = 0.1;
 
 
   virtual ~SumoBackend() = default;
