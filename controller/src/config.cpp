@@ -537,7 +537,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "stuck_after_s", c.run.stuck_after_s, 0, true);
   r.flag(u, "run", "relative_braking", c.run.relative_braking);
   r.flag(u, "run", "same_step_starts", c.run.same_step_starts);
-  r.flag(u, "run", "switch_passages", c.run.switch_passages);
+  r.integer(u, "run", "switch_passages", c.run.switch_passages, 0, 1000);
   r.flag(u, "run", "chain_to_end", c.run.chain_to_end);
   r.flag(u, "run", "gap_handover", c.run.gap_handover);
   r.integer(u, "run", "out_and_back", c.run.out_and_back, 0, 1000);

@@ -30,7 +30,7 @@ bool Adg::depends_on(int from, int target) const
   return false;
 }
 
-bool Adg::try_switch(int id)
+bool Adg::try_switch(int id, int lead)
 {
   if (id < base_ || id >= num_actions()) return false;
   Action& ej = act(id);  // j enters v
@@ -47,8 +47,11 @@ bool Adg::try_switch(int id)
   // for j to take over).
   {
     const auto& qi = queue_[ei.agent];
-    for (size_t k = head_[ei.agent]; k < qi.size() && qi[k] < e_i; ++k)
+    size_t k = head_[ei.agent];
+    for (; k < qi.size() && qi[k] < e_i; ++k)
       if (act(qi[k]).from == ej.to || act(qi[k]).to == ej.to) return false;
+    if (static_cast<int>(k - head_[ei.agent]) < lead) return false;  // i is near: keep the order
+    if (act(qi[head_[ei.agent]]).state != State::Pending) return false;  // i is on its way: keep the order
   }
   // j's leave of v: the next action in j's queue after id.
   const auto& q = queue_[ej.agent];
@@ -56,6 +59,9 @@ bool Adg::try_switch(int id)
   if (it == q.end() || it + 1 == q.end()) return false;  // j stays on v within the lookahead
   const int l_j = *(it + 1);
   if (act(l_j).group >= 0) return false;
+  // j must pass, not park: the cell after v has begun to be left (or needs no hand-over), so
+  // j will not hold v while i arrives.
+  if (act(l_j).handover >= base_ && act(act(l_j).handover).state == State::Pending) return false;
   // The next occupant of v after j: the entry whose hand-over is j's leave, or else j's own
   // next entry into v (a re-entry has no hand-over, yet after the switch it must wait for
   // i's leave). Not by id order: earlier switches reorder the cell.

@@ -116,7 +116,7 @@ struct DriveParams {
   bool same_step_starts = true;
   // Switchable ADG (run.switch_passages): a move that waits for another AGV's passage
   // through its cell, which that AGV has not begun, takes the cell first (Adg::try_switch).
-  bool switch_passages = false;
+  int switch_passages = 0;  // 0: off; else the late AGV's least number of moves before the cell
   // Lane speed limits (the net's lane `speed`): an AGV never drives faster than the limit
   // of the lane its front is on, and brakes in time (at `decel`, whole steps) for a slower
   // lane ahead on its running moves (reach_speed()).

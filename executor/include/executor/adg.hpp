@@ -122,7 +122,8 @@ class Adg {
   // v is appended, no rotation group takes part, and the ADG stays acyclic (checked by a
   // search over the undone actions). The cell order stays a total order per cell, so the
   // executed motion is collision-free as before (header comment). True if switched.
-  bool try_switch(int id);
+  // lead: i has at least this many undone moves before its move into v (1: any not released).
+  bool try_switch(int id, int lead = 1);
   long long switches() const { return switches_; }
   // Members of the action's group (just the action itself when it has none).
   std::vector<int> group_of(int id) const;
