@@ -30,7 +30,7 @@ bool Adg::depends_on(int from, int target) const
   return false;
 }
 
-bool Adg::try_switch(int id, int lead)
+bool Adg::try_switch(int id, const SwitchRule& rule)
 {
   if (id < base_ || id >= num_actions()) return false;
   Action& ej = act(id);  // j enters v
@@ -50,8 +50,8 @@ bool Adg::try_switch(int id, int lead)
     size_t k = head_[ei.agent];
     for (; k < qi.size() && qi[k] < e_i; ++k)
       if (act(qi[k]).from == ej.to || act(qi[k]).to == ej.to) return false;
-    if (static_cast<int>(k - head_[ei.agent]) < lead) return false;  // i is near: keep the order
-    if (act(qi[head_[ei.agent]]).state != State::Pending) return false;  // i is on its way: keep the order
+    if (static_cast<int>(k - head_[ei.agent]) < rule.lead) return false;  // i is near: keep the order
+    if (rule.leader_at_rest && act(qi[head_[ei.agent]]).state != State::Pending) return false;  // i is on its way: keep the order
   }
   // j's leave of v: the next action in j's queue after id.
   const auto& q = queue_[ej.agent];
@@ -61,7 +61,7 @@ bool Adg::try_switch(int id, int lead)
   if (act(l_j).group >= 0) return false;
   // j must pass, not park: the cell after v has begun to be left (or needs no hand-over), so
   // j will not hold v while i arrives.
-  if (act(l_j).handover >= base_ && act(act(l_j).handover).state == State::Pending) return false;
+  if (rule.must_pass && act(l_j).handover >= base_ && act(act(l_j).handover).state == State::Pending) return false;
   // The next occupant of v after j: the entry whose hand-over is j's leave, or else j's own
   // next entry into v (a re-entry has no hand-over, yet after the switch it must wait for
   // i's leave). Not by id order: earlier switches reorder the cell.

@@ -385,7 +385,8 @@ TEST(AdgSwitch, NeverSwitchesIntoACycle)
   for (size_t s = 1; s < plan.size(); ++s) adg.append(plan[s]);
   const int e1 = adg.next_action(1);
   EXPECT_FALSE(adg.released(e1));
-  EXPECT_FALSE(adg.try_switch(e1));
+  EXPECT_FALSE(adg.try_switch(e1));  // refused by the rule already: agent 1 would park on v
+  EXPECT_FALSE(adg.try_switch(e1, {1, true, false}));  // by the acyclicity check
   EXPECT_EQ(adg.switches(), 0);
   EXPECT_EQ(run_with_late_start(adg, {5, 0}, true), 10);  // plan order: 5 held + 3 moves, then agent 1's 2
   EXPECT_TRUE(adg.done());
@@ -434,7 +435,8 @@ TEST(AdgSwitch, RandomPlansWithLateAgentsStayValidAndEnd)
         adg.finish(id);
         ASSERT_EQ(adg.at(i), path[i][++pos[i]]);
       } else {
-        if (!adg.released(id)) adg.try_switch(id);
+        // The loosest rule: the acyclicity check and the cell order alone keep it safe.
+        if (!adg.released(id)) adg.try_switch(id, {1, false, false});
         if (!adg.released(id)) continue;
         adg.start(id);
       }
@@ -450,4 +452,26 @@ TEST(AdgSwitch, RandomPlansWithLateAgentsStayValidAndEnd)
     switches += adg.switches();
   }
   EXPECT_GT(switches, 0);
+}
+
+TEST(AdgSwitch, TheNextOccupantWaitsForTheLateAgentAfterASwitch)
+{
+  // Cell 2: agent 0 (late), then 1, then 2 in the plan. Agent 1 passes first; agent 2 must
+  // then wait for agent 0's leave of 2, not for agent 1's.
+  const std::vector<planner::Config> plan = {{10, 1, 5}, {11, 1, 5}, {12, 1, 5}, {2, 1, 5},
+                                             {3, 2, 5},  {3, 4, 5},  {3, 4, 2},  {3, 4, 6}};
+  Adg adg(plan[0]);
+  for (size_t s = 1; s < plan.size(); ++s) adg.append(plan[s]);
+  const int enter = adg.next_action(1);
+  ASSERT_TRUE(adg.try_switch(enter));
+  for (int k = 0; k < 2; ++k) {  // agent 1 passes cell 2
+    const int id = adg.next_action(1);
+    ASSERT_TRUE(adg.released(id));
+    adg.start(id);
+    adg.finish(id);
+  }
+  const int k_enter = adg.next_action(2);
+  EXPECT_FALSE(adg.released(k_enter));  // agent 0 has not passed 2 yet
+  EXPECT_FALSE(adg.released_following(k_enter));
+  EXPECT_EQ(run_with_late_start(adg, {0, 0, 0}, true), 6);  // agent 0's 4 moves, then agent 2's 2
 }

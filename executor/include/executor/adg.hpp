@@ -122,8 +122,14 @@ class Adg {
   // v is appended, no rotation group takes part, and the ADG stays acyclic (checked by a
   // search over the undone actions). The cell order stays a total order per cell, so the
   // executed motion is collision-free as before (header comment). True if switched.
-  // lead: i has at least this many undone moves before its move into v (1: any not released).
-  bool try_switch(int id, int lead = 1);
+  // The rule (when a switch is worth trying; the acyclicity check is always made):
+  struct SwitchRule {
+    int lead = 1;              // i has at least this many undone moves before its move into v
+    bool leader_at_rest = true;  // i is at rest (its next move pending)
+    bool must_pass = true;       // the cell after v is being left already: j will not park on v
+  };
+  bool try_switch(int id, const SwitchRule& rule);
+  bool try_switch(int id) { return try_switch(id, SwitchRule{}); }
   long long switches() const { return switches_; }
   // Members of the action's group (just the action itself when it has none).
   std::vector<int> group_of(int id) const;
