@@ -151,7 +151,9 @@ bool Driver::start_moves(int i, bool count)
         return false;
       }
       const bool follow = p_.follow && adg_.action(id).group < 0;  // rotations: strict
-      if (!(follow ? adg_.released_following(id) : adg_.released(id))) {
+      auto ready = [&] { return follow ? adg_.released_following(id) : adg_.released(id); };
+      if (!ready() && p_.switch_passages > 0 && adg_.try_switch(id, {p_.switch_passages})) ++st_.switches;
+      if (!ready()) {
         if (count) ++st_.dependency_waits;
         return false;
       }
@@ -180,7 +182,10 @@ bool Driver::start_moves(int i, bool count)
     const double reach = p_.max_speed * p_.max_speed / (2 * p_.decel) + p_.max_speed * p_.dt;
     while (!g.run.empty() && left_to_drive(g.dist, g.done) < reach) {
       const int id = adg_.undone(i, g.run.size());
-      if (id < 0 || !(p_.follow ? adg_.chainable_following(id) : adg_.chainable(id))) break;
+      if (id < 0) break;
+      auto ready = [&] { return p_.follow ? adg_.chainable_following(id) : adg_.chainable(id); };
+      if (!ready() && p_.switch_passages > 0 && adg_.try_switch(id, {p_.switch_passages})) ++st_.switches;
+      if (!ready()) break;
       const executor::Action& a = adg_.action(id);
       if (cmd_.needs_rest(i, a.from, a.to)) break;
       if (!zone_free(i, a.from, a.to)) break;

@@ -130,6 +130,7 @@ nlohmann::json Metrics::to_json() const
                    {"delay_agent_ticks", delay_agent_ticks},
                    {"delay_stops", delay_stops},
                    {"chained", chained},
+                   {"switches", switches},
                    {"out_and_backs", out_and_backs},
                    {"followed", followed},
                    {"time", {{"cruise", time_cruise}, {"accel", time_accel}, {"follow", time_follow},

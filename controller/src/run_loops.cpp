@@ -148,6 +148,7 @@ void Run::loop_adg()
   dp.margin = cfg_.fleet.vtype.min_gap;
   dp.sure_travel = cfg_.run.relative_braking;
   dp.same_step_starts = cfg_.run.same_step_starts;
+  dp.switch_passages = cfg_.run.switch_passages;
   dp.exact_chain = cfg_.run.chain_to_end;
   // Not with headings (rotation solvers, fleet.turn_s). The turns it seemed to interrupt
   // (session 31, ControllerRotationAdg.*) were turns still running when a lifelong run's tick
@@ -282,6 +283,7 @@ void Run::loop_adg()
     m_.soc = val_->sum_of_costs();
     m_.dependency_waits = drv.stats().dependency_waits;
     m_.chained = drv.stats().chained;
+    m_.switches = drv.stats().switches;
     m_.followed = drv.stats().followed;
     m_.overshoot_m = drv.stats().overshoot;
     const planner::Config now = executed();
@@ -296,6 +298,7 @@ void Run::loop_adg()
   }
   m_.dependency_waits = drv.stats().dependency_waits;
   m_.chained = drv.stats().chained;
+  m_.switches = drv.stats().switches;
   m_.followed = drv.stats().followed;
   m_.overshoot_m = drv.stats().overshoot;
   m_.out_and_backs = oab_->cuts();

@@ -334,3 +334,144 @@ TEST(OutAndBack, KeepsGoalVisitsAndZonesWithLimits)
     EXPECT_EQ(z.cuts(), limited ? 0 : 1) << limited;
   }
 }
+
+namespace {
+
+// Strict ADG execution, one time unit per move; `late[i]` ticks before agent i may move at
+// all; `switching`: try_switch on a move that waits. Returns the ticks to the end.
+int run_with_late_start(Adg& adg, const std::vector<int>& late, bool switching)
+{
+  int t = 0;
+  for (; !adg.done() && t < 100; ++t) {
+    std::vector<int> run;
+    for (int i = 0; i < adg.num_agents(); ++i) {
+      const int id = adg.next_action(i);
+      if (id < 0 || t < late[i]) continue;
+      if (switching && !adg.released(id)) adg.try_switch(id);
+      if (adg.released(id)) adg.start(id), run.push_back(id);
+    }
+    for (int id : run) adg.finish(id);
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST(AdgSwitch, ALateLeaderLetsTheReadyAgentPassFirst)
+{
+  // Agent 0 passes cell 2 at step 3 (10 -> 11 -> 12 -> 2 -> 3); agent 1 waits on 1 and
+  // passes 2 after it (1 -> 2 -> 4). Agent 0 is held 5 ticks: agent 1 goes first.
+  const std::vector<planner::Config> plan = {{10, 1}, {11, 1}, {12, 1}, {2, 1}, {3, 2}, {3, 4}};
+  auto build = [&] {
+    Adg adg(plan[0]);
+    for (size_t s = 1; s < plan.size(); ++s) adg.append(plan[s]);
+    return adg;
+  };
+  Adg fixed = build(), switched = build();
+  const int t_fixed = run_with_late_start(fixed, {5, 0}, false);
+  const int t_switched = run_with_late_start(switched, {5, 0}, true);
+  EXPECT_EQ(t_fixed, 11);    // 5 held + 4 moves of agent 0, then agent 1's 2
+  EXPECT_EQ(t_switched, 9);  // agent 1 done at 2; agent 0's 4 moves after its 5 ticks
+  EXPECT_EQ(switched.switches(), 1);
+  EXPECT_EQ(fixed.switches(), 0);
+}
+
+TEST(AdgSwitch, NeverSwitchesIntoACycle)
+{
+  // Agent 0: 20 -> 21 (w) -> 22 (v) -> 23; agent 1: 30 -> 22 (v) -> 21 (w). Passing v first,
+  // agent 1 would wait on v for w, which agent 0 must leave toward v: a deadlock. Refused.
+  const std::vector<planner::Config> plan = {{20, 30}, {21, 30}, {22, 30}, {23, 22}, {23, 21}};
+  Adg adg(plan[0]);
+  for (size_t s = 1; s < plan.size(); ++s) adg.append(plan[s]);
+  const int e1 = adg.next_action(1);
+  EXPECT_FALSE(adg.released(e1));
+  EXPECT_FALSE(adg.try_switch(e1));  // refused by the rule already: agent 1 would park on v
+  EXPECT_FALSE(adg.try_switch(e1, {1, true, false}));  // by the acyclicity check
+  EXPECT_EQ(adg.switches(), 0);
+  EXPECT_EQ(run_with_late_start(adg, {5, 0}, true), 10);  // plan order: 5 held + 3 moves, then agent 1's 2
+  EXPECT_TRUE(adg.done());
+}
+
+TEST(AdgSwitch, RandomPlansWithLateAgentsStayValidAndEnd)
+{
+  // Random valid plans on a 6x6 grid (a move only into a cell free before and after),
+  // appended as execution goes (a lookahead of 4 steps); random agents held; every waiting
+  // move tries a switch. At every event no cell is claimed twice (claims: the cell an agent
+  // stands on, and the target of its running move) and every agent moves along its own
+  // plan path; every run ends (no cycle).
+  long long switches = 0;
+  for (int seed = 0; seed < 40; ++seed) {
+    std::mt19937 rng(seed);
+    const int w = 6, n = 12;
+    planner::Config c(n);
+    for (int i = 0; i < n; ++i) c[i] = 3 * i;  // cells 0, 3, ..., 33
+    std::vector<std::vector<planner::Vertex>> path(n);
+    for (int i = 0; i < n; ++i) path[i].push_back(c[i]);
+    Adg adg(c);
+    auto next_step = [&] {
+      planner::Config nx = c;
+      for (int i = 0; i < n; ++i) {
+        if (rng() % 2) continue;
+        const int x = c[i] % w, y = c[i] / w, d = static_cast<int>(rng() % 4);
+        const int nx_x = x + (d == 0) - (d == 1), nx_y = y + (d == 2) - (d == 3);
+        if (nx_x < 0 || nx_x >= w || nx_y < 0 || nx_y >= w) continue;
+        const planner::Vertex to = nx_y * w + nx_x;
+        if (std::find(c.begin(), c.end(), to) != c.end() || std::find(nx.begin(), nx.end(), to) != nx.end()) continue;
+        nx[i] = to;
+      }
+      for (int i = 0; i < n; ++i)
+        if (nx[i] != c[i]) path[i].push_back(nx[i]);
+      c = nx;
+      return nx;
+    };
+    std::vector<size_t> pos(n, 0);  // index into path of where the agent stands
+    int steps = 0;
+    for (int t = 0; t < 5000 && !(steps >= 60 && adg.done()); ++t) {
+      while (steps < 60 && adg.steps() - adg.min_progress() < 10) adg.append(next_step()), ++steps;
+      const int i = static_cast<int>(rng() % n);
+      const int id = adg.next_action(i);
+      if (id < 0 || (i % 3 == 0 && rng() % 4 != 0)) continue;  // every third agent is slow
+      if (adg.action(id).state == State::Running) {
+        adg.finish(id);
+        ASSERT_EQ(adg.at(i), path[i][++pos[i]]);
+      } else {
+        // The loosest rule: the acyclicity check and the cell order alone keep it safe.
+        if (!adg.released(id)) adg.try_switch(id, {1, false, false});
+        if (!adg.released(id)) continue;
+        adg.start(id);
+      }
+      std::vector<int> claims(w * w, 0);
+      for (int k = 0; k < n; ++k) {
+        ++claims[adg.at(k)];
+        const int r = adg.next_action(k);
+        if (r >= 0 && adg.action(r).state == State::Running) ++claims[adg.action(r).to];
+      }
+      for (int v = 0; v < w * w; ++v) ASSERT_LE(claims[v], 1) << "seed " << seed << " cell " << v << " t " << t << " switches " << adg.switches();
+    }
+    ASSERT_TRUE(adg.done()) << "seed " << seed;
+    switches += adg.switches();
+  }
+  EXPECT_GT(switches, 0);
+}
+
+TEST(AdgSwitch, TheNextOccupantWaitsForTheLateAgentAfterASwitch)
+{
+  // Cell 2: agent 0 (late), then 1, then 2 in the plan. Agent 1 passes first; agent 2 must
+  // then wait for agent 0's leave of 2, not for agent 1's.
+  const std::vector<planner::Config> plan = {{10, 1, 5}, {11, 1, 5}, {12, 1, 5}, {2, 1, 5},
+                                             {3, 2, 5},  {3, 4, 5},  {3, 4, 2},  {3, 4, 6}};
+  Adg adg(plan[0]);
+  for (size_t s = 1; s < plan.size(); ++s) adg.append(plan[s]);
+  const int enter = adg.next_action(1);
+  ASSERT_TRUE(adg.try_switch(enter));
+  for (int k = 0; k < 2; ++k) {  // agent 1 passes cell 2
+    const int id = adg.next_action(1);
+    ASSERT_TRUE(adg.released(id));
+    adg.start(id);
+    adg.finish(id);
+  }
+  const int k_enter = adg.next_action(2);
+  EXPECT_FALSE(adg.released(k_enter));  // agent 0 has not passed 2 yet
+  EXPECT_FALSE(adg.released_following(k_enter));
+  EXPECT_EQ(run_with_late_start(adg, {0, 0, 0}, true), 6);  // agent 0's 4 moves, then agent 2's 2
+}

@@ -199,6 +199,9 @@ struct RunSection {
   // adg-follow flow (controller/driver.hpp DriveParams; switches for tests and benches):
   bool relative_braking = true;      // count on a leader's sure travel when following
   bool same_step_starts = true;      // a move released by another start in a step starts in it
+  // adg / adg-follow: a ready AGV passes a cell before a late one (Adg::try_switch); 0: off,
+  // k >= 1: the late one has at least k moves to make before it enters the cell.
+  int switch_passages = 0;
   bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
   bool gap_handover = true;          // a follower may reach the cell before its leader arrives (body gap only)
   // adg, cell plans (one-shot and lifelong; not rotation solvers): commits held back this many

@@ -114,6 +114,9 @@ struct DriveParams {
   bool gap_handover = true;
   // Starts in passes within one SUMO step (a move released by another start this step starts too).
   bool same_step_starts = true;
+  // Switchable ADG (run.switch_passages): a move that waits for another AGV's passage
+  // through its cell, which that AGV has not begun, takes the cell first (Adg::try_switch).
+  int switch_passages = 0;  // 0: off; else the late AGV's least number of moves before the cell
   // Lane speed limits (the net's lane `speed`): an AGV never drives faster than the limit
   // of the lane its front is on, and brakes in time (at `decel`, whole steps) for a slower
   // lane ahead on its running moves (reach_speed()).
@@ -124,6 +127,7 @@ struct DriveStats {
   long long dependency_waits = 0;  // agent-steps with a committed move not yet released
   long long delay_steps = 0;       // agent-steps stopped by a delay
   long long chained = 0;           // moves started while driving (no stop in between)
+  long long switches = 0;          // passages reordered (switch_passages)
   long long followed = 0;          // moves started while the cell's previous occupant was still leaving it
   double max_error = 0;            // |SUMO front - target| at arrivals, m
   double overshoot = 0;            // most a command ever drove past a stopping point, m (0: never)

@@ -44,6 +44,7 @@ struct Metrics {
   long long delay_agent_ticks = 0;  // agent-ticks stopped by the delay model
   long long delay_stops = 0;        // stops injected
   long long chained = 0;            // adg: moves started without stopping in between
+  long long switches = 0;           // adg: passages reordered (run.switch_passages)
   long long out_and_backs = 0;      // adg: out-and-backs cut from the plan (run.out_and_back)
   long long followed = 0;           // adg-follow: moves started while the cell's previous occupant was still leaving it
   long long safety_checks = 0;      // SUMO steps checked by Safety (overlap / on path)

@@ -113,6 +113,24 @@ class Adg {
   // The agent's last done action (-1 if none), and whether every member of group g is done.
   int last_done(int agent) const { return head_[agent] > 0 ? queue_[agent][head_[agent] - 1] : -1; }
   bool group_done(int g) const;
+  // Switchable ADG (Berndt et al., "A Feedback Scheme to Reorder a Multi-Agent Execution
+  // Schedule by Persistently Optimizing a Switchable Action Dependency Graph", 2020), in a
+  // greedy form (adg_switch.cpp): action `id` (agent j entering v) waits for another agent
+  // i's passage through v that i has not begun (its move into v pending and not released).
+  // Then j passes v first: the order of the two passages through v is switched (i's entry
+  // waits for j's leave of v; whoever followed j on v now follows i) -- only if j's leave of
+  // v is appended, no rotation group takes part, and the ADG stays acyclic (checked by a
+  // search over the undone actions). The cell order stays a total order per cell, so the
+  // executed motion is collision-free as before (header comment). True if switched.
+  // The rule (when a switch is worth trying; the acyclicity check is always made):
+  struct SwitchRule {
+    int lead = 1;              // i has at least this many undone moves before its move into v
+    bool leader_at_rest = true;  // i is at rest (its next move pending)
+    bool must_pass = true;       // the cell after v is being left already: j will not park on v
+  };
+  bool try_switch(int id, const SwitchRule& rule);
+  bool try_switch(int id) { return try_switch(id, SwitchRule{}); }
+  long long switches() const { return switches_; }
   // Members of the action's group (just the action itself when it has none).
   std::vector<int> group_of(int id) const;
 
@@ -139,6 +157,7 @@ class Adg {
   const Action& act(int id) const { return actions_[id - base_]; }
   const std::vector<int>& group(int g) const { return groups_[g - group_base_]; }
   void compact();  // drops the done prefix (see the header comment)
+  bool depends_on(int from, int target) const;  // target reachable over dependencies (undone)
 
   planner::Config tail_, at_;
   std::vector<Action> actions_;
@@ -148,7 +167,7 @@ class Adg {
   std::vector<std::vector<int>> groups_;  // group g at groups_[g - group_base_]
   int base_ = 0, group_base_ = 0;         // global ids of actions_[0] and groups_[0]
   int compact_min_;
-  long long steps_ = 0, done_count_ = 0;
+  long long steps_ = 0, done_count_ = 0, switches_ = 0;
 };
 
 }  // namespace executor
