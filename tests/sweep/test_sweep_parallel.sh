@@ -15,10 +15,10 @@ M=tests/data/planner/random-32-32-20.map
 S=tests/data/planner/random-32-32-20-random-1.scen
 cat >"$t/s.csv" <<CSV
 key,map,scen,agents,solver,budget_expansions,cutoff_ms,max_steps,no_swap
-b,$M,$S,20,rtlacam,10,1000,100000,false
-a,$M,$S,20,naive,10,1000,100000,true
-limit,$M,$S,60,pibt,10,1000,2,
-bad,$M,/nope.scen,20,rtlacam,10,1000,100000,
+b,$M,$S,20,rtlacam,10,,100000,false
+a,$M,$S,20,naive,10,,100000,true
+limit,$M,$S,60,pibt,10,,2,
+bad,$M,/nope.scen,20,rtlacam,10,,100000,
 CSV
 rc=0
 $py "$sweep" parallel "$t/s.csv" "$t/out" --app "$bench" -j 2 >"$t/log" 2>&1 || rc=$?
