@@ -19,27 +19,18 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
   if (!o.on()) return {};
   const int n = tm.num_agents();
   std::vector<float> h(n, 0.0f);
-  // Agents on their way out of a station's dead-end pocket (head_after on): kLeavingUrgency,
-  // with or without stall hints. Under stall hints (station queues) the queued crowd's
-  // stall ticks otherwise outrank the agent that must leave through them, and the stub
-  // stays wedged for good (traced on huge_warehouse_lifelong: a loaded AGV on its pick-up
-  // station 474 of 500 plan steps; scripts/lifelong_decay.py).
-  std::vector<char> leaving;
-  if (o.head_after > 0 && tm.stalls() && positions) {
-    const planner::Config& at = *positions;
-    leaving.assign(n, 0);
-    for (int a = 0; a < n; ++a) {
-      const planner::Vertex p = tm.pocket(at[a]);
-      leaving[a] = p >= 0 && tm.pocket(tm.goals()[a]) != p;
-    }
-  }
-  if (!leaving.empty() && !o.stalls) {
+  if (o.head_after > 0 && !o.stalls && tm.stalls() && positions) {
     // The head of each errand cell's crowd: its most stalled heading agent outside the
-    // cell's pocket, if >= head_after (stall hints, when on, already hint every one).
+    // cell's pocket, if >= head_after; and every agent on its way out of a pocket.
     const planner::Config& at = *positions;
     std::unordered_map<planner::Vertex, std::pair<long long, int>> head;  // cell -> (stall, agent)
     for (int a = 0; a < n; ++a) {
-      if (leaving[a] || !tm.heading(a) || tm.pocket(at[a]) >= 0) continue;
+      const planner::Vertex p = tm.pocket(at[a]);
+      if (p >= 0 && tm.pocket(tm.goals()[a]) != p) {
+        h[a] = kLeavingUrgency;
+        continue;
+      }
+      if (!tm.heading(a) || p >= 0) continue;
       const long long s = tm.stalls()->stalled(tm.now(), tm.task_of(a)->id);
       if (s < o.head_after) continue;
       auto& hd = head[tm.task_of(a)->next_cell()];
@@ -51,7 +42,6 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
   const Battery* b = o.battery ? tm.battery() : nullptr;
   for (int a = 0; a < n; ++a) {
     if (st && tm.heading(a)) h[a] = static_cast<float>(st->stalled(tm.now(), tm.task_of(a)->id));
-    if (!leaving.empty() && leaving[a]) h[a] = std::max(h[a], kLeavingUrgency);
     if (b && battery_urgent(tm, a)) {
       const double f = std::clamp(b->charge(a) / b->options().capacity_wh, 0.0, 1.0);
       h[a] = kBatteryUrgency + static_cast<float>(kBatteryUrgency * (1.0 - f));

@@ -162,41 +162,6 @@ TEST(ErrandStalls, HeadHintsGoToTheMostStalledAgentPerCellAndToAgentsLeavingAPoc
   }
 }
 
-// Leaving a pocket under stall hints (stalls on, as with station queues): the same pocket
-// and agents. With head_after on, agent 0, loaded on the pick-up station and on its way
-// out, gets kLeavingUrgency above the stall hints of the crowd heading in (3 and 2 ticks),
-// so that they back out of its way. Off (head_after 0): it has only its own stall ticks,
-// below the crowd's ceiling, and the stub can wedge for good (huge_warehouse_lifelong:
-// scripts/lifelong_decay.py, docs/twin_bench.md "Why the 1000-AGV run decays").
-TEST(ErrandStalls, UnderStallHintsAnAgentLeavingAPocketStillGoesFirst)
-{
-  const planner::Graph g = ttest::grid({".....", "..#..", "#.###"});
-  auto file = ttest::task_file(g, {{{1, 2}, {0, 1}}, {{1, 2}, {0, 1}}, {{1, 2}, {0, 1}}});
-  for (int H : {2, 0}) {
-    SCOPED_TRACE("head_after " + std::to_string(H));
-    TaskPool tm(file, g, 3, std::make_unique<GreedyAssigner>());
-    UrgencyOptions u;
-    u.stalls = true;
-    u.head_after = H;
-    tm.set_urgency(u);
-    tm.watch_stalls(g);
-    Config at{g.at(1, 2), g.at(4, 0), g.at(4, 1)};
-    tm.start(at);
-    at[2] = g.at(3, 1);
-    for (long t = 1; t <= 3; ++t) tm.update(t, at);
-    ASSERT_EQ(tm.goals()[0], g.at(0, 1));  // picked up: on its way out
-    const std::vector<float> h = priority_hints(tm, &at);
-    ASSERT_EQ(h.size(), 3u);
-    EXPECT_EQ(h[1], 3.0f);  // stall hints for every agent heading in, either way
-    EXPECT_EQ(h[2], 2.0f);
-    if (H > 0) {
-      EXPECT_EQ(h[0], kLeavingUrgency);
-    } else {
-      EXPECT_LT(h[0], kLeavingUrgency);
-    }
-  }
-}
-
 // Station load (UrgencyOptions::load_cost): agent 0 holds a task at (0, 0); agent 1 finishes
 // its task at (3, 0) and is matched again: the free task at (0, 0) is 3 moves away, the one
 // at (7, 0) 4. Off, it takes the nearer; with load_cost 10 the (0, 0) task costs 3 + 10 x 1
