@@ -501,14 +501,10 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     if (const YAML::Node pk = t["parking"]) {
       if (pk.IsSequence()) {
         r.cell_list(pk, "tasks.parking", c.tasks.parking_cells);
-        if (c.tasks.parking_cells.empty()) r.fail("tasks.parking", "must list at least one cell (or be true / clear / false)");
-        c.tasks.parking = true;
-      } else if (pk.IsScalar() && pk.Scalar() == "clear") {
-        // No parking cells: idle AGVs only leave the cells they would block (stations, their
-        // dead-end pockets and queue cells: tasks/parking.hpp), e.g. a net without parkingAreas.
+        if (c.tasks.parking_cells.empty()) r.fail("tasks.parking", "must list at least one cell (or be true / false)");
         c.tasks.parking = true;
       } else {
-        r.get(t, "tasks", "parking", c.tasks.parking, "true (the parkingAreas of sumo.additional), clear, false or a list of cells");
+        r.get(t, "tasks", "parking", c.tasks.parking, "true (the parkingAreas of sumo.additional), false or a list of cells");
         c.tasks.parking_auto = c.tasks.parking;
       }
     }

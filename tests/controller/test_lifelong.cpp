@@ -258,13 +258,7 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
     EXPECT_EQ(c.tasks.urgency_load_cost, 10);
   }
   EXPECT_EQ(config_error(kNetAdd + ll + "  parking: maybe\n"),
-            "t.yaml: tasks.parking: expected true (the parkingAreas of sumo.additional), clear, false or a list of cells, got 'maybe'");
-  {  // clear: parking on with no cells (idle AGVs only leave stations, pockets, queue cells)
-    const Config c = parse_config(kNetAdd + ll + "  parking: clear\n", "t.yaml", RTLACAM_CONFIGS);
-    EXPECT_TRUE(c.tasks.parking);
-    EXPECT_FALSE(c.tasks.parking_auto);
-    EXPECT_TRUE(c.tasks.parking_cells.empty());
-  }
+            "t.yaml: tasks.parking: expected true (the parkingAreas of sumo.additional), false or a list of cells, got 'maybe'");
   EXPECT_EQ(config_error(kNetAdd + "fleet: {count: 2}\ntasks: {parking: true}\n"),
             "t.yaml: tasks.parking: only with tasks.mode: lifelong");
   // parking: true reads the parkingAreas; one on a lane gridify dropped is named.
