@@ -284,6 +284,7 @@ int main(int argc, char** argv)
         threads_json["dive_wins"] = rt->lacam().dive_wins();
         threads_json["dive_stalls"] = rt->lacam().dive_stalls();
         threads_json["reprices"] = rt->lacam().reprices();
+        threads_json["rewire_cuts"] = rt->lacam().rewire_cuts();
         threads_json["late_dives"] = rt->lacam().late_dives();
         threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
       }

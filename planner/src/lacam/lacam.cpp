@@ -71,6 +71,8 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   explored_.set_num_agents(n_);
   open_.clear();
   all_.clear();
+  queue_.clear();  // a cut rewiring belonged to the old tree
+  rewire_next_ = 0;
   goal_ = nullptr;
   best_.reset(goals_);
   goal_version_ = priced_version_ = 0;

@@ -52,7 +52,24 @@ void Lacam::start_scatter(int lead)
 bool Lacam::scatter_step()
 {
   if (!opt_.scatter && !opt_.scatter_first) return false;
-  if (!scatter_started_) start_scatter(opt_.scatter_lead);
+  if (!scatter_started_) {
+    // Timed, the first start is a step of its own, when its cost fits (the restart's model:
+    // both are SUO's reset, the first one also builds the occupancy lists, O(|V|) fresh
+    // memory); it had shared a call with a slice that ran to the call's deadline.
+    if (timed_) {
+      restart_cost_.set_prior(2 * expand_cost_.rate());
+      if (!fits(restart_cost_.predict_ms(1))) {
+        restart_cost_.forget();
+        stalled_ = true;  // in a later call
+        return true;
+      }
+      const double c0 = thread_cpu_ms();
+      start_scatter(opt_.scatter_lead);
+      restart_cost_.record(1, thread_cpu_ms() - c0);
+      return true;
+    }
+    start_scatter(opt_.scatter_lead);
+  }
   if (scatter_.done()) {
     if (scatter_.ready()) pibt_.set_scatter(&scatter_);
     return false;

@@ -98,6 +98,11 @@ Status Lacam::refine_expand()
     refine_capped_ = true;
     return status_;
   }
+  if (rewire_next_ < queue_.size()) {  // a rewiring cut at its deadline
+    if (!rewire(deadline_, opt_.rewire_slice)) stalled_ = true;
+    last_step_ = Step::insert;  // learnt by no cost model, like an insertion
+    return status_;
+  }
   if (preparing_) {
     if (!prepare_step()) stalled_ = true;  // the rest in the next calls
     last_step_ = Step::prepare;
@@ -250,7 +255,7 @@ Status Lacam::refine_expand()
   const uint64_t hash = config_hash(scratch_.data(), n_);
   if (HNode* known = explored_.find(scratch_.data(), hash)) {
     link(H, known);
-    rewrite(H, known);
+    rewrite(H, known, deadline_, opt_.rewire_slice);  // cut at the deadline: resumed by the next step
     push_if_promising(rng_.uniform() < opt_.restart_rate ? root_ : known);
   } else {
     HNode* h = new_node(scratch_.data(), H, hash);
@@ -354,13 +359,22 @@ bool Lacam::insert_step()
 // Label-correcting Dijkstra from a new link's two ends: a node whose g drops takes the
 // relaxing node as parent, and the drop propagates along the links. Costs are positive off
 // the goal configuration, so parents stay a tree and the root (g = 0) is never re-parented.
-void Lacam::rewrite(HNode* a, HNode* b)
+bool Lacam::rewrite(HNode* a, HNode* b, Clock::time_point deadline, int max_nodes)
 {
-  queue_.clear();
   queue_.push_back(a);
   queue_.push_back(b);
-  for (size_t k = 0; k < queue_.size(); ++k) {
-    HNode* from = queue_[k];
+  return rewire(deadline, max_nodes);
+}
+
+// One node at least per call (progress), then until the deadline or max_nodes (0: no cap).
+bool Lacam::rewire(Clock::time_point deadline, int max_nodes)
+{
+  for (int k = 0; rewire_next_ < queue_.size(); ++k) {
+    if (k > 0 && ((max_nodes > 0 && k >= max_nodes) || (deadline != Clock::time_point::max() && Clock::now() >= deadline))) {
+      ++rewire_cuts_;
+      return false;
+    }
+    HNode* from = queue_[rewire_next_++];
     for (Neighbor* e = from->neighbors; e; e = e->next) {
       HNode* to = e->to;
       const int64_t g = from->g + cost(from, e);
@@ -372,6 +386,9 @@ void Lacam::rewrite(HNode* a, HNode* b)
       if (to->g + to->h < goal_->g + goal_->h) open_.push_back(to);
     }
   }
+  queue_.clear();
+  rewire_next_ = 0;
+  return true;
 }
 
 // Recomputes g over the tree below new_root (the whole tree), walking from a node x to its

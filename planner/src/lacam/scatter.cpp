@@ -29,9 +29,11 @@ void Scatter::clear()
   // refinement step at N = 1000 (warehouse-20-40-10-2-2), when SUO restarted further ahead.
   for (const auto& p : paths_) {
     for (size_t t = 0; t < p.size(); ++t)
-      if (static_cast<size_t>(p[t]) < body_.size() && t < body_[p[t]].size()) body_[p[t]][t].clear();
+      if (static_cast<size_t>(p[t]) < body_.size() && t < body_[p[t]].size()) body_[p[t]][t] = -1;
     if (!p.empty() && static_cast<size_t>(p.back()) < last_.size()) last_[p.back()].clear();
   }
+  cells_.clear();
+  free_cell_ = -1;
   n_ = 0;
   done_ = true;
   in_astar_ = false;
@@ -70,16 +72,46 @@ void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_pas
   done_ = n_ == 0;
 }
 
+int32_t Scatter::count(int32_t head) const
+{
+  int32_t c = 0;
+  for (; head >= 0; head = cells_[head].next) ++c;
+  return c;
+}
+
+void Scatter::occupy(Vertex v, int32_t t, int i)
+{
+  auto& b = body_[v];
+  if (b.size() <= static_cast<size_t>(t)) b.resize(t + 1, -1);
+  int32_t k = free_cell_;
+  if (k >= 0)
+    free_cell_ = cells_[k].next;
+  else
+    k = static_cast<int32_t>(cells_.size()), cells_.emplace_back();
+  cells_[k] = Cell{i, b[t]};
+  b[t] = k;
+}
+
+void Scatter::vacate(Vertex v, int32_t t, int i)
+{
+  int32_t* link = &body_[v][t];
+  while (cells_[*link].agent != i) link = &cells_[*link].next;
+  const int32_t k = *link;
+  *link = cells_[k].next;
+  cells_[k].next = free_cell_;
+  free_cell_ = k;
+}
+
 int32_t Scatter::collision_cost(Vertex u, Vertex w, int32_t t) const
 {
   int32_t c = 0;
   const auto& bw = body_[w];
   const auto& bu = body_[u];
-  if (static_cast<size_t>(t + 1) < bw.size()) c += static_cast<int32_t>(bw[t + 1].size());  // vertex
-  if (static_cast<size_t>(t + 1) < bu.size() && static_cast<size_t>(t) < bw.size())         // swap
-    for (int32_t j : bu[t + 1])
-      for (int32_t k : bw[t])
-        c += j == k;
+  if (static_cast<size_t>(t + 1) < bw.size()) c += count(bw[t + 1]);                // vertex
+  if (static_cast<size_t>(t + 1) < bu.size() && static_cast<size_t>(t) < bw.size())  // swap
+    for (int32_t j = bu[t + 1]; j >= 0; j = cells_[j].next)
+      for (int32_t k = bw[t]; k >= 0; k = cells_[k].next)
+        c += cells_[j].agent == cells_[k].agent;
   for (int32_t arrived : last_[w]) c += t + 1 > arrived;  // on somebody's goal after they arrived
   return c;
 }
@@ -94,13 +126,9 @@ void Scatter::enroll(int i)
   int64_t c = 0;
   for (int32_t t = 0; t < T; ++t) c += collision_cost(p[t], p[t + 1], t);
   const auto& bg = body_[p.back()];
-  for (size_t t = T + 1; t < bg.size(); ++t) c += static_cast<int64_t>(bg[t].size());
+  for (size_t t = T + 1; t < bg.size(); ++t) c += count(bg[t]);
   collisions_ += c;
-  for (int32_t t = 0; t <= T; ++t) {
-    auto& b = body_[p[t]];
-    if (b.size() <= static_cast<size_t>(t)) b.resize(t + 1);
-    b[t].push_back(i);
-  }
+  for (int32_t t = 0; t <= T; ++t) occupy(p[t], t, i);
   last_[p.back()].push_back(T);
   work_ += 2 * (T + 1);
 }
@@ -110,16 +138,13 @@ void Scatter::withdraw(int i)
   const auto& p = paths_[i];
   if (p.empty()) return;
   const int32_t T = static_cast<int32_t>(p.size()) - 1;
-  for (int32_t t = 0; t <= T; ++t) {
-    auto& b = body_[p[t]][t];
-    b.erase(std::find(b.begin(), b.end(), i));
-  }
+  for (int32_t t = 0; t <= T; ++t) vacate(p[t], t, i);
   auto& l = last_[p.back()];
   l.erase(std::find(l.begin(), l.end(), T));
   int64_t c = 0;
   for (int32_t t = 0; t < T; ++t) c += collision_cost(p[t], p[t + 1], t);
   const auto& bg = body_[p.back()];
-  for (size_t t = T + 1; t < bg.size(); ++t) c += static_cast<int64_t>(bg[t].size());
+  for (size_t t = T + 1; t < bg.size(); ++t) c += count(bg[t]);
   collisions_ -= c;
   work_ += 2 * (T + 1);
 }

@@ -191,6 +191,41 @@ TEST(RtLacamStar, GStaysTheTreePathCostThroughReroots)
   }
 }
 
+TEST(RtLacamStar, ACutRewiringResumesAndGReturnsToTheTreePathCost)
+{
+  // A rewiring after a known-node hit is cut (here after 1 node per step, the deterministic
+  // stand-in for the deadline) and resumed by the next refinement steps: moves stay valid,
+  // parents stay a tree, and once nothing is pending every g is the tree-path cost again.
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 30);
+  LacamOptions o = refine_opts(5);
+  o.rewire_slice = 1;
+  RtLacam rt(g, r.starts, r.goals, o);
+  Validator val(g, r.starts, r.goals);
+  long pending = 0, checked_after = 0;
+  bool was_pending = false;
+  for (int k = 0; k < 5000 && !rt.at_goal(); ++k) {
+    rt.search(Budget::expansion_count(5));
+    rt.next();
+    rt.commit();
+    ASSERT_TRUE(val.step(rt.current())) << val.error();
+    std::string why;
+    ASSERT_TRUE(rt.lacam().check_tree(&why)) << why;
+    if (rt.lacam().rewire_pending()) {
+      ++pending;
+      was_pending = true;
+    } else if (rt.lacam().refining()) {
+      ASSERT_TRUE(rt.lacam().check_costs(&why)) << "step " << k << ": " << why;
+      checked_after += was_pending;
+      was_pending = false;
+    }
+  }
+  EXPECT_TRUE(rt.at_goal());
+  EXPECT_GT(rt.lacam().rewire_cuts(), 0u);
+  EXPECT_GT(pending, 0);
+  EXPECT_GT(checked_after, 0) << "no g checked after a cut rewiring finished";
+}
+
 namespace {
 
 // Runs RT-LaCAM* (20 expansions per move) to the goals: every move passes the validator and

@@ -94,6 +94,9 @@ struct LacamOptions {
   // LaCAM* refinement after the first solution (see above). Off here, so that the library
   // default stays the paper's RT-LaCAM; the apps switch it on by default.
   bool refine = false;
+  // Tests: a rewiring after a known-node hit relaxes at most this many nodes per refinement
+  // step (0: no cap), a deterministic stand-in for the deadline that cuts it in timed runs.
+  int rewire_slice = 0;
   // What refinement lowers (objective.hpp): the standard SOC (each agent up to its last
   // arrival) or the sum of loss. Under soc the tree's g stays the loss (an edge cost) and the
   // followed path is kept apart, priced by the standard SOC (best_path.hpp), and LNS lowers
@@ -239,6 +242,9 @@ class Lacam {
   uint64_t dives() const { return dives_; }           // completed dives, and those that lowered g(goal)
   uint64_t dive_wins() const { return dive_wins_; }
   uint64_t dive_stalls() const { return dive_stalls_; }  // dives that ran into their length limit
+  // Rewirings after a known-node hit cut at the call's deadline and resumed later (timed runs).
+  uint64_t rewire_cuts() const { return rewire_cuts_; }
+  bool rewire_pending() const { return rewire_next_ < queue_.size(); }  // some g still too high
   uint64_t reprices() const { return reprices_; }  // moves a candidate was carried over (LacamOptions::reprice)
   // Guided dives that ended after the agents had passed their start (its nodes then hang
   // behind the root); the lead SUO last started at, in steps ahead of the root then.
@@ -343,7 +349,10 @@ class Lacam {
   double room_ms() const;                  // wall ms left to the running call
   bool fits(double ms) const { return room_ms() >= ms; }
   Status refine_expand();
-  void rewrite(HNode* a, HNode* b);        // Dijkstra-style relaxation from a new link
+  // Dijkstra-style relaxation from a new link, until done or `deadline` (then it resumes in
+  // rewire(), the next refinement step); true once done.
+  bool rewrite(HNode* a, HNode* b, Clock::time_point deadline = Clock::time_point::max(), int max_nodes = 0);
+  bool rewire(Clock::time_point deadline, int max_nodes = 0);
   void rebase(HNode* new_root, HNode* old_root, bool explicit_costs);
   void push_if_promising(HNode* h);
   void grow_lowlevel(HNode* H, const Constraint* L);
@@ -462,7 +471,14 @@ class Lacam {
   std::vector<Config> window_;      // scratch: an LNS window's configurations
   uint64_t solved_expansions_ = 0;
   size_t solved_explored_ = 0;
-  std::vector<HNode*> queue_;                    // scratch: rewrite / rebase
+  // rewrite's FIFO: [rewire_next_, end) still to relax. A rewiring after a known-node hit
+  // reached up to 1.8 ms at N = 1000 (edge costs O(N) each, computed on first use), past a
+  // 1 ms iteration; cut, it resumes first in the next refinement step. Until then some g are
+  // too high (never too low: a relaxation lowers g to a real path's cost), so a tree edge
+  // p -> x keeps g(x) >= g(p) + cost, and parents stay a tree.
+  std::vector<HNode*> queue_;
+  size_t rewire_next_ = 0;
+  uint64_t rewire_cuts_ = 0;
   std::vector<std::pair<HNode*, int64_t>> walk_;  // scratch: rebase (node, its old g)
   Config scratch_;
   std::vector<uint8_t> immobile_;  // set_immobile()
