@@ -23,7 +23,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
-                          [--head-after 60] [--load-cost 0] [--pocket-cost 100]]
+                          [--head-after 60] [--load-cost 0] [--pocket-cost 100] [--drop-hints [--against-rules]]]
 
 --station-closure: instead, per warehouse, a pick-up station's stub closed over [20 %, 50 %)
 (its errands cut off) with rules.reassign on (the errand goes back to the pool) and off (its
@@ -43,7 +43,8 @@ large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansio
 errands per tick on / off and K both ways.
 --stall-rules: instead, the task layer's stall rules (tasks/urgency.hpp: stall handover
 swap_after, head hints head_after with agents leaving a dead-end pocket first, station load
-load_cost, foreign-pocket cost pocket_cost) on against all off, per config (default: the large two-way and one-way warehouses)
+load_cost, foreign-pocket cost pocket_cost; with --drop-hints also drop_hints) on against all off
+(--against-rules: against the same rules with drop_hints off), per config (default: the large two-way and one-way warehouses)
 and fleet seed, same ticks (--large-ticks) and expansions: errands per tick on / off and K.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
@@ -246,7 +247,12 @@ def stall_rules(a, build, tmp):
     load_cost, pocket_cost) on against off, per config and fleet seed (same ticks, expansions)."""
     clean = True
     on = {"swap_after": a.swap_after, "head_after": a.head_after, "load_cost": a.load_cost, "pocket_cost": a.pocket_cost}
-    print(f"# on: tasks.urgency {on}; off: all 0")
+    off = {"swap_after": 0, "head_after": 0, "load_cost": 0, "pocket_cost": 0}
+    if a.drop_hints:
+        on["drop_hints"] = True
+    if a.against_rules:  # off = the same rules, drop hints off: the drop hints' own effect
+        off = dict(on, drop_hints=False)
+    print(f"# on: tasks.urgency {on}; off: {off}")
     print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off |")
     print("|---|---|---|---|---|---|---|---|---|")
     seeds = [int(x) for x in a.seeds.split(",") if x]
@@ -256,8 +262,7 @@ def stall_rules(a, build, tmp):
             out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_stall")
             res, ok = on_off(build, base, out, ticks, a.expansions,
                              {"on": (None, {"urgency": dict(on)}, {"fleet": {"seed": seed}}),
-                              "off": (None, {"urgency": {"swap_after": 0, "head_after": 0, "load_cost": 0, "pocket_cost": 0}},
-                                      {"fleet": {"seed": seed}})})
+                              "off": (None, {"urgency": dict(off)}, {"fleet": {"seed": seed}})})
             if res is None:
                 print(f"# {base} {ok}", file=sys.stderr)
                 return 1
@@ -295,6 +300,9 @@ def main():
     ap.add_argument("--head-after", type=int, default=60)
     ap.add_argument("--load-cost", type=int, default=0)
     ap.add_argument("--pocket-cost", type=int, default=100)
+    ap.add_argument("--drop-hints", action="store_true", help="--stall-rules: tasks.urgency.drop_hints on the on side")
+    ap.add_argument("--against-rules", action="store_true",
+                    help="--stall-rules: the off side keeps the on side's rules, drop_hints off")
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])

@@ -112,6 +112,7 @@ tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::Cel
   o.urgency.head_after = t.urgency_head_after;
   o.urgency.load_cost = t.urgency_load_cost;
   o.urgency.pocket_cost = t.urgency_pocket_cost;
+  o.urgency.drop_hints = t.urgency_drop_hints;
   o.parking.on = t.parking;
   if (t.parking) o.parking.cells = parking_cells(cfg, map);
   const FleetSection::Battery& b = cfg.fleet.battery;

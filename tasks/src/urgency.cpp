@@ -21,7 +21,8 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
   std::vector<float> h(n, 0.0f);
   if (o.head_after > 0 && !o.stalls && tm.stalls() && positions) {
     // The head of each errand cell's crowd: its most stalled heading agent outside the
-    // cell's pocket, if >= head_after; and every agent on its way out of a pocket.
+    // cell's pocket, if >= head_after (with drop_hints, every such agent with a load on
+    // board); and every agent on its way out of a pocket.
     const planner::Config& at = *positions;
     std::unordered_map<planner::Vertex, std::pair<long long, int>> head;  // cell -> (stall, agent)
     for (int a = 0; a < n; ++a) {
@@ -33,6 +34,10 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
       if (!tm.heading(a) || p >= 0) continue;
       const long long s = tm.stalls()->stalled(tm.now(), tm.task_of(a)->id);
       if (s < o.head_after) continue;
+      if (o.drop_hints && tm.task_of(a)->opened()) {  // a load on board: every stalled one
+        h[a] = static_cast<float>(s);
+        continue;
+      }
       auto& hd = head[tm.task_of(a)->next_cell()];
       if (s > hd.first || (s == hd.first && a < hd.second)) hd = {s, a};
     }

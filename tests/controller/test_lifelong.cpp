@@ -249,9 +249,12 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
             "t.yaml: tasks.urgency.load_cost: must be in 0..1000000, got -2");
   EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {pocket_cost: -3}\n"),
             "t.yaml: tasks.urgency.pocket_cost: must be in 0..1000000, got -3");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {drop_hints: 2}\n"),
+            "t.yaml: tasks.urgency.drop_hints: expected true or false, got '2'");
   {
-    const Config c = parse_config(kNetAdd + ll + "  urgency: {swap_after: 30, head_after: 60, load_cost: 10, pocket_cost: 100}\n",
+    const Config c = parse_config(kNetAdd + ll + "  urgency: {swap_after: 30, head_after: 60, load_cost: 10, pocket_cost: 100, drop_hints: true}\n",
                                   "t.yaml", RTLACAM_CONFIGS);
+    EXPECT_TRUE(c.tasks.urgency_drop_hints);
     EXPECT_EQ(c.tasks.urgency_pocket_cost, 100);
     EXPECT_EQ(c.tasks.urgency_swap_after, 30);
     EXPECT_EQ(c.tasks.urgency_head_after, 60);

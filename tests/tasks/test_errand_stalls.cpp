@@ -162,6 +162,41 @@ TEST(ErrandStalls, HeadHintsGoToTheMostStalledAgentPerCellAndToAgentsLeavingAPoc
   }
 }
 
+// Drop hints (UrgencyOptions::drop_hints): agents 0-2 pick up where they stand at step 1
+// and then, one cell on, stall on their way to the same drop cell (4, 1); agents 3 and 4 stall on their way
+// to the same pick-up cell (4, 0). An open 3 x 5 grid: no pocket. Off, each cell's crowd has
+// one head (the most stalled, ties to the lower index): agents 0 and 3. With drop hints,
+// every stalled agent with a load on board gets its stall; the pick-up crowd keeps one head.
+TEST(ErrandStalls, DropHintsGoToEveryStalledAgentWithALoad)
+{
+  const planner::Graph g = ttest::grid({".....", ".....", "....."});
+  auto file = ttest::task_file(g, {{{0, 0}, {4, 1}}, {{0, 1}, {4, 1}}, {{0, 2}, {4, 1}},
+                                   {{4, 0}, {4, 1}}, {{4, 0}, {4, 1}}});
+  for (bool on : {true, false}) {
+    SCOPED_TRACE(on ? "drop_hints on" : "drop_hints off");
+    TaskPool tm(file, g, 5, std::make_unique<GreedyAssigner>());
+    UrgencyOptions u;
+    u.head_after = 2;
+    u.drop_hints = on;
+    tm.set_urgency(u);
+    tm.watch_stalls(g);
+    Config at{g.at(0, 0), g.at(0, 1), g.at(0, 2), g.at(2, 0), g.at(2, 2)};
+    tm.start(at);
+    tm.update(1, at);
+    for (int a = 0; a < 3; ++a) at[a] = g.at(1, a);  // off the errand cells (pockets: see above)
+    for (long t = 2; t <= 6; ++t) tm.update(t, at);
+    for (int a = 0; a < 3; ++a) ASSERT_EQ(tm.goals()[a], g.at(4, 1)) << a;  // picked up
+    for (int a = 3; a < 5; ++a) ASSERT_EQ(tm.goals()[a], g.at(4, 0)) << a;
+    const std::vector<float> h = priority_hints(tm, &at);
+    ASSERT_EQ(h.size(), 5u);
+    EXPECT_GE(h[0], 2.0f);
+    EXPECT_EQ(h[1], on ? h[0] : 0.0f);
+    EXPECT_EQ(h[2], on ? h[0] : 0.0f);
+    EXPECT_GE(h[3], 2.0f);
+    EXPECT_EQ(h[4], 0.0f);
+  }
+}
+
 // Station load (UrgencyOptions::load_cost): agent 0 holds a task at (0, 0); agent 1 finishes
 // its task at (3, 0) and is matched again: the free task at (0, 0) is 3 moves away, the one
 // at (7, 0) 4. Off, it takes the nearer; with load_cost 10 the (0, 0) task costs 3 + 10 x 1

@@ -178,6 +178,7 @@ struct TasksSection {
   // Foreign-pocket cost (tasks::UrgencyOptions::pocket_cost): moves PIBT adds to an AGV's move
   // into a dead-end station stub that is not its errand's (0: off).
   int urgency_pocket_cost = 0;
+  bool urgency_drop_hints = false;  // tasks::UrgencyOptions::drop_hints
 
   bool lifelong() const { return mode == "lifelong"; }
 };

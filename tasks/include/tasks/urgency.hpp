@@ -61,6 +61,13 @@ struct UrgencyOptions {
   // bound elsewhere filling one station's stub, its own AGVs stalled outside). Only orders
   // PIBT's candidates: a foreign stub stays a last resort, and the search stays complete.
   int pocket_cost = 0;
+  // Drop hints (with head_after; off by default): every agent carrying a load (its task
+  // opened, so the handover cannot pass the errand on) whose drop errand stalled >= head_after
+  // ticks gets its stall ticks as a hint, not only the head of its drop station's crowd.
+  // Traced on large_oneway_lifelong at 500-1000 ticks: every stall >= 100 ticks was a drop
+  // errand held in head-on traffic on a two-way cross aisle, far from its station, where
+  // "one head per station" left all but one of them without priority.
+  bool drop_hints = false;
   bool on() const { return stalls || battery || head_after > 0; }
 };
 
