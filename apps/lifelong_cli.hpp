@@ -344,6 +344,9 @@ struct TaskCli {
                    "stub that is not theirs leave first (tasks.urgency.head_after; 0 = off)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
+    app.add_flag("--drop-hints,!--no-drop-hints", o.urgency.drop_hints,
+                 "with --stall-head-after: every loaded agent stalled that long outside a pocket gets its stall as "
+                 "priority, not only the head per drop station (tasks.urgency.drop_hints; default off)");
     app.add_option("--station-load-cost", o.urgency.load_cost,
                    "pool mode: extra moves charged per task already bound for a station (tasks.urgency.load_cost; 0 = off)")
         ->check(CLI::NonNegativeNumber)

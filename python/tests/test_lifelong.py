@@ -73,7 +73,7 @@ def test_lifelong_takes_every_task_layer_option_of_the_yaml():
     park_v = [g.at(c % g.width, c // g.width) for c in park]
     args = dict(solver="rtlacam", steps=120, budget_ms=1000, budget_expansions=20, seed=1, agents=20, mode="pool",
                 assigner="hungarian", k_nearest=4, pool_size=5, reassign=True,
-                queues=dict(capacity=1, length=2, admission=-1, fifo=False), urgency=dict(stalls="auto", battery=True, swap_after=5, head_after=10, load_cost=2,
+                queues=dict(capacity=1, length=2, admission=-1, fifo=False), urgency=dict(stalls="auto", battery=True, swap_after=5, head_after=10, load_cost=2, drop_hints=True,
                                                                                            pocket_cost=50),
                 parking=park_v, battery=dict(capacity_wh=100, initial=0.45, per_m_wh=0.5, task_check=False, rematch=False,
                                              charge_w=36000), chargers=cells)
@@ -93,7 +93,7 @@ def test_lifelong_takes_every_task_layer_option_of_the_yaml():
                           "--assigner", "hungarian", "--k-nearest", "4", "--pool-size", "5", "--reassign",
                           "--queue-capacity", "1", "--queue-length", "2", "--queue-admission", "-1", "--no-queue-fifo",
                           "--urgency", "--stall-swap-after", "5", "--stall-head-after", "10",
-                          "--station-load-cost", "2", "--pocket-cost", "50", "--parking", parking_file, "--battery-capacity-wh", "100",
+                          "--station-load-cost", "2", "--drop-hints", "--pocket-cost", "50", "--parking", parking_file, "--battery-capacity-wh", "100",
                           "--battery-initial", "0.45", "--battery-per-m-wh", "0.5", "--battery-no-task-check",
                           "--battery-no-rematch", "--battery-charge-w", "36000", "--chargers", chargers_file, "--quiet"],
                          capture_output=True, text=True, check=True)
