@@ -52,20 +52,27 @@ void Lacam::start_scatter(int lead)
 bool Lacam::scatter_step()
 {
   if (!opt_.scatter && !opt_.scatter_first) return false;
+  // A timed step of SUO's restart model (SUO's first start, the lead probe): it runs only when
+  // its learnt cost fits what is left of the call, else the call stalls to a later one. Prior:
+  // SUO's reset (O(|V|) + the paths' cells) and the probe's O(N log depth), about two
+  // expansions (measured: 0.59-0.69 ms at warehouse-20-40-10-2-2 N = 1000).
+  const auto restart_step = [this](auto&& step) {
+    restart_cost_.set_prior(2 * expand_cost_.rate());
+    if (!fits(restart_cost_.predict_ms(1))) {
+      restart_cost_.forget();
+      stalled_ = true;  // in a later call
+      return;
+    }
+    const double c0 = thread_cpu_ms();
+    step();
+    restart_cost_.record(1, thread_cpu_ms() - c0);
+  };
   if (!scatter_started_) {
     // Timed, the first start is a step of its own, when its cost fits (the restart's model:
     // both are SUO's reset, the first one also builds the occupancy lists, O(|V|) fresh
     // memory); it had shared a call with a slice that ran to the call's deadline.
     if (timed_) {
-      restart_cost_.set_prior(2 * expand_cost_.rate());
-      if (!fits(restart_cost_.predict_ms(1))) {
-        restart_cost_.forget();
-        stalled_ = true;  // in a later call
-        return true;
-      }
-      const double c0 = thread_cpu_ms();
-      start_scatter(opt_.scatter_lead);
-      restart_cost_.record(1, thread_cpu_ms() - c0);
+      restart_step([&] { start_scatter(opt_.scatter_lead); });
       return true;
     }
     start_scatter(opt_.scatter_lead);
@@ -81,17 +88,7 @@ bool Lacam::scatter_step()
   // N = 1000 (the first start's cost, which builds the occupancy lists, is not a restart's).
   // Untimed runs probe after the slice, as before (the same runs).
   if (timed_ && lead_probe_due()) {
-    // Prior: SUO's reset (O(|V|) + the paths' cells) and the probe's O(N log depth), about
-    // two expansions (measured: 0.59-0.69 ms at warehouse-20-40-10-2-2 N = 1000).
-    restart_cost_.set_prior(2 * expand_cost_.rate());
-    if (!fits(restart_cost_.predict_ms(1))) {
-      restart_cost_.forget();
-      stalled_ = true;  // in a later call
-      return true;
-    }
-    const double c0 = thread_cpu_ms();
-    lead_probe();
-    restart_cost_.record(1, thread_cpu_ms() - c0);
+    restart_step([&] { lead_probe(); });
     return true;
   }
   const uint64_t n = static_cast<uint64_t>(std::max(n_, 1));
