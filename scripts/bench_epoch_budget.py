@@ -27,18 +27,27 @@ from bench_closed_loop import with_agv_vtype  # noqa: E402
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
-def variant(src, executor, budget_ms, ticks, on):
+def timed_config(src, executor, budget_ms, ticks, run_keys="", planner_keys=""):
+    """A temporary copy of config/SRC with a time budget only (budget_ms, no expansions), max_ticks
+    and the executor; run_keys / planner_keys: YAML lines (two-space indented) added under run: /
+    planner:. Also used by bench_prefetch.py."""
     s = open(os.path.join(ROOT, "config", src)).read()
     s = re.sub(r"budget_ms: [0-9.]+", f"budget_ms: {budget_ms}", s)
     s = re.sub(r"\n  expansions: \d+.*", "", s)  # a time budget only
     s = re.sub(r"max_ticks: \d+", f"max_ticks: {ticks}", s)
     s = re.sub(r"  executor: [\w-]+.*\n", "", s)
-    s = s.replace("run:\n", f"run:\n  executor: {executor}\n  epoch_in_budget: {'true' if on else 'false'}\n")
+    s = s.replace("run:\n", f"run:\n  executor: {executor}\n{run_keys}", 1)
+    if planner_keys:
+        s = s.replace("planner:\n", f"planner:\n{planner_keys}", 1)
     f = tempfile.NamedTemporaryFile("w", suffix=".yaml", dir=os.path.join(ROOT, "config"), delete=False)
     f.write(s)
     f.close()
     with_agv_vtype(f.name)  # the *_agv kinematics for adg-follow (unused by lockstep)
     return f.name
+
+
+def variant(src, executor, budget_ms, ticks, on):
+    return timed_config(src, executor, budget_ms, ticks, run_keys=f"  epoch_in_budget: {'true' if on else 'false'}\n")
 
 
 def run(build, cfg, out):

@@ -12,42 +12,18 @@ done ahead (precomputePops) and metrics.json planner_cpu_ms_per_step p50 / p99.
                             [--budget-ms 1.0] [--ticks 300] [--rounds 1] [--executors lockstep adg-follow]
 """
 import argparse
-import json
 import os
-import re
-import subprocess
 import sys
 import tempfile
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from bench_closed_loop import with_agv_vtype  # noqa: E402
+from bench_epoch_budget import run, timed_config  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
 def variant(src, executor, budget_ms, ticks, on):
-    s = open(os.path.join(ROOT, "config", src)).read()
-    s = re.sub(r"budget_ms: [0-9.]+", f"budget_ms: {budget_ms}", s)
-    s = re.sub(r"\n  expansions: \d+.*", "", s)  # a time budget only
-    s = re.sub(r"max_ticks: \d+", f"max_ticks: {ticks}", s)
-    s = re.sub(r"  executor: [\w-]+.*\n", "", s)
-    s = s.replace("run:\n", f"run:\n  executor: {executor}\n", 1)
-    s = s.replace("planner:\n", f"planner:\n  prefetch: {'true' if on else 'false'}\n", 1)
-    f = tempfile.NamedTemporaryFile("w", suffix=".yaml", dir=os.path.join(ROOT, "config"), delete=False)
-    f.write(s)
-    f.close()
-    with_agv_vtype(f.name)  # the *_agv kinematics for adg-follow (unused by lockstep)
-    return f.name
-
-
-def run(build, cfg, out):
-    t0 = time.time()
-    p = subprocess.run([os.path.join(build, "apps", "rtlacam-sumo"), cfg, "--out", out], capture_output=True, text=True)
-    os.unlink(cfg)
-    m = json.load(open(os.path.join(out, "metrics.json")))
-    m["_wall"], m["_rc"] = time.time() - t0, p.returncode
-    return m
+    return timed_config(src, executor, budget_ms, ticks, planner_keys=f"  prefetch: {'true' if on else 'false'}\n")
 
 
 def main():
