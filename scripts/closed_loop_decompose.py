@@ -123,45 +123,21 @@ def plan_shape(path):
     return len(steps) - 1, moves, longest, rev, waits
 
 
-def critical_path(path, acc, dec, vmax, free_reversals=False):
-    """The plan's ADG (executor/adg.hpp: type 1 an AGV's moves in order, type 2 the move into v after
-    v's previous leave; waits dropped) with each move's least physical time -- 1 m at top speed
-    (cell / vmax), from rest (first move, and after a reversal, which needs rest) accelerating,
-    to rest (before a reversal, and the last move) braking -- and arrivals in ADG order: a move
-    ends no earlier than its hand-over's. The longest path is a lower bound on any ADG executor's
-    makespan for this plan with these kinematics (rotation groups, which start together, are
-    ignored: an estimate there). Returns (length s, on it: moves from rest, moves to rest, moves,
-    hand-over links)."""
-    steps = read_plan(path)
+def plan_adg(steps):
+    """The plan's moves in plan order (agent, from, to, step), each agent's move ids, and the ADG
+    links (executor/adg.hpp, waits dropped): prev[x], the agent's move before x (type 1), and
+    hand[x], the move that left x's target cell last before x, by another agent (type 2)."""
     n, T = len(steps[0]), len(steps)
-    cell = 1.0
-    up = math.sqrt(2 * cell / acc)  # from rest, 1 m accelerating all the way (<= vmax at 1 m/s, 0.5 m/s^2)
-    up = up if acc * up <= vmax else cell / vmax + vmax / (2 * acc)
-    down = cell / vmax + vmax / (2 * dec)  # 1 m ending at rest from vmax
-    both = rest_to_rest_s(cell, acc, dec, vmax)
-    moves = []  # (agent, from, to)
-    per = [[] for _ in range(n)]
+    moves, per = [], [[] for _ in range(n)]
     for t in range(1, T):
         for i in range(n):
             if steps[t][i] != steps[t - 1][i]:
                 per[i].append(len(moves))
                 moves.append((i, steps[t - 1][i], steps[t][i], t))
-    rest_before, rest_after = set(), set()
-    for i in range(n):
-        q = per[i]
-        if not q:
-            continue
-        rest_before.add(q[0])
-        rest_after.add(q[-1])
-        for a, b in zip(q, q[1:]):
-            if moves[b][2] == moves[a][1] and not free_reversals:
-                rest_after.add(a)
-                rest_before.add(b)
-    prev = {}
+    prev, last_leave, hand = {}, {}, {}
     for i in range(n):
         for a, b in zip(per[i], per[i][1:]):
             prev[b] = a
-    last_leave, hand = {}, {}
     k = 0
     for t in range(1, T):
         ids = []
@@ -174,6 +150,34 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
             h = last_leave.get(moves[x][2])
             if h is not None and moves[h][0] != moves[x][0]:
                 hand[x] = h
+    return moves, per, prev, hand
+
+
+def critical_path(path, acc, dec, vmax, free_reversals=False):
+    """The plan's ADG (executor/adg.hpp: type 1 an AGV's moves in order, type 2 the move into v after
+    v's previous leave; waits dropped) with each move's least physical time -- 1 m at top speed
+    (cell / vmax), from rest (first move, and after a reversal, which needs rest) accelerating,
+    to rest (before a reversal, and the last move) braking -- and arrivals in ADG order: a move
+    ends no earlier than its hand-over's. The longest path is a lower bound on any ADG executor's
+    makespan for this plan with these kinematics (rotation groups, which start together, are
+    ignored: an estimate there). Returns (length s, on it: moves from rest, moves to rest, moves,
+    hand-over links)."""
+    moves, per, prev, hand = plan_adg(read_plan(path))
+    cell = 1.0
+    up = math.sqrt(2 * cell / acc)  # from rest, 1 m accelerating all the way (<= vmax at 1 m/s, 0.5 m/s^2)
+    up = up if acc * up <= vmax else cell / vmax + vmax / (2 * acc)
+    down = cell / vmax + vmax / (2 * dec)  # 1 m ending at rest from vmax
+    both = rest_to_rest_s(cell, acc, dec, vmax)
+    rest_before, rest_after = set(), set()
+    for q in per:
+        if not q:
+            continue
+        rest_before.add(q[0])
+        rest_after.add(q[-1])
+        for a, b in zip(q, q[1:]):
+            if moves[b][2] == moves[a][1] and not free_reversals:
+                rest_after.add(a)
+                rest_before.add(b)
     done = [0.0] * len(moves)
     why = [None] * len(moves)
     for x in range(len(moves)):  # ids are in plan order: dependencies come first
@@ -209,30 +213,8 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
     AGV's own previous move. Returns seconds on the path by kind: moves from rest and chained
     (with their least times), rests not spent waiting for a leader's start (before a reversal,
     a release held), and the link count."""
-    steps = read_plan(path)
-    n, T = len(steps[0]), len(steps)
-    moves, per = [], [[] for _ in range(n)]
-    for t in range(1, T):
-        for i in range(n):
-            if steps[t][i] != steps[t - 1][i]:
-                per[i].append(len(moves))
-                moves.append([i, steps[t - 1][i], steps[t][i], t])
-    prev, last_leave, hand = {}, {}, {}
-    for i in range(n):
-        for a, b in zip(per[i], per[i][1:]):
-            prev[b] = a
-    k = 0
-    for t in range(1, T):
-        ids = []
-        while k < len(moves) and moves[k][3] == t:
-            ids.append(k)
-            k += 1
-        for x in ids:
-            last_leave[moves[x][1]] = x
-        for x in ids:
-            h = last_leave.get(moves[x][2])
-            if h is not None and moves[h][0] != moves[x][0]:
-                hand[x] = h
+    moves, per, prev, hand = plan_adg(read_plan(path))
+    n = len(per)
     end, start, rested = {}, {}, {}
     for i in range(n):
         v = speeds.get(f"agv{i}", [])
