@@ -21,6 +21,7 @@ import yaml
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from same_decisions import first_diff  # noqa: E402  (the grid twin's comparison, shared)
+from bench_twin import absolute  # noqa: E402  (the YAML's net paths made absolute)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -63,15 +64,6 @@ def merge(a, b):
         else:
             a[k] = v
     return a
-
-
-def absolute(cfg, base):
-    """Paths in the YAML are relative to its folder: make them absolute."""
-    d = os.path.dirname(os.path.join(ROOT, base))
-    for k in ("net", "additional"):
-        if k in cfg["sumo"]:
-            cfg["sumo"][k] = os.path.normpath(os.path.join(d, cfg["sumo"][k]))
-    return cfg
 
 
 def config(base, over, ticks, expansions, out):
