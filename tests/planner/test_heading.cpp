@@ -43,7 +43,9 @@ TEST(Heading, ResultStateFollowsLorr)
   EXPECT_EQ(result_state(g, {a, 2}, 'W'), (Pose{a, 2}));
   for (int h = 0; h < 4; ++h) {
     const Vertex u = cell_ahead(g, b, h);
-    if (u >= 0) EXPECT_EQ(heading_of_move(g, b, u), h);
+    if (u >= 0) {
+      EXPECT_EQ(heading_of_move(g, b, u), h);
+    }
   }
   EXPECT_THROW(heading_of_move(g, a, g.at(2, 0)), std::invalid_argument);
 }

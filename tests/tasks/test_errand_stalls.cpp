@@ -106,7 +106,9 @@ TEST(ErrandStalls, AStalledErrandPassesToANearerAgentHeadingForTheSameCell)
     at[B] = g.at(2, 0);
     for (long t = 1; t <= 5; ++t) {
       tm.update(t, at);
-      if (t < 5) EXPECT_EQ(tm.task_of(A)->id, a_task) << "step " << t;
+      if (t < 5) {
+        EXPECT_EQ(tm.task_of(A)->id, a_task) << "step " << t;
+      }
     }
     EXPECT_EQ(tm.goals(), (Config{g.at(0, 0), g.at(0, 0)}));  // nobody's goal changed
     if (T == 0) {
