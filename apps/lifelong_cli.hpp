@@ -317,6 +317,7 @@ struct TaskCli {
   int pool_size = 0;  // 0: the problem's (LorrProblem::pool_size)
   tasks::TaskLayerOptions o;
   bool urgency = false;
+  std::string urgency_stalls, urgency_battery;  // "": as --urgency; "true" | "false": that hint alone
   BatteryCli battery;
 
   void bind(CLI::App& app)
@@ -334,6 +335,10 @@ struct TaskCli {
     app.add_flag("--urgency,!--no-urgency", urgency,
                  "priority hints to the planner (tasks/urgency.hpp): a stalled errand's holder and a low-battery agent "
                  "win conflicts at each epoch start (default off here; on in rtlacam-sumo)");
+    app.add_flag("--urgency-stalls{true},--no-urgency-stalls{false}", urgency_stalls,
+                 "the stall hints alone, whatever --urgency says (tasks.urgency.stalls)");
+    app.add_flag("--urgency-battery{true},--no-urgency-battery{false}", urgency_battery,
+                 "the low-battery hints alone, whatever --urgency says (tasks.urgency.battery)");
     app.add_option("--stall-swap-after", o.urgency.swap_after,
                    "pool mode: a pick-up errand stalled this many ticks passes to a nearer agent heading for the "
                    "same station cell (tasks.urgency.swap_after; 0 = off)")
@@ -390,7 +395,8 @@ struct TaskCli {
     if (o.queues.admission > 0 && o.queues.admission < o.queues.capacity)
       throw planner::InputError("--queue-admission " + std::to_string(o.queues.admission) +
                                 ": must be >= --queue-capacity, 0 or -1");
-    o.urgency.stalls = o.urgency.battery = urgency;
+    o.urgency.stalls = urgency_stalls.empty() ? urgency : urgency_stalls == "true";
+    o.urgency.battery = urgency_battery.empty() ? urgency : urgency_battery == "true";
     if (!parking_file.empty()) {
       // The agents-file reader: a count, cell ids, each on the map and distinct.
       const planner::Config cells = tasks::load_lorr_agents(parking_file, g);

@@ -113,3 +113,34 @@ def test_lifelong_takes_every_task_layer_option_of_the_yaml():
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, urgency=dict(swap_after=-1))
     with pytest.raises(ValueError, match="mode: must be roundrobin or pool"):
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, mode="fifo")
+
+
+def test_lifelong_cli_sets_the_two_urgency_hints_apart_as_python_does():
+    # --urgency switches both hints; --urgency-stalls / --urgency-battery one each, as the YAML's
+    # tasks.urgency.{stalls, battery} and Python's urgency=dict(stalls, battery) do.
+    app = os.path.join(ROOT, "build", "apps", "rtlacam-lifelong")
+    if not os.path.exists(app):
+        pytest.skip("rtlacam-lifelong not built in build/")
+    g = rtlacam.load_map(os.path.join(os.path.dirname(PROBLEM), "maps", "random-32-32-20.map"))
+    lorr = [1, 100, 200, 300, 400, 501, 600, 701]  # free cells (row x width + column)
+    chargers_file = os.path.join(os.environ.get("TMPDIR", "/tmp"), "rtlacam_py_urgency_chargers.txt")
+    with open(chargers_file, "w") as f:
+        f.write("\n".join(map(str, [len(lorr)] + lorr)) + "\n")
+    battery = dict(capacity_wh=100, initial=0.45, per_m_wh=0.5, charge_w=36000)
+    args = dict(solver="rtlacam", steps=120, budget_ms=1000, budget_expansions=20, seed=1, agents=20, mode="pool",
+                battery=battery, chargers=[g.at(c % g.width, c // g.width) for c in lorr])
+    cli = [app, "--problem", PROBLEM, "--solver", "rtlacam", "--steps", "120", "--budget-ms", "1000",
+           "--budget-expansions", "20", "--seed", "1", "--agents", "20", "--mode", "pool",
+           "--battery-capacity-wh", "100", "--battery-initial", "0.45", "--battery-per-m-wh", "0.5",
+           "--battery-charge-w", "36000", "--chargers", chargers_file, "--quiet"]
+
+    def sig(x):
+        return [x[k] for k in ("numTaskFinished", "numErrandFinished", "maxErrandTicks", "battery", "stallTicks")]
+
+    logs = {}
+    for name, hints, flags in (("stalls", dict(stalls=True, battery=False), ["--urgency-stalls"]),
+                               ("battery", dict(stalls=False, battery=True), ["--urgency", "--no-urgency-stalls"])):
+        logs[name] = rtlacam.lifelong(PROBLEM, **dict(args, urgency=hints))
+        ref = json.loads(subprocess.run(cli + flags, capture_output=True, text=True, check=True).stdout)
+        assert sig(logs[name]) == sig(ref), name
+    assert sig(logs["stalls"]) != sig(logs["battery"])
