@@ -51,11 +51,15 @@ def with_agv_vtype(path):
 
 
 def set_run_keys(cfg, sets, seed, expansions):
-    """`key=value,...` into the config's run section; the fleet / tasks seeds; a deterministic budget."""
+    """`key=value,...` into the config's run section (`section.key=value`: that section); the fleet / tasks seeds; a deterministic budget."""
     s = open(cfg).read()
     for kv in filter(None, sets.split(",")):
         k, v = kv.split("=")
-        s = s.replace("run:\n", f"run:\n  {k}: {v}\n", 1)
+        sec, _, key = k.rpartition(".")  # "rules.plan_zones=false": another section's key
+        sec = sec or "run"
+        if f"\n{sec}:\n" not in s:
+            s = s.replace("output:\n", f"{sec}:\noutput:\n", 1)
+        s = s.replace(f"\n{sec}:\n", f"\n{sec}:\n  {key or k}: {v}\n", 1)
     if seed is not None:
         s = re.sub(r"(\nfleet:\n(?:  .*\n)*?  seed: )\d+", rf"\g<1>{seed}", s, 1)
         s = re.sub(r"(\ntasks:\n(?:  .*\n)*?  seed: )\d+", rf"\g<1>{seed + 1}", s, 1)

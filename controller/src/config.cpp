@@ -658,7 +658,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   // Rules (rules.hpp): closures and one-at-a-time zones.
   const YAML::Node ru = root["rules"];
-  r.keys(ru, "rules", {"sumo", "watch_lanes", "closures", "zones", "enforce_closures", "enforce_zones", "reassign"});
+  r.keys(ru, "rules", {"sumo", "watch_lanes", "closures", "zones", "enforce_closures", "enforce_zones", "plan_zones", "reassign"});
   r.flag(ru, "rules", "sumo", c.rules.sumo);
   if (ru && ru.IsMap() && ru["watch_lanes"]) {
     bool w = false;
@@ -667,6 +667,11 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
   r.flag(ru, "rules", "enforce_closures", c.rules.enforce_closures);
   r.flag(ru, "rules", "enforce_zones", c.rules.enforce_zones);
+  if (ru && ru.IsMap() && ru["plan_zones"] && !(ru["plan_zones"].IsScalar() && ru["plan_zones"].Scalar() == "auto")) {
+    bool on = false;
+    r.get(ru, "rules", "plan_zones", on, "true, false or auto");
+    c.rules.plan_zones = on;
+  }
   r.flag(ru, "rules", "reassign", c.rules.reassign);
   auto names = [&](const YAML::Node& n, const std::string& key, const char* k, std::vector<std::string>& out) {
     if (!n[k]) return;

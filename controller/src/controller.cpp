@@ -13,9 +13,11 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
                                                        const planner::Config& starts, const planner::Config& goals,
                                                        planner::ActionPreference* pref, planner::GoalTest test,
                                                        const std::vector<int>& headings,
-                                                       std::shared_ptr<planner::DistCache> cache)
+                                                       std::shared_ptr<planner::DistCache> cache,
+                                                       std::shared_ptr<const planner::Zones> zones)
 {
   planner::SolverOptions opt;
+  opt.lacam.zones = std::move(zones);  // the cell solvers' zone rule (rules.plan_zones)
   opt.dist_cache = std::move(cache);
   opt.seed = p.seed;
   opt.lacam.swap = p.swap;

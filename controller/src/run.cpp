@@ -197,6 +197,13 @@ void Run::prepare()
     rule_check_ = std::make_unique<RuleCheck>(c_.map_, *rules_);
     m_.rules.active = true;
     rules_->update(0, nullptr);
+    // The zones as a rule of the cell solvers' steps (rules.plan_zones; rotation solvers: admission only).
+    if (cfg_.rules.enforce_zones && cfg_.rules.zones_in_planner(cfg_.run.executor) && !rules_->zones().empty() &&
+        !cfg_.planner.rotation_solver()) {
+      std::vector<std::vector<planner::Vertex>> cells;
+      for (const Zone& z : rules_->zones()) cells.push_back(z.cells);
+      plan_zones_ = planner::Zones::from_cells(g.size(), cells);
+    }
     m_.rules.max_closed = rules_->num_closed();
     closure_tasks();
     // Only watched lanes: the planner stays the one built above until one closes.
@@ -232,7 +239,7 @@ void Run::rules_restart(const planner::Config& at)
   std::vector<int> headings;
   if (p_ && p_->rotation()) headings = p_->rotation()->headings();
   // The old planner goes first (it still refers to the old graph), then the old graph.
-  p_ = make_planner(cfg_.planner, *g, at, eff, pref_.get(), test, headings);
+  p_ = make_planner(cfg_.planner, *g, at, eff, pref_.get(), test, headings, nullptr, plan_zones_);
   rules_graph_ = std::move(g);
   cap_dist_tables();
   p_->search(plan_budget());

@@ -164,6 +164,7 @@ class Run {
   std::unique_ptr<RuleCheck> rule_check_;
   // The planner's graph while rules_ exist (declared before p_: it outlives the planner).
   std::unique_ptr<planner::Graph> rules_graph_;
+  std::shared_ptr<const planner::Zones> plan_zones_;  // rules.plan_zones: the planner keeps the zones
   std::vector<uint8_t> zone_occ_, waiting_;  // zones the planner's graph blocks; agents waiting
   std::unique_ptr<planner::Graph> open_graph_;  // closure_tasks(); null while nothing is closed
   std::unique_ptr<planner::RealtimePlanner> p_;

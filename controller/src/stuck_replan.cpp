@@ -179,7 +179,7 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
         headings.push_back(mid[i].empty() ? cmd_->heading(i)
                                           : cmd_->move_heading(adg.action(mid[i].back()).from, adg.action(mid[i].back()).to));
     // The old planner goes first (it still refers to the old graph), then the old graph.
-    p_ = make_planner(cfg_.planner, *rg, from, eff, pref_.get(), std::move(test), headings);
+    p_ = make_planner(cfg_.planner, *rg, from, eff, pref_.get(), std::move(test), headings, nullptr, plan_zones_);
     rules_graph_ = std::move(rg);
     cap_dist_tables();
     if (std::find(immobile.begin(), immobile.end(), 1) != immobile.end()) p_->set_immobile(immobile);
@@ -190,7 +190,7 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
     if (!p_->restart_at(from, eff, test, immobile)) {
       replan_expansions_ += p_->expansions();
       p_ = make_planner(cfg_.planner, rules_graph_ ? *rules_graph_ : c_.map_.graph, from, eff, pref_.get(),
-                        std::move(test), {}, rules_graph_ ? nullptr : dist_cache_);
+                        std::move(test), {}, rules_graph_ ? nullptr : dist_cache_, plan_zones_);
       if (tm_) p_->set_max_dist_tables(2 * from.size() + 256);
       p_->set_immobile(immobile);  // one restart for all (realtime_planner.hpp)
     }

@@ -266,6 +266,15 @@ struct RulesSection {
   std::vector<RuleZone> zones;
   bool enforce_closures = true;  // false: the planner ignores closures (Safety still checks them)
   bool enforce_zones = true;     // false: no zone admission (Safety still checks the zones)
+  // The cell solvers plan the zones too (planner/zones.hpp): no step of theirs puts two AGVs
+  // in a zone, so lock-step admission never holds anyone back and the search is never
+  // restarted for a zone. 1 / 0 / -1 = auto: on with run.executor lockstep, where admission's
+  // restarts (each forgets the search) left 5 of 11 small_rules instances unsolved after
+  // 1500 ticks (all 11 solved with it); off under adg / adg-follow, whose zone mutex holds
+  // entrants without restarting the search and solved all 11 either way (makespan on/off gm
+  // 1.04) (docs/closed_loop_bench.md "Zones in the planner").
+  int plan_zones = -1;
+  bool zones_in_planner(const std::string& executor) const { return plan_zones < 0 ? executor == "lockstep" : plan_zones != 0; }
   // Lifelong pool: a task whose next errand a closure cuts off goes back to the pool and the
   // AGV takes one it can reach (tasks/task_manager.hpp); false: the AGV waits for the closure.
   bool reassign = true;

@@ -28,6 +28,7 @@
 #include "gridify/cell_map.hpp"
 #include "planner/action_preference.hpp"
 #include "planner/realtime_planner.hpp"
+#include "planner/zones.hpp"
 
 namespace controller {
 
@@ -43,7 +44,8 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
                                                        planner::ActionPreference* pref = nullptr,
                                                        planner::GoalTest test = {},
                                                        const std::vector<int>& headings = {},
-                                                       std::shared_ptr<planner::DistCache> cache = nullptr);
+                                                       std::shared_ptr<planner::DistCache> cache = nullptr,
+                                                       std::shared_ptr<const planner::Zones> zones = nullptr);
 
 // The back end named by run.backend (run.gui: sumo-gui through TraCI).
 std::unique_ptr<SumoBackend> make_backend(const RunSection& r);

@@ -41,9 +41,13 @@
 //     occupied zone) waits: its planner goal becomes the nearest reachable cell that is
 //     open, outside every zone and nobody's goal (goals()); one line names it when a
 //     closure is the cause; a one-shot run is solved only once every AGV is on its real goal;
+//   - the cell solvers plan the zones themselves (rules.plan_zones, on under lockstep by
+//     default: planner/zones.hpp): no step they plan puts two AGVs in a zone, so admit()
+//     below holds nobody and the search is never restarted for a zone;
 //   - lockstep, admit(): the step the planner committed may still take two AGVs into a free
-//     zone at once; all but one are held (with whoever would move into a held AGV's cell),
-//     and the planner restarts from the configuration executed;
+//     zone at once (rules.plan_zones off, rotation solvers); all but one are held (with
+//     whoever would move into a held AGV's cell), and the planner restarts from the
+//     configuration executed;
 //   - adg / adg-follow, the Driver's zone mutex (Driver::set_zones): a move into a zone
 //     starts only while no other AGV stands in it for the ADG or runs a move into it; held
 //     entrants are counted (count_held()) like admit()'s, so after kBlockAfter ticks the
@@ -61,8 +65,10 @@
 // off wait, as for closed cells). A closure that ends and zones that empty restore the real
 // graph and goals, and so RT-LaCAM's completeness from there (rt_lacam.hpp; under adg with
 // the ADG's deadlock freedom, as after the last stuck replan). A zone that cuts the net into
-// pieces is refused: an AGV parked in it would cut every route between them. The rotation
-// solvers are complete on no graph (planner/rotation/rotation_dist.hpp), with rules or without.
+// pieces is refused: an AGV parked in it would cut every route between them. With the zones
+// in the planner (rules.plan_zones) no zone ever changes the graph or restarts the search:
+// RT-LaCAM is complete over the steps that keep the zones (planner/zones.hpp), from the last
+// closure change on. The rotation solvers are complete on no graph (planner/rotation/rotation_dist.hpp), with rules or without.
 #include <memory>
 #include <string>
 #include <utility>

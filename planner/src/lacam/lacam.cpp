@@ -27,6 +27,11 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
   lns_wanted_ = opt.lns;
+  if (opt.zones) {  // LNS and the refiner threads plan without PIBT's zone rule
+    pibt_.set_zones(opt.zones.get());
+    lns_wanted_ = opt_.lns = false;
+    opt_.refine_threads = 0;
+  }
   start_threads();
 }
 

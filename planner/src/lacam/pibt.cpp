@@ -62,6 +62,11 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
       if (next_[i] >= 0) occ_next_[next_[i]] = -1;
     }
     phase_ = Phase::place, k_ = 0;
+    if (zones_) {
+      zone_holder_.assign(zones_->count, -1);
+      if (evict_zone_.size() != static_cast<size_t>(n_)) evict_zone_.assign(n_, -1);
+      if (exit_dist_.size() != static_cast<size_t>(g_.size())) exit_dist_.assign(g_.size(), 0);
+    }
   }
   if (phase_ == Phase::place) {
     for (; k_ < n_; ++k_) {
@@ -70,6 +75,8 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
       now_[i] = from[i];
       next_[i] = -1;
       occ_now_[from[i]] = i;
+      if (zones_)
+        for (int z : zones_->of[from[i]]) zone_holder_[z] = i;
       // The candidates' distances, ahead of plan() (DistTable::prefetch).
       d_.prefetch(i, from[i]);
       for (Vertex u : g_.neighbors(from[i])) d_.prefetch(i, u);
@@ -93,12 +100,14 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
       const int32_t i = chain_->who;
       const Vertex v = chain_->where;
       const int32_t j = occ_now_[v];
-      if (occ_next_[v] >= 0 || (j >= 0 && j != i && next_[j] == from[i])) {  // vertex / swap conflict
+      if (occ_next_[v] >= 0 || (j >= 0 && j != i && next_[j] == from[i]) ||  // vertex / swap conflict
+          !zone_free(i, from[i], v)) {                                       // a zone someone else holds
         pending_ = false;
         return Gen::failed;
       }
       next_[i] = v;
       occ_next_[v] = i;
+      zone_take(i, from[i], v, true);
     }
     phase_ = lg_ ? Phase::guide : Phase::plan, k_ = 0;
     if (lg_) lg_->begin(from, n_, goals_.data());
@@ -154,6 +163,11 @@ bool Pibt::plan(int32_t i, Rng& rng)
     for (int k = 0; k <= K; ++k)
       if (C[k] == s) key_[k] = -2e30f;
   }
+  if (zones_ && evict_zone_[i] >= 0) {  // asked to leave a zone (evict): out first, else toward a way out
+    const int z = evict_zone_[i];
+    for (int k = 0; k <= K; ++k)
+      if (zones_->in(C[k], z)) key_[k] = 1e20f + static_cast<float>(exit_dist_[C[k]]);
+  }
   for (int k = 1; k <= K; ++k) {
     const Vertex u = C[k];
     const float key = key_[k];
@@ -170,20 +184,62 @@ bool Pibt::plan(int32_t i, Rng& rng)
     if (occ_next_[u] >= 0) continue;               // vertex conflict
     const int32_t j = occ_now_[u];
     if (j >= 0 && next_[j] == v) continue;          // swap conflict
+    if (!zone_free(i, v, u)) {                      // a zone someone else holds this step
+      evict(i, v, u, rng);
+      continue;
+    }
     occ_next_[u] = i;
     next_[i] = u;
+    zone_take(i, v, u, true);
     // Priority inheritance: j must make room; on failure j stays at u and u is j's.
-    if (j >= 0 && j != i && next_[j] < 0 && !plan(j, rng)) continue;
+    if (j >= 0 && j != i && next_[j] < 0 && !plan(j, rng)) {
+      zone_take(i, v, u, false);
+      continue;
+    }
     // Swap: pull the partner into the vertex i is leaving.
-    if (k == 0 && partner >= 0 && next_[partner] < 0 && occ_next_[v] < 0) {
+    if (k == 0 && partner >= 0 && next_[partner] < 0 && occ_next_[v] < 0 && zone_free(partner, now_[partner], v)) {
       next_[partner] = v;
       occ_next_[v] = partner;
+      zone_take(partner, now_[partner], v, true);
     }
     return true;
   }
   occ_next_[v] = i;
   next_[i] = v;
   return false;
+}
+
+void Pibt::evict(int32_t i, Vertex v, Vertex u, Rng& rng)
+{
+  for (int z : zones_->of[u]) {
+    const int32_t j = zone_holder_[z];
+    if (j < 0 || j == i || next_[j] >= 0 || immobile(j) || !zones_->in(now_[j], z)) continue;
+    // Moves to a way out of z other than i's vertex: a BFS backwards from the vertices
+    // outside z next to it (v excluded) over z's vertices.
+    const std::vector<Vertex>& cells = zones_->cells[z];
+    std::vector<Vertex> queue;
+    for (Vertex c : cells) {
+      exit_dist_[c] = 1 << 20;
+      for (Vertex w : g_.neighbors(c))
+        if (w != v && !zones_->in(w, z)) {
+          exit_dist_[c] = 1;
+          queue.push_back(c);
+          break;
+        }
+    }
+    for (size_t h = 0; h < queue.size(); ++h)
+      for (Vertex c : cells)
+        if (exit_dist_[c] > exit_dist_[queue[h]] + 1 && g_.adjacent(c, queue[h]))
+          exit_dist_[c] = exit_dist_[queue[h]] + 1, queue.push_back(c);
+    // i stays meanwhile (j's chain must not push it: it is being planned), unless someone
+    // has v already (then nobody can enter v anyway).
+    const bool hold = occ_next_[v] < 0;
+    if (hold) occ_next_[v] = i, next_[i] = v;
+    evict_zone_[j] = z;
+    plan(j, rng);
+    evict_zone_[j] = -1;
+    if (hold) occ_next_[v] = -1, next_[i] = -1;
+  }
 }
 
 float Pibt::distance(int32_t i, Vertex u)

@@ -76,6 +76,7 @@
 #include "planner/lacam/local_guidance.hpp"
 #include "planner/lacam/objective.hpp"
 #include "planner/lacam/pibt.hpp"
+#include "planner/zones.hpp"
 #include "planner/rng.hpp"
 #include "planner/lacam/scatter.hpp"
 #include "planner/lacam/step_cost.hpp"
@@ -197,6 +198,10 @@ struct LacamOptions {
   // lock per worker per search() call, and validating, inserting and posting each only when
   // its learnt cost fits. 0: no worker, the same runs as without the option.
   int refine_threads = 0;
+  // One-at-a-time zones (zones.hpp; null = none): a rule of PIBT's configurations, so the
+  // search stays complete over the configurations that keep them. LNS and the refiner
+  // threads are off with them (their paths are not PIBT's).
+  std::shared_ptr<const Zones> zones;
 };
 
 class Lacam {

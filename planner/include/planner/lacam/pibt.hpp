@@ -30,6 +30,7 @@
 #include "planner/lacam/local_guidance.hpp"
 #include "planner/rng.hpp"
 #include "planner/lacam/scatter.hpp"
+#include "planner/zones.hpp"
 
 namespace planner {
 
@@ -58,6 +59,16 @@ class Pibt {
     pocket_ = std::move(pocket);
     pocket_cost_ = cost;
   }
+  // One-at-a-time zones (zones.hpp; null = none): a move into a zone that another agent
+  // holds this step (it is in it now, or a move into it is planned already) is no candidate,
+  // a swap never pulls a partner into one, and a constraint that breaks them fails the
+  // generation. Takes effect at the next start(). Priority inheritance for a zone: an agent
+  // that wants into a zone held by one standing in it, not planned yet, has it planned first
+  // with a move out of the zone ranked first (else toward the nearest other way out), so the
+  // zone is free the step after -- without it an agent parked on its goal in a zone blocks
+  // the zone for good, and LaCAM alone took up to 2M expansions to get it out (16 agents on
+  // the small SUMO warehouse, docs/closed_loop_bench.md).
+  void set_zones(const Zones* zones) { zones_ = zones; }
   bool swap() const { return swap_; }
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
@@ -99,6 +110,21 @@ class Pibt {
   bool swap_possible(Vertex v_pusher, Vertex v_puller) const;
   bool pull_impossible(Vertex u, Vertex v_pusher) const;
   bool immobile(int32_t i) const { return !immobile_.empty() && immobile_[i]; }
+  // Zones (set_zones): may agent i move v -> u, and take (or give back) the zones it enters.
+  bool zone_free(int32_t i, Vertex v, Vertex u) const
+  {
+    if (!zones_) return true;
+    for (int z : zones_->of[u])
+      if (zone_holder_[z] >= 0 && zone_holder_[z] != i) return false;
+    (void)v;
+    return true;
+  }
+  void zone_take(int32_t i, Vertex v, Vertex u, bool take)
+  {
+    if (!zones_) return;
+    for (int z : zones_->of[u])
+      if (!zones_->in(v, z)) zone_holder_[z] = take ? i : -1;
+  }
   // Agent i's distance from u to its goal: around the immobile agents when its goal can be
   // reached that way (DetourTable), else the plain one.
   float distance(int32_t i, Vertex u);
@@ -132,6 +158,11 @@ class Pibt {
   std::vector<uint8_t> immobile_;   // agent -> 1 if immobile (empty: none)
   std::vector<Vertex> pocket_;      // vertex -> its dead-end pocket, or -1 (set_pockets)
   float pocket_cost_ = 0.0f;
+  const Zones* zones_ = nullptr;
+  std::vector<int32_t> zone_holder_;  // zone -> the agent holding it this step, or -1
+  std::vector<int32_t> evict_zone_;   // agent -> the zone it is asked to leave, or -1
+  std::vector<int32_t> exit_dist_;    // zone vertex -> moves to a way out (evict())
+  void evict(int32_t i, Vertex v, Vertex u, Rng& rng);
   DetourTable detour_;              // distances around the immobile agents
   std::vector<uint32_t> cut_off_stamp_;  // agent -> generate() call cut_off_ was set in
   std::vector<uint8_t> cut_off_;         // agent -> no path around the immobile agents

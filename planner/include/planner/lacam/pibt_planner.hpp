@@ -35,6 +35,7 @@ class PibtPlanner : public RealtimePlanner {
  private:
   DistTable dist_;
   Pibt pibt_;
+  std::shared_ptr<const Zones> zones_;  // LacamOptions::zones, kept alive for pibt_
   Rng rng_;
   Config current_, goals_, next_;
   GoalTest test_;
