@@ -14,8 +14,7 @@ DEVDIR=${DEVDIR:-devbench}
 B=$DEVDIR/bin; M=$DEVDIR/maps
 [[ -x $B/rtlacam-bench.new && -x $B/rtlacam-check && -x $B/lacam3 ]] || { echo "device_issue22.sh: $B lacks rtlacam-bench.new, rtlacam-check or lacam3" >&2; exit 2; }
 nproc; uname -a | cut -c1-100
-# peer_bench.py looks in data/movingai first (fresh machine: nothing else there to find).
-mkdir -p data/movingai && cp --update=none $M/* data/movingai/ 2>/dev/null || cp -n $M/* data/movingai/
+export MOVINGAI_DIR="$PWD/$M"  # peer_bench.py looks there first
 QUICK=${QUICK:-0}
 if [[ $QUICK == 1 ]]; then CELLS="random-32-32-20 100"; CUTS="1"; SCENS="1"; BINS="new"; else
   CELLS="random-32-32-20 300|warehouse-10-20-10-2-1 400|warehouse-20-40-10-2-2 1000"; CUTS="0.1 1 10"; SCENS="1 2 3"; BINS="${BINS:-new main}"; fi

@@ -28,7 +28,9 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-DATA = [os.path.join(ROOT, "data", "movingai"), os.path.join(ROOT, "..", "shared", "benchmarks", "movingai")]
+# MOVINGAI_DIR (optional) is searched first: a machine without ../shared (device_issue22.sh).
+DATA = ([os.environ["MOVINGAI_DIR"]] if os.environ.get("MOVINGAI_DIR") else []) + \
+    [os.path.join(ROOT, "data", "movingai"), os.path.join(ROOT, "..", "shared", "benchmarks", "movingai")]
 
 
 def fail(msg):
