@@ -517,7 +517,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   const YAML::Node u = root["run"];
   r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "order", "progress_s", "executor",
                     "window", "drain", "replan_on_stuck", "stuck_after_s", "relative_braking", "same_step_starts", "switch_passages",
-                    "chain_to_end", "gap_handover", "chain_ahead_m", "approach_decel", "lane_speeds", "epoch_in_budget", "out_and_back",
+                    "chain_to_end", "gap_handover", "lane_speeds", "epoch_in_budget", "out_and_back",
                     "cut_loops", "out_and_back_rules"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
@@ -542,9 +542,6 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.integer(u, "run", "switch_passages", c.run.switch_passages, 0, 1000);
   r.flag(u, "run", "chain_to_end", c.run.chain_to_end);
   r.flag(u, "run", "gap_handover", c.run.gap_handover);
-  r.number(u, "run", "chain_ahead_m", c.run.chain_ahead_m, 0);
-  r.number(u, "run", "approach_decel", c.run.approach_decel, 0, true);
-  if (c.run.approach_decel > 1) r.fail("run.approach_decel", "a fraction of the vType's decel in (0, 1], not " + std::to_string(c.run.approach_decel));
   r.integer(u, "run", "out_and_back", c.run.out_and_back, 0, 1000);
   r.flag(u, "run", "cut_loops", c.run.cut_loops);
   r.flag(u, "run", "out_and_back_rules", c.run.out_and_back_rules);

@@ -179,7 +179,7 @@ bool Driver::start_moves(int i, bool count)
     // brake from full speed (plus one step's travel): that keeps cruising speed, and cells
     // further ahead stay free for the others -- a stuck AGV's replan (stuck_replan.hpp)
     // keeps every cell of its running moves.
-    const double reach = p_.max_speed * p_.max_speed / (2 * p_.decel) + p_.max_speed * p_.dt + p_.chain_ahead;
+    const double reach = p_.max_speed * p_.max_speed / (2 * p_.decel) + p_.max_speed * p_.dt;
     while (!g.run.empty() && left_to_drive(g.dist, g.done) < reach) {
       const int id = adg_.undone(i, g.run.size());
       if (id < 0) break;
@@ -246,7 +246,6 @@ void Driver::before_step()
       // edge of its route, which would leave the junction cell's pose.
       const double cruise = p_.max_speed * factor, stop = stop_speed(rem - 1e-9, p_.decel, p_.dt);
       if (!held) v = std::min(cruise, stop);
-      if (!held && p_.approach < 1 && rem >= end) v = std::min(v, approach_speed(i, rem));
       why[i] = held ? Why::Held : v >= cruise ? Why::Cruise : rem < end ? Why::Follow : Why::End;
       if (p_.lane_speeds) {
         const double cap = lane_cap(i);
@@ -334,19 +333,6 @@ double Driver::gap(const executor::Action& a, double end) const
   const double arrive =
       p_.gap_handover || front >= handover_dist(h.agent, a.handover) - 1e-6 ? INFINITY : -1e-6;
   return std::min(front - p_.length - p_.margin, arrive);
-}
-
-double Driver::approach_speed(int i, double rem) const
-{
-  // Only toward a stop the plan does not ask for: the next move exists, is not released yet
-  // and needs no rest (a reversal stops anyway: arriving later there only costs).
-  const Agv& g = agv_[i];
-  const int id = adg_.undone(i, g.run.size());
-  if (id < 0) return INFINITY;
-  if (p_.follow ? adg_.chainable_following(id) : adg_.chainable(id)) return INFINITY;
-  const executor::Action& a = adg_.action(id);
-  if (cmd_.needs_rest(i, a.from, a.to)) return INFINITY;
-  return stop_speed(rem - 1e-9, p_.decel * p_.approach, p_.dt);
 }
 
 double Driver::sure_travel(int i) const

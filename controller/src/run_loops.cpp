@@ -158,8 +158,6 @@ void Run::loop_adg()
   // seeds 0-2: 258 ticks on against 256 off, s32).
   dp.gap_handover = cfg_.run.gap_handover && !cmd_->headings();
   dp.lane_speeds = cfg_.run.lane_speeds;
-  dp.chain_ahead = cfg_.run.chain_ahead_m;
-  dp.approach = cfg_.run.approach_decel;
   Driver drv(*cmd_, adg, *delays_, dp);
   if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) drv.set_zones(&rules_->zones_of());
   // Rotation solvers: the plan's cells go to the ADG like a cell plan (its turns are waits

@@ -205,12 +205,6 @@ struct RunSection {
   int switch_passages = 0;
   bool chain_to_end = true;          // a chained move's leader gap measured from the move's end
   bool gap_handover = true;          // a follower may reach the cell before its leader arrives (body gap only)
-  // adg / adg-follow: released moves are chained this many metres beyond the braking distance
-  // from top speed (driver.hpp DriveParams::chain_ahead).
-  double chain_ahead_m = 0;
-  // adg / adg-follow: an AGV whose next move is not released yet brakes toward the end of its
-  // running moves at this fraction of its decel (driver.hpp DriveParams::approach); 1: off.
-  double approach_decel = 1;
   // adg, cell plans (one-shot and lifelong; not rotation solvers): commits held back this many
   // configurations (beyond run.window) to cut an AGV's out-and-back u -> v -> u into waits on u
   // when nobody else uses u meanwhile (executor/out_and_back.hpp); lifelong: never through the

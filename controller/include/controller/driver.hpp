@@ -114,13 +114,6 @@ struct DriveParams {
   bool gap_handover = true;
   // Starts in passes within one SUMO step (a move released by another start this step starts too).
   bool same_step_starts = true;
-  // Chain lookahead: released moves are chained while the AGV has less than its braking
-  // distance from top speed (plus a step) + chain_ahead metres left to drive.
-  double chain_ahead = 0;
-  // Soft approach: an AGV whose next move is not released (and needs no rest) brakes toward
-  // the end of its running moves at approach x decel, so it is still rolling if the release
-  // comes soon after it would have stopped. 1: off.
-  double approach = 1;
   // Switchable ADG (run.switch_passages): a move that waits for another AGV's passage
   // through its cell, which that AGV has not begun, takes the cell first (Adg::try_switch).
   int switch_passages = 0;  // 0: off; else the late AGV's least number of moves before the cell
@@ -224,8 +217,6 @@ class Driver {
   bool arrive(int i, const VehiclePose& pose);
   // Action id's rotation group (if any) has every other member done or with its front on its target.
   bool group_arrived(int id) const;
-  // The soft approach's speed cap for agent i with `rem` metres to its stopping point (DriveParams::approach).
-  double approach_speed(int i, double rem) const;
   // The zone mutex (set_zones): may agent i move from -> to now? Records gated_[i] if not.
   bool zone_free(int i, planner::Vertex from, planner::Vertex to);
   // Follow mode: the distance agent i's front still covers braking at `decel` in whole steps
