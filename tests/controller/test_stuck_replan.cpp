@@ -175,6 +175,34 @@ TEST(StuckReplan, ARotationGroupHeldMidMoveFinishesTogether)
               m.stuck_events, m.replans, stops.steps_held);
 }
 
+// run.stuck_learn (StuckWatch learn): a stall that ends by itself raises the stuck threshold
+// to twice its length, so the fleet's passing stops cause no replan. agv0 (standing in the
+// cross aisle agv1 and agv2 pass through) is stopped twice: 4 s from t = 0, then 7 s from
+// t = 6 s. Without learning the second stop is "stuck" after run.stuck_after_s (5 s): a replan
+// with agv0 immobile, and another when it moves again (makespan 45 ticks); with it the threshold
+// is about 8 s after the first stop, nothing is replanned and the others wait the 7 s out
+// (27 ticks). A 60 s stop is still found (the tests above: no passing stop before it).
+TEST(StuckReplan, PassingStopsRaiseTheStuckThreshold)
+{
+  auto run = [](bool learn) {
+    Config c = stuck_config(learn ? "learn" : "nolearn", true);
+    c.delays.spec.stuck = {{0, 0, 4}, {0, 6, 7}};
+    c.run.stuck_learn = learn;
+    Controller ctl(c);
+    const Metrics m = ctl.run();
+    expect_clean(c, ctl, m);
+    std::printf("stuck_learn %d: makespan %lld replans %lld stuck %lld\n", learn, m.makespan, m.replans,
+                m.stuck_events);
+    return m;
+  };
+  const Metrics on = run(true), off = run(false);
+  EXPECT_EQ(on.replans, 0);
+  EXPECT_EQ(on.stuck_events, 0);
+  EXPECT_GE(off.stuck_events, 1);
+  EXPECT_GE(off.replans, 2);  // stuck, then mobile again
+  EXPECT_LT(on.makespan, off.makespan);
+}
+
 TEST(StuckReplan, ConfigErrors)
 {
   const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
@@ -185,6 +213,8 @@ TEST(StuckReplan, ConfigErrors)
             "t.yaml: run.replan_on_stuck: only with run.executor: adg or adg-follow");
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg-follow, replan_on_stuck: true}\n"), "(no error)");
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: false, stuck_after_s: 2}\n"), "(no error)");
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, stuck_learn: maybe}\n").rfind("t.yaml: run.stuck_learn: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg-follow, stuck_learn: false}\n"), "(no error)");
 }
 
 TEST(StuckReplan, LifelongReplansCarryChainedMoves)
