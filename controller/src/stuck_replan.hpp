@@ -44,7 +44,9 @@ namespace controller {
 class StuckWatch {
  public:
   // learn: the threshold grows to twice the longest stall that ended by itself (the AGV moved
-  // on without a replan) -- the fleet's passing stops are not "stuck" (run.stuck_learn).
+  // on without a replan) while it held somebody up -- the fleet's passing stops are not
+  // "stuck" (run.stuck_learn). Such a stall is shorter than the threshold was, so the
+  // threshold at most doubles per stop.
   StuckWatch(int n, double stuck_after_s, double dt, bool learn = false);
   double threshold_s() const { return learn_ ? std::max(after_s_, 2 * longest_free_) : after_s_; }
 
