@@ -82,8 +82,8 @@ def main():
     tmp = tempfile.mkdtemp(prefix="bench_closed_")
     ratio_of = {}  # (config, seed, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
     print("| config | seed | p | executor | makespan or errands/tick | bound | ratio | plan's bound | solved | error | "
-          "collisions | overshoot m | wall s |")
-    print("|---|---:|---:|---|---:|---:|---:|---:|---|---|---:|---:|---:|")
+          "collisions | overshoot m | replans | wall s |")
+    print("|---|---:|---:|---|---:|---:|---:|---:|---|---|---:|---:|---:|---:|")
     for c, seed, p, ex in itertools.product(a.configs, a.seeds, a.ps, a.executors):
         name, _, sets = ex.partition(":")
         cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
@@ -92,7 +92,7 @@ def main():
         try:
             m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
         except FileNotFoundError:  # no metrics.json: the instance was refused (e.g. a zone holding two goals)
-            print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | - | - | - | - | - | refused (no metrics.json) | - | - | - |",
+            print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | - | - | - | - | - | refused (no metrics.json) | - | - | - | - |",
                   flush=True)
             continue
         life = m.get("lifelong")
@@ -106,7 +106,7 @@ def main():
         ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
         print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | {plan:.4g} | "
               f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
-              f"{m['_wall']:.1f} |", flush=True)
+              f"{m['executor'].get('replans', 0)} | {m['_wall']:.1f} |", flush=True)
     # The targets (issue 21), against baselines of this run: at p = 0 the executor's ratio over
     # lockstep's (one-shot: makespan/bound, lower is better; lifelong: lockstep's
     # errands per tick / bound over the executor's, so > 1 is worse alike); at p > 0, the same

@@ -26,7 +26,7 @@ executor (slowdown, rests with the dependency met), or waits.
 
   scripts/closed_loop_decompose.py [--build build] [--config large_warehouse_agv.yaml]
         [--seed 1] [--expansions 50] [--executors lockstep adg-follow[:key=value]]
-        [--max-ticks 1500] [--out DIR]
+        [--max-ticks 1500] [--out DIR] [--trace N]
   scripts/closed_loop_decompose.py --runs OUT1 OUT2 ...   (each with config.yaml, fcd.xml, plan.txt, metrics.json)
 """
 import argparse
@@ -234,7 +234,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             start[x] = max(t0, last_rest) if rested[x] else t0
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
     out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
-               links=0, n_from_rest=0, n_chained=0)
+               links=0, n_from_rest=0, n_chained=0, stood=[], events=[])
     x = max(end, key=lambda y: end[y])
     node = ("end", x)
     tol = dt + 1e-9
@@ -244,14 +244,21 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
         if kind == "end":
             if h is not None and end[h] >= end[x] - tol and end[h] <= end[x] + 1e-9:
                 out["links"] += 1
+                out["events"].append(f"{end[x]:8.2f} link: agv{moves[x][0]}'s move ends with agv{moves[h][0]}'s arrival")
                 node = ("end", h)
                 continue
+            a_, u_, v_, t_ = moves[x]
             if rested[x]:
+                # how long the AGV stood before this start (since its previous move ended)
+                out["stood"].append(start[x] - (end[prev[x]] if x in prev else 0.0))
+                out["events"].append(f"{start[x]:8.2f} agv{a_} {u_}->{v_} (step {t_}) from rest, {end[x] - start[x]:.2f} s,"
+                                     f" after standing {out['stood'][-1]:.2f} s")
                 out["from_rest"] += end[x] - start[x]
                 out["from_rest_least"] += up
                 out["n_from_rest"] += 1
                 node = ("start", x)
             else:
+                out["events"].append(f"{start[x]:8.2f} agv{a_} {u_}->{v_} (step {t_}) chained, {end[x] - start[x]:.2f} s")
                 out["chained"] += end[x] - start[x]
                 out["chained_least"] += 1 / vmax
                 out["n_chained"] += 1
@@ -260,6 +267,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             t0 = end[prev[x]] if x in prev else 0.0
             if h is not None and abs(start[h] - start[x]) <= tol and start[h] > t0 + 1e-9:
                 # waited for the leader to start leaving: the path goes on through the leader's start
+                out["events"].append(f"{start[x]:8.2f}   started with its leader agv{moves[h][0]} ({moves[h][1]}->{moves[h][2]})")
                 node = ("start", h) if rested[h] else ("end", prev[h]) if h in prev else None
                 continue
             out["rest"] += start[x] - t0
@@ -268,6 +276,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
                 "rest_leader_started_before" if h is not None and start[h] < start[x] - tol else \
                 "rest_leader_done_or_none"
             out[why] = out.get(why, 0) + start[x] - t0
+            out["events"].append(f"{t0:8.2f}   agv{moves[x][0]} at rest {start[x] - t0:.2f} s ({why})")
             out["n_" + why] = out.get("n_" + why, 0) + 1
             node = ("end", prev[x]) if x in prev else None
     return out
@@ -306,6 +315,7 @@ def main():
     ap.add_argument("--executors", nargs="+", default=["lockstep", "adg-follow"])
     ap.add_argument("--out", default=None, help="folder for the runs (default: a temporary one)")
     ap.add_argument("--runs", nargs="+", default=None, help="analyse these run folders instead of running")
+    ap.add_argument("--trace", type=int, default=0, help="print the last N events of the executed critical path")
     a = ap.parse_args()
     if a.runs:
         dirs = a.runs
@@ -355,6 +365,22 @@ def main():
             print(f"| {r['run']} | {e['from_rest']:.1f} ({e['from_rest_least']:.1f}) | {e['n_from_rest']} | "
                   f"{e['chained']:.1f} ({e['chained_least']:.1f}) | {e['n_chained']} | {e.get('rest_reversal', 0):.1f} | "
                   f"{e['rest'] - e.get('rest_reversal', 0):.1f} | {e['links']} |")
+    print("\nThe moves from rest on the executed critical path: how long each AGV stood before it started (since its"
+          " previous move ended): short stands are stops a rolling approach could have saved\n")
+    bins = [(0, 0.5), (0.5, 1), (1, 2), (2, 5), (5, math.inf)]
+    print("| run | n | median s | " + " | ".join(f"{lo}-{hi} s" for lo, hi in bins) + " |")
+    print("|---|---:|---:|" + "---:|" * len(bins))
+    for r in res:
+        st = sorted(r["exe"]["stood"]) if r["exe"] else []
+        if st:
+            print(f"| {r['run']} | {len(st)} | {st[len(st) // 2]:.2f} | " +
+                  " | ".join(str(sum(1 for w in st if lo <= w < hi)) for lo, hi in bins) + " |")
+    if a.trace:
+        for r in res:
+            if r["exe"]:
+                print(f"\n{r['run']}: the executed critical path, last {a.trace} events (time s, forward)")
+                for line in reversed(r["exe"]["events"][:a.trace]):
+                    print(line)
     for r in res:
         if r["time"]:
             print(f"\n{r['run']}: executor agent-steps by what bounds the speed (metrics.json executor.time): {r['time']}")

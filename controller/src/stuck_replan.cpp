@@ -11,8 +11,8 @@
 
 namespace controller {
 
-StuckWatch::StuckWatch(int n, double stuck_after_s, double dt)
-    : n_(n), after_s_(stuck_after_s), dt_(dt), stall_s_(n, 0.0), last_(n), immobile_(n, 0), target_(n, 0)
+StuckWatch::StuckWatch(int n, double stuck_after_s, double dt, bool learn)
+    : n_(n), after_s_(stuck_after_s), dt_(dt), learn_(learn), stall_s_(n, 0.0), last_(n), immobile_(n, 0), target_(n, 0)
 {
 }
 
@@ -36,9 +36,13 @@ bool StuckWatch::observe(const executor::Adg& adg, const std::vector<VehiclePose
     // Running with its cell handed over (adg-follow: not just following a leader that is still
     // leaving it -- that one waits on the leader, which is watched itself), or released.
     const bool may_go = id >= 0 && (adg.may_finish(id) || adg.released(id)) && gated[i] < 0;
+    // A stall that ended by itself (moved on, never immobile) while it held somebody up: a
+    // passing stop of this fleet. (Not one that held nobody up: it was never a candidate, and
+    // an AGV broken down for a minute in nobody's way must not teach that a minute passes.)
+    if (moved && !immobile_[i] && blocks[i]) longest_free_ = std::max(longest_free_, stall_s_[i]);
     stall_s_[i] = may_go && !moved ? stall_s_[i] + dt_ : 0.0;
     if (immobile_[i] && !delays.stopped(i)) target_[i] = 0;  // it reports itself ready again
-    if (!immobile_[i] && stall_s_[i] >= after_s_ - 1e-9 && blocks[i]) target_[i] = 1;
+    if (!immobile_[i] && stall_s_[i] >= threshold_s() - 1e-9 && blocks[i]) target_[i] = 1;
   }
   return target_ != immobile_;
 }

@@ -31,6 +31,7 @@
 // the ADG's deadlock freedom bring every AGV to its goal. Replans happen only on stuck
 // events and recoveries: finitely often for finitely many finite delays.
 // Safety is checked after every SUMO step as always; no moveTo anywhere.
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -42,7 +43,12 @@ namespace controller {
 
 class StuckWatch {
  public:
-  StuckWatch(int n, double stuck_after_s, double dt);
+  // learn: the threshold grows to twice the longest stall that ended by itself (the AGV moved
+  // on without a replan) while it held somebody up -- the fleet's passing stops are not
+  // "stuck" (run.stuck_learn). Such a stall is shorter than the threshold was, so the
+  // threshold at most doubles per stop.
+  StuckWatch(int n, double stuck_after_s, double dt, bool learn = false);
+  double threshold_s() const { return learn_ ? std::max(after_s_, 2 * longest_free_) : after_s_; }
 
   // After a SUMO step: stall timers, new stuck AGVs, recoveries. Returns true when the
   // immobile set should change: replan() now with target(). `gated`: per agent, >= 0 while a
@@ -64,6 +70,8 @@ class StuckWatch {
  private:
   int n_;
   double after_s_, dt_;
+  bool learn_;
+  double longest_free_ = 0;  // the longest stall, s, that ended with the AGV moving on by itself
   std::vector<double> stall_s_;
   std::vector<VehiclePose> last_;
   std::vector<uint8_t> immobile_, target_;

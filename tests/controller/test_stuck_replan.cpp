@@ -7,8 +7,12 @@
 // the 0-overlap-at-every-step assertion; and no moveTo but the in-place turns.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "closed_loop_util.hpp"
 #include "controller_test_util.hpp"
 #include "planner/validator.hpp"
 #include "temp_path.hpp"
@@ -114,6 +118,91 @@ TEST(StuckReplan, AnAgvStuckBetweenTwoCellsKeepsBothAndTheOthersRouteOn)
   EXPECT_EQ(m.replans, 2);
 }
 
+// A rotation group's members finish together (Driver::group_arrived). tests/data/controller/
+// ring.net.xml is a 2 m square loop of 8 cells, full with 8 AGVs whose goals are two cells
+// round: the plan is two rotation steps, two ADG rotation groups of 8 moves. From t = 0.5 s a
+// second client holds agv0 mid-move for 6 s; the others drive on until their fronts are on
+// their targets (only DelayModel stops make a group brake as one). The group's AGVs are found
+// stuck (run.stuck_after_s 3) and the replan cuts the plan at every AGV's progress. Without
+// the fix the seven members had finished their moves, one step further than agv0's running
+// one, and the cut plan put agv7 on agv0's cell: "replan: the cut plan is invalid: step 0 ->
+// 1: vertex conflict: agents 0 and 7 at vertex 0" (as on the huge warehouse, seed 3,
+// p = 0.01, before s34). With it their moves stay running until agv0 has arrived.
+TEST(StuckReplan, ARotationGroupHeldMidMoveFinishesTogether)
+{
+  Config c = stuck_config("ring", true);
+  c.sumo.net = std::string(RTLACAM_CONTROLLER_DATA) + "/ring.net.xml";
+  c.sumo.additional.clear();
+  c.delays = {};
+  c.run.executor = "adg-follow";
+  c.run.stuck_after_s = 3;
+  c.run.max_ticks = 60;
+  // Ring cells in order a, a-b, b, b-c, c, c-d, d, d-a (lane positions: the front's).
+  const std::vector<std::pair<std::string, double>> ring = {{"d_a_0", 2}, {"a_b_0", 1}, {"a_b_0", 2}, {"b_c_0", 1},
+                                                            {"b_c_0", 2}, {"c_d_0", 1}, {"c_d_0", 2}, {"d_a_0", 1}};
+  c.fleet.count = 8;
+  c.fleet.starts.clear();
+  c.tasks.goals.clear();
+  for (int k = 0; k < 8; ++k) {
+    CellRef s, g;
+    s.lane = ring[k].first, s.pos = ring[k].second, s.key = "fleet.starts[" + std::to_string(k) + "]";
+    g.lane = ring[(k + 2) % 8].first, g.pos = ring[(k + 2) % 8].second, g.key = "tasks.goals[" + std::to_string(k) + "]";
+    c.fleet.starts.push_back(s);
+    c.tasks.goals.push_back(g);
+  }
+  Controller ctl(c);
+  ctest_util::OutsideStops stops(8, 8, 1, 1, c.fleet.vtype.decel, c.sumo.step_length, 0, 0);
+  stops.windows[0] = {{0.5, 6.5}};
+  stops.attach(ctl);
+  // At t = 4 s agv0 is held short of its first target, every other front is on its own.
+  std::vector<VehiclePose> at4;
+  ctl.on_tick = [&](long long tick, SumoBackend& sumo) {
+    if (tick == 4) at4 = sumo.poses({"agv0", "agv1", "agv2", "agv3", "agv4", "agv5", "agv6", "agv7"});
+  };
+  const Metrics m = ctl.run();
+  ASSERT_EQ(at4.size(), 8u);
+  EXPECT_FALSE(at4[0].lane == ring[1].first && std::fabs(at4[0].pos - ring[1].second) < 1e-6);
+  for (int k = 1; k < 8; ++k) {
+    EXPECT_EQ(at4[k].lane, ring[(k + 1) % 8].first) << "agv" << k;
+    EXPECT_NEAR(at4[k].pos, ring[(k + 1) % 8].second, 1e-6) << "agv" << k;
+  }
+  expect_clean(c, ctl, m);
+  EXPECT_GT(stops.steps_held, 8);
+  EXPECT_GE(m.stuck_events, 1);
+  EXPECT_GE(m.replans, 1);
+  EXPECT_GE(m.makespan, 7);  // agv0 held until 6.5 s
+  std::printf("ring: error '%s' makespan %lld stuck %lld replans %lld held %lld\n", m.error.c_str(), m.makespan,
+              m.stuck_events, m.replans, stops.steps_held);
+}
+
+// run.stuck_learn (StuckWatch learn): a stall that ends by itself raises the stuck threshold
+// to twice its length, so the fleet's passing stops cause no replan. agv0 (standing in the
+// cross aisle agv1 and agv2 pass through) is stopped twice: 4 s from t = 0, then 7 s from
+// t = 6 s. Without learning the second stop is "stuck" after run.stuck_after_s (5 s): a replan
+// with agv0 immobile, and another when it moves again (makespan 45 ticks); with it the threshold
+// is about 8 s after the first stop, nothing is replanned and the others wait the 7 s out
+// (27 ticks). A 60 s stop is still found (the tests above: no passing stop before it).
+TEST(StuckReplan, PassingStopsRaiseTheStuckThreshold)
+{
+  auto run = [](bool learn) {
+    Config c = stuck_config(learn ? "learn" : "nolearn", true);
+    c.delays.spec.stuck = {{0, 0, 4}, {0, 6, 7}};
+    c.run.stuck_learn = learn;
+    Controller ctl(c);
+    const Metrics m = ctl.run();
+    expect_clean(c, ctl, m);
+    std::printf("stuck_learn %d: makespan %lld replans %lld stuck %lld\n", learn, m.makespan, m.replans,
+                m.stuck_events);
+    return m;
+  };
+  const Metrics on = run(true), off = run(false);
+  EXPECT_EQ(on.replans, 0);
+  EXPECT_EQ(on.stuck_events, 0);
+  EXPECT_GE(off.stuck_events, 1);
+  EXPECT_GE(off.replans, 2);  // stuck, then mobile again
+  EXPECT_LT(on.makespan, off.makespan);
+}
+
 TEST(StuckReplan, ConfigErrors)
 {
   const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
@@ -124,6 +213,8 @@ TEST(StuckReplan, ConfigErrors)
             "t.yaml: run.replan_on_stuck: only with run.executor: adg or adg-follow");
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg-follow, replan_on_stuck: true}\n"), "(no error)");
   EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, replan_on_stuck: false, stuck_after_s: 2}\n"), "(no error)");
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg, stuck_learn: maybe}\n").rfind("t.yaml: run.stuck_learn: ", 0), 0u);
+  EXPECT_EQ(ctest_util::config_error(net + "run: {executor: adg-follow, stuck_learn: false}\n"), "(no error)");
 }
 
 TEST(StuckReplan, LifelongReplansCarryChainedMoves)

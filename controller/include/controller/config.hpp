@@ -197,6 +197,8 @@ struct RunSection {
   int drain = 0;                     // adg: commit again once fewer than this are left (1..window; 0: window)
   bool replan_on_stuck = true;       // adg: reroute the others around a stuck AGV (stuck_replan.hpp)
   double stuck_after_s = 5.0;        // adg: no progress for this long while it may go = stuck
+  // adg: ... or twice the longest stall so far that ended by itself, if longer (StuckWatch learn)
+  bool stuck_learn = true;
   // adg-follow flow (controller/driver.hpp DriveParams; switches for tests and benches):
   bool relative_braking = true;      // count on a leader's sure travel when following
   bool same_step_starts = true;      // a move released by another start in a step starts in it
