@@ -301,6 +301,8 @@ int main(int argc, char** argv)
         threads_json["rewire_cuts"] = rt->lacam().rewire_cuts();
         threads_json["late_dives"] = rt->lacam().late_dives();
         threads_json["dive_pauses"] = rt->lacam().dive_pauses();
+        threads_json["cold_steps"] = rt->lacam().cold_steps();
+        threads_json["guided_expansions_timed"] = rt->lacam().guided_expansion_cost().samples();
         threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
       }
       if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && refine_threads > 0) {

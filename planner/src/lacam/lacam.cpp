@@ -342,6 +342,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
       if (refining_) {
         // After a step that swept the caches (cold_end) the next one is priced at kColdFactor
         // x the rate; not fitting then is no spike to forget.
+        cold_steps_ += cold_;
         if (!fits(expand_cost_.predict_ms(cold_ ? kColdFactor : 1))) {
           if (!cold_) expand_cost_.forget();
           break;

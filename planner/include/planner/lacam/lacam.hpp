@@ -267,6 +267,8 @@ class Lacam {
   // behind the root); the lead SUO last started at, in steps ahead of the root then.
   uint64_t late_dives() const { return late_dives_; }
   uint64_t dive_pauses() const { return dive_pauses_; }  // dive steps stopped at a deadline (dive_pause)
+  const StepCost& guided_expansion_cost() const { return sg_cost_; }  // guided_cost
+  uint64_t cold_steps() const { return cold_steps_; }  // steps priced cold (cold_end)
   int scatter_lead() const { return scatter_lead_; }
   size_t bytes_reserved() const;
 
@@ -456,6 +458,7 @@ class Lacam {
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
   bool cold_ = false;             // the last step swept the caches (LacamOptions::cold_end)
+  uint64_t cold_steps_ = 0;
   static constexpr double kColdFactor = 4;
   enum class Step { expansion, lg_expansion, sg_expansion, lns, guide, prepare, insert, price, partial, warm, thread, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
