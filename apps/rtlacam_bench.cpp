@@ -156,7 +156,7 @@ int main(int argc, char** argv)
   app.add_flag("--dive-pause,!--no-dive-pause", dive_pause,
                "timed: a dive step's PIBT call stops at the deadline and goes on in the next call (lacam.hpp)");
   app.add_flag("--cold-end,!--no-cold-end", cold_end,
-               "timed: the call ends after an SUO slice / paused dive step at its deadline or an LNS page mapping (lacam.hpp)");
+               "timed: the step after a cache sweep (an SUO slice or paused dive step at its deadline, an LNS step or page mapping) is priced at 4x (lacam.hpp)");
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
   app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");

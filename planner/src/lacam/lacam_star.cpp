@@ -208,6 +208,7 @@ Status Lacam::refine_expand()
       ++expansions_;
       if (lns_step(window)) lns_failures_ = 0;
       else ++lns_failures_;
+      if (timed_ && opt_.cold_end) cold_ = true;  // its tables swept the caches (cold_end)
       // An expansion costs O(N) (one PIBT call); an LNS step O(W x N) and more: charge it in
       // expansion-equivalents, so that a budget in expansions bounds the work too.
       units_ = std::max<uint64_t>(1, lns_.work() / static_cast<uint64_t>(std::max(n_, 1)));

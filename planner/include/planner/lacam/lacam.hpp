@@ -147,10 +147,11 @@ struct LacamOptions {
   // 0.4-0.65 ms at warehouse-20-40-10-2-2 N = 1000, past a 1 ms iteration. Off: whole calls.
   bool dive_pause = true;
   // Timed: after a step that swept much memory -- an SUO slice or paused dive step that ran
-  // to its deadline, the LNS table's page mapping -- the next step of the call starts only
-  // when kColdFactor x an expansion's learnt cost fits: that PIBT call ran on cold caches at
-  // 1.4-5.6x the learnt rate (0.33-0.67 ms against 0.07-0.39, warehouse-20-40-10-2-2
-  // N = 1000, 1 ms). Off: priced as any step.
+  // to its deadline, an LNS step or its table's page mapping -- the next step of the call
+  // starts only when kColdFactor x an expansion's learnt cost fits: that PIBT call ran on
+  // cold caches at 1.4-5.6x the learnt rate (0.33-0.67 ms against 0.07-0.39,
+  // warehouse-20-40-10-2-2 N = 1000, 1 ms). Off: priced as any step. Measured in
+  // docs/rt_lacam_star.md ("Session 35").
   bool cold_end = true;
   int scatter_dive_passes = 2;  // the first guided dive waits for this many passes (lacam3: >= 2)
   int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
