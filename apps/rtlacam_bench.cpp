@@ -44,7 +44,7 @@ int main(int argc, char** argv)
   bool scatter_dive_guard = LacamOptions{}.scatter_dive_guard, reprice = LacamOptions{}.reprice,
        scatter_lead_dive = LacamOptions{}.scatter_lead_dive, scatter_prepare = LacamOptions{}.scatter_prepare,
        guided_cost = LacamOptions{}.guided_cost, dive_pause = LacamOptions{}.dive_pause,
-       cold_end = LacamOptions{}.cold_end;
+       cold_end = LacamOptions{}.cold_end, scatter_lead_guided = LacamOptions{}.scatter_lead_guided;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -157,6 +157,8 @@ int main(int argc, char** argv)
                "timed: a dive step's PIBT call stops at the deadline and goes on in the next call (lacam.hpp)");
   app.add_flag("--cold-end,!--no-cold-end", cold_end,
                "timed: the step after a cache sweep (an SUO slice or paused dive step at its deadline, an LNS step or page mapping) is priced at 4x (lacam.hpp)");
+  app.add_flag("--scatter-lead-guided,!--no-scatter-lead-guided", scatter_lead_guided,
+               "timed: SUO's lead check prices a guided dive step at the guided step's cost (lacam.hpp)");
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
   app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");
@@ -214,6 +216,7 @@ int main(int argc, char** argv)
     lopt.guided_cost = guided_cost;
     lopt.dive_pause = dive_pause;
     lopt.cold_end = cold_end;
+    lopt.scatter_lead_guided = scatter_lead_guided;
     lopt.resumable = resumable;
     lopt.pause_min_ms = pause_min_ms;
     lopt.mc_rollouts = mc_rollouts;
@@ -367,6 +370,7 @@ int main(int argc, char** argv)
     j["guided_cost"] = guided_cost;
     j["dive_pause"] = dive_pause;
     j["cold_end"] = cold_end;
+    j["scatter_lead_guided"] = scatter_lead_guided;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

@@ -143,7 +143,13 @@ void Lacam::lead_probe()
     return static_cast<double>(std::max<int64_t>(d, 1));
   };
   const double here = left(scatter_root_);
-  const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
+  // A guided dive step is a guided PIBT call plus step_to: its learnt cost once a dive ran,
+  // else kGuidedPrior x an expansion (scatter_lead_guided; off: an unguided expansion's cost,
+  // 2-8x too cheap, so the lead came out short).
+  const double step = !timed_                   ? 1.0
+                      : !opt_.scatter_lead_guided ? expand_cost_.predict_ms(1)
+                      : dive_cost_.samples() > 0  ? std::max(expand_cost_.predict_ms(1), dive_cost_.predict_ms(1))
+                                                  : kGuidedPrior * expand_cost_.predict_ms(1);
   const double per_move = guide_spent_ / static_cast<double>(m);
   const auto covered = [&](int L) {
     const double moves = suo * left(p[L]) / here + (depth - L) * step / per_move;

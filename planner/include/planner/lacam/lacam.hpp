@@ -135,6 +135,9 @@ struct LacamOptions {
   // step, at the guide's measured work per move), not the passes alone: at N = 600 the
   // dive took ~22 iterations and the agents passed its start meanwhile. Off: passes only.
   bool scatter_lead_dive = true;
+  // Timed: the lead check prices a guided dive step at the guided step's cost (the dive's
+  // learnt cost, else kGuidedPrior x an expansion), not at an unguided expansion's.
+  bool scatter_lead_guided = false;
   // Timed runs build SUO's per-vertex lists (Scatter::prepare, O(|V|) fresh memory) in slices
   // to the call's deadline before SUO's first start; off: inside the start's one step (1.1 ms
   // at warehouse-20-40-10-2-2 N = 1000, one 1.5 ms iteration at a 1 ms cutoff).
