@@ -41,6 +41,7 @@ int main(int argc, char** argv)
   bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
       scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
+  double cold_factor = LacamOptions{}.cold_factor;
   bool scatter_dive_guard = LacamOptions{}.scatter_dive_guard, reprice = LacamOptions{}.reprice,
        scatter_lead_dive = LacamOptions{}.scatter_lead_dive, scatter_prepare = LacamOptions{}.scatter_prepare,
        guided_cost = LacamOptions{}.guided_cost, dive_pause = LacamOptions{}.dive_pause,
@@ -156,9 +157,11 @@ int main(int argc, char** argv)
   app.add_flag("--dive-pause,!--no-dive-pause", dive_pause,
                "timed: a dive step's PIBT call stops at the deadline and goes on in the next call (lacam.hpp)");
   app.add_flag("--cold-end,!--no-cold-end", cold_end,
-               "timed: the step after a cache sweep (an SUO slice or paused dive step at its deadline, an LNS step or page mapping) is priced at 4x (lacam.hpp)");
+               "timed: the step after a cache sweep (an SUO slice or paused dive step at its deadline, an LNS step or page mapping) is priced at --cold-factor x its rate (lacam.hpp)");
   app.add_flag("--scatter-lead-guided,!--no-scatter-lead-guided", scatter_lead_guided,
                "timed: SUO's lead check prices a guided dive step at the guided step's cost (lacam.hpp)");
+  app.add_option("--cold-factor", cold_factor, "with --cold-end: the step after a cache sweep is priced at this x its rate")
+      ->capture_default_str();
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
   app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");
@@ -216,6 +219,7 @@ int main(int argc, char** argv)
     lopt.guided_cost = guided_cost;
     lopt.dive_pause = dive_pause;
     lopt.cold_end = cold_end;
+    lopt.cold_factor = cold_factor;
     lopt.scatter_lead_guided = scatter_lead_guided;
     lopt.resumable = resumable;
     lopt.pause_min_ms = pause_min_ms;
@@ -370,6 +374,7 @@ int main(int argc, char** argv)
     j["guided_cost"] = guided_cost;
     j["dive_pause"] = dive_pause;
     j["cold_end"] = cold_end;
+    j["cold_factor"] = cold_factor;
     j["scatter_lead_guided"] = scatter_lead_guided;
     j["seed"] = seed;
     j["map"] = map_file;

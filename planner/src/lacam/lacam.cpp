@@ -340,10 +340,10 @@ Status Lacam::search(const Budget& b, bool until_solved)
     // with a reserve, while the costliest one so far fits.
     if (timed_) {
       if (refining_) {
-        // After a step that swept the caches (cold_end) the next one is priced at kColdFactor
+        // After a step that swept the caches (cold_end) the next one is priced at cold_factor
         // x the rate; not fitting then is no spike to forget.
         cold_steps_ += cold_;
-        if (!fits(expand_cost_.predict_ms(cold_ ? kColdFactor : 1))) {
+        if (!fits(expand_cost_.predict_ms(cold_ ? opt_.cold_factor : 1))) {
           if (!cold_) expand_cost_.forget();
           break;
         }

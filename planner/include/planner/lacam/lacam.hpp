@@ -151,11 +151,15 @@ struct LacamOptions {
   bool dive_pause = true;
   // Timed: after a step that swept much memory -- an SUO slice or paused dive step that ran
   // to its deadline, an LNS step or its table's page mapping -- the next step of the call
-  // starts only when kColdFactor x an expansion's learnt cost fits: that PIBT call ran on
+  // starts only when cold_factor x an expansion's learnt cost fits: that PIBT call ran on
   // cold caches at 1.4-5.6x the learnt rate (0.33-0.67 ms against 0.07-0.39,
   // warehouse-20-40-10-2-2 N = 1000, 1 ms). Off: priced as any step. Measured in
   // docs/rt_lacam_star.md ("Session 35").
   bool cold_end = true;
+  // The next step's predicted cost, x its learnt rate. 2, not 4: the same p99 and max
+  // (1.010 / 1.049 ms against 1.009 / 1.044) at 0.984x the standard SOC over 30 pairs
+  // (warehouse-10-20-10-2-1 N = 400, 600, warehouse-20-40-10-2-2 N = 1000, scens 1-5 x 2).
+  double cold_factor = 2;
   int scatter_dive_passes = 2;  // the first guided dive waits for this many passes (lacam3: >= 2)
   int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
   bool dive = false;
@@ -463,7 +467,6 @@ class Lacam {
   bool stalled_ = false;          // the last expand() found no step that fits
   bool cold_ = false;             // the last step swept the caches (LacamOptions::cold_end)
   uint64_t cold_steps_ = 0;
-  static constexpr double kColdFactor = 4;
   enum class Step { expansion, lg_expansion, sg_expansion, lns, guide, prepare, insert, price, partial, warm, thread, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
