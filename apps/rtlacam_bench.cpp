@@ -161,6 +161,7 @@ int main(int argc, char** argv)
   app.add_flag("--scatter-lead-guided,!--no-scatter-lead-guided", scatter_lead_guided,
                "timed: SUO's lead check prices a guided dive step at the guided step's cost (lacam.hpp)");
   app.add_option("--cold-factor", cold_factor, "with --cold-end: the step after a cache sweep is priced at this x its rate")
+      ->check(CLI::Range(1.0, 100.0))
       ->capture_default_str();
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
