@@ -41,8 +41,11 @@ int main(int argc, char** argv)
   bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
       scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
+  double cold_factor = LacamOptions{}.cold_factor;
   bool scatter_dive_guard = LacamOptions{}.scatter_dive_guard, reprice = LacamOptions{}.reprice,
-       scatter_lead_dive = LacamOptions{}.scatter_lead_dive;
+       scatter_lead_dive = LacamOptions{}.scatter_lead_dive, scatter_prepare = LacamOptions{}.scatter_prepare,
+       guided_cost = LacamOptions{}.guided_cost, dive_pause = LacamOptions{}.dive_pause,
+       cold_end = LacamOptions{}.cold_end, scatter_lead_guided = LacamOptions{}.scatter_lead_guided;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
   app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
@@ -147,6 +150,19 @@ int main(int argc, char** argv)
                "a guided dive goes on by distances once as long as the rest of the best path (lacam.hpp)");
   app.add_flag("--scatter-lead-dive,!--no-scatter-lead-dive", scatter_lead_dive,
                "SUO's lead check also counts the guided dive after its passes (lacam.hpp)");
+  app.add_flag("--scatter-prepare,!--no-scatter-prepare", scatter_prepare,
+               "timed: SUO's per-vertex lists are built in slices before its first start (lacam.hpp)");
+  app.add_flag("--guided-cost,!--no-guided-cost", guided_cost,
+               "timed: refinement expansions guided by SUO's paths have their own learnt cost (lacam.hpp)");
+  app.add_flag("--dive-pause,!--no-dive-pause", dive_pause,
+               "timed: a dive step's PIBT call stops at the deadline and goes on in the next call (lacam.hpp)");
+  app.add_flag("--cold-end,!--no-cold-end", cold_end,
+               "timed: the step after a cache sweep (an SUO slice or paused dive step at its deadline, an LNS step or page mapping) is priced at --cold-factor x its rate (lacam.hpp)");
+  app.add_flag("--scatter-lead-guided,!--no-scatter-lead-guided", scatter_lead_guided,
+               "timed: SUO's lead check prices a guided dive step at the guided step's cost (lacam.hpp)");
+  app.add_option("--cold-factor", cold_factor, "with --cold-end: the step after a cache sweep is priced at this x its rate")
+      ->check(CLI::Range(1.0, 100.0))
+      ->capture_default_str();
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
   app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");
@@ -200,6 +216,12 @@ int main(int argc, char** argv)
     lopt.scatter_dive_guard = scatter_dive_guard;
     lopt.reprice = reprice;
     lopt.scatter_lead_dive = scatter_lead_dive;
+    lopt.scatter_prepare = scatter_prepare;
+    lopt.guided_cost = guided_cost;
+    lopt.dive_pause = dive_pause;
+    lopt.cold_end = cold_end;
+    lopt.cold_factor = cold_factor;
+    lopt.scatter_lead_guided = scatter_lead_guided;
     lopt.resumable = resumable;
     lopt.pause_min_ms = pause_min_ms;
     lopt.mc_rollouts = mc_rollouts;
@@ -286,6 +308,9 @@ int main(int argc, char** argv)
         threads_json["reprices"] = rt->lacam().reprices();
         threads_json["rewire_cuts"] = rt->lacam().rewire_cuts();
         threads_json["late_dives"] = rt->lacam().late_dives();
+        threads_json["dive_pauses"] = rt->lacam().dive_pauses();
+        threads_json["cold_steps"] = rt->lacam().cold_steps();
+        threads_json["guided_expansions_timed"] = rt->lacam().guided_expansion_cost().samples();
         threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
       }
       if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && refine_threads > 0) {
@@ -346,6 +371,12 @@ int main(int argc, char** argv)
     j["scatter_dive_guard"] = scatter_dive_guard;
     j["reprice"] = reprice;
     j["scatter_lead_dive"] = scatter_lead_dive;
+    j["scatter_prepare"] = scatter_prepare;
+    j["guided_cost"] = guided_cost;
+    j["dive_pause"] = dive_pause;
+    j["cold_end"] = cold_end;
+    j["cold_factor"] = cold_factor;
+    j["scatter_lead_guided"] = scatter_lead_guided;
     j["seed"] = seed;
     j["map"] = map_file;
     j["scen"] = scen_file;

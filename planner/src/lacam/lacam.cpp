@@ -92,6 +92,7 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   scatter_probed_ = guided_dive_ = scatter_stopped_ = false;
   passes_dived_ = 0;
   dive_ = nullptr;
+  dive_paused_ = false;
   dive_failures_ = 0;
   if (opt_.scatter_first && !test) {
     scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
@@ -324,7 +325,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
   double cpu_last = timed_ ? thread_cpu_ms() : 0.0;
   max_unit_ms_ = 0;
   uint64_t done = 0;
-  stalled_ = false;
+  stalled_ = cold_ = false;
   if (threads_ && refining_ && !until_solved) threads_exchange();  // the iteration boundary
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).
@@ -344,10 +345,14 @@ Status Lacam::search(const Budget& b, bool until_solved)
     // with a reserve, while the costliest one so far fits.
     if (timed_) {
       if (refining_) {
-        if (!fits(expand_cost_.predict_ms(1))) {
-          expand_cost_.forget();
+        // After a step that swept the caches (cold_end) the next one is priced at cold_factor
+        // x the rate; not fitting then is no spike to forget.
+        cold_steps_ += cold_;
+        if (!fits(expand_cost_.predict_ms(cold_ ? opt_.cold_factor : 1))) {
+          if (!cold_) expand_cost_.forget();
           break;
         }
+        cold_ = false;
       } else if (!first) {
         // A resumable expansion stops at the deadline itself: no reserve for it.
         if (reserving && !(pausing && may_pause_)) {
@@ -377,6 +382,7 @@ Status Lacam::search(const Budget& b, bool until_solved)
       if (last_step_ == Step::expansion)
         (!refining_ && pibt_.local_guidance() ? lg_cost_ : expand_cost_).record(1, dc + gen_cpu_ms_), gen_cpu_ms_ = 0;
       else if (last_step_ == Step::lg_expansion) lg_cost_.record(1, dc);
+      else if (last_step_ == Step::sg_expansion) sg_cost_.record(1, dc), expand_cost_.record(1, dc);
       else if (last_step_ == Step::lns) lns_cost_.record(last_units_, dc);
       max_unit_ms_ = std::max(max_unit_ms_, dc / static_cast<double>(std::max<uint64_t>(units_, 1)));
     }

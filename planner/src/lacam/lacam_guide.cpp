@@ -9,13 +9,13 @@ namespace planner {
 
 // Known or new node for configuration C reached from `from`, linked to it; a known one is
 // rewired (its g, and what hangs on it, drops when `from` is the cheaper way).
-HNode* Lacam::step_to(HNode* from, const Vertex* C)
+HNode* Lacam::step_to(HNode* from, const Vertex* C, Clock::time_point deadline)
 {
   const uint64_t hash = config_hash(C, n_);
   HNode* h = explored_.find(C, hash);
   if (h) {
     link(from, h);
-    rewrite(from, h);
+    rewrite(from, h, deadline);
     return h;
   }
   h = new_node(C, from, hash);
@@ -71,6 +71,12 @@ bool Lacam::scatter_step()
     // Timed, the first start is a step of its own, when its cost fits (the restart's model:
     // both are SUO's reset, the first one also builds the occupancy lists, O(|V|) fresh
     // memory); it had shared a call with a slice that ran to the call's deadline.
+    // The O(|V|) build on fresh memory goes first, in slices to the call's deadline (as one
+    // step inside the start it cost 1.1 ms at warehouse-20-40-10-2-2 N = 1000).
+    if (timed_ && opt_.scatter_prepare && !scatter_.prepared()) {
+      if (!scatter_.prepare(deadline_)) stalled_ = true;  // the rest in a later call
+      return true;
+    }
     if (timed_) {
       restart_step([&] { start_scatter(opt_.scatter_lead); });
       return true;
@@ -137,7 +143,13 @@ void Lacam::lead_probe()
     return static_cast<double>(std::max<int64_t>(d, 1));
   };
   const double here = left(scatter_root_);
-  const double step = timed_ ? expand_cost_.predict_ms(1) : 1.0;
+  // A guided dive step is a guided PIBT call plus step_to: its learnt cost once a dive ran,
+  // else kGuidedPrior x an expansion (scatter_lead_guided; off: an unguided expansion's cost,
+  // 2-8x too cheap, so the lead came out short).
+  const double step = !timed_                   ? 1.0
+                      : !opt_.scatter_lead_guided ? expand_cost_.predict_ms(1)
+                      : dive_cost_.samples() > 0  ? std::max(expand_cost_.predict_ms(1), dive_cost_.predict_ms(1))
+                                                  : kGuidedPrior * expand_cost_.predict_ms(1);
   const double per_move = guide_spent_ / static_cast<double>(m);
   const auto covered = [&](int L) {
     const double moves = suo * left(p[L]) / here + (depth - L) * step / per_move;
@@ -236,15 +248,36 @@ void Lacam::dive_step()
     const Scatter* guide = pibt_.scatter();
     if (dive_len_ >= dive_guided_len_) pibt_.set_scatter(nullptr);
     const double q0 = timed_ ? thread_cpu_ms() : 0.0;
-    const bool ok = pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_);
-    pibt_.set_scatter(guide);
+    bool ok;
+    if (timed_ && opt_.dive_pause) {
+      // Resumable (LacamOptions::dive_pause): the PIBT call stops at the call's deadline and
+      // goes on in the next guide step, the same generation (nothing else uses pibt_
+      // meanwhile: refine_expand keeps the guide's turn while a dive step is paused).
+      if (!dive_paused_ || !pibt_.pending()) pibt_.start(dive_->C, dive_->order, nullptr), dive_part_ms_ = 0;
+      const Pibt::Gen r = pibt_.resume(rng_, deadline_);
+      pibt_.set_scatter(guide);
+      dive_paused_ = r == Pibt::Gen::paused;
+      if (dive_paused_) {
+        dive_part_ms_ += thread_cpu_ms() - q0;
+        ++dive_pauses_;
+        break;
+      }
+      ok = r == Pibt::Gen::done;
+      if (ok) std::copy(pibt_.result(), pibt_.result() + n_, scratch_.begin());
+    } else {
+      ok = pibt_.generate(dive_->C, dive_->order, nullptr, scratch_.data(), rng_);
+      pibt_.set_scatter(guide);
+    }
     if (!ok) {
       end(false);
       break;
     }
     const int64_t g_goal = goal_->g;
-    dive_ = step_to(dive_, scratch_.data());
-    if (timed_) dive_cost_.record(1, thread_cpu_ms() - q0);
+    // The rewiring after a known node stops at the deadline too (0.43 ms once at
+    // warehouse-20-40-10-2-2 N = 1000); the win test below reads the goal's g, which the
+    // rewiring's first node (the link from dive_) sets.
+    dive_ = step_to(dive_, scratch_.data(), timed_ && opt_.dive_pause ? deadline_ : Clock::time_point::max());
+    if (timed_) dive_cost_.record(1, thread_cpu_ms() - q0 + dive_part_ms_), dive_part_ms_ = 0;
     ++dive_len_;
     if (dive_ == goal_) {
       end(goal_->g < g_goal);

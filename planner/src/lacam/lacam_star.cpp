@@ -144,12 +144,17 @@ Status Lacam::refine_expand()
   // SUO's first pass and its dive take every refinement iteration (they matter most), then
   // the guide gets a third of them (half without LNS); the rest as before.
   const bool urgent = opt_.scatter && !first_dive_done_;
-  const bool guide_turn = guide && (urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns));
+  // A paused dive step keeps the turn: pibt_ holds its generation (dive_pause).
+  const bool guide_turn = guide && (dive_paused_ || urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns));
   // A guide step is at least one SUO slice or one dive step (dive_cost_, a PIBT call's prior).
   dive_cost_.set_prior(expand_cost_.rate());
   const double unit = std::max(expand_cost_.predict_ms(1), dive_cost_.predict_ms(1));
   const bool guide_fits = !timed_ || fits(guide_tail_.predict_ms(1) + unit);
   if (guide_turn && !guide_fits) guide_tail_.forget(), dive_cost_.forget();
+  if (dive_paused_ && !guide_fits) {  // nothing else may use pibt_ before the dive step ends
+    stalled_ = true;
+    return status_;
+  }
   if (guide_turn && guide_fits) {
     // SUO and dives stop at their deadline, but past it by up to a pass's publication: they
     // get the call's deadline less the largest such overshoot seen (decaying, step_cost.hpp),
@@ -161,6 +166,9 @@ Status Lacam::refine_expand()
           std::chrono::duration<double, std::milli>(guide_tail_.predict_ms(1)));
     const double room0 = timed_ ? room_ms() : 0.0, c0 = timed_ ? thread_cpu_ms() : 0.0;
     guide_step();
+    // A step that ran to its deadline (an SUO slice, a paused dive step) swept its memory
+    // through the caches: the next step is priced cold (LacamOptions::cold_end).
+    if (timed_ && opt_.cold_end && room_ms() <= 0) cold_ = true;
     deadline_ = deadline;
     if (timed_) guide_tail_.record(1, std::max(0.0, thread_cpu_ms() - c0 - room0));
     guide_spent_ += timed_ ? thread_cpu_ms() - c0 : static_cast<double>(units_);
@@ -188,6 +196,7 @@ Status Lacam::refine_expand()
       const double fit_now = lns_cost_.units_within(0.5 * room_ms()) / per_step;
       window = static_cast<int>(std::min<double>({static_cast<double>(window), fit_now,
                                                   static_cast<double>(lns_.warm_window())}));
+      if (opt_.cold_end) cold_ = true;  // the mapping swept the caches (cold_end)
       if (window < kMinLnsWindow) {  // the rest in the next LNS turns
         ++expansions_;
         last_step_ = Step::warm;
@@ -199,6 +208,7 @@ Status Lacam::refine_expand()
       ++expansions_;
       if (lns_step(window)) lns_failures_ = 0;
       else ++lns_failures_;
+      if (timed_ && opt_.cold_end) cold_ = true;  // its tables swept the caches (cold_end)
       // An expansion costs O(N) (one PIBT call); an LNS step O(W x N) and more: charge it in
       // expansion-equivalents, so that a budget in expansions bounds the work too.
       units_ = std::max<uint64_t>(1, lns_.work() / static_cast<uint64_t>(std::max(n_, 1)));
@@ -221,6 +231,17 @@ Status Lacam::refine_expand()
     refining_ = false;
     return status_;
   }
+  // Guided by SUO's paths (PIBT keeps them once a pass is published): its own cost model.
+  const bool sg = opt_.guided_cost && timed_ && pibt_.scatter() && pibt_.scatter()->ready();
+  if (sg) {
+    sg_cost_.set_prior(dive_cost_.samples() > 0 ? std::max(expand_cost_.rate(), dive_cost_.rate())
+                                                : kGuidedPrior * expand_cost_.rate());
+    if (!fits(sg_cost_.predict_ms(1))) {
+      sg_cost_.forget();
+      stalled_ = true;  // in a later call
+      return status_;
+    }
+  }
   ++expansions_;
   HNode* H = open_.back();
   if (H->g >= goal_->g) {  // cannot lead to a cheaper goal
@@ -238,7 +259,7 @@ Status Lacam::refine_expand()
     return status_;
   }
   grow_lowlevel(H, L);
-  last_step_ = Step::expansion;
+  last_step_ = sg ? Step::sg_expansion : Step::expansion;
   if (opt_.lg_window > 0 && opt_.lg_refine) {  // guided when it fits (lg_cost_), unguided else
     lg_cost_.set_prior(2 * expand_cost_.rate());
     // No forget() when it does not fit (unlike the other steps): its cost is O(N x window)

@@ -45,6 +45,29 @@ void Scatter::clear()
   collisions_ = published_collisions_ = 0;
 }
 
+bool Scatter::prepare(Clock::time_point deadline)
+{
+  const size_t V = static_cast<size_t>(g_.size());
+  if (prepared()) return true;
+  if (body_.size() > V || last_.size() != body_.size() || parent_.size() != body_.size())
+    body_.clear(), last_.clear(), parent_.clear();
+  body_.reserve(V), last_.reserve(V), parent_.reserve(V);  // not touched yet: no page costs
+  while (body_.size() < V) {
+    const size_t end = std::min(V, body_.size() + kPrepareChunk);
+    body_.resize(end), last_.resize(end), parent_.resize(end, -2);
+    if (Clock::now() >= deadline) break;
+  }
+  if (body_.size() < V) return false;
+  ++occupancy_builds_;
+  return true;
+}
+
+bool Scatter::prepared() const
+{
+  const size_t V = static_cast<size_t>(g_.size());
+  return body_.size() == V && last_.size() == V && parent_.size() == V;
+}
+
 void Scatter::reset(const Config& starts, int margin, uint64_t seed, int max_passes)
 {
   clear();

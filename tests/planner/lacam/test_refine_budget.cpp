@@ -37,6 +37,11 @@ TEST(RefineBudget, EveryIterationFitsTheCutoffOnCpuTime)
   // It refined: most of the run's steps came after the first solution.
   EXPECT_GT(rt.expansions(), 2 * rt.lacam().expansions_at_solution());
   EXPECT_GT(rt.lacam().lns_cost().samples(), 10);
+  // Refinement expansions guided by SUO's published paths were priced by their own model
+  // (LacamOptions::guided_cost; off: 0 samples), and steps after an SUO slice that ran to its
+  // deadline were priced cold (cold_end; off: 0).
+  EXPECT_GT(rt.lacam().guided_expansion_cost().samples(), 0);
+  EXPECT_GT(rt.lacam().cold_steps(), 0u);
   // Tolerance as in tasks' budget tests: a loaded 2-core box adds cache misses, not preemption.
   EXPECT_LE(r.p99_iteration_cpu_ms, 1.5);
   EXPECT_LE(r.max_iteration_cpu_ms, 3.0);

@@ -136,6 +136,31 @@ struct LacamOptions {
   // step, at the guide's measured work per move), not the passes alone: at N = 600 the
   // dive took ~22 iterations and the agents passed its start meanwhile. Off: passes only.
   bool scatter_lead_dive = true;
+  // Timed: the lead check prices a guided dive step at the guided step's cost (the dive's
+  // learnt cost, else kGuidedPrior x an expansion), not at an unguided expansion's.
+  bool scatter_lead_guided = false;
+  // Timed runs build SUO's per-vertex lists (Scatter::prepare, O(|V|) fresh memory) in slices
+  // to the call's deadline before SUO's first start; off: inside the start's one step (1.1 ms
+  // at warehouse-20-40-10-2-2 N = 1000, one 1.5 ms iteration at a 1 ms cutoff).
+  bool scatter_prepare = true;
+  // Timed: a refinement expansion guided by SUO's paths starts only when its own learnt cost
+  // fits (lacam.hpp, sg_cost_); off: expand_cost_ alone, which the unguided ones set.
+  bool guided_cost = true;
+  // Timed: a dive step's PIBT call stops at the call's deadline and goes on in the next one
+  // (Pibt::start/resume), instead of running to its end: guided calls of 0.15 ms spiked to
+  // 0.4-0.65 ms at warehouse-20-40-10-2-2 N = 1000, past a 1 ms iteration. Off: whole calls.
+  bool dive_pause = true;
+  // Timed: after a step that swept much memory -- an SUO slice or paused dive step that ran
+  // to its deadline, an LNS step or its table's page mapping -- the next step of the call
+  // starts only when cold_factor x an expansion's learnt cost fits: that PIBT call ran on
+  // cold caches at 1.4-5.6x the learnt rate (0.33-0.67 ms against 0.07-0.39,
+  // warehouse-20-40-10-2-2 N = 1000, 1 ms). Off: priced as any step. Measured in
+  // docs/rt_lacam_star.md ("Session 35").
+  bool cold_end = true;
+  // The next step's predicted cost, x its learnt rate. 2, not 4: the same p99 and max
+  // (1.010 / 1.049 ms against 1.009 / 1.044) at 0.984x the standard SOC over 30 pairs
+  // (warehouse-10-20-10-2-1 N = 400, 600, warehouse-20-40-10-2-2 N = 1000, scens 1-5 x 2).
+  double cold_factor = 2;
   int scatter_dive_passes = 2;  // the first guided dive waits for this many passes (lacam3: >= 2)
   int scatter_max_passes = 0;  // 0: lacam3's rule (at least two, on while collisions drop)
   bool dive = false;
@@ -254,6 +279,9 @@ class Lacam {
   // Guided dives that ended after the agents had passed their start (its nodes then hang
   // behind the root); the lead SUO last started at, in steps ahead of the root then.
   uint64_t late_dives() const { return late_dives_; }
+  uint64_t dive_pauses() const { return dive_pauses_; }  // dive steps stopped at a deadline (dive_pause)
+  const StepCost& guided_expansion_cost() const { return sg_cost_; }  // guided_cost
+  uint64_t cold_steps() const { return cold_steps_; }  // steps priced cold (cold_end)
   int scatter_lead() const { return scatter_lead_; }
   size_t bytes_reserved() const;
 
@@ -375,7 +403,9 @@ class Lacam {
   void start_dive(HNode* from);
   int steps_ahead(const HNode* x) const;  // x's depth on the best path, -1 if not on it
   void start_scatter(int lead);
-  HNode* step_to(HNode* from, const Vertex* C);  // known or new node after `from`, linked and rewired
+  // Known or new node after `from`, linked and rewired (a rewiring cut at `deadline` is
+  // resumed by refine_expand; the known node's own g is set before any cut).
+  HNode* step_to(HNode* from, const Vertex* C, Clock::time_point deadline = Clock::time_point::max());
   // Refiner threads (lacam_threads.cpp)
   bool threads_on() const { return threads_ && soc_on() && opt_.lns; }
   void start_threads();                     // the constructor: the workers, idle
@@ -440,7 +470,9 @@ class Lacam {
   Clock::time_point deadline_ = Clock::time_point::max();
   bool timed_ = false;            // the running call has a deadline
   bool stalled_ = false;          // the last expand() found no step that fits
-  enum class Step { expansion, lg_expansion, lns, guide, prepare, insert, price, partial, warm, thread, none };
+  bool cold_ = false;             // the last step swept the caches (LacamOptions::cold_end)
+  uint64_t cold_steps_ = 0;
+  enum class Step { expansion, lg_expansion, sg_expansion, lns, guide, prepare, insert, price, partial, warm, thread, none };
   Step last_step_ = Step::none;   // what the last expand() did (which cost model learns)
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
@@ -450,6 +482,14 @@ class Lacam {
   // that expansion unguided instead of keeping LNS and the rest out of the iteration.
   StepCost lg_cost_;
   uint64_t guided_ = 0;
+  // A refinement expansion whose PIBT call follows SUO's published paths (LacamOptions::
+  // guided_cost): gated by its own learnt cost, primed from the guided dive's steps (or
+  // kGuidedPrior x an expansion before any), and learnt by expand_cost_ too (which gates
+  // every refinement step, as before). The first ones after a publication were gated by the
+  // unguided first search's rate: 0.24-0.44 ms calls at a rate of 0.03-0.08 ms
+  // (warehouse-20-40-10-2-2 N = 1000, 1 ms).
+  StepCost sg_cost_;
+  static constexpr double kGuidedPrior = 4;
   // Objective::soc: the followed path; the goal's g drops counted (a new tree path to
   // price) and the count last priced; an LNS window being inserted: its start, its nodes,
   // and the agents it replanned (spliced into best_ when inserted).
@@ -469,6 +509,9 @@ class Lacam {
   // warehouse-10-20-10-2-1 N = 600 (0.07-0.25 ms), and dives gated by expand_cost_ overran
   // 1 ms iterations by up to 0.6 ms.
   StepCost dive_cost_;
+  bool dive_paused_ = false;      // a dive step's PIBT call stopped at a deadline (dive_pause)
+  double dive_part_ms_ = 0;       // its cost so far (learnt whole, when it ends)
+  uint64_t dive_pauses_ = 0;
   StepCost restart_cost_;         // the lead probe with SUO's restart (lead_probe)
   bool preparing_ = false;        // start_refining() still costing nodes
   size_t prepare_next_ = 0;       // the next node to cost
