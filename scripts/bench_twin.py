@@ -49,8 +49,8 @@ VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "n
                    "age": ("priority", "age")}
 # "+pocket" (any solver): tasks.urgency.pocket_cost 100 in SUMO (PIBT ranks a move into another
 # station's dead-end stub 100 moves worse; pibt-rot honours it since s35), --pocket-cost 100 in
-# the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam lost with it
-# (docs/twin_bench.md "Session 35").
+# the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam does not
+# gain with it (docs/twin_bench.md "Session 35").
 POCKET_COST = 100
 
 
