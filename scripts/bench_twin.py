@@ -13,7 +13,7 @@ in SUMO, E x steps-per-tick per grid step), so the comparison is about execution
 Rotation solvers (pibt-rot, epibt, wppl) turn in fleet.turn_s (one tick) in SUMO and in one
 step (--action-model rotation) in the twin, with the controller's planner.rotation defaults on
 both sides; a row "SOLVER+OPTION" changes one (+arrows, +unguided: guidance arrows, none;
-+distance, +age: epibt's priority). In the twin their planned steps run on the same executor and delay
++distance, +age: epibt's priority; +pocket, any solver: pocket_cost 100). In the twin their planned steps run on the same executor and delay
 model as cell plans, robots turning in place before they move (executor/graph_execution.hpp "Headings").
 
 Each side reports its free-flow bound (tasks/free_flow.hpp): every AGV alone on its errand
@@ -47,6 +47,11 @@ ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation acti
 # and epibt, none for wppl; back_last on; epibt priority age (rtlacam-lifelong: distance).
 VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "none"), "distance": ("priority", "distance"),
                    "age": ("priority", "age")}
+# "+pocket" (any solver): tasks.urgency.pocket_cost 100 in SUMO (PIBT ranks a move into another
+# station's dead-end stub 100 moves worse; pibt-rot honours it since s35), --pocket-cost 100 in
+# the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam does not
+# gain with it (docs/twin_bench.md "Session 35").
+POCKET_COST = 100
 
 
 def variant(name):
@@ -54,8 +59,11 @@ def variant(name):
     solver, *opts = name.split("+")
     rot = {}
     for o in opts:
+        if o == "pocket":
+            rot["pocket_cost"] = POCKET_COST
+            continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
-            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl")
+            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +pocket with any")
         k, v = VARIANT_OPTIONS[o]
         rot[k] = v
     return solver, rot
@@ -104,6 +112,8 @@ def sumo_config(base, solver, p, out, ticks, expansions, executor):
     solver, rot = variant(solver)
     cfg["planner"].update({"solver": solver, "budget_ms": 0, "expansions": expansions})
     cfg["planner"].pop("rotation", None)  # the row's options only, as in the twin
+    if "pocket_cost" in rot:
+        cfg["tasks"].setdefault("urgency", {})["pocket_cost"] = rot.pop("pocket_cost")
     if rot:
         cfg["planner"]["rotation"] = rot
     cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
@@ -170,6 +180,8 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
     cmd = [os.path.join(build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(steps),
            "--budget-ms", "1000", "--budget-expansions", str(expansions), "--solver", solver,
            "--quiet", "--out", out + ".log.json"]
+    if "pocket_cost" in rot:
+        cmd += ["--pocket-cost", str(rot.pop("pocket_cost"))]
     if solver in ROTATION:  # a turn is one grid step, as fleet.turn_s defaults to one tick in SUMO
         cmd += twin_rotation_args(solver, rot)
     cmd += ["--executor", executor]

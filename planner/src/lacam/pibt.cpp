@@ -177,7 +177,14 @@ bool Pibt::plan(int32_t i, Rng& rng)
   }
 
   const int32_t partner = swap_ ? swap_partner(i) : -1;
-  if (partner >= 0) std::reverse(C, C + K + 1);
+  if (partner >= 0) {
+    std::reverse(C, C + K + 1);
+    // Reversed, a foreign pocket (pocket_cost) would come first: keep it the last resort, or
+    // swaps drive agents into other stations' stubs (rtlacam on huge_warehouse_lifelong:
+    // 0.53x errands with pocket_cost 100, s35).
+    if (pocket_cost_ > 0.0f && !pocket_.empty())
+      std::stable_partition(C, C + K + 1, [&](Vertex u) { return pocket_cost(i, v, u) == 0.0f; });
+  }
 
   for (int k = 0; k <= K; ++k) {
     const Vertex u = C[k];

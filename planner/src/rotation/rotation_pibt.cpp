@@ -64,6 +64,15 @@ void RotationPibt::set_goals(const Config& goals, GoalTest test)
   planned_ = false;
 }
 
+void RotationPibt::set_pockets(std::vector<Vertex> pocket, float cost)
+{
+  if (!pocket.empty() && pocket.size() != static_cast<size_t>(g_.size())) throw std::invalid_argument("pockets: one label per vertex");
+  pocket_ = std::move(pocket);
+  // `cost` moves, in the distances' costs (a forward move costs at least min_forward()).
+  pocket_cost_ = cost > 0 ? static_cast<uint32_t>(std::lround(cost * dist_.guidance().min_forward())) : 0;
+  planned_ = false;
+}
+
 void RotationPibt::set_guidance(Guidance gd)
 {
   dist_.set_guidance(std::move(gd));
@@ -145,6 +154,10 @@ bool RotationPibt::pibt(int i, int asker)
     // In the distances' costs (guidance.hpp; 1 per action without guidance).
     uint32_t cost = turns * dist_.turn_cost() + dist_.forward_cost(v, d) + dist_.get(t, c, d);
     if (asker >= 0 && back_last_ && turns == 2) cost += 1u << 16;  // asked to vacate: the cell behind last
+    if (pocket_cost_ > 0 && !pocket_.empty()) {
+      const Vertex p = pocket_[c];
+      if (p >= 0 && p != pocket_[v] && p != pocket_[goals_[i]]) cost += pocket_cost_;  // a foreign pocket
+    }
     cand[m++] = {c, cost, d == o ? 0u : 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};
   }
   if (asker < 0) cand[m++] = {v, wait_cost_ + dist_.get(t, v, o), 1 + (static_cast<uint32_t>(rng_.next()) >> 1)};

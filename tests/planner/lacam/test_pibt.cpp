@@ -190,6 +190,35 @@ TEST(Pibt, AForeignPocketIsTheLastResortOfAPushedAgent)
   EXPECT_EQ(into_stub(true, test::at(g, {{0, 0}, {2, 1}})), 40);
 }
 
+// The swap (LaCAM*) reverses an agent's candidates so that it backs away: a foreign pocket,
+// ranked last, would come first and the agent would back into another station's stub
+// (rtlacam on huge_warehouse_lifelong with pocket_cost 100: 484 errands in 1000 ticks
+// against 906 without the cost; 879 with this rule). Agent 0 meets agent 1 head-on in a
+// corridor above a dead-end cell; with the cell a foreign pocket it backs along the
+// corridor, never into the pocket.
+TEST(Pibt, ASwapBacksAwayAlongTheCorridorNotIntoAForeignPocket)
+{
+  Graph g = test::grid({".....", "@@.@@"});
+  const Vertex stub = g.at(2, 1);
+  const Config from = test::at(g, {{2, 0}, {3, 0}});
+  const Config goals = test::at(g, {{4, 0}, {0, 0}});
+  DistTable d(g);
+  d.set_goals(goals);
+  Pibt pibt(g, d);
+  pibt.set_goals(goals);
+  std::vector<Vertex> pocket(g.size(), -1);
+  pocket[stub] = stub;
+  pibt.set_pockets(pocket, 100.0f);
+  std::vector<int32_t> order = {0, 1};
+  for (uint64_t seed = 0; seed < 20; ++seed) {
+    Rng rng(seed);
+    Config to(2);
+    EXPECT_TRUE(pibt.generate(from.data(), order.data(), nullptr, to.data(), rng));
+    EXPECT_EQ(to[0], g.at(1, 0)) << "seed " << seed;  // backs west, agent 1 pulled behind it
+    EXPECT_EQ(to[1], g.at(2, 0)) << "seed " << seed;
+  }
+}
+
 // Completeness does not depend on the costs: the cases that need search are solved with
 // random move costs too.
 TEST(Pibt, LacamStaysCompleteUnderMoveCosts)

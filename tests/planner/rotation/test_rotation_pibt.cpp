@@ -201,6 +201,38 @@ TEST(RotationPibt, EveryLifelongStepIsAValidLorrJointActionAndRobotsArrive)
   }
 }
 
+// Foreign pockets (RotationPibt::set_pockets, tasks.urgency.pocket_cost; the cell PIBT's
+// rule): robot 1 stands on its goal in a corridor above a one-cell dead end, facing south
+// into it; robot 0 (west-bound, first) asks it to vacate. Going into the stub costs it the
+// fewest steps (no turn), so without pockets it drives in (how idle AGVs ended up blocking
+// station stubs at 1000 AGVs); with the stub labelled a pocket that is not its goal's it
+// turns west instead. A robot whose goal is in the pocket still enters it.
+TEST(RotationPibt, AForeignPocketIsTheLastResortOfAPushedRobot)
+{
+  const Graph g = test::grid({".....", "@@.@@"});
+  const Vertex stub = g.at(2, 1), mouth = g.at(2, 0);
+  auto step = [&](bool pockets, Vertex goal1) {
+    RotationPibt p(g, {g.at(3, 0), mouth}, {g.at(0, 0), goal1}, 0);
+    p.set_headings({2, 1});  // robot 0 west, robot 1 south (facing the stub)
+    if (pockets) {
+      std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
+      pocket[static_cast<size_t>(stub)] = stub;
+      p.set_pockets(pocket, 100.0f);
+    }
+    p.search(planner::Budget{});
+    return std::make_pair(p.actions(), p.next());
+  };
+  const auto [a_off, n_off] = step(false, mouth);
+  EXPECT_EQ(a_off, "FF");  // both move: robot 1 into the stub
+  EXPECT_EQ(n_off[1], stub);
+  const auto [a_on, n_on] = step(true, mouth);
+  EXPECT_EQ(a_on, "WR");   // robot 1 turns toward the corridor's west cell, robot 0 waits for it
+  EXPECT_EQ(n_on[1], mouth);
+  // Robot 1 bound for the stub: its own pocket costs nothing.
+  const auto [a_own, n_own] = step(true, stub);
+  EXPECT_EQ(n_own[1], stub);
+}
+
 TEST(RotationPibt, NeedsAGridAndDistinctStarts)
 {
   const Graph line = Graph::from_edges(2, {{0, 1}});

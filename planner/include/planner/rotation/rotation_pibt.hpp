@@ -63,6 +63,13 @@ class RotationPibt : public RotationPlanner {
   void set_goals(const Config& goals, GoalTest test = {}) override;
   void set_priority_hint(std::vector<float> hint) override { hint_ = std::move(hint); }  // applied at set_goals
   void set_max_dist_tables(size_t n) override { dist_.set_max_tables(n); }
+  // Foreign pockets (RealtimePlanner::set_pockets, the cell PIBT's rule; tasks.urgency
+  // pocket_cost): a move from outside into a dead-end pocket other than the robot's goal's
+  // ranks `cost` forward moves worse. Staying and moves inside a pocket are never charged;
+  // empty or 0: off (unchanged decisions). Why: on huge_warehouse_lifelong (1000 AGVs,
+  // one-cell station stubs) PIBT pushed idle AGVs into stubs whose holders then stood in
+  // the only way out; a robot in a one-cell stub cannot be pushed out past them (s34 trace).
+  void set_pockets(std::vector<Vertex> pocket, float cost) override;
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
@@ -139,6 +146,8 @@ class RotationPibt : public RotationPlanner {
   bool planned_ = false;
   bool back_last_ = false;
   uint32_t wait_cost_ = 1;
+  std::vector<Vertex> pocket_;  // vertex -> its dead-end pocket, or -1 (set_pockets)
+  uint32_t pocket_cost_ = 0;    // in the distances' costs
   uint64_t steps_planned_ = 0;
 };
 
