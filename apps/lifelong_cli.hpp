@@ -352,6 +352,9 @@ struct TaskCli {
     app.add_flag("--drop-hints,!--no-drop-hints", o.urgency.drop_hints,
                  "with --stall-head-after: every loaded agent stalled that long outside a pocket gets its stall as "
                  "priority, not only the head per drop station (tasks.urgency.drop_hints; default off)");
+    app.add_flag("--sticky-stalls,!--no-sticky-stalls", o.urgency.sticky,
+                 "stall hints and the stall handover read an errand's longest stall so far, not only the current one "
+                 "(tasks.urgency.sticky; default off)");
     app.add_option("--station-load-cost", o.urgency.load_cost,
                    "pool mode: extra moves charged per task already bound for a station (tasks.urgency.load_cost; 0 = off)")
         ->check(CLI::NonNegativeNumber)

@@ -43,8 +43,10 @@ large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansio
 errands per tick on / off and K both ways.
 --stall-rules: instead, the task layer's stall rules (tasks/urgency.hpp: stall handover
 swap_after, head hints head_after with agents leaving a dead-end pocket first, station load
-load_cost, foreign-pocket cost pocket_cost; with --drop-hints also drop_hints) on against all off
-(--against-rules: against the same rules with drop_hints off), per config (default: the large two-way and one-way warehouses)
+load_cost, foreign-pocket cost pocket_cost; with --drop-hints also drop_hints, with --mouth-cost N
+the stub-mouth routing cost mouth_cost, with --sticky sticky stalls) on against all off
+(--against-rules: against the same rules without the newest ones given: mouth_cost and sticky
+when either is given, else drop_hints), per config (default: the large two-way and one-way warehouses)
 and fleet seed, same ticks (--large-ticks) and expansions: errands per tick on / off and K.
 --queues: every run with station queues {capacity 1, length 8} and planner.keep_priorities
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
@@ -250,8 +252,15 @@ def stall_rules(a, build, tmp):
     off = {"swap_after": 0, "head_after": 0, "load_cost": 0, "pocket_cost": 0}
     if a.drop_hints:
         on["drop_hints"] = True
-    if a.against_rules:  # off = the same rules, drop hints off: the drop hints' own effect
-        off = dict(on, drop_hints=False)
+    if a.mouth_cost:
+        on["mouth_cost"] = a.mouth_cost
+    if a.sticky:
+        on["sticky"] = True
+    if a.against_rules:  # off = the same rules without the newest given: their own effect
+        if a.mouth_cost or a.sticky:
+            off = {k: v for k, v in on.items() if k not in ("mouth_cost", "sticky")}
+        else:
+            off = dict(on, drop_hints=False)
     print(f"# on: tasks.urgency {on}; off: {off}")
     print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off |")
     print("|---|---|---|---|---|---|---|---|---|")
@@ -301,8 +310,12 @@ def main():
     ap.add_argument("--load-cost", type=int, default=0)
     ap.add_argument("--pocket-cost", type=int, default=100)
     ap.add_argument("--drop-hints", action="store_true", help="--stall-rules: tasks.urgency.drop_hints on the on side")
+    ap.add_argument("--mouth-cost", type=int, default=0,
+                    help="--stall-rules: tasks.urgency.mouth_cost on the on side (tasks/stub_mouths.hpp)")
+    ap.add_argument("--sticky", action="store_true", help="--stall-rules: tasks.urgency.sticky on the on side")
     ap.add_argument("--against-rules", action="store_true",
-                    help="--stall-rules: the off side keeps the on side's rules, drop_hints off")
+                    help="--stall-rules: the off side keeps the on side's rules without mouth_cost and sticky "
+                         "(either given), else without drop_hints")
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])

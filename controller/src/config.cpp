@@ -474,13 +474,15 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.flag(t, "tasks", "reassign", c.tasks.reassign);
     if (const YAML::Node u = t["urgency"]) {
       if (!u.IsMap())
-        r.fail("tasks.urgency", "expected a mapping {stalls: true|false|auto, battery: true|false, swap_after: N, head_after: N, load_cost: N, pocket_cost: N, drop_hints: true|false}");
-      r.keys(u, "tasks.urgency", {"stalls", "battery", "swap_after", "head_after", "load_cost", "pocket_cost", "drop_hints"});
+        r.fail("tasks.urgency", "expected a mapping {stalls: true|false|auto, battery: true|false, swap_after: N, head_after: N, load_cost: N, pocket_cost: N, drop_hints: true|false, mouth_cost: N, sticky: true|false}");
+      r.keys(u, "tasks.urgency", {"stalls", "battery", "swap_after", "head_after", "load_cost", "pocket_cost", "drop_hints", "mouth_cost", "sticky"});
       r.integer(u, "tasks.urgency", "swap_after", c.tasks.urgency_swap_after, 0, 1000000000);
       r.integer(u, "tasks.urgency", "head_after", c.tasks.urgency_head_after, 0, 1000000000);
       r.integer(u, "tasks.urgency", "load_cost", c.tasks.urgency_load_cost, 0, 1000000);
       r.integer(u, "tasks.urgency", "pocket_cost", c.tasks.urgency_pocket_cost, 0, 1000000);
       r.flag(u, "tasks.urgency", "drop_hints", c.tasks.urgency_drop_hints);
+      r.integer(u, "tasks.urgency", "mouth_cost", c.tasks.urgency_mouth_cost, 0, 254);
+      r.flag(u, "tasks.urgency", "sticky", c.tasks.urgency_sticky);
       if (u["stalls"] && !(u["stalls"].IsScalar() && u["stalls"].Scalar() == "auto")) {
         bool on = false;
         r.get(u, "tasks.urgency", "stalls", on, "true, false or auto");

@@ -20,6 +20,7 @@
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/lifelong_log.hpp"
+#include "tasks/stub_mouths.hpp"
 
 namespace controller {
 
@@ -97,7 +98,16 @@ void Run::prepare()
   }
   std::unique_ptr<tasks::FreeFlowBound> free_flow;  // lifelong: given to the task layer at its start
   if (cfg_.tasks.lifelong()) {
-    tm_ = make_task_manager(cfg_, c_.map_, make_task_file(cfg_, c_.map_));
+    const std::shared_ptr<const tasks::TaskFile> file = make_task_file(cfg_, c_.map_);
+    if (cfg_.tasks.urgency_mouth_cost > 0) {
+      // Routing past stations costs more (tasks/stub_mouths.hpp): every distance table on
+      // this graph (planner, assigners) sees it; the free-flow bound keeps the driven graph.
+      drive_graph_ = std::make_unique<planner::Graph>(c_.map_.graph);
+      std::vector<planner::Vertex> stations;
+      for (const std::vector<planner::Vertex>& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
+      c_.map_.graph.set_move_costs(tasks::mouth_costs(c_.map_.graph, stations, cfg_.tasks.urgency_mouth_cost));
+    }
+    tm_ = make_task_manager(cfg_, c_.map_, file);
     // The free-flow bound (tasks/free_flow.hpp) prices an errand's shortest path as the
     // executor would drive it alone: a cell per tick in lockstep, one rest-to-rest trapezoid
     // of the vType otherwise (bound.hpp). Its own cache: the planner's has a step deadline.
@@ -106,7 +116,7 @@ void Run::prepare()
       cost = [kin = kinematics(), cell = cfg_.grid.cell_length, tick = cfg_.run.tick_s](int moves) {
         return rest_to_rest_s(moves * cell, kin) / tick;
       };
-    free_flow = std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(c_.map_.graph, 256), cost);
+    free_flow = std::make_unique<tasks::FreeFlowBound>(std::make_shared<planner::DistCache>(drive_graph_ ? *drive_graph_ : c_.map_.graph, 256), cost);
     epochs_ = std::make_unique<tasks::LifelongEpochs>(*tm_, life_);
   }
   if (const tasks::Battery* b = tm_ ? tm_->battery() : nullptr)
@@ -149,9 +159,10 @@ void Run::prepare()
   if (tm_) {
     // Duplicate goals are normal here (two AGVs sent to one station): the lifelong goal
     // test ("some AGV not yet arrived stands on its goal") never needs distinct goals.
-    // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (move costs
-    // included), closures or not: tables of their own, exact whatever the step's deadline.
-    epochs_->start(g, ins_.starts, std::move(free_flow));
+    // Errand times and stalls (tasks/errand_stalls.hpp) on the net's graph (lane costs
+    // included, not tasks.urgency.mouth_cost's routing costs), closures or not: tables of
+    // their own, exact whatever the step's deadline.
+    epochs_->start(drive_graph_ ? *drive_graph_ : g, ins_.starts, std::move(free_flow));
     goals = tm_->goals();
     goal_test = tasks::lifelong_goal_test(*tm_, ins_.starts);
   }

@@ -152,6 +152,9 @@ class Run {
   Controller& c_;
   Metrics m_;
   planner::Instance ins_;
+  // The graph as driven (lane costs only) for the free-flow bound, while tasks.urgency.
+  // mouth_cost adds routing costs to the planner's (declared before tm_: it outlives it).
+  std::unique_ptr<planner::Graph> drive_graph_;
   std::unique_ptr<tasks::TaskManager> tm_;
   policy::Model model_;
   std::unique_ptr<policy::PolicyPreference> pref_;

@@ -103,6 +103,7 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
       } else if (k == "stalls") o.urgency.stalls = v.cast<bool>();
       else if (k == "battery") o.urgency.battery = v.cast<bool>();
       else if (k == "drop_hints") o.urgency.drop_hints = v.cast<bool>();
+      else if (k == "sticky") o.urgency.sticky = v.cast<bool>();
       else if (k == "swap_after" || k == "head_after" || k == "load_cost" || k == "pocket_cost") {
         const int n = v.cast<int>();
         if (n < 0) throw InputError("urgency." + k + ": must be >= 0, not " + std::to_string(n));

@@ -44,7 +44,15 @@ void ErrandStalls::observe(long t, const std::vector<Held>& held, const planner:
 long long ErrandStalls::stalled(long t, long task) const
 {
   const auto it = open_.find(task);
-  return it == open_.end() ? 0 : t - it->second.mark;
+  if (it == open_.end()) return 0;
+  const long long now = t - it->second.mark;
+  return sticky_ ? std::max(now, it->second.max_gap) : now;
+}
+
+int32_t ErrandStalls::distance(planner::Vertex cell, planner::Vertex v) const
+{
+  planner::DistCache::Table* tab = dist_.cache()->table(cell);
+  return tab->dist[v] != planner::DistCache::kInf ? tab->dist[v] : tab->extend_until(v, g_);
 }
 
 int32_t ErrandStalls::best(long task) const

@@ -20,6 +20,7 @@ void TaskManager::start(const planner::Config& positions)
 void TaskManager::watch_stalls(const planner::Graph& g)
 {
   stalls_ = std::make_unique<ErrandStalls>(g);
+  stalls_->set_sticky(urgency_.sticky);
   pocket_.assign(g.size(), -1);
   dead_end_pocket_.assign(g.size(), -1);
   for (const std::vector<planner::Vertex>& t : file_->tasks)

@@ -100,19 +100,23 @@ void TaskPool::hand_over_stalled(const planner::Config& positions)
   if (over.empty()) return;
   std::sort(over.begin(), over.end(), [](const Cand& x, const Cand& y) { return x.stall != y.stall ? x.stall > y.stall : x.agent < y.agent; });
   std::vector<char> swapped(num_agents(), 0);
+  const planner::Graph &sg = st->graph(), &pg = dist_.graph();  // the same distances: the pool's (as before)
+  const bool same = &sg == &pg || (sg.size() == pg.size() && sg.move_costs() == pg.move_costs());
   for (const Cand& k : over) {
     const int a = k.agent;
     if (swapped[a]) continue;
     const planner::Vertex cell = task_of(a)->next_cell();
     // Only nearer than the errand has been: a handover never lets the stall metric's new
-    // holder (errand_stalls.hpp) start farther away than the errand already was.
-    int32_t best = dist_.from_goal(cell, positions[a]);
+    // holder (errand_stalls.hpp) start farther away than the errand already was. In the
+    // metric's distances when its graph is not the pool's (routing costs on the pool's).
+    auto dist = [&](planner::Vertex v) { return same ? dist_.from_goal(cell, v) : st->distance(cell, v); };
+    int32_t best = dist(positions[a]);
     if (const int32_t b = st->best(task_of(a)->id); b >= 0) best = std::min(best, b);
     int pick = -1;
     for (const Cand& o : c) {
       const int b = o.agent;
       if (b == a || swapped[b] || o.stall >= k.stall || task_of(b)->next_cell() != cell) continue;
-      const int32_t d = dist_.from_goal(cell, positions[b]);
+      const int32_t d = dist(positions[b]);
       if (d < best) best = d, pick = b;
     }
     if (pick < 0) continue;

@@ -251,6 +251,10 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
             "t.yaml: tasks.urgency.pocket_cost: must be in 0..1000000, got -3");
   EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {drop_hints: 2}\n"),
             "t.yaml: tasks.urgency.drop_hints: expected true or false, got '2'");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {mouth_cost: 255}\n"),
+            "t.yaml: tasks.urgency.mouth_cost: must be in 0..254, got 255");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  urgency: {sticky: often}\n"),
+            "t.yaml: tasks.urgency.sticky: expected true or false, got 'often'");
   {
     const Config c = parse_config(kNetAdd + ll + "  urgency: {swap_after: 30, head_after: 60, load_cost: 10, pocket_cost: 100, drop_hints: true}\n",
                                   "t.yaml", RTLACAM_CONFIGS);
@@ -259,6 +263,13 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
     EXPECT_EQ(c.tasks.urgency_swap_after, 30);
     EXPECT_EQ(c.tasks.urgency_head_after, 60);
     EXPECT_EQ(c.tasks.urgency_load_cost, 10);
+    EXPECT_EQ(c.tasks.urgency_mouth_cost, 0);
+    EXPECT_FALSE(c.tasks.urgency_sticky);
+  }
+  {
+    const Config c = parse_config(kNetAdd + ll + "  urgency: {mouth_cost: 2, sticky: true}\n", "t.yaml", RTLACAM_CONFIGS);
+    EXPECT_EQ(c.tasks.urgency_mouth_cost, 2);
+    EXPECT_TRUE(c.tasks.urgency_sticky);
   }
   EXPECT_EQ(config_error(kNetAdd + ll + "  parking: maybe\n"),
             "t.yaml: tasks.parking: expected true (the parkingAreas of sumo.additional), false or a list of cells, got 'maybe'");

@@ -325,6 +325,10 @@ TEST(LifelongRules, ForeignPocketCostKeepsAgvsOutOfOtherStationsStubs)
   auto run = [](bool on) {
     Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/large_oneway_lifelong.yaml");
     EXPECT_EQ(cfg.tasks.urgency_pocket_cost, 100);  // shipped on
+    // The rules this test was measured with (s34): the later routing cost and sticky stalls
+    // (tasks.urgency.mouth_cost, sticky; shipped since s35) off, so it measures the pocket cost.
+    cfg.tasks.urgency_mouth_cost = 0;
+    cfg.tasks.urgency_sticky = false;
     cfg.output.dir = test::temp_dir(std::string("pocket_cost_") + (on ? "on" : "off"));
     cfg.run.progress_s = 0;
     cfg.run.max_ticks = 250;

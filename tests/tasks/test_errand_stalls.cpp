@@ -7,6 +7,10 @@
 #include "tasks/task_pool.hpp"
 #include "tasks/urgency.hpp"
 #include "tasks/greedy_assigner.hpp"
+#include "tasks/stub_mouths.hpp"
+#include "planner/dist_table.hpp"
+
+#include <algorithm>
 #include "tasks_test_util.hpp"
 
 using namespace tasks;
@@ -219,5 +223,63 @@ TEST(ErrandStalls, StationLoadSteersTheMatchingToAStationNobodyIsBoundFor)
     ASSERT_EQ(tm.goals()[1], g.at(3, 0));
     tm.update(1, at);  // agent 1 done; task 3 (7, 0) revealed
     EXPECT_EQ(tm.goals()[1], w > 0 ? g.at(7, 0) : g.at(0, 0));
+  }
+}
+
+// Stub mouths (tasks/stub_mouths.hpp): a station-side aisle y = 2 with five one-cell stubs
+// below it (stations at x = 1, 3, 5, 7, 9 on y = 3) and a parallel aisle y = 0 without
+// stations. From (0, 2) to the far station (9, 3) the station-side aisle is shorter (10
+// moves against 15 round by y = 0), so without the cost the tables send the AGV past four
+// other stations' mouths; with mouth_cost 4 each mouth costs 5 and the route by y = 0 is
+// shorter: PIBT's best first move from (0, 2) is up, not along the stations.
+TEST(ErrandStalls, MouthCostRoutesThroughTrafficAwayFromOtherStationsStubs)
+{
+  planner::Graph g = ttest::grid({"...........",
+                                  ".#########.",
+                                  "...........",
+                                  "#.#.#.#.#.#"});
+  std::vector<Vertex> stations;
+  for (int x = 1; x <= 9; x += 2) stations.push_back(g.at(x, 3));
+  stations.push_back(g.at(5, 0));  // on an aisle, not at a dead end: no mouth
+  std::vector<Vertex> mouths = stub_mouths(g, stations);
+  std::sort(mouths.begin(), mouths.end());
+  std::vector<Vertex> want;
+  for (int x = 1; x <= 9; x += 2) want.push_back(g.at(x, 2));
+  std::sort(want.begin(), want.end());
+  EXPECT_EQ(mouths, want);
+
+  const Vertex goal = g.at(9, 3);
+  auto dist = [&](int x, int y) {
+    planner::DistTable d(g);
+    d.set_goals({goal});
+    return d.get(0, g.at(x, y));
+  };
+  EXPECT_LT(dist(1, 2), dist(0, 1));  // no costs: along the stations
+  const std::vector<uint8_t> off = mouth_costs(g, stations, 0);
+  EXPECT_TRUE(std::all_of(off.begin(), off.end(), [](uint8_t c) { return c == 1; }));
+  g.set_move_costs(mouth_costs(g, stations, 4));
+  EXPECT_EQ(g.move_cost(g.at(3, 2)), 5);
+  EXPECT_EQ(g.move_cost(g.at(2, 2)), 1);
+  EXPECT_LT(dist(0, 1), dist(1, 2));  // up to the aisle without stations
+  EXPECT_EQ(dist(0, 1), 13 + 5 + 1);  // 13 moves to (10, 2), its own mouth (9, 2), the station
+}
+
+// Sticky stalls (UrgencyOptions::sticky, ErrandStalls::set_sticky): an errand that stood 6
+// steps and then moved a cell keeps reading 6, not 0, so its holder keeps the priority it
+// had earned instead of falling behind every newer stalled errand; a later, longer stall
+// reads as itself. Off: the current stall only.
+TEST(ErrandStalls, StickyStallsKeepAnErrandsLongestStallAfterItMoves)
+{
+  const planner::Graph g = ttest::grid({".........."});
+  for (bool sticky : {false, true}) {
+    SCOPED_TRACE(sticky ? "sticky" : "not sticky");
+    ErrandStalls s(g);
+    s.set_sticky(sticky);
+    const std::vector<ErrandStalls::Held> held{{7, 0, g.at(9, 0)}};
+    const std::vector<int> xs{0, 1, 1, 1, 1, 1, 1, 1, 2, 2, 2};  // mark at 1, stands 2..7, mark at 8
+    for (long t = 0; t < static_cast<long>(xs.size()); ++t) s.observe(t, held, Config{g.at(xs[t], 0)});
+    EXPECT_EQ(s.stalled(10, 7), sticky ? 7 : 2);  // longest gap 1 -> 8 = 7; now 2 since the mark at 8
+    for (long t = 11; t < 20; ++t) s.observe(t, held, Config{g.at(2, 0)});
+    EXPECT_EQ(s.stalled(19, 7), 11);  // the current stall is the longest: both read it
   }
 }

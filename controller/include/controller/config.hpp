@@ -179,6 +179,10 @@ struct TasksSection {
   // into a dead-end station stub that is not its errand's (0: off).
   int urgency_pocket_cost = 0;
   bool urgency_drop_hints = false;  // tasks::UrgencyOptions::drop_hints
+  // Stub-mouth cost (tasks/stub_mouths.hpp; 0: off): moves the distance tables add to a move
+  // onto the cell where a station's dead-end stub joins the net.
+  int urgency_mouth_cost = 0;
+  bool urgency_sticky = false;  // tasks::UrgencyOptions::sticky
 
   bool lifelong() const { return mode == "lifelong"; }
 };

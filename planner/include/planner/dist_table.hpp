@@ -49,6 +49,7 @@ class DistTable {
   int32_t from_goal(Vertex goal, Vertex v) { return cache_->table(goal)->at(v, g_); }
 
   size_t num_tables() const { return cache_->num_tables(); }
+  const Graph& graph() const { return g_; }
 
  private:
   void unpin_all();

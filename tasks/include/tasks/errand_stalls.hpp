@@ -47,11 +47,18 @@ class ErrandStalls {
   // End of step t (0: the start): each agent's holding, where it stands.
   void observe(long t, const std::vector<Held>& held, const planner::Config& positions);
 
-  // Stall ticks so far of the open errand of `task` (0 when none is open).
+  // Stall ticks so far of the open errand of `task` (0 when none is open). Sticky: the
+  // longest stall the errand has had so far (UrgencyOptions::sticky), not only the current one.
   long long stalled(long t, long task) const;
+  void set_sticky(bool on) { sticky_ = on; }
   // The nearest the holder of `task`'s open errand has been to its cell (a new holder starts
   // from its own distance); -1 when none is open.
   int32_t best(long task) const;
+  // The distance this metric measures from v to `cell` (its graph, exact whatever the
+  // deadline), and that graph: the driven one, which may lack the planner's routing costs
+  // (tasks.urgency.mouth_cost, stub_mouths.hpp), so that a routing cost never changes K.
+  int32_t distance(planner::Vertex cell, planner::Vertex v) const;
+  const planner::Graph& graph() const { return g_; }
 
   struct Summary {
     long long errands = 0;                    // completed + still open
@@ -72,6 +79,7 @@ class ErrandStalls {
   const planner::Graph& g_;
   planner::DistTable dist_;
   std::unordered_map<long, Open> open_;  // task id -> its open errand
+  bool sticky_ = false;
   std::vector<long long> open_ticks_, stall_ticks_;  // completed errands
   planner::Config goals_;
   bool shared_ = false;  // the planner's cache: its owner caps it

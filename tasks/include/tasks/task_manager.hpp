@@ -78,7 +78,7 @@ class TaskManager {
   // aisle is no pocket to keep out of); the planner's foreign-pocket labels (urgency.hpp).
   const std::vector<planner::Vertex>& dead_end_pockets() const { return dead_end_pocket_; }
   // Priority hints for the planner (urgency.hpp): off unless set.
-  void set_urgency(UrgencyOptions o) { urgency_ = o; }
+  void set_urgency(UrgencyOptions o) { urgency_ = o; if (stalls_) stalls_->set_sticky(o.sticky); }
   const UrgencyOptions& urgency() const { return urgency_; }
   long now() const { return now_; }  // the step of the last start() / update()
   // stalls()->summary() at the last update.

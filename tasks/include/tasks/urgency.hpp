@@ -68,6 +68,12 @@ struct UrgencyOptions {
   // errand held in head-on traffic on a two-way cross aisle, far from its station, where
   // "one head per station" left all but one of them without priority.
   bool drop_hints = false;
+  // Sticky stalls (off by default): the hints and the handover read an errand's longest stall
+  // so far (ErrandStalls::stalled), not only the current one. An errand that once waited long
+  // and then moved a cell starts again from 0 without it, behind every newer stalled errand,
+  // and can stall again and again (traced: the longest errand then never finished in the
+  // run; with sticky stalls it did, s34-24c).
+  bool sticky = false;
   bool on() const { return stalls || battery || head_after > 0; }
 };
 
