@@ -32,33 +32,9 @@ bool keeps_zone(const std::set<Vertex>& zone, const Config& from, const Config& 
 
 bool joint_bfs_solvable(const Graph& g, const std::set<Vertex>& zone, const Config& starts, const Config& goals)
 {
-  const int k = static_cast<int>(starts.size());
-  std::set<Config> seen{starts};
-  std::queue<Config> q;
-  q.push(starts);
-  while (!q.empty()) {
-    const Config c = q.front();
-    q.pop();
-    if (c == goals) return true;
-    std::vector<std::vector<Vertex>> opts(k);
-    for (int i = 0; i < k; ++i) {
-      opts[i].push_back(c[i]);
-      for (Vertex u : g.neighbors(c[i])) opts[i].push_back(u);
-    }
-    std::vector<size_t> idx(k, 0);
-    for (;;) {
-      Config nx(k);
-      for (int i = 0; i < k; ++i) nx[i] = opts[i][idx[i]];
-      bool ok = keeps_zone(zone, c, nx);
-      for (int i = 0; i < k && ok; ++i)
-        for (int j = i + 1; j < k && ok; ++j) ok = nx[i] != nx[j] && !(nx[i] == c[j] && nx[j] == c[i]);
-      if (ok && seen.insert(nx).second) q.push(nx);
-      int i = 0;
-      while (i < k && ++idx[i] == opts[i].size()) idx[i++] = 0;
-      if (i == k) break;
-    }
-  }
-  return false;
+  return test::joint_bfs_solvable(
+      starts, goals, [&](Vertex v) { auto nb = g.neighbors(v); return std::vector<Vertex>(nb.begin(), nb.end()); },
+      [&](const Config& from, const Config& to) { return keeps_zone(zone, from, to); });
 }
 
 // A connected random graph on n vertices (a random spanning tree plus a few edges).
