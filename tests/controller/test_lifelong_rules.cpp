@@ -231,6 +231,11 @@ TEST(LifelongRules, LowChargeAgvsGetPlannerPriorityAndNoneRunsEmpty)
     cfg.fleet.battery.per_m_wh = 1.5;
     cfg.fleet.battery.critical = 0.25;
     cfg.tasks.urgency_battery = priority;
+    // The battery priority alone: the config's stall rules off (they keep seed 4's off-run from
+    // running empty too).
+    cfg.tasks.urgency_swap_after = cfg.tasks.urgency_head_after = cfg.tasks.urgency_pocket_cost = 0;
+    cfg.tasks.urgency_mouth_cost = 0;
+    cfg.tasks.urgency_drop_hints = cfg.tasks.urgency_sticky = false;
     Controller c(cfg);
     const Metrics m = c.run();
     ctest_util::expect_checked_every_step(cfg, m);
