@@ -423,6 +423,29 @@ TEST(RtLacamScatter, ADiveStepStopsAtTheDeadlineAndGoesOnInTheNextCall)
 #endif
   Graph g = load_map(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1.map");
   const Instance r = load_scen(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1-random-2-first200.scen", g, 200);
+  // The calls' budget in units of this machine's speed: 3.1 x the median of one 200-agent PIBT
+  // call from the start (0.013 ms on the 2-core dev box: 0.04 ms, where a dive step overran it
+  // 7-16 times in 8 runs; a fixed 0.05 ms gave 1-11, too close to 0 for a faster machine).
+  double call_ms = 0.04;
+  {
+    DistTable d(g);
+    d.set_goals(r.goals);
+    Pibt p(g, d);
+    p.set_goals(r.goals);
+    std::vector<int32_t> order(200);
+    for (int i = 0; i < 200; ++i) order[i] = i;
+    Config to(200);
+    Rng rng(1);
+    std::vector<double> t;
+    for (int k = 0; k < 42; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      p.generate(r.starts.data(), order.data(), nullptr, to.data(), rng);
+      if (k > 0) t.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::nth_element(t.begin(), t.begin() + t.size() / 2, t.end());
+    call_ms = std::clamp(3.1 * t[t.size() / 2], 0.02, 0.2);
+  }
+  std::printf("calls of %.4f ms\n", call_ms);
   for (bool pause : {true, false}) {
     SCOPED_TRACE(pause ? "pause" : "no pause");
     LacamOptions o;
@@ -435,7 +458,7 @@ TEST(RtLacamScatter, ADiveStepStopsAtTheDeadlineAndGoesOnInTheNextCall)
     l.reset(r.starts, r.goals);
     ASSERT_EQ(l.search(Budget::unlimited(), true), Status::Solved);
     int calls = 0;
-    for (; calls < 20000 && l.dives() < 3 && l.refining(); ++calls) l.search(Budget::time_ms(0.05));
+    for (; calls < 20000 && l.dives() < 3 && l.refining(); ++calls) l.search(Budget::time_ms(call_ms));
     std::printf("%s: %d calls, %llu dives, %llu pauses\n", pause ? "pause" : "no pause", calls,
                 static_cast<unsigned long long>(l.dives()), static_cast<unsigned long long>(l.dive_pauses()));
     std::string why;
