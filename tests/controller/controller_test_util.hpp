@@ -36,16 +36,28 @@ inline void expect_no_sumo_collision(const std::string& out_dir)
   EXPECT_EQ(slurp(out_dir + "/collision.xml").find("<collision "), std::string::npos) << out_dir;
 }
 
-// config/small_warehouse_lifelong_agv.yaml, `ticks` long, quiet, SUMO writing only its
-// collision output (into a fresh scratch dir `name`).
-inline controller::Config lifelong_agv_config(const std::string& name, long long ticks)
+// A shipped config (config/`file`) for a test: quiet, `ticks` long (0: the config's), SUMO writing
+// only its collision output (into a fresh scratch dir `name`), and with `expansions` > 0 a budget
+// of that many expansions per SUMO step and no clock, so that the run is deterministic.
+inline controller::Config shipped_config(const std::string& file, const std::string& name, long long ticks,
+                                         int expansions = 0)
 {
-  controller::Config cfg = controller::load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong_agv.yaml");
+  controller::Config cfg = controller::load_config(std::string(RTLACAM_CONFIGS) + "/" + file);
   cfg.output.dir = test::temp_dir(name);
   cfg.run.progress_s = 0;
-  cfg.run.max_ticks = ticks;
+  if (ticks > 0) cfg.run.max_ticks = ticks;
+  if (expansions > 0) {
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = expansions;
+  }
   cfg.sumo.outputs = {false, false, false, true};
   return cfg;
+}
+
+// config/small_warehouse_lifelong_agv.yaml, `ticks` long (shipped_config).
+inline controller::Config lifelong_agv_config(const std::string& name, long long ticks)
+{
+  return shipped_config("small_warehouse_lifelong_agv.yaml", name, ticks);
 }
 
 // A run Safety checked after every SUMO step that nothing stopped: no error, no violation,

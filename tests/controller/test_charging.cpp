@@ -23,13 +23,7 @@ namespace {
 // ticks, a deterministic 50 expansions per SUMO step.
 Config charging_config(const std::string& name, const std::string& assignment, bool charging)
 {
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_charging_lifelong.yaml");
-  cfg.output.dir = test::temp_dir("charging_" + name);
-  cfg.run.progress_s = 0;
-  cfg.run.max_ticks = 300;
-  cfg.planner.budget_ms = 0;
-  cfg.planner.expansions = 50;
-  cfg.sumo.outputs = {false, false, false, true};
+  Config cfg = ctest_util::shipped_config("small_charging_lifelong.yaml", "charging_" + name, 300, 50);
   cfg.fleet.count = 8;
   cfg.fleet.battery.initial = 0.4;
   cfg.fleet.battery.per_m_wh = 0.2;

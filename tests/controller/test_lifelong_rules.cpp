@@ -108,13 +108,7 @@ namespace {
 // to reach a charger, more than the critical charge covers.)
 Config critical_config(const std::string& name, double critical, double reserve_margin = 0)
 {
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_charging_lifelong.yaml");
-  cfg.output.dir = test::temp_dir("critical_" + name);
-  cfg.run.progress_s = 0;
-  cfg.run.max_ticks = 150;
-  cfg.planner.budget_ms = 0;
-  cfg.planner.expansions = 50;
-  cfg.sumo.outputs = {false, false, false, true};
+  Config cfg = ctest_util::shipped_config("small_charging_lifelong.yaml", "critical_" + name, 150, 50);
   cfg.fleet.count = 4;
   cfg.fleet.battery.initial = 0.35;
   cfg.fleet.battery.per_m_wh = 1.0;
@@ -219,13 +213,9 @@ TEST(LifelongRules, UnderAggressiveDrainRematchedChargerClaimsKeepEveryAgvAboveE
 TEST(LifelongRules, LowChargeAgvsGetPlannerPriorityAndNoneRunsEmpty)
 {
   auto run = [](bool priority, int seed) {
-    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_charging_lifelong.yaml");
-    cfg.output.dir = test::temp_dir(std::string("battery_priority_") + (priority ? "on" : "off") + std::to_string(seed));
-    cfg.run.progress_s = 0;
-    cfg.run.max_ticks = 600;
-    cfg.planner.budget_ms = 0;
-    cfg.planner.expansions = 50;
-    cfg.sumo.outputs = {false, false, false, true};
+    Config cfg = ctest_util::shipped_config(
+        "small_charging_lifelong.yaml", std::string("battery_priority_") + (priority ? "on" : "off") + std::to_string(seed),
+        600, 50);
     cfg.fleet.count = 4;
     cfg.fleet.seed = seed;
     cfg.fleet.battery.per_m_wh = 1.5;
@@ -265,13 +255,8 @@ TEST(LifelongRules, LowChargeAgvsGetPlannerPriorityAndNoneRunsEmpty)
 TEST(LifelongRules, WithStationQueuesStalledErrandsGetPriorityAndStallLess)
 {
   auto run = [](bool stalls) {
-    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
-    cfg.output.dir = test::temp_dir(std::string("stall_priority_") + (stalls ? "on" : "off"));
-    cfg.run.progress_s = 0;
-    cfg.run.max_ticks = 400;
-    cfg.planner.budget_ms = 0;
-    cfg.planner.expansions = 50;
-    cfg.sumo.outputs = {false, false, false, true};
+    Config cfg = ctest_util::shipped_config("small_warehouse_lifelong.yaml",
+                                            std::string("stall_priority_") + (stalls ? "on" : "off"), 400, 50);
     cfg.rules.sumo = false;
     cfg.rules.watch_lanes = 0;
     cfg.tasks.queue_capacity = 1;
@@ -298,13 +283,8 @@ TEST(LifelongRules, WithStationQueuesStalledErrandsGetPriorityAndStallLess)
 TEST(LifelongRules, StallRulesBoundTheLongestStallWithoutLosingErrands)
 {
   auto run = [](bool on) {
-    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong.yaml");
-    cfg.output.dir = test::temp_dir(std::string("stall_rules_") + (on ? "on" : "off"));
-    cfg.run.progress_s = 0;
-    cfg.run.max_ticks = 600;
-    cfg.planner.budget_ms = 0;
-    cfg.planner.expansions = 50;
-    cfg.sumo.outputs = {false, false, false, true};
+    Config cfg = ctest_util::shipped_config("small_warehouse_lifelong.yaml", std::string("stall_rules_") + (on ? "on" : "off"),
+                                            600, 50);
     cfg.tasks.urgency_swap_after = on ? 30 : 0;
     cfg.tasks.urgency_head_after = on ? 60 : 0;
     Controller c(cfg);
@@ -328,18 +308,13 @@ TEST(LifelongRules, StallRulesBoundTheLongestStallWithoutLosingErrands)
 TEST(LifelongRules, ForeignPocketCostKeepsAgvsOutOfOtherStationsStubs)
 {
   auto run = [](bool on) {
-    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/large_oneway_lifelong.yaml");
+    Config cfg = ctest_util::shipped_config("large_oneway_lifelong.yaml", std::string("pocket_cost_") + (on ? "on" : "off"),
+                                            250, 50);
     EXPECT_EQ(cfg.tasks.urgency_pocket_cost, 100);  // shipped on
     // The rules this test was measured with (s34): the later routing cost and sticky stalls
     // (tasks.urgency.mouth_cost, sticky; shipped since s35) off, so it measures the pocket cost.
     cfg.tasks.urgency_mouth_cost = 0;
     cfg.tasks.urgency_sticky = false;
-    cfg.output.dir = test::temp_dir(std::string("pocket_cost_") + (on ? "on" : "off"));
-    cfg.run.progress_s = 0;
-    cfg.run.max_ticks = 250;
-    cfg.planner.budget_ms = 0;
-    cfg.planner.expansions = 50;
-    cfg.sumo.outputs = {false, false, false, true};
     if (!on) cfg.tasks.urgency_pocket_cost = 0;
     Controller c(cfg);
     const Metrics m = c.run();

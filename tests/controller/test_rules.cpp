@@ -221,12 +221,7 @@ tasks:
 // lifelong adds a YAML closure 100-160 s): clean runs, every rule active.
 TEST(Rules, ShippedOneShotExampleRunsClean)
 {
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules.yaml");
-  cfg.output.dir = test::temp_dir("rules_shipped");
-  cfg.run.progress_s = 0;
-  cfg.planner.budget_ms = 0;
-  cfg.planner.expansions = 200;  // deterministic
-  cfg.sumo.outputs = {false, false, false, true};
+  Config cfg = ctest_util::shipped_config("small_rules.yaml", "rules_shipped", 0, 200);  // deterministic
   Controller c(cfg);
   const Metrics m = c.run();
   expect_clean(cfg, c, m);
@@ -244,16 +239,11 @@ TEST(Rules, ShippedOneShotExampleRunsClean)
 TEST(Rules, ZonesInThePlannerEndTheRestartLivelockOfAdmission)
 {
   auto run = [](bool planned) {
-    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules.yaml");
-    cfg.output.dir = test::temp_dir(planned ? "rules_zone_planned" : "rules_zone_admitted");
-    cfg.run.progress_s = 0;
-    cfg.run.max_ticks = 300;
+    Config cfg = ctest_util::shipped_config("small_rules.yaml", planned ? "rules_zone_planned" : "rules_zone_admitted",
+                                            300, 50);  // deterministic
     cfg.fleet.seed = 16;
     cfg.tasks.seed = 17;
-    cfg.planner.budget_ms = 0;
-    cfg.planner.expansions = 50;  // deterministic
     cfg.rules.plan_zones = planned;
-    cfg.sumo.outputs = {false, false, false, true};
     Controller c(cfg);
     const Metrics m = c.run();
     EXPECT_EQ(m.error, "");
@@ -272,13 +262,7 @@ TEST(Rules, ZonesInThePlannerEndTheRestartLivelockOfAdmission)
 
 TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
 {
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules_lifelong.yaml");
-  cfg.output.dir = test::temp_dir("rules_shipped_lifelong");
-  cfg.run.progress_s = 0;
-  cfg.run.max_ticks = 300;
-  cfg.planner.budget_ms = 0;
-  cfg.planner.expansions = 50;
-  cfg.sumo.outputs = {false, false, false, true};
+  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "rules_shipped_lifelong", 300, 50);
   Controller c(cfg);
   const Metrics m = c.run();
   EXPECT_EQ(m.error, "");
@@ -509,27 +493,16 @@ tasks:
 // and the zone on the top cross aisle (lifelong: also the YAML closure 100-160 s).
 TEST(Rules, ShippedExamplesRunCleanUnderAdgFollow)
 {
-  Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules.yaml");
-  cfg.output.dir = test::temp_dir("rules_shipped_adg");
-  cfg.run.progress_s = 0;
+  Config cfg = ctest_util::shipped_config("small_rules.yaml", "rules_shipped_adg", 0, 200);
   cfg.run.executor = "adg-follow";
-  cfg.planner.budget_ms = 0;
-  cfg.planner.expansions = 200;
-  cfg.sumo.outputs = {false, false, false, true};
   Controller c(cfg);
   const Metrics m = c.run();
   expect_clean(cfg, c, m);
   EXPECT_EQ(m.rules.closure_changes, 2);
   EXPECT_GT(m.ticks, 40);  // someone's goal was in the closed aisle
 
-  Config life = load_config(std::string(RTLACAM_CONFIGS) + "/small_rules_lifelong.yaml");
-  life.output.dir = test::temp_dir("rules_shipped_lifelong_adg");
-  life.run.progress_s = 0;
+  Config life = ctest_util::shipped_config("small_rules_lifelong.yaml", "rules_shipped_lifelong_adg", 300, 50);
   life.run.executor = "adg-follow";
-  life.run.max_ticks = 300;
-  life.planner.budget_ms = 0;
-  life.planner.expansions = 50;
-  life.sumo.outputs = {false, false, false, true};
   Controller cl(life);
   const Metrics ml = cl.run();
   EXPECT_EQ(ml.error, "");
