@@ -101,7 +101,7 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
       const Vertex v = chain_->where;
       const int32_t j = occ_now_[v];
       if (occ_next_[v] >= 0 || (j >= 0 && j != i && next_[j] == from[i]) ||  // vertex / swap conflict
-          !zone_free(i, from[i], v)) {                                       // a zone someone else holds
+          !zone_free(i, v)) {                                       // a zone someone else holds
         pending_ = false;
         return Gen::failed;
       }
@@ -191,7 +191,7 @@ bool Pibt::plan(int32_t i, Rng& rng)
     if (occ_next_[u] >= 0) continue;               // vertex conflict
     const int32_t j = occ_now_[u];
     if (j >= 0 && next_[j] == v) continue;          // swap conflict
-    if (!zone_free(i, v, u)) {                      // a zone someone else holds this step
+    if (!zone_free(i, u)) {                      // a zone someone else holds this step
       evict(i, v, u, rng);
       continue;
     }
@@ -204,7 +204,7 @@ bool Pibt::plan(int32_t i, Rng& rng)
       continue;
     }
     // Swap: pull the partner into the vertex i is leaving.
-    if (k == 0 && partner >= 0 && next_[partner] < 0 && occ_next_[v] < 0 && zone_free(partner, now_[partner], v)) {
+    if (k == 0 && partner >= 0 && next_[partner] < 0 && occ_next_[v] < 0 && zone_free(partner, v)) {
       next_[partner] = v;
       occ_next_[v] = partner;
       zone_take(partner, now_[partner], v, true);

@@ -110,13 +110,13 @@ class Pibt {
   bool swap_possible(Vertex v_pusher, Vertex v_puller) const;
   bool pull_impossible(Vertex u, Vertex v_pusher) const;
   bool immobile(int32_t i) const { return !immobile_.empty() && immobile_[i]; }
-  // Zones (set_zones): may agent i move v -> u, and take (or give back) the zones it enters.
-  bool zone_free(int32_t i, Vertex v, Vertex u) const
+  // Zones (set_zones): may agent i move to u (no zone of u held by another), and take (or give
+  // back) the zones it enters moving v -> u.
+  bool zone_free(int32_t i, Vertex u) const
   {
     if (!zones_) return true;
     for (int z : zones_->of[u])
       if (zone_holder_[z] >= 0 && zone_holder_[z] != i) return false;
-    (void)v;
     return true;
   }
   void zone_take(int32_t i, Vertex v, Vertex u, bool take)
