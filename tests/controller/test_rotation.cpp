@@ -241,9 +241,10 @@ TEST(ControllerRotation, HeldAgvsKeepPoseAndAngleWithOneRouteCallPerHold)
       const VehiclePose p = sumo->pose(cmd.ids()[i]);
       EXPECT_EQ(p.lane, at[i].lane) << "AGV " << i << ", step " << s;
       EXPECT_NEAR(p.pos, at[i].pos, 1.1e-3) << "AGV " << i << ", step " << s;
-      if (s >= 3)
+      if (s >= 3) {
         EXPECT_NEAR(std::remainder(cmd.angle(i) - Commander::sumo_angle(cmd.heading(i)), 360.0), 0.0, 1e-6)
             << "AGV " << i << ", step " << s;
+      }
     }
   }
   EXPECT_EQ(sumo->vehicles().size(), 2u) << "an AGV left the network (arrived at its route's end)";
