@@ -232,11 +232,6 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             end[x] = j * dt
             rested[x] = had_rest or kk == 0
             start[x] = max(t0, last_rest) if rested[x] else t0
-    if os.environ.get("ORACLE_OUT"):  # EXPERIMENT: release times of moves from rest (not reversals, not first)
-        with open(os.environ["ORACLE_OUT"], "w") as f:
-            for x in end:
-                if rested[x] and x in prev and moves[x][2] != moves[prev[x]][1]:
-                    f.write(f"{moves[x][0]} {moves[x][3]} {start[x]:.4f}\n")
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
     out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
                links=0, n_from_rest=0, n_chained=0, stood=[], events=[])
