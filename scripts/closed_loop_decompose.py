@@ -205,6 +205,10 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
     return length, fr, to, mv, links
 
 
+def _dir(u, v):
+    return (v[0] - u[0], v[1] - u[1])
+
+
 def executed_path(path, speeds, dt, acc, dec, vmax):
     """The executed run's critical path, back from the last arrival: each move's completion and
     start read from fcd (every move is one cell, 1 m on these nets: the fcd distance equals the
@@ -234,7 +238,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             start[x] = max(t0, last_rest) if rested[x] else t0
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
     out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
-               links=0, n_from_rest=0, n_chained=0, stood=[], events=[])
+               links=0, n_from_rest=0, n_chained=0, stood=[], events=[], kinds={})
     x = max(end, key=lambda y: end[y])
     node = ("end", x)
     tol = dt + 1e-9
@@ -255,6 +259,18 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
                                      f" after standing {out['stood'][-1]:.2f} s")
                 out["from_rest"] += end[x] - start[x]
                 out["from_rest_least"] += up
+                # what it waited for: its leader's start (as the "start" node below), the follower
+                # entering on the leader's line out of the cell (a train start) or from another
+                # side (a junction passage: it cannot roll in behind the leader's projected body),
+                # or no leader (its own rest: a reversal, a first move)
+                t0 = end[prev[x]] if x in prev else 0.0
+                if h is not None and abs(start[h] - start[x]) <= tol and start[h] > t0 + 1e-9:
+                    kind_ = "train start" if _dir(u_, v_) == _dir(moves[h][1], moves[h][2]) else "other side"
+                else:
+                    kind_ = "no leader start (own rest, reversal)"
+                k = out["kinds"].setdefault(kind_, [0, 0.0])
+                k[0] += 1
+                k[1] += end[x] - start[x]
                 out["n_from_rest"] += 1
                 node = ("start", x)
             else:
@@ -375,6 +391,14 @@ def main():
         if st:
             print(f"| {r['run']} | {len(st)} | {st[len(st) // 2]:.2f} | " +
                   " | ".join(str(sum(1 for w in st if lo <= w < hi)) for lo, hi in bins) + " |")
+    print("\nThe moves from rest on the executed critical path by what the AGV waited for: its leader's start with"
+          " the follower entering on the leader's line out of the cell (train start) or from another side (a"
+          " junction passage), or no leader (its own rest: a reversal, a first move)\n")
+    print("| run | kind | n | s | s per move |")
+    print("|---|---|---:|---:|---:|")
+    for r in res:
+        for kind, (cnt, sec) in sorted((r["exe"] or {}).get("kinds", {}).items()):
+            print(f"| {r['run']} | {kind} | {cnt} | {sec:.1f} | {sec / cnt:.2f} |")
     if a.trace:
         for r in res:
             if r["exe"]:
