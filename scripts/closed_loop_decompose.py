@@ -153,7 +153,7 @@ def plan_adg(steps):
     return moves, per, prev, hand
 
 
-def critical_path(path, acc, dec, vmax, free_reversals=False):
+def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
     """The plan's ADG (executor/adg.hpp: type 1 an AGV's moves in order, type 2 the move into v after
     v's previous leave; waits dropped) with each move's least physical time -- 1 m at top speed
     (cell / vmax), from rest (first move, and after a reversal, which needs rest) accelerating,
@@ -161,7 +161,13 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
     ends no earlier than its hand-over's. The longest path is a lower bound on any ADG executor's
     makespan for this plan with these kinematics (rotation groups, which start together, are
     ignored: an estimate there). Returns (length s, on it: moves from rest, moves to rest, moves,
-    hand-over links)."""
+    hand-over links).
+    gap (body length + margin, m): the Driver's and Safety's line model too -- a front reaches v only
+    once the hand-over's front is `gap` past v on its way out (run on the leader's line), so a move
+    into v ends no earlier than the leader's arrival on v plus its least time for `gap` metres (from
+    rest if it must stop on v: before a reversal, or its first move). Still a lower bound for
+    adg-follow, which adds only the stops the approach cannot avoid: a follower rolls in exactly
+    then (perfect anticipation)."""
     moves, per, prev, hand = plan_adg(read_plan(path))
     cell = 1.0
     up = math.sqrt(2 * cell / acc)  # from rest, 1 m accelerating all the way (<= vmax at 1 m/s, 0.5 m/s^2)
@@ -189,6 +195,14 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
         if h is not None and done[h] > c:
             c = done[h]
             why[x] = ("hand", h, 0)
+        if h is not None and gap is not None:
+            ramp = math.sqrt(2 * gap / acc)
+            ramp = ramp if acc * ramp <= vmax else gap / vmax + vmax / (2 * acc)
+            lag = ramp if h in rest_before else gap / vmax
+            on_v = done[prev[h]] if h in prev else 0.0  # the leader's front on v
+            if on_v + lag > c:
+                c = on_v + lag
+                why[x] = ("hand", h, 0)
         done[x] = c
     x = max(range(len(moves)), key=lambda y: done[y])
     length = done[x]
@@ -268,9 +282,11 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
                     kind_ = "train start" if _dir(u_, v_) == _dir(moves[h][1], moves[h][2]) else "other side"
                 else:
                     kind_ = "no leader start (own rest, reversal)"
-                k = out["kinds"].setdefault(kind_, [0, 0.0])
+                k = out["kinds"].setdefault(kind_, [0, 0.0, 0])
                 k[0] += 1
                 k[1] += end[x] - start[x]
+                # the plan itself stops the AGV here: a wait before the move (or its first move)
+                k[2] += x not in prev or moves[x][3] - moves[prev[x]][3] > 1
                 out["n_from_rest"] += 1
                 node = ("start", x)
             else:
@@ -315,9 +331,13 @@ def analyse(d):
     exe = executed_path(os.path.join(d, "plan.txt"), speeds, dt, acc, dec, vmax) if ex != "lockstep" else None
     crit = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax)
     crit_free = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, free_reversals=True)
+    kv = dict(x.strip().split(": ") for x in re.search(r"vtype: \{([^}]*)\}", cfg).group(1).split(","))
+    crit_line = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax,
+                              gap=float(kv.get("length", 0.8)) + float(kv.get("min_gap", 0.1)))
     return dict(run=os.path.basename(d.rstrip("/")), executor=ex, makespan=m["makespan"], solved=m["solved"],
                 bound=m.get("bound_ticks"), last=last, last_row=rows[last], total=tot, shape=shape,
-                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free, exe=exe)
+                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free,
+                crit_line=crit_line, exe=exe)
 
 
 def main():
@@ -361,15 +381,17 @@ def main():
         print(f"| {r['run']} | {t[1] / t[0]:.3f} | {t[2] / t[0]:.3f} | {t[3] / t[0]:.3f} | {t[4] / t[0]:.3f} | "
               f"{t[0] / max(1, r['shape'][1]):.3f} | {t[5] / max(1, r['shape'][1]):.3f} |")
     print("\nThe plan's ADG critical path with each move's least physical time (a lower bound for any ADG"
-          " executor on this plan), s; on it: moves (from rest / to rest), hand-over links; and the same with"
-          " reversals free (no rest)\n")
+          " executor on this plan), s; on it: moves (from rest / to rest), hand-over links; the same with"
+          " reversals free (no rest); and with the line model of adg-follow and Safety (a front reaches v once"
+          " its leader's front is length + min_gap past v: critical_path(gap=)), a bound for adg-follow that"
+          " charges no stop the anticipation could avoid\n")
     print("| run | makespan | critical path | moves | from rest | to rest | links | makespan / path |"
-          " path, reversals free |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+          " path, reversals free | path, line model | makespan / line path |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in res:
-        c, f = r["crit"], r["crit_free"]
+        c, f, g = r["crit"], r["crit_free"], r["crit_line"]
         print(f"| {r['run']} | {r['makespan']} | {c[0]:.1f} | {c[3]} | {c[1]} | {c[2]} | {c[4]} | "
-              f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} |")
+              f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} | {g[0]:.1f} | {r['makespan'] / g[0]:.3f} |")
     print("\nThe executed critical path (physical executors), s: back from the last arrival through the constraint met"
           " last; moves from rest and chained (their least time in brackets), rests not spent waiting for a"
           " leader's start (before a reversal: the AGV must stop), links (arrivals in ADG order)\n")
@@ -394,11 +416,11 @@ def main():
     print("\nThe moves from rest on the executed critical path by what the AGV waited for: its leader's start with"
           " the follower entering on the leader's line out of the cell (train start) or from another side (a"
           " junction passage), or no leader (its own rest: a reversal, a first move)\n")
-    print("| run | kind | n | s | s per move |")
-    print("|---|---|---:|---:|---:|")
+    print("| run | kind | n | s | s per move | of them planned stops (a wait in plan.txt before the move) |")
+    print("|---|---|---:|---:|---:|---:|")
     for r in res:
-        for kind, (cnt, sec) in sorted((r["exe"] or {}).get("kinds", {}).items()):
-            print(f"| {r['run']} | {kind} | {cnt} | {sec:.1f} | {sec / cnt:.2f} |")
+        for kind, (cnt, sec, planned) in sorted((r["exe"] or {}).get("kinds", {}).items()):
+            print(f"| {r['run']} | {kind} | {cnt} | {sec:.1f} | {sec / cnt:.2f} | {planned} |")
     if a.trace:
         for r in res:
             if r["exe"]:
