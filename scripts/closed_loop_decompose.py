@@ -185,7 +185,6 @@ def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
                 rest_after.add(a)
                 rest_before.add(b)
     done = [0.0] * len(moves)
-    start_ = []
     why = [None] * len(moves)
     for x in range(len(moves)):  # ids are in plan order: dependencies come first
         d = both if (x in rest_before and x in rest_after) else up if x in rest_before else \
@@ -205,12 +204,6 @@ def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
                 c = on_v + lag
                 why[x] = ("hand", h, 0)
         done[x] = c
-        if gap is not None:
-            start_.append(c - d)
-    if gap is not None and os.environ.get("TIMETABLE_OUT"):  # EXPERIMENT: the line-model timetable
-        with open(os.environ["TIMETABLE_OUT"], "w") as f_:
-            for y in range(len(moves)):
-                f_.write(f"{moves[y][0]} {moves[y][3] - 1} {start_[y]:.4f}\n")
     x = max(range(len(moves)), key=lambda y: done[y])
     length = done[x]
     fr = to = mv = links = 0
@@ -257,11 +250,6 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             end[x] = j * dt
             rested[x] = had_rest or kk == 0
             start[x] = max(t0, last_rest) if rested[x] else t0
-    if os.environ.get("ORACLE_OUT"):  # EXPERIMENT: release times of moves from rest (not reversals, not first)
-        with open(os.environ["ORACLE_OUT"], "w") as f:
-            for x in end:
-                if rested[x] and x in prev and moves[x][2] != moves[prev[x]][1]:
-                    f.write(f"{moves[x][0]} {moves[x][3]} {start[x]:.4f}\n")
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
     out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
                links=0, n_from_rest=0, n_chained=0, stood=[], events=[], kinds={})

@@ -2,9 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
-#include <fstream>
 
 #include "controller/sumo_error.hpp"
 #include "planner/heading.hpp"
@@ -74,13 +71,6 @@ Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& d
       gated_(adg.num_agents(), -1)
 {
   for (int i = 0; i < adg.num_agents(); ++i) agv_[i].lane = cmd_.pose(i).lane;
-  if (const char* f = std::getenv("RTLACAM_ORACLE")) {
-    std::ifstream in(f);
-    int a;
-    long long s;
-    double t;
-    while (in >> a >> s >> t) oracle_[{a, s}] = t;
-  }
 }
 
 void Driver::begin(int id)
@@ -256,17 +246,6 @@ void Driver::before_step()
       // edge of its route, which would leave the junction cell's pose.
       const double cruise = p_.max_speed * factor, stop = stop_speed(rem - 1e-9, p_.decel, p_.dt);
       if (!held) v = std::min(cruise, stop);
-      if (!oracle_.empty() && !held) {
-        const int nx = adg_.undone(i, g.run.size());
-        if (nx >= 0) {
-          auto it = oracle_.find({i, adg_.action(nx).step});
-          const double left = end;
-          static const double floor_v = std::getenv("RTLACAM_ORACLE_FLOOR") ? std::atof(std::getenv("RTLACAM_ORACLE_FLOOR")) : 0.0;
-          static const double last_m = std::getenv("RTLACAM_ORACLE_LAST") ? std::atof(std::getenv("RTLACAM_ORACLE_LAST")) : 1e9;
-          if (it != oracle_.end() && it->second > now_ + p_.dt && left > 1e-9 && left <= last_m)
-            v = std::min(v, std::max(left / (it->second - now_), floor_v));
-        }
-      }
       why[i] = held ? Why::Held : v >= cruise ? Why::Cruise : rem < end ? Why::Follow : Why::End;
       if (p_.lane_speeds) {
         const double cap = lane_cap(i);
@@ -400,7 +379,6 @@ double Driver::progress(int i, const VehiclePose& p) const
 
 void Driver::after_step(const std::vector<VehiclePose>& poses)
 {
-  now_ += p_.dt;
   for (int i = 0; i < adg_.num_agents(); ++i) {
     Agv& g = agv_[i];
     g.lane = poses[i].lane;

@@ -81,7 +81,6 @@
 // arrives once its delays end; with RT-LaCAM's completeness every committed step is
 // eventually executed and the goals are reached (tests/controller/test_agv.cpp).
 // allowed() gives the cells each AGV may occupy now, for Safety.
-#include <map>
 #include <string>
 #include <vector>
 
@@ -247,10 +246,6 @@ class Driver {
   const executor::DelayModel& delays_;
   DriveParams p_;
   std::vector<Agv> agv_;
-  // EXPERIMENT (oracle release times): (agent, plan step) -> time its move started from rest
-  // in an earlier run of the same plan; the AGV slows to reach its stop no earlier.
-  std::map<std::pair<int, long long>, double> oracle_;
-  double now_ = 0;
   std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
   std::vector<char> waiting_start_;  // per agent: released, not started (DriveStats::Time)
   DriveStats st_;
