@@ -153,7 +153,7 @@ def plan_adg(steps):
     return moves, per, prev, hand
 
 
-def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
+def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None, absorb=None):
     """The plan's ADG (executor/adg.hpp: type 1 an AGV's moves in order, type 2 the move into v after
     v's previous leave; waits dropped) with each move's least physical time -- 1 m at top speed
     (cell / vmax), from rest (first move, and after a reversal, which needs rest) accelerating,
@@ -167,7 +167,12 @@ def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
     into v ends no earlier than the leader's arrival on v plus its least time for `gap` metres (from
     rest if it must stop on v: before a reversal, or its first move). Still a lower bound for
     adg-follow, which adds only the stops the approach cannot avoid: a follower rolls in exactly
-    then (perfect anticipation)."""
+    then (perfect anticipation).
+    absorb (s, with gap): an idealised executor that absorbs a wait of up to `absorb` s for free
+    (rolls in slower) and stops for a longer one -- it stands and starts from rest once it may go,
+    arriving a from-rest move after its release. Not a bound: a model of how far anticipation
+    would have to reach (0: every wait is a stop). The 6th value returned counts the stops on
+    the path."""
     moves, per, prev, hand = plan_adg(read_plan(path))
     cell = 1.0
     up = math.sqrt(2 * cell / acc)  # from rest, 1 m accelerating all the way (<= vmax at 1 m/s, 0.5 m/s^2)
@@ -186,6 +191,7 @@ def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
                 rest_before.add(b)
     done = [0.0] * len(moves)
     why = [None] * len(moves)
+    stopped = set()
     for x in range(len(moves)):  # ids are in plan order: dependencies come first
         d = both if (x in rest_before and x in rest_after) else up if x in rest_before else \
             down if x in rest_after else cell / vmax
@@ -203,11 +209,17 @@ def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
             if on_v + lag > c:
                 c = on_v + lag
                 why[x] = ("hand", h, 0)
+        own = done[prev[x]] + d if x in prev else d
+        if absorb is not None and c - own > absorb + 1e-9 and x not in rest_before:
+            start = max(c - cell / vmax, done[prev[x]] if x in prev else 0.0)  # released
+            c = max(c, start + (both if x in rest_after else up))
+            stopped.add(x)
         done[x] = c
     x = max(range(len(moves)), key=lambda y: done[y])
     length = done[x]
-    fr = to = mv = links = 0
+    fr = to = mv = links = stops = 0
     while x is not None:
+        stops += x in stopped
         kind, y, _ = why[x]
         if kind == "hand":
             links += 1
@@ -216,7 +228,7 @@ def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None):
             fr += x in rest_before
             to += x in rest_after
         x = y
-    return length, fr, to, mv, links
+    return length, fr, to, mv, links, stops
 
 
 def _dir(u, v):
@@ -314,7 +326,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
     return out
 
 
-def analyse(d):
+def analyse(d, absorb=(0, 1, 2, 5)):
     cfg = open(os.path.join(d, "config.yaml")).read()
     acc, dec, vmax, dt = vtype(cfg)
     m = json.load(open(os.path.join(d, "metrics.json")))
@@ -332,12 +344,13 @@ def analyse(d):
     crit = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax)
     crit_free = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, free_reversals=True)
     kv = dict(x.strip().split(": ") for x in re.search(r"vtype: \{([^}]*)\}", cfg).group(1).split(","))
-    crit_line = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax,
-                              gap=float(kv.get("length", 0.8)) + float(kv.get("min_gap", 0.1)))
+    gap = float(kv.get("length", 0.8)) + float(kv.get("min_gap", 0.1))
+    crit_line = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, gap=gap)
+    crit_absorb = [(w, critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, gap=gap, absorb=w)) for w in absorb]
     return dict(run=os.path.basename(d.rstrip("/")), executor=ex, makespan=m["makespan"], solved=m["solved"],
                 bound=m.get("bound_ticks"), last=last, last_row=rows[last], total=tot, shape=shape,
                 time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free,
-                crit_line=crit_line, exe=exe)
+                crit_line=crit_line, crit_absorb=crit_absorb, exe=exe)
 
 
 def main():
@@ -352,6 +365,8 @@ def main():
     ap.add_argument("--out", default=None, help="folder for the runs (default: a temporary one)")
     ap.add_argument("--runs", nargs="+", default=None, help="analyse these run folders instead of running")
     ap.add_argument("--trace", type=int, default=0, help="print the last N events of the executed critical path")
+    ap.add_argument("--absorb", nargs="*", type=float, default=[0, 1, 2, 5],
+                    help="waits (s) an idealised executor absorbs without a stop (critical_path absorb=)")
     a = ap.parse_args()
     if a.runs:
         dirs = a.runs
@@ -359,7 +374,7 @@ def main():
         import tempfile
         base = a.out or tempfile.mkdtemp(prefix="decompose_")
         dirs = [make_run(a, ex, os.path.join(base, re.sub(r"[^\w.-]", "_", ex))) for ex in a.executors]
-    res = [analyse(d) for d in dirs]
+    res = [analyse(d, a.absorb) for d in dirs]
     print("Plans (plan.txt): steps, moves, longest path (moves), reversals, planned stops (waits between moves)\n")
     print("| run | executor | makespan | bound | plan steps | moves | longest | reversals | planned stops |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
@@ -392,6 +407,15 @@ def main():
         c, f, g = r["crit"], r["crit_free"], r["crit_line"]
         print(f"| {r['run']} | {r['makespan']} | {c[0]:.1f} | {c[3]} | {c[1]} | {c[2]} | {c[4]} | "
               f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} | {g[0]:.1f} | {r['makespan'] / g[0]:.3f} |")
+    if a.absorb:
+        print("\nThe line-model path for an idealised executor that absorbs a wait of up to W s without a stop (it"
+              " rolls in slower, for free) and stops for a longer one (standing, then a move from rest once released):"
+              " how far anticipation would have to reach; s (stops on the path)\n")
+        print("| run | makespan | " + " | ".join(f"W = {w:g} s" for w in a.absorb) + " | W = inf (line model) |")
+        print("|---|---:|" + "---:|" * (len(a.absorb) + 1))
+        for r in res:
+            print(f"| {r['run']} | {r['makespan']} | " +
+                  " | ".join(f"{c[0]:.1f} ({c[5]})" for _, c in r["crit_absorb"]) + f" | {r['crit_line'][0]:.1f} |")
     print("\nThe executed critical path (physical executors), s: back from the last arrival through the constraint met"
           " last; moves from rest and chained (their least time in brackets), rests not spent waiting for a"
           " leader's start (before a reversal: the AGV must stop), links (arrivals in ADG order)\n")
