@@ -152,7 +152,7 @@ bool Driver::start_moves(int i, bool count)
       }
       const bool follow = p_.follow && adg_.action(id).group < 0;  // rotations: strict
       auto ready = [&] { return follow ? adg_.released_following(id) : adg_.released(id); };
-      if (!ready() && (p_.switch_passages > 0 || train_) && adg_.try_switch(id, rule())) ++st_.switches;
+      if (!ready() && p_.switch_passages > 0 && adg_.try_switch(id, {p_.switch_passages})) ++st_.switches;
       if (!ready()) {
         if (count) ++st_.dependency_waits;
         return false;
@@ -184,7 +184,7 @@ bool Driver::start_moves(int i, bool count)
       const int id = adg_.undone(i, g.run.size());
       if (id < 0) break;
       auto ready = [&] { return p_.follow ? adg_.chainable_following(id) : adg_.chainable(id); };
-      if (!ready() && (p_.switch_passages > 0 || train_) && adg_.try_switch(id, rule())) ++st_.switches;
+      if (!ready() && p_.switch_passages > 0 && adg_.try_switch(id, {p_.switch_passages})) ++st_.switches;
       if (!ready()) break;
       const executor::Action& a = adg_.action(id);
       if (cmd_.needs_rest(i, a.from, a.to)) break;

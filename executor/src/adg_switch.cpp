@@ -1,7 +1,5 @@
 // Switchable ADG, greedy form: see Adg::try_switch in adg.hpp.
 #include <algorithm>
-#include <cstdlib>
-#include <string>
 #include <vector>
 
 #include "executor/adg.hpp"
@@ -45,21 +43,6 @@ bool Adg::try_switch(int id, const SwitchRule& rule)
   Action& ei = act(e_i);
   if (ei.state != State::Pending || ei.group >= 0 || ei.to != ej.to) return false;
   if (released(e_i) || released_following(e_i)) return false;  // i is about to enter v: keep the plan's order
-  // j's leave of v (the next action in j's queue after id), and whether j runs as a train
-  // behind v's previous occupant L: into v from L's cell before v, out to L's cell after v.
-  bool train = false;
-  {
-    const auto& qj = queue_[ej.agent];
-    const auto jt = std::lower_bound(qj.begin() + static_cast<std::ptrdiff_t>(head_[ej.agent]), qj.end(), id);
-    const int p0 = ei.handover;  // L's leave of v
-    if (rule.train && p0 >= base_ && jt != qj.end() && jt + 1 != qj.end()) {
-      const Action& lp = act(p0);
-      const Action& lj = act(*(jt + 1));
-      const int le = lp.prev;  // L's entry into v
-      static const bool loose = std::getenv("RTLACAM_TRAIN") && std::string(std::getenv("RTLACAM_TRAIN")) == "2";
-      train = le >= base_ && act(le).from == ej.from && (loose || (lj.to == lp.to && lj.handover >= base_));
-    }
-  }
   // i passes v only once before j (an earlier pass of its own would have no hand-over edge
   // for j to take over).
   {
@@ -67,7 +50,7 @@ bool Adg::try_switch(int id, const SwitchRule& rule)
     size_t k = head_[ei.agent];
     for (; k < qi.size() && qi[k] < e_i; ++k)
       if (act(qi[k]).from == ej.to || act(qi[k]).to == ej.to) return false;
-    if (!train && static_cast<int>(k - head_[ei.agent]) < rule.lead) return false;  // i is near: keep the order
+    if (static_cast<int>(k - head_[ei.agent]) < rule.lead) return false;  // i is near: keep the order
     if (rule.leader_at_rest && act(qi[head_[ei.agent]]).state != State::Pending) return false;  // i is on its way: keep the order
   }
   // j's leave of v: the next action in j's queue after id.
@@ -78,7 +61,7 @@ bool Adg::try_switch(int id, const SwitchRule& rule)
   if (act(l_j).group >= 0) return false;
   // j must pass, not park: the cell after v has begun to be left (or needs no hand-over), so
   // j will not hold v while i arrives.
-  if (rule.must_pass && !train && act(l_j).handover >= base_ && act(act(l_j).handover).state == State::Pending) return false;
+  if (rule.must_pass && act(l_j).handover >= base_ && act(act(l_j).handover).state == State::Pending) return false;
   // The next occupant of v after j: the entry whose hand-over is j's leave, or else j's own
   // next entry into v (a re-entry has no hand-over, yet after the switch it must wait for
   // i's leave). Not by id order: earlier switches reorder the cell.

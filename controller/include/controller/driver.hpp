@@ -81,7 +81,6 @@
 // arrives once its delays end; with RT-LaCAM's completeness every committed step is
 // eventually executed and the goals are reached (tests/controller/test_agv.cpp).
 // allowed() gives the cells each AGV may occupy now, for Safety.
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -247,15 +246,6 @@ class Driver {
   const executor::DelayModel& delays_;
   DriveParams p_;
   std::vector<Agv> agv_;
-  // EXPERIMENT (RTLACAM_TRAIN=1): train switches (Adg::SwitchRule::train).
-  bool train_ = std::getenv("RTLACAM_TRAIN") != nullptr;
-  executor::Adg::SwitchRule rule() const
-  {
-    executor::Adg::SwitchRule r;
-    r.lead = p_.switch_passages > 0 ? p_.switch_passages : 1 << 30;
-    r.train = train_;
-    return r;
-  }
   std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
   std::vector<char> waiting_start_;  // per agent: released, not started (DriveStats::Time)
   DriveStats st_;

@@ -127,9 +127,6 @@ class Adg {
     int lead = 1;              // i has at least this many undone moves before its move into v
     bool leader_at_rest = true;  // i is at rest (its next move pending)
     bool must_pass = true;       // the cell after v is being left already: j will not park on v
-    // EXPERIMENT: a train -- j enters and leaves v exactly as v's previous occupant L does (from
-    // L's cell before v, to L's cell after v) -- may pass before i whatever lead / must_pass say.
-    bool train = false;
   };
   bool try_switch(int id, const SwitchRule& rule);
   bool try_switch(int id) { return try_switch(id, SwitchRule{}); }
