@@ -153,7 +153,7 @@ def plan_adg(steps):
     return moves, per, prev, hand
 
 
-def critical_path(path, acc, dec, vmax, free_reversals=False):
+def critical_path(path, acc, dec, vmax, free_reversals=False, gap=None, absorb=None):
     """The plan's ADG (executor/adg.hpp: type 1 an AGV's moves in order, type 2 the move into v after
     v's previous leave; waits dropped) with each move's least physical time -- 1 m at top speed
     (cell / vmax), from rest (first move, and after a reversal, which needs rest) accelerating,
@@ -161,7 +161,18 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
     ends no earlier than its hand-over's. The longest path is a lower bound on any ADG executor's
     makespan for this plan with these kinematics (rotation groups, which start together, are
     ignored: an estimate there). Returns (length s, on it: moves from rest, moves to rest, moves,
-    hand-over links)."""
+    hand-over links).
+    gap (body length + margin, m): the Driver's and Safety's line model too -- a front reaches v only
+    once the hand-over's front is `gap` past v on its way out (run on the leader's line), so a move
+    into v ends no earlier than the leader's arrival on v plus its least time for `gap` metres (from
+    rest if it must stop on v: before a reversal, or its first move). Still a lower bound for
+    adg-follow, which adds only the stops the approach cannot avoid: a follower rolls in exactly
+    then (perfect anticipation).
+    absorb (s, with gap): an idealised executor that absorbs a wait of up to `absorb` s for free
+    (rolls in slower) and stops for a longer one -- it stands and starts from rest once it may go,
+    arriving a from-rest move after its release. Not a bound: a model of how far anticipation
+    would have to reach (0: every wait is a stop). The 6th value returned counts the stops on
+    the path."""
     moves, per, prev, hand = plan_adg(read_plan(path))
     cell = 1.0
     up = math.sqrt(2 * cell / acc)  # from rest, 1 m accelerating all the way (<= vmax at 1 m/s, 0.5 m/s^2)
@@ -180,6 +191,7 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
                 rest_before.add(b)
     done = [0.0] * len(moves)
     why = [None] * len(moves)
+    stopped = set()
     for x in range(len(moves)):  # ids are in plan order: dependencies come first
         d = both if (x in rest_before and x in rest_after) else up if x in rest_before else \
             down if x in rest_after else cell / vmax
@@ -189,11 +201,25 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
         if h is not None and done[h] > c:
             c = done[h]
             why[x] = ("hand", h, 0)
+        if h is not None and gap is not None:
+            ramp = math.sqrt(2 * gap / acc)
+            ramp = ramp if acc * ramp <= vmax else gap / vmax + vmax / (2 * acc)
+            lag = ramp if h in rest_before else gap / vmax
+            on_v = done[prev[h]] if h in prev else 0.0  # the leader's front on v
+            if on_v + lag > c:
+                c = on_v + lag
+                why[x] = ("hand", h, 0)
+        own = done[prev[x]] + d if x in prev else d
+        if absorb is not None and c - own > absorb + 1e-9 and x not in rest_before:
+            start = max(c - cell / vmax, done[prev[x]] if x in prev else 0.0)  # released
+            c = max(c, start + (both if x in rest_after else up))
+            stopped.add(x)
         done[x] = c
     x = max(range(len(moves)), key=lambda y: done[y])
     length = done[x]
-    fr = to = mv = links = 0
+    fr = to = mv = links = stops = 0
     while x is not None:
+        stops += x in stopped
         kind, y, _ = why[x]
         if kind == "hand":
             links += 1
@@ -202,7 +228,11 @@ def critical_path(path, acc, dec, vmax, free_reversals=False):
             fr += x in rest_before
             to += x in rest_after
         x = y
-    return length, fr, to, mv, links
+    return length, fr, to, mv, links, stops
+
+
+def _dir(u, v):
+    return (v[0] - u[0], v[1] - u[1])
 
 
 def executed_path(path, speeds, dt, acc, dec, vmax):
@@ -234,7 +264,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             start[x] = max(t0, last_rest) if rested[x] else t0
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
     out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
-               links=0, n_from_rest=0, n_chained=0, stood=[], events=[])
+               links=0, n_from_rest=0, n_chained=0, stood=[], events=[], kinds={})
     x = max(end, key=lambda y: end[y])
     node = ("end", x)
     tol = dt + 1e-9
@@ -255,6 +285,20 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
                                      f" after standing {out['stood'][-1]:.2f} s")
                 out["from_rest"] += end[x] - start[x]
                 out["from_rest_least"] += up
+                # what it waited for: its leader's start (as the "start" node below), the follower
+                # entering on the leader's line out of the cell (a train start) or from another
+                # side (a junction passage: it cannot roll in behind the leader's projected body),
+                # or no leader (its own rest: a reversal, a first move)
+                t0 = end[prev[x]] if x in prev else 0.0
+                if h is not None and abs(start[h] - start[x]) <= tol and start[h] > t0 + 1e-9:
+                    kind_ = "train start" if _dir(u_, v_) == _dir(moves[h][1], moves[h][2]) else "other side"
+                else:
+                    kind_ = "no leader start (own rest, reversal)"
+                k = out["kinds"].setdefault(kind_, [0, 0.0, 0])
+                k[0] += 1
+                k[1] += end[x] - start[x]
+                # the plan itself stops the AGV here: a wait before the move (or its first move)
+                k[2] += x not in prev or moves[x][3] - moves[prev[x]][3] > 1
                 out["n_from_rest"] += 1
                 node = ("start", x)
             else:
@@ -282,7 +326,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
     return out
 
 
-def analyse(d):
+def analyse(d, absorb=(0, 1, 2, 5)):
     cfg = open(os.path.join(d, "config.yaml")).read()
     acc, dec, vmax, dt = vtype(cfg)
     m = json.load(open(os.path.join(d, "metrics.json")))
@@ -299,9 +343,14 @@ def analyse(d):
     exe = executed_path(os.path.join(d, "plan.txt"), speeds, dt, acc, dec, vmax) if ex != "lockstep" else None
     crit = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax)
     crit_free = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, free_reversals=True)
+    kv = dict(x.strip().split(": ") for x in re.search(r"vtype: \{([^}]*)\}", cfg).group(1).split(","))
+    gap = float(kv.get("length", 0.8)) + float(kv.get("min_gap", 0.1))
+    crit_line = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, gap=gap)
+    crit_absorb = [(w, critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, gap=gap, absorb=w)) for w in absorb]
     return dict(run=os.path.basename(d.rstrip("/")), executor=ex, makespan=m["makespan"], solved=m["solved"],
                 bound=m.get("bound_ticks"), last=last, last_row=rows[last], total=tot, shape=shape,
-                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free, exe=exe)
+                time=m.get("executor", {}).get("time", {}), crit=crit, crit_free=crit_free,
+                crit_line=crit_line, crit_absorb=crit_absorb, exe=exe)
 
 
 def main():
@@ -316,6 +365,8 @@ def main():
     ap.add_argument("--out", default=None, help="folder for the runs (default: a temporary one)")
     ap.add_argument("--runs", nargs="+", default=None, help="analyse these run folders instead of running")
     ap.add_argument("--trace", type=int, default=0, help="print the last N events of the executed critical path")
+    ap.add_argument("--absorb", nargs="*", type=float, default=[0, 1, 2, 5],
+                    help="waits (s) an idealised executor absorbs without a stop (critical_path absorb=)")
     a = ap.parse_args()
     if a.runs:
         dirs = a.runs
@@ -323,7 +374,7 @@ def main():
         import tempfile
         base = a.out or tempfile.mkdtemp(prefix="decompose_")
         dirs = [make_run(a, ex, os.path.join(base, re.sub(r"[^\w.-]", "_", ex))) for ex in a.executors]
-    res = [analyse(d) for d in dirs]
+    res = [analyse(d, a.absorb) for d in dirs]
     print("Plans (plan.txt): steps, moves, longest path (moves), reversals, planned stops (waits between moves)\n")
     print("| run | executor | makespan | bound | plan steps | moves | longest | reversals | planned stops |")
     print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
@@ -345,15 +396,26 @@ def main():
         print(f"| {r['run']} | {t[1] / t[0]:.3f} | {t[2] / t[0]:.3f} | {t[3] / t[0]:.3f} | {t[4] / t[0]:.3f} | "
               f"{t[0] / max(1, r['shape'][1]):.3f} | {t[5] / max(1, r['shape'][1]):.3f} |")
     print("\nThe plan's ADG critical path with each move's least physical time (a lower bound for any ADG"
-          " executor on this plan), s; on it: moves (from rest / to rest), hand-over links; and the same with"
-          " reversals free (no rest)\n")
+          " executor on this plan), s; on it: moves (from rest / to rest), hand-over links; the same with"
+          " reversals free (no rest); and with the line model of adg-follow and Safety (a front reaches v once"
+          " its leader's front is length + min_gap past v: critical_path(gap=)), a bound for adg-follow that"
+          " charges no stop the anticipation could avoid\n")
     print("| run | makespan | critical path | moves | from rest | to rest | links | makespan / path |"
-          " path, reversals free |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
+          " path, reversals free | path, line model | makespan / line path |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for r in res:
-        c, f = r["crit"], r["crit_free"]
+        c, f, g = r["crit"], r["crit_free"], r["crit_line"]
         print(f"| {r['run']} | {r['makespan']} | {c[0]:.1f} | {c[3]} | {c[1]} | {c[2]} | {c[4]} | "
-              f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} |")
+              f"{r['makespan'] / c[0]:.3f} | {f[0]:.1f} | {g[0]:.1f} | {r['makespan'] / g[0]:.3f} |")
+    if a.absorb:
+        print("\nThe line-model path for an idealised executor that absorbs a wait of up to W s without a stop (it"
+              " rolls in slower, for free) and stops for a longer one (standing, then a move from rest once released):"
+              " how far anticipation would have to reach; s (stops on the path)\n")
+        print("| run | makespan | " + " | ".join(f"W = {w:g} s" for w in a.absorb) + " | W = inf (line model) |")
+        print("|---|---:|" + "---:|" * (len(a.absorb) + 1))
+        for r in res:
+            print(f"| {r['run']} | {r['makespan']} | " +
+                  " | ".join(f"{c[0]:.1f} ({c[5]})" for _, c in r["crit_absorb"]) + f" | {r['crit_line'][0]:.1f} |")
     print("\nThe executed critical path (physical executors), s: back from the last arrival through the constraint met"
           " last; moves from rest and chained (their least time in brackets), rests not spent waiting for a"
           " leader's start (before a reversal: the AGV must stop), links (arrivals in ADG order)\n")
@@ -375,6 +437,14 @@ def main():
         if st:
             print(f"| {r['run']} | {len(st)} | {st[len(st) // 2]:.2f} | " +
                   " | ".join(str(sum(1 for w in st if lo <= w < hi)) for lo, hi in bins) + " |")
+    print("\nThe moves from rest on the executed critical path by what the AGV waited for: its leader's start with"
+          " the follower entering on the leader's line out of the cell (train start) or from another side (a"
+          " junction passage), or no leader (its own rest: a reversal, a first move)\n")
+    print("| run | kind | n | s | s per move | of them planned stops (a wait in plan.txt before the move) |")
+    print("|---|---|---:|---:|---:|---:|")
+    for r in res:
+        for kind, (cnt, sec, planned) in sorted((r["exe"] or {}).get("kinds", {}).items()):
+            print(f"| {r['run']} | {kind} | {cnt} | {sec:.1f} | {sec / cnt:.2f} | {planned} |")
     if a.trace:
         for r in res:
             if r["exe"]:
