@@ -86,9 +86,10 @@ namespace planner {
 
 struct LacamOptions {
   bool swap = true;    // PIBT swap operation (LaCAM*); off for paper-faithful vanilla runs
-  // PIBT's tie-break among equally short moves toward the goal: free vertices before occupied
-  // ones (Pibt::set_free_first). LaCAM's first solution 0.965x the standard SOC (65 cells,
-  // gm, lower on 58), RT-LaCAM* at 1 ms 0.990x (130 pairs; docs/rt_lacam_star.md, session 36).
+  // PIBT's tie-break among equally short moves toward the goal: free vertices first, vertices
+  // of agents coming head-on or parked on their goals last (Pibt::set_free_first). LaCAM's
+  // first solution 0.956x the standard SOC (65 cells, gm, lower on 62), RT-LaCAM* at 1 ms
+  // 0.976x (130 pairs, lower on 95; docs/rt_lacam_star.md, session 36).
   // Off here (random ties, lacam3's and the paper's PIBT), so that every planner built on
   // LacamOptions keeps its runs; rtlacam-bench turns it on with --refine (RT-LaCAM*).
   bool free_first = false;
