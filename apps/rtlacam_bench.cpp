@@ -66,6 +66,10 @@ int main(int argc, char** argv)
   app.add_option("--max-steps", max_steps, "limit on executed steps (iterative solvers)")->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
+  bool free_first = false;
+  auto* free_first_opt = app.add_flag("--free-first,!--no-free-first", free_first,
+                                      "PIBT ties between equally short moves toward the goal: free vertices first "
+                                      "(pibt.hpp); default: on for --solver rtlacam with --refine (RT-LaCAM*), else off");
   bool reserve = true;
   app.add_flag("--reserve,!--no-reserve", reserve,
                "keep the cutoff before the first solution too: an expansion after the first of an iteration starts "
@@ -197,6 +201,10 @@ int main(int argc, char** argv)
 
     LacamOptions lopt;
     lopt.swap = !no_swap;
+    // Default: RT-LaCAM* only (measured: docs/rt_lacam_star.md, session 36); LaCAM and the
+    // paper's RT-LaCAM keep LaCAM's PIBT, so that they build the same tree (bench_planner.py).
+    if (free_first_opt->count() == 0) free_first = refine && parse_solver(solver) == Solver::RtLacam;
+    lopt.free_first = free_first;
     lopt.seed = seed;
     lopt.refine = refine;
     lopt.restart_rate = restart_rate;
@@ -353,6 +361,7 @@ int main(int argc, char** argv)
     j["lg_collision_weight"] = lg_weight;
     j["lg_refine"] = lg_refine;
     j["swap"] = !no_swap;
+    j["free_first"] = free_first;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;
     j["lns"] = lns;

@@ -277,6 +277,7 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.seed = seed;
           opt.pref = pref;
           opt.lacam.refine = opt.lacam.scatter = refine;  // as rtlacam-bench: RT-LaCAM* unless refine=False
+          opt.lacam.free_first = refine && parse_solver(solver) == Solver::RtLacam;  // as rtlacam-bench
           opt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           return make_planner(parse_solver(solver), g, starts, goals, opt);
@@ -302,6 +303,7 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.seed = seed;
           sopt.lacam.seed = seed;  // run_full_horizon (lacam) reads it there
           sopt.lacam.refine = sopt.lacam.scatter = refine;  // as rtlacam-bench (lacam: executes its first solution either way)
+          sopt.lacam.free_first = refine && s == Solver::RtLacam;  // as rtlacam-bench (RT-LaCAM* only)
           sopt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           sopt.pref = pref;

@@ -23,6 +23,7 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
     : g_(g), dist_(dist), opt_(opt), pibt_(g, dist, opt.swap), rng_(opt.seed), lns_(g, dist, opt.lns_window, opt.lns_neighbourhood, opt.objective), scatter_(g, dist), lg_(g, dist), moves_(g.max_degree() + 1)
 {
   pibt_.set_preference(pref);
+  pibt_.set_free_first(opt.free_first);
   lg_.set_window(opt.lg_window);
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);

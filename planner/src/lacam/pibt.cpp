@@ -151,8 +151,24 @@ bool Pibt::plan(int32_t i, Rng& rng)
   // Candidates (neighbours + stay), sorted by score; insertion sort on <= 5 entries.
   for (int k = 0; k < K; ++k) C[k] = nb[k];
   C[K] = v;
-  for (int k = 0; k <= K; ++k)
-    key_[k] = pref_ ? pref_->score(i, v, C[k], rng) : distance(i, C[k]) + extra_cost(v, C[k]) + pocket_cost(i, v, C[k]) + rng.uniform();
+  // free_first: among moves toward the goal at the same distance, a free vertex first (keys in
+  // [d, d + 1/3)), then one whose agent j can step on elsewhere ([d + 1/3, d + 2/3)), then one
+  // whose agent wants v itself (head-on: it cannot have v, so it is pushed back) or is parked
+  // on its goal ([d + 2/3, d + 1)); the same random draws.
+  const float here = free_first_ && !pref_ ? distance(i, v) : 0.0f;
+  for (int k = 0; k <= K; ++k) {
+    if (pref_) {
+      key_[k] = pref_->score(i, v, C[k], rng);
+      continue;
+    }
+    const float d = distance(i, C[k]) + extra_cost(v, C[k]) + pocket_cost(i, v, C[k]);
+    if (free_first_ && d < here) {
+      const int32_t j = occ_now_[C[k]];
+      const float level = j < 0 ? 0.0f : d_.get(j, C[k]) == 0 || d_.get(j, v) < d_.get(j, C[k]) ? 2.0f : 1.0f;
+      key_[k] = d + (level + rng.uniform()) / 3.0f;
+    } else
+      key_[k] = d + rng.uniform();
+  }
   if (scatter_ && scatter_->ready()) {
     const Vertex s = scatter_->next(i, v);
     for (int k = 0; k <= K; ++k)

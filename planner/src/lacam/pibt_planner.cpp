@@ -12,6 +12,7 @@ PibtPlanner::PibtPlanner(const Graph& g, const Config& starts, const Config& goa
     : dist_(g, std::move(cache)), pibt_(g, dist_, opt.swap), rng_(opt.seed), current_(starts), keep_priorities_(opt.keep_priorities)
 {
   pibt_.set_preference(pref);
+  pibt_.set_free_first(opt.free_first);
   zones_ = opt.zones;
   pibt_.set_zones(zones_.get());
   set_goals(goals, std::move(test));

@@ -86,6 +86,13 @@ namespace planner {
 
 struct LacamOptions {
   bool swap = true;    // PIBT swap operation (LaCAM*); off for paper-faithful vanilla runs
+  // PIBT's tie-break among equally short moves toward the goal: free vertices first, vertices
+  // of agents coming head-on or parked on their goals last (Pibt::set_free_first). LaCAM's
+  // first solution 0.956x the standard SOC (65 cells, gm, lower on 62), RT-LaCAM* at 1 ms
+  // 0.976x (130 pairs, lower on 95; docs/rt_lacam_star.md, session 36).
+  // Off here (random ties, lacam3's and the paper's PIBT), so that every planner built on
+  // LacamOptions keeps its runs; rtlacam-bench turns it on with --refine (RT-LaCAM*).
+  bool free_first = false;
   uint64_t seed = 0;   // tie-breaks in PIBT and the shuffle of constraint children
   // Lifelong goal changes (set_goals) keep the agents' PIBT priorities instead of starting
   // again from distance / N. Measured: +10-30 % throughput on the LoRR random-32-32-20
