@@ -107,7 +107,6 @@ class LifelongRun {
   std::unique_ptr<executor::Execution> exec_;
   executor::GraphExecution* graph_ = nullptr;  // exec_, when it fills its window (graph_execution)
   StepBudget sb_;
-  int skipped_ = 0;  // searches skipped in a row
   long t_ = 0;
   StepRecord last_;
 };
