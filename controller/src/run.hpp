@@ -8,8 +8,9 @@
 // step() is the one SUMO step both loops share: planner slice, SUMO, event and safety checks.
 // Lifelong (tasks.mode: lifelong): the task and epoch phases are the grid's, through
 // tasks::LifelongEpochs (tasks/lifelong_epochs.hpp): start, completions on the executed
-// cells, the epoch start, the counts; what happens around them stays here (the SUMO step's
-// budget, rules' goals, the validator, goal markers).
+// cells, the epoch start, the counts; and the SUMO step's budget is the grid's object
+// (tasks::StepBudget, sb_); what happens around them stays here (rules' goals, the
+// validator, goal markers).
 #include <algorithm>
 #include <memory>
 #include <optional>

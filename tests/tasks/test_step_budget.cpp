@@ -110,6 +110,22 @@ TEST(StepBudget, AStepTheCarryUsedUpRunsNoSearchNeverTwoInARow)
   EXPECT_EQ(sb.searches_skipped, 2);
 }
 
+TEST(StepBudget, OnlyTheGridsLateSearchSkipsAStepWithSomeTimeLeft)
+{
+  // 0.5 ms left, one expansion's bound 0.6 ms (budget 1 ms): the grid's --skip-late-search
+  // skips it (skip_short, at most 3 in a row); the controller searches (it skips only a step
+  // with nothing left: a skip costs the search a step of progress).
+  StepBudget sb(planner::Budget::time_ms(1), 4, 0.5, true);
+  sb.first.add(0.2);  // bound 0.2 + 4 x 0.1
+  sb.charge(0.5, 0.5);
+  EXPECT_FALSE(sb.skip(true, 1, sb.left().ms));
+  sb.skip_short = true;
+  for (int k = 0; k < 3; ++k) EXPECT_TRUE(sb.skip(true, 1, sb.left().ms));
+  EXPECT_FALSE(sb.skip(true, 1, sb.left().ms));  // max_skips 3
+  EXPECT_TRUE(sb.skip(true, 1, sb.left().ms));
+  EXPECT_FALSE(sb.skip(true, 0.5, sb.left().ms));  // no step has room for one: never
+}
+
 TEST(LifelongRun, SteppedByHandItIsRunLifelong)
 {
   const ttest::Lorr L("/2024/random.domain/RANDOM-01.json");

@@ -16,9 +16,10 @@
 //                 growth (and the search) stops that much before the deadline. Capped at
 //                 reserve_cap of the time left where a back end needs the tables to grow by
 //                 some in every step (SUMO: a search on lower bounds alone would stall)
-//   skip          a step whose carry left no room for one expansion runs no search at all,
-//                 where the search would still make its one forced expansion (0.7-2 ms at
-//                 1000 agents): at most max_skips in a row, so the search always progresses
+//   skip          a step whose carry left nothing runs no search at all, where the search
+//                 would still make its one forced expansion (0.7-2 ms at 1000 agents); with
+//                 skip_short (the grid's --skip-late-search) also one left less than an
+//                 expansion's bound. At most max_skips in a row: the search progresses
 //
 // Clock: the grid's budget is the wall clock's (LoRR's step); the controller's bounds the
 // planner thread's CPU (planner.budget_ms, metrics.json planner_cpu_ms_per_step), so its
@@ -53,6 +54,7 @@ struct StepBudget {
   bool cpu_clock = false;   // the carry counts in thread CPU ms (controller), else wall ms (grid)
   double reserve_cap = 0;   // reserve() at most this share of the time left; 0: uncapped
   int max_skips = 3;        // searches skipped in a row at most
+  bool skip_short = false;  // skip() also where less than one expansion's bound is left
 
   CostEstimate first, later, overrun;
   // Work charged to the next step's search (0 without any): wall ms, thread CPU ms, BFS
@@ -106,13 +108,13 @@ struct StepBudget {
 
   // Whether a step that would search, with `budget_ms` its budget and `left_ms` left after
   // the carry, skips its search (`may`: the back end allows it). No room means nothing left,
-  // or less than one expansion's bound where a step without carry has room for one (else
-  // every step would skip). Counts the skip; a search resets the count in a row.
+  // or (skip_short) less than one expansion's bound where a step without carry has room for
+  // one (else every step would skip). Counts the skip; a search resets the count in a row.
   bool skip(bool may, double budget_ms, double left_ms)
   {
     const double r = first.bound(deviations);
     const bool s = may && skipped < max_skips &&
-                   (left_ms <= 0 || (first.known() && left_ms < r && budget_ms >= r));
+                   (left_ms <= 0 || (skip_short && first.known() && left_ms < r && budget_ms >= r));
     skipped = s ? skipped + 1 : 0;
     searches_skipped += s;
     return s;
