@@ -497,7 +497,11 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   if (!epochs_->complete(tick, executed)) return;
   const double c0 = planner::thread_cpu_ms();
   const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
-  if (bounded) dist_cache_->set_deadline(planner::Budget::time_ms(sb_.tables_ms(sb_.left(budget_).ms)).deadline_from(t0));
+  // Its tables stop one expansion's reserve before the step's end, the reserve capped at a
+  // share of the whole step (not of what the carry left: the epoch start is not the search).
+  if (bounded)
+    dist_cache_->set_deadline(
+        planner::Budget::time_ms(std::max(0.0, sb_.left(budget_).ms - sb_.reserve(budget_.ms))).deadline_from(t0));
   const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
   // Rules: goals a closure cuts off wait (rules.hpp).
   epochs_->start_epoch(*p_, rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals());

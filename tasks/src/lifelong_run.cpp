@@ -91,7 +91,7 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
   }
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
   may_skip_ = opt.skip_late_search && sb_.bounded && kind_ == planner::Solver::RtLacam;
-  sb_.skip_short = true;  // --skip-late-search: also a step with less than one expansion's bound left
+  sb_.skip_late = true;  // --skip-late-search: a step with less than one expansion's bound left
   r_.setup_ms = ms_since(t0);
 }
 

@@ -113,13 +113,13 @@ TEST(StepBudget, AStepTheCarryUsedUpRunsNoSearchNeverTwoInARow)
 TEST(StepBudget, OnlyTheGridsLateSearchSkipsAStepWithSomeTimeLeft)
 {
   // 0.5 ms left, one expansion's bound 0.6 ms (budget 1 ms): the grid's --skip-late-search
-  // skips it (skip_short, at most 3 in a row); the controller searches (it skips only a step
+  // skips it (skip_late, at most 3 in a row); the controller searches (it skips only a step
   // with nothing left: a skip costs the search a step of progress).
   StepBudget sb(planner::Budget::time_ms(1), 4, 0.5, true);
   sb.first.add(0.2);  // bound 0.2 + 4 x 0.1
   sb.charge(0.5, 0.5);
   EXPECT_FALSE(sb.skip(true, 1, sb.left().ms));
-  sb.skip_short = true;
+  sb.skip_late = true;
   for (int k = 0; k < 3; ++k) EXPECT_TRUE(sb.skip(true, 1, sb.left().ms));
   EXPECT_FALSE(sb.skip(true, 1, sb.left().ms));  // max_skips 3
   EXPECT_TRUE(sb.skip(true, 1, sb.left().ms));

@@ -18,8 +18,9 @@
 //                 some in every step (SUMO: a search on lower bounds alone would stall)
 //   skip          a step whose carry left nothing runs no search at all, where the search
 //                 would still make its one forced expansion (0.7-2 ms at 1000 agents); with
-//                 skip_short (the grid's --skip-late-search) also one left less than an
-//                 expansion's bound. At most max_skips in a row: the search progresses
+//                 skip_late (the grid's --skip-late-search) instead one left less than an
+//                 expansion's bound, where a step without carry has room for one. At most
+//                 max_skips in a row: the search progresses
 //
 // Clock: the grid's budget is the wall clock's (LoRR's step); the controller's bounds the
 // planner thread's CPU (planner.budget_ms, metrics.json planner_cpu_ms_per_step), so its
@@ -54,7 +55,7 @@ struct StepBudget {
   bool cpu_clock = false;   // the carry counts in thread CPU ms (controller), else wall ms (grid)
   double reserve_cap = 0;   // reserve() at most this share of the time left; 0: uncapped
   int max_skips = 3;        // searches skipped in a row at most
-  bool skip_short = false;  // skip() also where less than one expansion's bound is left
+  bool skip_late = false;   // skip(): where less than one expansion's bound is left (else: nothing)
 
   CostEstimate first, later, overrun;
   // Work charged to the next step's search (0 without any): wall ms, thread CPU ms, BFS
@@ -107,14 +108,16 @@ struct StepBudget {
   }
 
   // Whether a step that would search, with `budget_ms` its budget and `left_ms` left after
-  // the carry, skips its search (`may`: the back end allows it). No room means nothing left,
-  // or (skip_short) less than one expansion's bound where a step without carry has room for
-  // one (else every step would skip). Counts the skip; a search resets the count in a row.
+  // the carry, skips its search (`may`: the back end allows it). No room means nothing left
+  // (the controller: its carry is commits, replans and epoch starts of 1000 AGVs, which may
+  // exceed the step whatever an expansion costs), or with skip_late less than one
+  // expansion's bound where a step without carry has room for one (else skipping gains
+  // nothing: every step overruns). Counts the skip; a search resets the count in a row.
   bool skip(bool may, double budget_ms, double left_ms)
   {
     const double r = first.bound(deviations);
-    const bool s = may && skipped < max_skips &&
-                   (left_ms <= 0 || (skip_short && first.known() && left_ms < r && budget_ms >= r));
+    const bool room = skip_late ? !(first.known() && left_ms < r && budget_ms >= r) : left_ms > 0;
+    const bool s = may && skipped < max_skips && !room;
     skipped = s ? skipped + 1 : 0;
     searches_skipped += s;
     return s;
