@@ -199,12 +199,15 @@ void Run::prepare()
   // still ends by the deadline (an expansion cannot stop halfway): p99 near the budget.
   if (cfg_.planner.budget_ms > 0) budget_.reserve_ms = 1e-3;
   // The SUMO step's budget, as the grid's (tasks/step_budget.hpp): planner.budget_ms bounds
-  // the planner thread's CPU; table growth keeps a quarter of what is left at least (a search
-  // on lower bounds alone would stall); never two searches skipped in a row.
+  // the planner thread's CPU; the reserve is the dearest expansion of the last 16 searches
+  // (detours after a stuck replan stay dear for ~10 steps), and table growth keeps a quarter
+  // of what is left at least (a search on lower bounds alone would stall); never two
+  // searches skipped in a row.
   const tasks::LifelongOptions grid;
   sb_ = tasks::StepBudget(budget_, grid.expansion_deviations, grid.precompute_share, dist_cache_ != nullptr);
   sb_.cpu_clock = true;
   sb_.reserve_cap = 0.75;
+  sb_.reserve_window = 16;
   sb_.max_skips = 1;
   k_ = cfg_.steps_per_tick();
   if (cfg_.output.congestion) congestion_ = std::make_unique<Congestion>(g.size());

@@ -84,6 +84,31 @@ TEST(StepBudget, TheReserveLeavesTheTablesAShareOfTheStep)
   EXPECT_DOUBLE_EQ(sb.tables_ms(0), 0);  // nothing left: no deadline to move
 }
 
+TEST(StepBudget, TheControllersReserveIsTheDearestOfItsRecentSearches)
+{
+  // Its search is one call per SUMO step: a sample is the call's CPU over its expansions.
+  // After a stuck replan the expansions that also search detours stay dear for a while: the
+  // reserve holds the dearest of the last reserve_window searches, where the cost bound
+  // (mean + 4 deviations) forgets it within a few cheap ones; past the window it follows
+  // the cheaper ones again.
+  StepBudget sb(planner::Budget::time_ms(5), 4, 0.5, true);
+  sb.reserve_window = 8;
+  EXPECT_DOUBLE_EQ(sb.reserve(5), 0);  // nothing learnt
+  sb.expanded(0.2, 1);
+  sb.expanded(1.5, 1);  // with detours
+  sb.expanded(0.4, 2);  // 0.2 each
+  sb.expanded(0.3, 0);  // no expansion: nothing to learn
+  for (int k = 0; k < 4; ++k) sb.expanded(0.2, 1);
+  EXPECT_DOUBLE_EQ(sb.reserve(5), 1.5);
+  EXPECT_LT(sb.first.bound(4), 1.1);  // the cost bound has nearly forgotten it
+  for (int k = 0; k < 3; ++k) sb.expanded(0.2, 1);  // 1.5 leaves the window
+  EXPECT_DOUBLE_EQ(sb.reserve(5), 0.2);
+  sb.reserve_cap = 0.75;  // and the cap holds: the tables always get a quarter
+  sb.expanded(3, 1);
+  EXPECT_DOUBLE_EQ(sb.reserve(2), 1.5);
+  EXPECT_DOUBLE_EQ(sb.tables_ms(2), 0.5);
+}
+
 TEST(StepBudget, AStepTheCarryUsedUpRunsNoSearchNeverTwoInARow)
 {
   // At 1000 AGVs one expansion costs more than a 1 ms step (bound 6 ms here), so no step

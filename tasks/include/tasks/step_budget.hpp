@@ -15,7 +15,13 @@
 //   reserve       one expansion's cost bound: an expansion cannot stop halfway, so table
 //                 growth (and the search) stops that much before the deadline. Capped at
 //                 reserve_cap of the time left where a back end needs the tables to grow by
-//                 some in every step (SUMO: a search on lower bounds alone would stall)
+//                 some in every step (SUMO: a search on lower bounds alone would stall).
+//                 With reserve_window (SUMO) the dearest expansion of the last searches
+//                 instead of the cost bound: after a stuck replan the expansions that also
+//                 search detours stay dear for ~10 steps, and a bound that follows the mean
+//                 forgets a spike within ~4 samples (measured: the mean + 4 deviations bound
+//                 in Run::step raised large_warehouse_agv's max planner CPU per SUMO step at
+//                 1 ms, new / old median 1.37 over 4 interleaved pairs, 1.26 over 8)
 //   skip          a step whose carry left nothing runs no search at all, where the search
 //                 would still make its one forced expansion (0.7-2 ms at 1000 agents); with
 //                 skip_late (the grid's --skip-late-search) instead one left less than an
@@ -35,6 +41,7 @@
 // expansion-only budgets: deterministic runs) there is no guard, no reserve and no skip.
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "planner/budget.hpp"
 #include "tasks/cost_estimate.hpp"
@@ -55,6 +62,7 @@ struct StepBudget {
   bool cpu_clock = false;   // the carry counts in thread CPU ms (controller), else wall ms (grid)
   double reserve_cap = 0;   // reserve() at most this share of the time left; 0: uncapped
   int max_skips = 3;        // searches skipped in a row at most
+  size_t reserve_window = 0;  // > 0: reserve() is the dearest of the last this many searches' expansions
   bool skip_late = false;   // skip(): where less than one expansion's bound is left (else: nothing)
 
   CostEstimate first, later, overrun;
@@ -64,14 +72,19 @@ struct StepBudget {
   uint64_t carry_pops = 0;
   int skipped = 0;              // searches skipped in a row
   long searches_skipped = 0;    // over the run
+  std::vector<double> recent;   // reserve_window: ring of the last searches' ms per expansion
+  size_t recent_next = 0;
 
   static bool timed(const planner::Budget& b) { return b.ms > 0 && b.ms < 1e12; }
 
   double guard() const { return bounded ? overrun.bound(deviations) : 0.0; }
-  // One expansion's cost bound, capped at reserve_cap of `left_ms` (the step's time left).
+  // One expansion's cost bound (or the dearest recent one), capped at reserve_cap of
+  // `left_ms` (the step's time left).
   double reserve(double left_ms) const
   {
-    const double r = first.bound(deviations);
+    const double r = reserve_window == 0 ? first.bound(deviations)
+                     : recent.empty()    ? 0.0
+                                         : *std::max_element(recent.begin(), recent.end());
     return reserve_cap > 0 ? std::min(r, reserve_cap * std::max(0.0, left_ms)) : r;
   }
   double reserve() const { return reserve(per_step.ms); }
@@ -104,7 +117,16 @@ struct StepBudget {
   // The time of a search that made `expansions` (0: nothing to learn).
   void expanded(double cpu_ms, uint64_t expansions)
   {
-    if (expansions > 0 && cpu_ms >= 0) first.add(cpu_ms / static_cast<double>(expansions));
+    if (expansions == 0 || !(cpu_ms >= 0)) return;
+    const double c = cpu_ms / static_cast<double>(expansions);
+    first.add(c);
+    if (reserve_window == 0) return;
+    if (recent.size() < reserve_window) {
+      recent.push_back(c);
+    } else {
+      recent[recent_next] = c;
+      recent_next = (recent_next + 1) % reserve_window;
+    }
   }
 
   // Whether a step that would search, with `budget_ms` its budget and `left_ms` left after
