@@ -10,6 +10,7 @@ plannerCpuTimeStats: CPU). Then per config the median over rounds of NEW / OLD f
 
   scripts/bench_step_budget.py --sumo OLD NEW --lifelong OLD NEW [--budget-ms 1] [--rounds 3]
                                [--ticks 300] [--configs small_warehouse_agv.yaml:adg-follow ...]
+                               [--prefetch]   (planner.prefetch: true: the guard's runs)
 """
 import argparse
 import json
@@ -33,8 +34,8 @@ GRID = [("MR23-I-06 1000 rtlacam", ["--agents", "1000", "--solver", "rtlacam"]),
         ("MR23-I-06 1000 rtlacam skip-late", ["--agents", "1000", "--solver", "rtlacam", "--skip-late-search"])]
 
 
-def sumo(binary, src, executor, budget_ms, ticks, out):
-    cfg = timed_config(src, executor, budget_ms, ticks)
+def sumo(binary, src, executor, budget_ms, ticks, out, prefetch=False):
+    cfg = timed_config(src, executor, budget_ms, ticks, planner_keys="  prefetch: true\n" if prefetch else "")
     t0 = time.time()
     p = subprocess.run([binary, cfg, "--out", out], capture_output=True, text=True)
     os.unlink(cfg)
@@ -65,9 +66,11 @@ def main():
     ap.add_argument("--ticks", type=int, default=300)
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--configs", nargs="+", default=CONFIGS, help="config/NAME.yaml:executor")
+    ap.add_argument("--prefetch", action="store_true", help="planner.prefetch: true in every SUMO run")
     a = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="bench_step_budget_")
-    print(f"budget_ms {a.budget_ms}, {a.ticks} ticks, {a.rounds} rounds; planner CPU ms per step; outputs in {tmp}")
+    print(f"budget_ms {a.budget_ms}, {a.ticks} ticks, {a.rounds} rounds{', planner.prefetch' if a.prefetch else ''}; "
+          f"planner CPU ms per step; outputs in {tmp}")
     print("| round | run | build | p50 | p99 | max | grid wall p99 | skipped | outcome | wall s |")
     print("|---:|---|---|---:|---:|---:|---:|---:|---|---:|")
     ratios = {}
@@ -76,7 +79,8 @@ def main():
         for c in a.configs:
             src, ex = c.split(":")
             jobs.append((src.replace(".yaml", "") + " " + ex, lambda b, r, o, src=src, ex=ex:
-                         sumo(os.path.abspath(b), src, ex, a.budget_ms, a.ticks, os.path.join(tmp, f"{r}_{o}_{src}")), a.sumo))
+                         sumo(os.path.abspath(b), src, ex, a.budget_ms, a.ticks, os.path.join(tmp, f"{r}_{o}_{src}"),
+                              a.prefetch), a.sumo))
     if a.lifelong:
         for name, args in GRID:
             jobs.append((name, lambda b, r, o, args=args: grid(os.path.abspath(b), args, a.budget_ms, a.ticks), a.lifelong))
