@@ -21,7 +21,7 @@
 //                 search detours stay dear for ~10 steps, and a bound that follows the mean
 //                 forgets a spike within ~4 samples (measured: the mean + 4 deviations bound
 //                 in Run::step raised large_warehouse_agv's max planner CPU per SUMO step at
-//                 1 ms, new / old median 1.37 over 4 interleaved pairs, 1.26 over 8)
+//                 1 ms, new / old median 1.37 over 4 interleaved pairs)
 //   skip          a step whose carry left nothing runs no search at all, where the search
 //                 would still make its one forced expansion (0.7-2 ms at 1000 agents); with
 //                 skip_late (the grid's --skip-late-search) instead one left less than an
@@ -37,8 +37,9 @@
 // is one call per step, so it learns `first` from the call's mean expansion, at 1000 agents
 // and 1 ms mostly its only one), `later` for the rest (grid), `overrun` for the guard.
 // `bounded`: distance queries past a deadline answer lower bounds (dist_cache.hpp); only
-// with a positive, finite time budget (for_budget). Without it (exact queries, or
-// expansion-only budgets: deterministic runs) there is no guard, no reserve and no skip.
+// with a positive, finite time budget (timed). Without it (exact queries, or expansion-only
+// budgets: deterministic runs) there is no guard; without a time budget the controller
+// neither skips nor moves a deadline, and left() stays unlimited.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
