@@ -8,7 +8,8 @@ the timing fields are taken out (the grid side's counterpart: same_decisions.py)
 
 Prints one line per run (identical / DIFFERENT: the first differing key) and exits 1 on any
 difference. The runs cover lockstep and the ADG executors, delays, station queues (stall
-hints on), batteries with charging, a rotation solver and traffic rules.
+hints on), batteries with charging, a rotation solver and traffic rules, and one-shot runs
+(stuck replans, rules).
 """
 import argparse
 import json
@@ -48,6 +49,15 @@ RUNS = [
     ("small oneway", "config/small_oneway_lifelong.yaml", {}),
     ("large queues pibt-rot", "config/large_warehouse_queues.yaml", {}),
     ("large parking", "config/large_warehouse_parking.yaml", {}),
+    # One-shot runs (no lifelong.json): the step budget's paths outside the lifelong mode,
+    # with stuck replans and rules restarts charged to the next SUMO step.
+    ("small one-shot adg-follow", "config/small_warehouse_agv.yaml", {}),
+    ("small one-shot lockstep", "config/small_warehouse.yaml", {}),
+    ("large one-shot adg-follow", "config/large_warehouse_agv.yaml", {}),
+    ("large one-shot stuck replans", "config/large_warehouse_agv.yaml",
+     {"delays": {"kind": "bernoulli", "p": 0.05, "duration_s": [3, 25], "seed": 1}, "run": {"replan_on_stuck": True}}),
+    ("small one-shot stuck", "config/small_warehouse_stuck.yaml", {}),
+    ("small one-shot rules", "config/small_rules.yaml", {}),
 ]
 
 
@@ -100,7 +110,8 @@ def run(binary, base, over, ticks, expansions, out):
     if not os.path.exists(os.path.join(out, "metrics.json")):
         sys.exit(f"same_decisions_sumo: {binary} {cfg}: exit {r.returncode}: {r.stderr.strip()[-300:]}")
     m = json.load(open(os.path.join(out, "metrics.json")))
-    log = json.load(open(os.path.join(out, "lifelong.json")))
+    life = os.path.join(out, "lifelong.json")
+    log = json.load(open(life)) if os.path.exists(life) else {}  # one-shot: none
     plan = [l for l in open(os.path.join(out, "plan.txt")) if not l.startswith("comp_time=")]
     return {"metrics": strip(m), "lifelong": strip(log), "plan": plan}, m
 

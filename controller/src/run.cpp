@@ -198,6 +198,17 @@ void Run::prepare()
   // With a time budget the search starts an expansion only if its costliest one so far
   // still ends by the deadline (an expansion cannot stop halfway): p99 near the budget.
   if (cfg_.planner.budget_ms > 0) budget_.reserve_ms = 1e-3;
+  // The SUMO step's budget, as the grid's (tasks/step_budget.hpp): planner.budget_ms bounds
+  // the planner thread's CPU; the reserve is the dearest expansion of the last 16 searches
+  // (detours after a stuck replan stay dear for ~10 steps), and table growth keeps a quarter
+  // of what is left at least (a search on lower bounds alone would stall); never two
+  // searches skipped in a row.
+  const tasks::LifelongOptions grid;
+  sb_ = tasks::StepBudget(budget_, grid.expansion_deviations, grid.precompute_share, dist_cache_ != nullptr);
+  sb_.cpu_clock = true;
+  sb_.reserve_cap = 0.75;
+  sb_.reserve_window = 16;
+  sb_.max_skips = 1;
   k_ = cfg_.steps_per_tick();
   if (cfg_.output.congestion) congestion_ = std::make_unique<Congestion>(g.size());
   // Traffic rules (rules.hpp): bad input is a ConfigError here, before SUMO starts.
@@ -254,7 +265,7 @@ void Run::rules_restart(const planner::Config& at)
   rules_graph_ = std::move(g);
   cap_dist_tables();
   p_->search(plan_budget());
-  plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+  sb_.charge(0, planner::thread_cpu_ms() - c0);
   ++m_.rules.replans;
 }
 
@@ -343,7 +354,8 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
 {
   auto t0 = Clock::now();
   const double c0 = planner::thread_cpu_ms();
-  // The step's budget covers its commits (and an epoch start or replan) too.
+  // The step's budget covers its commits (and an epoch start or replan) too: the carry
+  // (StepBudget) charged since the last step's search.
   planner::Budget b = budget_;
   planner::RotationPlanner* rot = p_->rotation();
   // A rotation solver plans a tick's step in one search() call and cannot spread it over
@@ -351,7 +363,8 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
   // the other slices grow its distance tables (measured: epibt with 1 ms for 200 AGVs timed
   // out every step, 0.055 errands/tick on the large warehouse).
   if (rot && slice_ == 0) b = plan_budget();
-  if (cfg_.planner.budget_ms > 0) b.ms = std::max(0.0, b.ms - plan_cpu_pending_);
+  const double full_ms = b.ms;
+  b = sb_.left(b);
   if (rot && slice_ > 0 && cfg_.planner.budget_ms > 0) {
     rot->precompute(b.deadline_from(t0));
   } else {
@@ -359,34 +372,35 @@ void Run::step(const std::vector<std::vector<planner::Vertex>>& allowed, bool ex
     // grown by a later step: dist_cache.hpp), and so do the detours around stuck AGVs
     // (immobile.hpp): after a stuck replan one search expansion of 1000 agents would
     // otherwise search every goal's detour at once (10 ms and more).
-    // They stop one expansion's own work before it (expansion_reserve.hpp): the expansion
-    // that meets the deadline still has that to do.
-    const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0;
-    // Work charged to this step before its search (a replan, an epoch start, commits) may
-    // have used its budget already: then no search at all, where the search would still run
-    // its one forced expansion (0.7-2 ms at 1000 agents). The next step has its full budget;
-    // never two steps in a row, so the search always progresses.
-    const bool skip = cfg_.planner.budget_ms > 0 && b.ms <= 0 && !skipped_last_;
-    skipped_last_ = skip;
-    if (skip) {
-      ++searches_skipped_;
-    } else {
+    // They stop one expansion's own work before it (StepBudget::tables_ms): the expansion
+    // that meets the deadline still has that to do (measured on huge_warehouse_agv, 1000
+    // AGVs, 1 ms: 1.3-2.0 ms per step in the ~10 steps after each stuck replan without it).
+    const bool bounded = sb_.bounded;
+    // The carry may have used the step's budget already: then no search at all, where the
+    // search would still run its one forced expansion (StepBudget::skip; never two steps in
+    // a row, so the search always progresses).
+    if (!sb_.skip(cfg_.planner.budget_ms > 0, full_ms, b.ms)) {
       const auto end = b.deadline_from(t0);  // the step's: the search gets what the prefetched tables leave
       planner::Budget tb = b;
-      tb.ms = std::max(0.0, b.ms - reserve_.ms(b.ms));
+      tb.ms = sb_.tables_ms(b.ms);
       if (bounded && cell_prefetch()) b.ms = std::max(0.0, b.ms - precompute_first(b, t0));
       if (bounded) dist_cache_->set_deadline(tb.deadline_from(t0));
       const double s0 = planner::thread_cpu_ms();
       const uint64_t e0 = p_->expansions();
       p_->search(b);
-      reserve_.record(planner::thread_cpu_ms() - s0, p_->expansions() - e0);
+      sb_.expanded(planner::thread_cpu_ms() - s0, p_->expansions() - e0);
       if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
-      // The search ended early: the rest of the step grows the tables to come.
-      if (bounded && cell_prefetch() && dist_cache_->pending() > 0 && Clock::now() < end) dist_cache_->precompute(end);
+      // The search ended early: the rest of the step grows the tables to come. How far that
+      // ran past the deadline, when the deadline stopped it, is the guard's sample (a sample
+      // above a tenth of the budget is preemption, not work), as the grid's.
+      if (bounded && cell_prefetch() && dist_cache_->pending() > 0 && Clock::now() < end) {
+        dist_cache_->precompute(end);
+        if (dist_cache_->pending() > 0) sb_.overrun.add(std::clamp(ms_since(end), 0.0, 0.1 * budget_.ms));
+      }
     }
   }
-  plan_cpu_step_.push_back(planner::thread_cpu_ms() - c0 + plan_cpu_pending_);
-  plan_cpu_pending_ = 0;
+  plan_cpu_step_.push_back(planner::thread_cpu_ms() - c0 + sb_.carry_cpu_ms);
+  sb_.paid();
   const double ms = ms_since(t0);
   plan_step_.push_back(ms);
   plan_in_tick_ += ms;
@@ -422,9 +436,8 @@ double Run::precompute_first(const planner::Budget& b, planner::Clock::time_poin
 {
   if (dist_cache_->pending() == 0) return 0;
   // Tables first: an expansion that meets an incomplete table would pay its BFS anyway, all
-  // at once. It leaves room for the one expansion the search always makes. The share is the
-  // grid's (LifelongOptions::precompute_share, StepBudget).
-  const double share = std::min(tasks::LifelongOptions{}.precompute_share * b.ms, b.ms - reserve_.ms(b.ms));
+  // at once. It leaves room for the one expansion the search always makes (StepBudget).
+  const double share = sb_.precompute_ms(b.ms);
   if (share <= 0) return 0;
   const auto t1 = Clock::now();
   dist_cache_->precompute(planner::Budget::time_ms(share).deadline_from(t0));
@@ -479,7 +492,7 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   // The task layer at the end of tick `tick` (1-based, where the AGVs are then). Completed
   // errands start a new epoch: new goals, a fresh tree rooted at the planner's current
   // configuration, and a search slice for the tree's first move. It is the next SUMO step's
-  // planning (plan_cpu_pending_), so with a time budget it is bounded by that step's: the
+  // planning (StepBudget's carry), so with a time budget it is bounded by that step's: the
   // distance queries of set_goals stop growing tables at the step's deadline (lower bounds
   // past it; later steps grow them), and the search gets only what is left (a resumable
   // expansion pauses at its deadline; the next steps go on with it).
@@ -487,11 +500,11 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   if (!epochs_->complete(tick, executed)) return;
   const double c0 = planner::thread_cpu_ms();
   const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
-  if (bounded) {
-    planner::Budget tb = budget_;
-    tb.ms = std::max(0.0, tb.ms - plan_cpu_pending_ - reserve_.ms(tb.ms));
-    dist_cache_->set_deadline(tb.deadline_from(t0));
-  }
+  // Its tables stop one expansion's reserve before the step's end, the reserve capped at a
+  // share of the whole step (not of what the carry left: the epoch start is not the search).
+  if (bounded)
+    dist_cache_->set_deadline(
+        planner::Budget::time_ms(std::max(0.0, sb_.left(budget_).ms - sb_.reserve(budget_.ms))).deadline_from(t0));
   const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
   // Rules: goals a closure cuts off wait (rules.hpp).
   epochs_->start_epoch(*p_, rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals());
@@ -499,10 +512,10 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   if (!epochs_->completed().empty()) prefetch_goals(false);  // queued: later steps grow them
   val_->set_goals(tm_->goals());
   planner::Budget b = plan_budget();
-  if (bounded) b.ms = std::max(0.0, b.ms - plan_cpu_pending_ - (planner::thread_cpu_ms() - c0));
+  if (bounded) b.ms = std::max(0.0, sb_.left(b).ms - (planner::thread_cpu_ms() - c0));
   if (!bounded || b.ms > 0) p_->search(b);
   if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
-  plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+  sb_.charge(0, planner::thread_cpu_ms() - c0);
   show_goals();  // the view's work, not the planner's
   epochs_->record(true);
   epoch_ms_ += ms_since(t0);

@@ -8,8 +8,9 @@
 // step() is the one SUMO step both loops share: planner slice, SUMO, event and safety checks.
 // Lifelong (tasks.mode: lifelong): the task and epoch phases are the grid's, through
 // tasks::LifelongEpochs (tasks/lifelong_epochs.hpp): start, completions on the executed
-// cells, the epoch start, the counts; what happens around them stays here (the SUMO step's
-// budget, rules' goals, the validator, goal markers).
+// cells, the epoch start, the counts; and the SUMO step's budget is the grid's object
+// (tasks::StepBudget, sb_); what happens around them stays here (rules' goals, the
+// validator, goal markers).
 #include <algorithm>
 #include <memory>
 #include <optional>
@@ -19,7 +20,6 @@
 #include "controller/congestion.hpp"
 #include "controller/controller.hpp"
 #include "controller/driver.hpp"
-#include "controller/expansion_reserve.hpp"
 #include "controller/fleet_view.hpp"
 #include "controller/rule_check.hpp"
 #include "controller/rules.hpp"
@@ -35,6 +35,7 @@
 #include "policy/policy_preference.hpp"
 #include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_runner.hpp"
+#include "tasks/step_budget.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace controller {
@@ -87,8 +88,8 @@ class Run {
   // graph, whose planner has tables of its own).
   void prefetch_goals(bool now);
   // step(), cell solvers with a time budget: the prefetched tables first, up to the grid's
-  // share of the step's budget `b` (LifelongOptions::precompute_share, 0.5) less one
-  // expansion; returns the time it took.
+  // share of the step's budget `b` less one expansion (StepBudget::precompute_ms); returns
+  // the time it took.
   double precompute_first(const planner::Budget& b, planner::Clock::time_point t0);
   bool cell_prefetch() const { return prefetch_ && dist_cache_ && !rules_graph_; }
   // Lifelong with fleet.battery: the battery metrics, a warning for each AGV run empty.
@@ -201,12 +202,10 @@ class Run {
   // Planner work on this thread's CPU per SUMO step (search, commits, epoch starts, replans):
   // what planner.budget_ms bounds, told apart from time the thread was preempted.
   planner::LatencySample plan_cpu_step_;
-  double plan_cpu_pending_ = 0;  // planner CPU ms spent since the last step's slice
-  // Steps whose budget the work charged to them before the search (a replan, an epoch start)
-  // used up: no search there, not even the forced first expansion (Run::step).
-  uint64_t searches_skipped_ = 0;
-  bool skipped_last_ = false;
-  ExpansionReserve reserve_;  // one expansion's own work, kept from the tables' deadline
+  // The SUMO step's planning budget, the grid's object (tasks/step_budget.hpp): the carry
+  // (thread CPU of the commits, replans, rules restarts and epoch starts since the last
+  // step's search), the guard, one expansion's reserve, the precompute share, skipped searches.
+  tasks::StepBudget sb_{planner::Budget{}, 4, 0.5, false};
   std::vector<VehiclePose> last_poses_;
   // The physical bound over the executed plan's configurations that left memory (all of
   // them at the end): bound.hpp.

@@ -57,7 +57,7 @@ void Run::loop_lockstep()
         if (!bad.empty()) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid rotation step: " + bad);
       }
       p_->commit();
-      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+      sb_.charge(0, planner::thread_cpu_ms() - c0);
       ++m_.commits;
       if (rules_ && cfg_.rules.enforce_zones) {
         // One AGV per zone (rules.hpp): entrants beyond one wait; a held step or a zone that
@@ -213,7 +213,7 @@ void Run::loop_adg()
       const double c0 = planner::thread_cpu_ms();
       rules_tick_adg(adg, drv);
       rot = p_->rotation();  // a replan built a new planner
-      plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+      sb_.charge(0, planner::thread_cpu_ms() - c0);
       plan_in_tick_ += ms_since(t0);
     }
     double ctl = 0;
@@ -239,7 +239,7 @@ void Run::loop_adg()
           if (!bad.empty()) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid rotation step: " + bad);
         }
         if (!none) p_->commit();
-        plan_cpu_pending_ += planner::thread_cpu_ms() - c0;
+        sb_.charge(0, planner::thread_cpu_ms() - c0);
         if (none) break;
         ++commits;
         ++m_.commits;
@@ -272,7 +272,7 @@ void Run::loop_adg()
       drv.after_step(last_poses_);
       const double c1 = planner::thread_cpu_ms();
       stuck_step(adg, drv);
-      plan_cpu_pending_ += planner::thread_cpu_ms() - c1;  // a replan is planner work  // stuck AGVs: replan around them (stuck_replan.hpp)
+      sb_.charge(0, planner::thread_cpu_ms() - c1);  // a replan is planner work  // stuck AGVs: replan around them (stuck_replan.hpp)
       ctl += before_ms + ms_since(t0);
       exec_step_.back() += before_ms + ms_since(t0);
     }
@@ -335,7 +335,7 @@ void Run::finish()
   m_.expansions = p_->expansions() + replan_expansions_;
   m_.planner_ms_per_step = Latency::of(plan_step_);
   m_.planner_cpu_ms_per_step = Latency::of(plan_cpu_step_);
-  m_.searches_skipped = static_cast<long long>(searches_skipped_);
+  m_.searches_skipped = sb_.searches_skipped;
   m_.planner_ms_per_tick = Latency::of(plan_tick_);
   m_.sumo_ms_per_step = Latency::of(sumo_step_);
   m_.control_ms_per_tick = Latency::of(control_);

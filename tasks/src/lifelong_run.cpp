@@ -16,8 +16,6 @@ using planner::thread_cpu_ms;  // planning work, told apart from time the thread
 
 namespace {
 
-constexpr int kMaxSkips = 3;  // searches skipped in a row at most (skip_late_search)
-
 bool has_pending(const TaskManager& tasks, const planner::Config& at)
 {
   for (int a = 0; a < tasks.num_agents(); ++a)
@@ -93,6 +91,7 @@ LifelongRun::LifelongRun(const planner::Graph& g, const planner::Config& starts,
   }
   // RT-LaCAM may make no expansion in a step: the agents follow the tree or wait.
   may_skip_ = opt.skip_late_search && sb_.bounded && kind_ == planner::Solver::RtLacam;
+  sb_.skip_late = true;  // --skip-late-search: a step with less than one expansion's bound left
   r_.setup_ms = ms_since(t0);
 }
 
@@ -153,15 +152,13 @@ void LifelongRun::open(Step& s)
   s.reserve = sb_.reserve();
   s.plan_now = !exec_ || graph_ || exec_->can_accept();  // graph_: search on while the window is full
   if (!s.plan_now) ++r_.window_full;
-  // No room left for one expansion (the epoch start took it): no search this step. Only
-  // when a step without an epoch start has room for one, and at most kMaxSkips in a row:
-  // the search keeps making progress (and its cost estimate fresh) whatever the budget.
-  const bool skip = s.plan_now && may_skip_ && skipped_ < kMaxSkips && sb_.first.known() && s.b.ms < s.reserve &&
-                    opt_.budget.ms >= s.reserve;
-  skipped_ = skip ? skipped_ + 1 : s.plan_now ? 0 : skipped_;
+  // No room left for one expansion (the epoch start took it): no search this step
+  // (StepBudget::skip: at most max_skips in a row, the search keeps making progress and its
+  // cost estimate fresh whatever the budget).
+  const bool skip = s.plan_now && sb_.skip(may_skip_, opt_.budget.ms, s.b.ms);
   s.search_now = s.plan_now && !skip;
   if (skip) {
-    ++r_.searches_skipped;
+    r_.searches_skipped = sb_.searches_skipped;
     if (exec_) s.plan_now = false;  // the robots run their window; a wait would take a slot of it
   }
 }
@@ -172,8 +169,7 @@ void LifelongRun::precompute_first(Step& s)
   // Tables first, up to the share: an expansion that meets an incomplete table would pay its
   // BFS anyway, all at once. It leaves room for the one expansion the search always makes,
   // and it overruns its deadline too (guard).
-  const double share = std::min(opt_.precompute_share * s.b.ms, s.b.ms - s.reserve) - sb_.guard();
-  precompute(planner::Budget::time_ms(std::max(0.0, share)).deadline_from(s.t0));
+  precompute(planner::Budget::time_ms(std::max(0.0, sb_.precompute_ms(s.b.ms))).deadline_from(s.t0));
   s.rec.precompute_ms = ms_since(s.t0);
   s.b.ms = std::max(0.0, s.b.ms - s.rec.precompute_ms);
 }
@@ -320,10 +316,8 @@ void LifelongRun::complete(Step& s, const planner::Config& real)
   if (replan) epochs_.start_epoch(*p_);
   if (completed && prefetch_) epochs_.prefetch(*cache_, p_->current());
   if (completed && rot_prefetch_) epochs_.prefetch(*rot_);
-  if (replan)
-    sb_.carry(ms_since(t0), thread_cpu_ms() - cpu0, cache_->counters().query_pops - pops0);
-  else
-    sb_.carry(0, 0, 0);
+  sb_.paid();  // this step counted its carry (account)
+  if (replan) sb_.charge(ms_since(t0), thread_cpu_ms() - cpu0, cache_->counters().query_pops - pops0);
   epochs_.record(replan);
   epochs_.count(s.rec.t, real);  // goal ticks, station crowd, queue and parking counts (as the controller's)
   r_.counts = epochs_.counts();

@@ -2,7 +2,7 @@
 // LifelongEpochs: the task and epoch part of a lifelong run, one for every back end. The
 // grid's LifelongRun (lifelong_run.hpp: rtlacam-lifelong, Python) and the SUMO controller's
 // lifelong mode (controller/src/run.hpp) both run their epochs through it; each keeps its
-// own execution and step budget. The seam is the LoRR start kit's (a task scheduler of a few
+// own execution (the step budget is one object too: step_budget.hpp). The seam is the LoRR start kit's (a task scheduler of a few
 // methods beside the planner and the executor):
 //
 //   start     the task layer on the robots' start cells, before the planner is built:
@@ -21,7 +21,7 @@
 //             ones (EpochCounts: the controller's metrics.json and rtlacam-lifelong's log)
 //
 // Why the rest stays with each back end: a grid step and a SUMO tick are timed apart
-// (StepBudget per step; the controller's budget per SUMO step, Run::step); the grid executes
+// (one StepBudget per grid step, one per SUMO step in Run::step); the grid executes
 // on Execution (delays, rotation windows), SUMO on the Commander, Driver, ADG and Safety over
 // physical AGVs, with traffic rules that change the epoch's goals (closed goals wait) and a
 // search slice, the validator's goals and goal markers after set_goals. Both prefetch: the

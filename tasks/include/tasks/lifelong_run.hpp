@@ -26,8 +26,9 @@
 //   record    the step's record and the run's counters
 //
 // start, complete and the epoch's bookkeeping are LifelongEpochs' (lifelong_epochs.hpp),
-// which the SUMO controller's lifelong mode calls too: the task and epoch logic is one; the
-// step budget and the execution are each back end's.
+// which the SUMO controller's lifelong mode calls too: the task and epoch logic is one, and
+// so is the step budget (StepBudget, step_budget.hpp: the controller's Run::step spends each
+// SUMO step through it); the execution is each back end's.
 //
 // The solver comes from the one factory (planner/solver.hpp) with LifelongOptions::solver;
 // the runner reads a rotation solver's actions through RealtimePlanner::rotation().
@@ -107,7 +108,6 @@ class LifelongRun {
   std::unique_ptr<executor::Execution> exec_;
   executor::GraphExecution* graph_ = nullptr;  // exec_, when it fills its window (graph_execution)
   StepBudget sb_;
-  int skipped_ = 0;  // searches skipped in a row
   long t_ = 0;
   StepRecord last_;
 };
