@@ -52,14 +52,19 @@ void Parking::apply(const std::vector<char>& idle, const planner::Config& positi
   };
   for (int a = 0; a < n; ++a)
     if (!idle[a]) release(a);
+  // A parking cell that is also reserved (a station queue laid along a parking lane, or a
+  // pocket) is no place to wait: an agent parked there blocks the queue it lies on. Traced on
+  // large_warehouse_parking (session 36): pickup0's queue ran down the parking lane, idle AGVs
+  // parked on every other queue cell, and pickup0's errands stalled for the whole run.
+  auto parkable = [&](planner::Vertex u) { return parking_[u] != 0 && !(reserved && (*reserved)[u]); };
   // Idle agents already on an unclaimed parking cell keep it, so nobody else is sent there.
   for (int a = 0; a < n; ++a)
-    if (idle[a] && claim_[a] < 0 && parking_[positions[a]] && claimed_by_[positions[a]] < 0) take(a, positions[a]);
+    if (idle[a] && claim_[a] < 0 && parkable(positions[a]) && claimed_by_[positions[a]] < 0) take(a, positions[a]);
   for (int a = 0; a < n; ++a) {
     if (!idle[a]) continue;
     if (claim_[a] < 0) {
       planner::Vertex v = -1;
-      if (free_parking_ > 0) v = nearest(positions[a], [&](planner::Vertex u) { return parking_[u] != 0; });
+      if (free_parking_ > 0) v = nearest(positions[a], parkable);
       if (v < 0) v = nearest(positions[a], [&](planner::Vertex u) { return !reserved || !(*reserved)[u]; });
       if (v >= 0) take(a, v);
     }

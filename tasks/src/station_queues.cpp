@@ -148,7 +148,6 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
     if (added) touched.push_back(i);
     if (place_[a] < 0) it->second.push_back(a);
   }
-  std::sort(touched.begin(), touched.end());
   // Agents in a station's pocket that are not admitted there (on their way out, idle ones
   // leaving, passers-by at a through station) hold a place until they are out.
   std::unordered_map<int, int> inside;
@@ -157,9 +156,30 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
                                                               std::find(st_[i].admitted.begin(), st_[i].admitted.end(), a) !=
                                                                   st_[i].admitted.end()))
       ++inside[i];
+  if (opt_.clear_after > 0)
+    for (size_t i = 0; i < st_.size(); ++i) {
+      Station& s = st_[i];
+      if (s.mouth == s.cell) continue;  // no dead end: a leaver can pass on
+      const bool leaver = inside.count(static_cast<int>(i)) > 0;
+      s.blocked = leaver ? s.blocked + 1 : 0;
+      if (!leaver) s.clearing = false;
+      if (!s.clearing && s.blocked >= opt_.clear_after) {
+        s.clearing = true;
+        ++clearings_;
+        for (std::vector<int>* l : {&s.admitted, &s.waiting})
+          for (int a : *l) place_[a] = -1, fresh[static_cast<int>(i)].push_back(a);
+        s.admitted.clear(), s.waiting.clear();
+        if (std::find(touched.begin(), touched.end(), static_cast<int>(i)) == touched.end()) touched.push_back(static_cast<int>(i));
+      }
+    }
+  std::sort(touched.begin(), touched.end());
   std::vector<std::pair<int32_t, int>> order;
   for (int i : touched) {
     Station& s = st_[i];
+    if (s.clearing) {  // everybody with an errand here waits beyond the queue until the pocket is empty
+      for (int a : fresh[i]) unplaced[a] = 1;
+      continue;
+    }
     auto room = [&] {
       auto it = inside.find(i);
       return static_cast<int>(s.admitted.size()) + (it == inside.end() ? 0 : it->second) < opt_.capacity;
