@@ -22,6 +22,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
+                         [--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
                           [--head-after 60] [--load-cost 0] [--pocket-cost 100] [--drop-hints [--against-rules]]]
 
@@ -41,6 +42,11 @@ fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped e
 first, planner.keep_priorities) on against off (no queues), per config (default: the four
 large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansions:
 errands per tick on / off and K both ways.
+--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]: instead, pocket
+clearing (tasks.queues.clear_after N, tasks/station_queues.hpp) on against off (the config
+without clear_after), per config with station queues (default: the large queues and parking
+examples) and fleet seed, same ticks (--large-ticks) and expansions; the off side runs
+--off-build when given (e.g. main's build: also without this build's other changes).
 --stall-rules: instead, the task layer's stall rules (tasks/urgency.hpp: stall handover
 swap_after, head hints head_after with agents leaving a dead-end pocket first, station load
 load_cost, foreign-pocket cost pocket_cost; with --drop-hints also drop_hints, with --mouth-cost N
@@ -288,7 +294,7 @@ def pocket_clear(a, build, tmp):
     --off-build the off side runs that build (e.g. main's: also without this build's other changes)."""
     clean = True
     off_build = os.path.abspath(a.off_build) if a.off_build else build
-    print(f"# on: tasks.queues.clear_after {a.pocket_clear} ({build}); off: the config as is ({off_build})")
+    print(f"# on: tasks.queues.clear_after {a.pocket_clear} ({build}); off: the config without clear_after ({off_build})")
     print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off | clearings on |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     seeds = [int(x) for x in a.seeds.split(",") if x]
@@ -296,10 +302,11 @@ def pocket_clear(a, build, tmp):
         ticks = a.ticks if "small" in base else a.large_ticks
         cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
         queues = dict(cfg["tasks"].get("queues") or {}, clear_after=a.pocket_clear)
+        plain = {k: v for k, v in queues.items() if k != "clear_after"}  # off: 0 (and readable by older builds)
         for seed in seeds:
             out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_clear")
             res = {}
-            for label, b, extra in (("on", build, {"queues": queues}), ("off", off_build, None)):
+            for label, b, extra in (("on", build, {"queues": queues}), ("off", off_build, {"queues": plain})):
                 m, err = run(b, base, f"{out}_{label}", ticks, a.expansions, None, extra, {"fleet": {"seed": seed}})
                 if m is None:
                     print(f"# {base} {label}: {err}", file=sys.stderr)
