@@ -6,7 +6,8 @@
 // parking cell left it stays where it stands -- unless that cell is `reserved` (a
 // station, a station's dead-end pocket or a queue cell: tasks/station_queues.hpp), where
 // it would block the station: then it claims the nearest cell that is neither reserved
-// nor claimed. Claims keep two idle agents off one cell. Without parking an idle agent
+// nor claimed. A parking cell that is itself reserved (a station queue laid along a parking
+// lane) is not used: an agent parked there would block the queue it stands on. Claims keep two idle agents off one cell. Without parking an idle agent
 // stands wherever its last errand ended: in an aisle, or in a dead-end station that the
 // next agent sent there cannot enter (no swaps).
 //
