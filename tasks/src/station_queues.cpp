@@ -60,6 +60,14 @@ StationQueues::StationQueues(const planner::Graph& g, std::vector<planner::Verte
     reserved_[k.mouth] = 1;
   }
   for (Station& k : st_) build_queue(k);
+  in_use_.assign(g.size(), 0);
+  area_.resize(st_.size());
+  for (planner::Vertex v = 0; v < g.size(); ++v)
+    if (pocket_of_[v] >= 0) area_[pocket_of_[v]].push_back(v);
+  for (size_t i = 0; i < st_.size(); ++i) {
+    if (st_[i].mouth != st_[i].cell) area_[i].push_back(st_[i].mouth);
+    area_[i].insert(area_[i].end(), st_[i].queue.begin(), st_[i].queue.end());
+  }
 }
 
 int StationQueues::admission_limit(int i) const
@@ -213,6 +221,12 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
     // Beyond the queue (not sticky): the caller parks them.
     for (; k < order.size(); ++k) unplaced[order[k].second] = 1;
   }
+  for (planner::Vertex v : in_use_list_) in_use_[v] = 0;
+  in_use_list_.clear();
+  for (size_t i = 0; i < st_.size(); ++i)
+    if (!st_[i].admitted.empty() || !st_[i].waiting.empty() || st_[i].clearing)
+      for (planner::Vertex v : area_[i])
+        if (!in_use_[v]) in_use_[v] = 1, in_use_list_.push_back(v);
 }
 
 }  // namespace tasks

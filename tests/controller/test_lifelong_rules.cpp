@@ -333,15 +333,16 @@ TEST(LifelongRules, ForeignPocketCostKeepsAgvsOutOfOtherStationsStubs)
 // dead-end stub in the corner, the station admits its next AGV behind them and its queue
 // fills the aisle behind that; nobody in the stub can get out (traced: pickup0's errands
 // stalled for the whole run, K 964 of 1000 ticks). With clear_after 20 the station gives up
-// its places until the stub is empty. 200 ticks, the config's 5 expansions per SUMO step
-// (deterministic): on K 107, 12 clearings; off (clear_after 0) K 155.
+// its places until the stub is empty. 400 ticks, the config's 5 expansions per SUMO step
+// (deterministic, ~2-3 s): on K 184, 20 clearings, 0.39 errands/tick; off (clear_after 0)
+// K 330, 0.36.
 TEST(LifelongRules, PocketClearingLetsAWedgedDeadEndStationEmpty)
 {
-  Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", "pocket_clearing", 200, 5);
+  Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", "pocket_clearing", 400, 5);
   EXPECT_EQ(cfg.tasks.queue_clear_after, 20);  // shipped on
   Controller c(cfg);
   const Metrics m = c.run();
   ctest_util::expect_checked_every_step(cfg, m);
   EXPECT_GT(m.clearings, 0);
-  EXPECT_LE(m.stalls.max_stall, 125);
+  EXPECT_LE(m.stalls.max_stall, 230);
 }

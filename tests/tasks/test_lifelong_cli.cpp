@@ -189,17 +189,10 @@ TEST(LifelongCli, LogHasTheControllersLifelongCounts)
   EXPECT_GT(j["maxErrandTicks"].get<long long>(), 10);
   EXPECT_EQ(j["queues"]["maxHeading"], 1);  // --queue-capacity 1
   EXPECT_GE(j["parking"]["idleAtEnd"].get<int>(), 15);  // 20 agents, 5 tasks
-  // Every errand cell is a station here, so the queues (2 cells each) and pockets reserve
-  // the 8 parking cells, and a reserved cell is no parking (tasks/parking.hpp): nobody parks.
-  EXPECT_EQ(j["parking"]["parkedAtEnd"].get<int>(), 0);
-  EXPECT_TRUE(j.contains("stallTicks"));
-  EXPECT_GT(j["numErrandFinished"].get<int>(), 5);
-  // Parking without queues: the idle agents wait on the parking cells.
-  r = run_cli(base + "--parking " + file);
-  ASSERT_EQ(r.code, 0) << r.err;
-  j = nlohmann::json::parse(r.out);
   EXPECT_GE(j["parking"]["parkedAtEnd"].get<int>(), 4);
   EXPECT_LE(j["parking"]["parkedAtEnd"].get<int>(), 8);
+  EXPECT_TRUE(j.contains("stallTicks"));
+  EXPECT_GT(j["numErrandFinished"].get<int>(), 5);
   // Without parking and queues: nobody parked, and the crowd at a station is not capped.
   r = run_cli(base);
   ASSERT_EQ(r.code, 0) << r.err;

@@ -268,20 +268,32 @@ TEST(StationQueues, AStationWhosePocketHoldsALeaverTooLongGivesUpItsPlacesUntilI
   }
 }
 
-// A parking cell on a reserved cell (a station's queue laid along a parking lane) is not used:
-// an agent parked there would block the queue it stands on.
-TEST(Parking, AParkingCellThatIsReservedIsNotUsed)
+// A parking cell on the cells of a station in use (its queue laid along a parking lane) is not
+// used, and an agent parked there leaves: it would block the queue it stands on. While the
+// station is idle the cell is a parking cell like any other.
+TEST(Parking, AParkingCellOnTheQueueOfAStationInUseIsNotUsed)
 {
   const auto& g = stub();
-  StationQueues q(g, {g.at(3, 0)}, {1, 4, 0});  // queue cells (3, 3)..(3, 6)
+  const Vertex s = g.at(3, 0);
+  StationQueues q(g, {s}, {1, 4, 0});  // queue cells (3, 3)..(3, 6)
   ASSERT_TRUE(q.reserved(g.at(3, 3)));
   Parking p(g, {g.at(3, 3), g.at(0, 7)});
-  const Config pos{g.at(3, 2)};  // idle on the mouth (reserved): must leave it
+  // Nobody at the station: the idle agent on the mouth (reserved: it must leave) parks on the
+  // nearest parking cell, the first queue cell.
+  Config pos{g.at(3, 2), g.at(5, 7)};
   Config goals = pos;
-  p.apply({1}, pos, &q.reserved_cells(), goals);
-  EXPECT_EQ(goals[0], g.at(0, 7));  // the queue cell next to it is no parking
-  Parking open(g, {g.at(3, 3), g.at(0, 7)});
-  goals = pos;
-  open.apply({1}, pos, nullptr, goals);  // nothing reserved: the nearest parking cell
+  std::vector<char> unplaced;
+  q.apply({-1, -1}, pos, goals, unplaced);
+  EXPECT_FALSE(q.in_use_cells()[g.at(3, 3)]);
+  p.apply({1, 0}, pos, &q.reserved_cells(), goals, &q.in_use_cells());
   EXPECT_EQ(goals[0], g.at(3, 3));
+  // Agent 1 gets an errand at the station: its queue is in use, the parked agent moves on.
+  pos[0] = g.at(3, 3);
+  goals = pos;
+  q.apply({-1, s}, pos, goals, unplaced);
+  EXPECT_TRUE(q.in_use_cells()[g.at(3, 3)]);
+  EXPECT_TRUE(q.in_use_cells()[g.at(3, 1)]);  // the pocket
+  EXPECT_FALSE(q.in_use_cells()[g.at(0, 7)]);
+  p.apply({1, 0}, pos, &q.reserved_cells(), goals, &q.in_use_cells());
+  EXPECT_EQ(goals[0], g.at(0, 7));
 }

@@ -91,6 +91,9 @@ class StationQueues {
   // Agents admitted to station i now (heading for its cell).
   const std::vector<int>& admitted(int i) const { return st_[i].admitted; }
   const std::vector<int>& waiting(int i) const { return st_[i].waiting; }
+  // Per vertex: the pocket, mouth and queue cells of the stations with an agent admitted or
+  // queued (or clearing) at the last apply(): where an idle agent must not park (parking.hpp).
+  const std::vector<uint8_t>& in_use_cells() const { return in_use_; }
   // Times a station gave up its places to clear its pocket (clear_after).
   long clearings() const { return clearings_; }
   void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { dist_.share(std::move(cache)); }
@@ -119,6 +122,9 @@ class StationQueues {
   std::vector<long> asked_;        // per agent: that request's stamp (a counter of requests)
   long requests_ = 0;
   long clearings_ = 0;
+  std::vector<uint8_t> in_use_;           // in_use_cells()
+  std::vector<planner::Vertex> in_use_list_;  // its set cells
+  std::vector<std::vector<planner::Vertex>> area_;  // per station: pocket, mouth and queue cells
   planner::DistTable dist_;        // distances to stations (ranking newcomers)
 };
 
