@@ -22,6 +22,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
+                         [--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
                           [--head-after 60] [--load-cost 0] [--pocket-cost 100] [--drop-hints [--against-rules]]]
 
@@ -41,6 +42,11 @@ fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped e
 first, planner.keep_priorities) on against off (no queues), per config (default: the four
 large lifelong examples) and fleet seed, same ticks (--large-ticks) and expansions:
 errands per tick on / off and K both ways.
+--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]: instead, pocket
+clearing (tasks.queues.clear_after N, tasks/station_queues.hpp) on against off (the config
+without clear_after), per config with station queues (default: the large queues and parking
+examples) and fleet seed, same ticks (--large-ticks) and expansions; the off side runs
+--off-build when given (e.g. main's build: also without this build's other changes).
 --stall-rules: instead, the task layer's stall rules (tasks/urgency.hpp: stall handover
 swap_after, head hints head_after with agents leaving a dead-end pocket first, station load
 load_cost, foreign-pocket cost pocket_cost; with --drop-hints also drop_hints, with --mouth-cost N
@@ -282,6 +288,38 @@ def stall_rules(a, build, tmp):
     return 0 if clean else 1
 
 
+def pocket_clear(a, build, tmp):
+    """Pocket clearing (tasks.queues.clear_after, tasks/station_queues.hpp) on against the config
+    as it is, per config with station queues and fleet seed (same ticks, expansions). With
+    --off-build the off side runs that build (e.g. main's: also without this build's other changes)."""
+    clean = True
+    off_build = os.path.abspath(a.off_build) if a.off_build else build
+    print(f"# on: tasks.queues.clear_after {a.pocket_clear} ({build}); off: the config without clear_after ({off_build})")
+    print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off | clearings on |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    seeds = [int(x) for x in a.seeds.split(",") if x]
+    for base in a.clear_configs:
+        ticks = a.ticks if "small" in base else a.large_ticks
+        cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+        queues = dict(cfg["tasks"].get("queues") or {}, clear_after=a.pocket_clear)
+        plain = {k: v for k, v in queues.items() if k != "clear_after"}  # off: 0 (and readable by older builds)
+        for seed in seeds:
+            out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_clear")
+            res = {}
+            for label, b, extra in (("on", build, {"queues": queues}), ("off", off_build, {"queues": plain})):
+                m, err = run(b, base, f"{out}_{label}", ticks, a.expansions, None, extra, {"fleet": {"seed": seed}})
+                if m is None:
+                    print(f"# {base} {label}: {err}", file=sys.stderr)
+                    return 1
+                clean = clean and run_clean(m)
+                res[label] = m
+            print(f"| {base} | {seed} | {res['on']['ticks']} | {on_off_cols(res)} | "
+                  f"{res['on']['lifelong']['errandTicks']['max']} / {res['off']['lifelong']['errandTicks']['max']} | "
+                  f"{res['on']['lifelong'].get('queues', {}).get('clearings', '-')} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -303,6 +341,11 @@ def main():
                              "config/large_warehouse_queues.yaml", "config/large_warehouse_parking.yaml"])
     ap.add_argument("--seeds", default="1,2", help="--admission, --stall-rules: fleet seeds")
     ap.add_argument("--stall-rules", action="store_true")
+    ap.add_argument("--pocket-clear", type=int, default=0, metavar="N",
+                    help="tasks.queues.clear_after N against the config as is (--clear-configs, --seeds, --off-build)")
+    ap.add_argument("--clear-configs", nargs="+",
+                    default=["config/large_warehouse_queues.yaml", "config/large_warehouse_parking.yaml"])
+    ap.add_argument("--off-build", help="--pocket-clear: the build of the off side (default --build)")
     ap.add_argument("--stall-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml"])
     ap.add_argument("--swap-after", type=int, default=30)
@@ -338,6 +381,8 @@ def main():
         return admission(a, build, tmp)
     if a.stall_rules:
         return stall_rules(a, build, tmp)
+    if a.pocket_clear:
+        return pocket_clear(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:

@@ -471,6 +471,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.max_errand_ticks = n.max_goal_ticks;
   m_.max_heading = n.max_heading;
   m_.queued_ticks = n.queued_ticks;
+  m_.clearings = n.clearings;
   m_.idle_at_end = n.idle;
   m_.parked_at_end = n.parked;
   m_.errands_finished = tm_->errands_finished();

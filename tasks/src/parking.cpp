@@ -33,7 +33,7 @@ planner::Vertex Parking::nearest(planner::Vertex from, Ok ok)
 }
 
 void Parking::apply(const std::vector<char>& idle, const planner::Config& positions, const std::vector<uint8_t>* reserved,
-                    planner::Config& goals)
+                    planner::Config& goals, const std::vector<uint8_t>* in_use)
 {
   const int n = static_cast<int>(idle.size());
   if (static_cast<int>(claim_.size()) != n) claim_.assign(n, -1), sent_.assign(n, 0);
@@ -52,14 +52,21 @@ void Parking::apply(const std::vector<char>& idle, const planner::Config& positi
   };
   for (int a = 0; a < n; ++a)
     if (!idle[a]) release(a);
+  // A parking cell on the cells of a station in use (a station queue laid along a parking
+  // lane) is no place to wait: an agent parked there blocks the queue it lies on, so it leaves.
+  // Traced on large_warehouse_parking (session 36): pickup0's queue ran down the parking lane,
+  // idle AGVs parked on every other queue cell, and pickup0's errands stalled for the whole run.
+  auto parkable = [&](planner::Vertex u) { return parking_[u] != 0 && !(in_use && (*in_use)[u]); };
+  for (int a = 0; a < n; ++a)
+    if (claim_[a] >= 0 && parking_[claim_[a]] && !parkable(claim_[a])) release(a);
   // Idle agents already on an unclaimed parking cell keep it, so nobody else is sent there.
   for (int a = 0; a < n; ++a)
-    if (idle[a] && claim_[a] < 0 && parking_[positions[a]] && claimed_by_[positions[a]] < 0) take(a, positions[a]);
+    if (idle[a] && claim_[a] < 0 && parkable(positions[a]) && claimed_by_[positions[a]] < 0) take(a, positions[a]);
   for (int a = 0; a < n; ++a) {
     if (!idle[a]) continue;
     if (claim_[a] < 0) {
       planner::Vertex v = -1;
-      if (free_parking_ > 0) v = nearest(positions[a], [&](planner::Vertex u) { return parking_[u] != 0; });
+      if (free_parking_ > 0) v = nearest(positions[a], parkable);
       if (v < 0) v = nearest(positions[a], [&](planner::Vertex u) { return !reserved || !(*reserved)[u]; });
       if (v >= 0) take(a, v);
     }

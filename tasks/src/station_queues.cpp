@@ -60,6 +60,14 @@ StationQueues::StationQueues(const planner::Graph& g, std::vector<planner::Verte
     reserved_[k.mouth] = 1;
   }
   for (Station& k : st_) build_queue(k);
+  in_use_.assign(g.size(), 0);
+  area_.resize(st_.size());
+  for (planner::Vertex v = 0; v < g.size(); ++v)
+    if (pocket_of_[v] >= 0) area_[pocket_of_[v]].push_back(v);
+  for (size_t i = 0; i < st_.size(); ++i) {
+    if (st_[i].mouth != st_[i].cell) area_[i].push_back(st_[i].mouth);
+    area_[i].insert(area_[i].end(), st_[i].queue.begin(), st_[i].queue.end());
+  }
 }
 
 int StationQueues::admission_limit(int i) const
@@ -148,7 +156,6 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
     if (added) touched.push_back(i);
     if (place_[a] < 0) it->second.push_back(a);
   }
-  std::sort(touched.begin(), touched.end());
   // Agents in a station's pocket that are not admitted there (on their way out, idle ones
   // leaving, passers-by at a through station) hold a place until they are out.
   std::unordered_map<int, int> inside;
@@ -157,9 +164,30 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
                                                               std::find(st_[i].admitted.begin(), st_[i].admitted.end(), a) !=
                                                                   st_[i].admitted.end()))
       ++inside[i];
+  if (opt_.clear_after > 0)
+    for (size_t i = 0; i < st_.size(); ++i) {
+      Station& s = st_[i];
+      if (s.mouth == s.cell) continue;  // no dead end: a leaver can pass on
+      const bool leaver = inside.count(static_cast<int>(i)) > 0;
+      s.blocked = leaver ? s.blocked + 1 : 0;
+      if (!leaver) s.clearing = false;
+      if (!s.clearing && s.blocked >= opt_.clear_after) {
+        s.clearing = true;
+        ++clearings_;
+        for (std::vector<int>* l : {&s.admitted, &s.waiting})
+          for (int a : *l) place_[a] = -1, fresh[static_cast<int>(i)].push_back(a);
+        s.admitted.clear(), s.waiting.clear();
+        if (std::find(touched.begin(), touched.end(), static_cast<int>(i)) == touched.end()) touched.push_back(static_cast<int>(i));
+      }
+    }
+  std::sort(touched.begin(), touched.end());
   std::vector<std::pair<int32_t, int>> order;
   for (int i : touched) {
     Station& s = st_[i];
+    if (s.clearing) {  // everybody with an errand here waits beyond the queue until the pocket is empty
+      for (int a : fresh[i]) unplaced[a] = 1;
+      continue;
+    }
     auto room = [&] {
       auto it = inside.find(i);
       return static_cast<int>(s.admitted.size()) + (it == inside.end() ? 0 : it->second) < opt_.capacity;
@@ -193,6 +221,12 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
     // Beyond the queue (not sticky): the caller parks them.
     for (; k < order.size(); ++k) unplaced[order[k].second] = 1;
   }
+  for (planner::Vertex v : in_use_list_) in_use_[v] = 0;
+  in_use_list_.clear();
+  for (size_t i = 0; i < st_.size(); ++i)
+    if (!st_[i].admitted.empty() || !st_[i].waiting.empty() || st_[i].clearing)
+      for (planner::Vertex v : area_[i])
+        if (!in_use_[v]) in_use_[v] = 1, in_use_list_.push_back(v);
 }
 
 }  // namespace tasks

@@ -304,7 +304,7 @@ void TaskManager::refresh_goals(const planner::Config& positions)
       for (size_t v = 0; v < reserved_.size(); ++v) reserved_[v] = battery_->reserved(v) || station_cells_[v] || (reserved && (*reserved)[v]);
       reserved = &reserved_;
     }
-    parking_->apply(idle, positions, reserved, goals_);
+    parking_->apply(idle, positions, reserved, goals_, queues_ ? &queues_->in_use_cells() : nullptr);
   }
 }
 

@@ -327,3 +327,22 @@ TEST(LifelongRules, ForeignPocketCostKeepsAgvsOutOfOtherStationsStubs)
   EXPECT_GT(off.stalls.max_stall, 200);
   EXPECT_GE(on.errands_finished, off.errands_finished * 3 / 2);
 }
+
+// Pocket clearing (tasks.queues.clear_after, tasks/station_queues.hpp) on the shipped large
+// warehouse with parking: in the first ticks the traffic pushes idle AGVs into pickup0's
+// dead-end stub in the corner, the station admits its next AGV behind them and its queue
+// fills the aisle behind that; nobody in the stub can get out (traced: pickup0's errands
+// stalled for the whole run, K 964 of 1000 ticks). With clear_after 20 the station gives up
+// its places until the stub is empty. 400 ticks, the config's 5 expansions per SUMO step
+// (deterministic, ~2-3 s): on K 184, 20 clearings, 0.39 errands/tick; off (clear_after 0)
+// K 330, 0.36.
+TEST(LifelongRules, PocketClearingLetsAWedgedDeadEndStationEmpty)
+{
+  Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", "pocket_clearing", 400, 5);
+  EXPECT_EQ(cfg.tasks.queue_clear_after, 20);  // shipped on
+  Controller c(cfg);
+  const Metrics m = c.run();
+  ctest_util::expect_checked_every_step(cfg, m);
+  EXPECT_GT(m.clearings, 0);
+  EXPECT_LE(m.stalls.max_stall, 230);
+}

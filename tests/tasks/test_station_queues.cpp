@@ -7,6 +7,7 @@
 
 #include "tasks/greedy_assigner.hpp"
 #include "tasks/lifelong_run.hpp"
+#include "tasks/parking.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/station_queues.hpp"
 #include "tasks/task_pool.hpp"
@@ -212,4 +213,87 @@ TEST(Parking, IdleAgentsEndOnParkingCells)
   EXPECT_GE(idle, 3);
   EXPECT_GE(pool.errands_finished(), 4);
   EXPECT_EQ(run.finish().planner_errors, 0);
+}
+
+// Pocket clearing (QueueOptions::clear_after): an agent that must get out of the stub (here
+// an idle one on S) with the admitted agent behind it is a deadlock nobody plans out of (in a
+// one-lane dead end nobody passes). After clear_after steps with a leaver inside, the station
+// gives up its places (its agents are unplaced: they wait like idle agents) and admits again,
+// in the old order, once the stub is empty. Off (clear_after 0), the admitted agent stays.
+TEST(StationQueues, AStationWhosePocketHoldsALeaverTooLongGivesUpItsPlacesUntilItIsEmpty)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  for (int clear_after : {0, 3}) {
+    StationQueues q(g, {s}, {1, 3, 0, true, clear_after});
+    // a0 idle, a1 and a2 with an errand at S.
+    Config pos{g.at(4, 2), g.at(3, 3), g.at(3, 7)};
+    std::vector<Vertex> errand{-1, s, s};
+    Config goals(3);
+    std::vector<char> unplaced;
+    auto apply = [&] {
+      for (int a = 0; a < 3; ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
+      q.apply(errand, pos, goals, unplaced);
+    };
+    apply();
+    ASSERT_EQ(q.admitted(0), (std::vector<int>{1}));
+    EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
+    // a0 pushed onto S, a1 behind it in the stub: wedged.
+    pos[0] = s;
+    pos[1] = g.at(3, 1);
+    for (int k = 0; k < 2; ++k) apply();
+    EXPECT_EQ(q.admitted(0), (std::vector<int>{1})) << clear_after;  // not yet
+    apply();
+    if (clear_after == 0) {
+      EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+      EXPECT_EQ(q.clearings(), 0);
+      continue;
+    }
+    EXPECT_TRUE(q.admitted(0).empty());
+    EXPECT_TRUE(q.waiting(0).empty());
+    EXPECT_EQ(unplaced, (std::vector<char>{0, 1, 1}));  // the caller parks them (off the stub)
+    EXPECT_EQ(q.clearings(), 1);
+    // a1 backs out; a0 still inside: nobody is let in.
+    pos[1] = g.at(3, 3);
+    apply();
+    EXPECT_TRUE(q.admitted(0).empty());
+    EXPECT_EQ(unplaced, (std::vector<char>{0, 1, 1}));
+    // a0 out: a1 (the older request) is admitted again, a2 queued.
+    pos[0] = g.at(4, 2);
+    apply();
+    EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+    EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
+    EXPECT_EQ(goals[1], s);
+    EXPECT_EQ(q.clearings(), 1);
+  }
+}
+
+// A parking cell on the cells of a station in use (its queue laid along a parking lane) is not
+// used, and an agent parked there leaves: it would block the queue it stands on. While the
+// station is idle the cell is a parking cell like any other.
+TEST(Parking, AParkingCellOnTheQueueOfAStationInUseIsNotUsed)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  StationQueues q(g, {s}, {1, 4, 0});  // queue cells (3, 3)..(3, 6)
+  ASSERT_TRUE(q.reserved(g.at(3, 3)));
+  Parking p(g, {g.at(3, 3), g.at(0, 7)});
+  // Nobody at the station: the idle agent on the mouth (reserved: it must leave) parks on the
+  // nearest parking cell, the first queue cell.
+  Config pos{g.at(3, 2), g.at(5, 7)};
+  Config goals = pos;
+  std::vector<char> unplaced;
+  q.apply({-1, -1}, pos, goals, unplaced);
+  EXPECT_FALSE(q.in_use_cells()[g.at(3, 3)]);
+  p.apply({1, 0}, pos, &q.reserved_cells(), goals, &q.in_use_cells());
+  EXPECT_EQ(goals[0], g.at(3, 3));
+  // Agent 1 gets an errand at the station: its queue is in use, the parked agent moves on.
+  pos[0] = g.at(3, 3);
+  goals = pos;
+  q.apply({-1, s}, pos, goals, unplaced);
+  EXPECT_TRUE(q.in_use_cells()[g.at(3, 3)]);
+  EXPECT_TRUE(q.in_use_cells()[g.at(3, 1)]);  // the pocket
+  EXPECT_FALSE(q.in_use_cells()[g.at(0, 7)]);
+  p.apply({1, 0}, pos, &q.reserved_cells(), goals, &q.in_use_cells());
+  EXPECT_EQ(goals[0], g.at(0, 7));
 }

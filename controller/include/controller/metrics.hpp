@@ -117,6 +117,7 @@ struct Metrics {
   // heading for its errand), and at the end the idle AGVs and those of them on a parking cell.
   int max_heading = 0;
   long long queued_ticks = 0;
+  long clearings = 0;  // station pockets cleared (tasks.queues.clear_after)
   int idle_at_end = 0, parked_at_end = 0;
   // fleet.battery (tasks/battery.hpp), metrics.json "battery": charging errands begun,
   // AGVs whose charge reached 0 (must be 0), the share of AGV-ticks spent charging on a

@@ -6,7 +6,9 @@
 // parking cell left it stays where it stands -- unless that cell is `reserved` (a
 // station, a station's dead-end pocket or a queue cell: tasks/station_queues.hpp), where
 // it would block the station: then it claims the nearest cell that is neither reserved
-// nor claimed. Claims keep two idle agents off one cell. Without parking an idle agent
+// nor claimed. A parking cell on the cells of a station in use (its queue laid along a parking
+// lane: `in_use`, StationQueues::in_use_cells) is not used, and an agent parked there leaves:
+// it would block the queue it stands on. Claims keep two idle agents off one cell. Without parking an idle agent
 // stands wherever its last errand ended: in an aisle, or in a dead-end station that the
 // next agent sent there cannot enter (no swaps).
 //
@@ -31,9 +33,10 @@ class Parking {
   Parking(const planner::Graph& g, std::vector<planner::Vertex> cells);
 
   // idle[a]: agent a holds no task. Sets goals[a] of the idle agents; `reserved` (per
-  // vertex, may be null) are the cells an idle agent must not stay on.
+  // vertex, may be null) are the cells an idle agent must not stay on; `in_use` (per vertex,
+  // may be null) the parking cells not to park on now.
   void apply(const std::vector<char>& idle, const planner::Config& positions, const std::vector<uint8_t>* reserved,
-             planner::Config& goals);
+             planner::Config& goals, const std::vector<uint8_t>* in_use = nullptr);
 
   bool is_parking(planner::Vertex v) const { return parking_[v] != 0; }
   // Agent a was sent somewhere: to a parking cell, or off a reserved cell. An agent that

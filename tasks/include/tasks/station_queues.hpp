@@ -51,6 +51,17 @@ struct QueueOptions {
   int admission = 0;  // pool mode: tasks held at once with an errand left at one station;
                       // 0 = capacity + its queue cells (nobody beyond the queue), -1 = no limit
   bool fifo = true;   // not yet placed: oldest request first (false: nearest first)
+  // Pocket clearing (0: off): a dead-end station whose pocket has held an agent not admitted
+  // there (one that must get out) for this many consecutive steps gives up its places: its
+  // admitted and queued agents wait like agents beyond the queue (parked, off the reserved
+  // cells) and nobody is admitted until the pocket is empty; requests keep their order
+  // (fifo). In a one-lane dead end nobody passes anybody, so a leaver with the station's
+  // AGV behind it and the queue behind that gets out only when they all back off; PIBT
+  // never backs them off (they rank above an idle leaver), and a short real-time search does
+  // not find the long retreat. Traced on the shipped queue configs (session 36): an idle AGV
+  // pushed onto a dead-end station stood there the rest of the run with the station's
+  // admitted AGV behind it and its queue behind that (K 594, 964).
+  int clear_after = 0;
   bool on() const { return capacity > 0; }
 };
 
@@ -80,6 +91,11 @@ class StationQueues {
   // Agents admitted to station i now (heading for its cell).
   const std::vector<int>& admitted(int i) const { return st_[i].admitted; }
   const std::vector<int>& waiting(int i) const { return st_[i].waiting; }
+  // Per vertex: the pocket, mouth and queue cells of the stations with an agent admitted or
+  // queued (or clearing) at the last apply(): where an idle agent must not park (parking.hpp).
+  const std::vector<uint8_t>& in_use_cells() const { return in_use_; }
+  // Times a station gave up its places to clear its pocket (clear_after).
+  long clearings() const { return clearings_; }
   void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { dist_.share(std::move(cache)); }
 
  private:
@@ -89,6 +105,8 @@ class StationQueues {
     int depth = 0;               // moves from the mouth to the station
     std::vector<planner::Vertex> queue;
     std::vector<int> admitted, waiting;
+    int blocked = 0;        // consecutive apply() calls with a leaver in the pocket
+    bool clearing = false;  // places given up until the pocket is empty (clear_after)
   };
   void build_queue(Station& s);
   void drop_place(int agent);
@@ -103,6 +121,10 @@ class StationQueues {
   std::vector<int> asked_at_;      // per agent: the station of its open request (fifo), -1
   std::vector<long> asked_;        // per agent: that request's stamp (a counter of requests)
   long requests_ = 0;
+  long clearings_ = 0;
+  std::vector<uint8_t> in_use_;           // in_use_cells()
+  std::vector<planner::Vertex> in_use_list_;  // its set cells
+  std::vector<std::vector<planner::Vertex>> area_;  // per station: pocket, mouth and queue cells
   planner::DistTable dist_;        // distances to stations (ranking newcomers)
 };
 
