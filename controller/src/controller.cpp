@@ -26,7 +26,6 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.lacam.dive = p.dive;
   opt.lacam.lns_stop_cost = p.stop_cost;
   opt.lacam.lns_count_moves = p.lns_moves;
-  opt.lacam.lns_stop_primary = p.stop_primary;
   opt.pref = pref;
   const planner::Solver kind = planner::parse_solver(p.solver);
   if (planner::plans_rotation(kind)) {

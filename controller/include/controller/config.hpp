@@ -121,7 +121,6 @@ struct PlannerSection {
   // reversal) costs this many steps more in LNS's tie-break, so the refinement prefers plans
   // an AGV drives without stopping. 0: off.
   int stop_cost = 0;
-  bool stop_primary = false;  // LacamOptions::lns_stop_primary
   bool lns_moves = false;  // LacamOptions::lns_count_moves: LNS's tie-break counts moves, not the loss
   // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
   // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top

@@ -83,7 +83,7 @@ bool BestPath::price_node()
   return true;
 }
 
-bool BestPath::splice(const HNode* from, const std::vector<HNode*>& window, const std::vector<int>& agents, int64_t extra)
+bool BestPath::splice(const HNode* from, const std::vector<HNode*>& window, const std::vector<int>& agents)
 {
   if (window.empty()) return false;
   const auto at = std::find(nodes_.begin(), nodes_.end(), from);
@@ -104,7 +104,7 @@ bool BestPath::splice(const HNode* from, const std::vector<HNode*>& window, cons
       }
   }
   const int64_t c = price(last);
-  if (c + extra > cost_) return false;  // equal: LNS lowered the loss at the same SOC
+  if (c > cost_) return false;  // equal: LNS lowered the loss at the same SOC
   nodes_.swap(p);
   last_.swap(last);
   cost_ = c;

@@ -342,7 +342,6 @@ bool Lacam::lns_step(int window)
   splice_from_ = path_nodes_[t0];
   spliced_.clear();
   splice_set_ = lns_.last_set();
-  splice_extra_ = lns_.last_extra();
   if (!timed_) insert_step();  // no deadline: at once, in this step (deterministic runs)
   return true;
 }
@@ -369,7 +368,7 @@ bool Lacam::insert_step()
   }
   // soc: the window is followed if it lowers the standard SOC, whatever the tree's loss says
   if (soc_on()) {
-    const bool ok = best_.splice(splice_from_, spliced_, splice_set_, splice_extra_);
+    const bool ok = best_.splice(splice_from_, spliced_, splice_set_);
     if (threads_) thread_spliced(ok);  // a worker's window (lacam_threads.cpp), if it was one
   }
   pending_.clear();

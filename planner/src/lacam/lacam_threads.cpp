@@ -158,7 +158,6 @@ bool Lacam::thread_step()
     pending_prev_ = splice_from_ = p[k + a - 1];
     spliced_.clear();
     splice_set_.clear();
-    splice_extra_ = 0;  // the threads run without a stop cost
     for (int i = 0; i < n_; ++i)
       if (moved[i]) splice_set_.push_back(i);
     T.adopting = j;

@@ -103,11 +103,8 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   // the standard SOC (settle: it stays primary, so the stops only break its ties).
   const int64_t c_stop = stop_cost_;
   const bool moves = count_moves_ && obj_ == Objective::soc;  // secondary: moves, not the loss
-  const bool primary = stop_primary_ && c_stop > 0 && obj_ == Objective::soc;
-  const int64_t P = (c_stop > 0 || moves) && (settle || primary) ? (c_stop + 1) * static_cast<int64_t>(t1 - t0 + 1) + 1 : 1;
-  const int64_t c_move = primary ? P * c_stop : c_stop;  // what a move from rest adds to g
-  const int64_t Ph = settle ? P : 1;  // what one step costs at least where it must move
-  auto h = [&](Vertex v) { return Ph * static_cast<int64_t>(std::abs(dist_.get(i, v) - d_end)); };
+  const int64_t P = (c_stop > 0 || moves) && settle ? (c_stop + 1) * static_cast<int64_t>(t1 - t0 + 1) + 1 : 1;
+  auto h = [&](Vertex v) { return P * static_cast<int64_t>(std::abs(dist_.get(i, v) - d_end)); };
   auto slot = [&](int t, Vertex v) { return static_cast<size_t>(t - t0) * V + static_cast<size_t>(v); };
   const size_t half = best_.size() / 2;  // stood states' offset (stop cost only)
   auto key = [&](int t, Vertex v, bool stood) { return slot(t, v) + (stood ? half : 0); };
@@ -142,7 +139,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
       found = true;
       break;
     }
-    if (Ph * (t1 - n.t) < h(n.v)) continue;  // cannot reach the end in time
+    if (P * (t1 - n.t) < h(n.v)) continue;  // cannot reach the end in time
     const Vertex came = n.parent >= 0 ? nodes_[n.parent].v : n.v;  // came == v: stood (or no history)
     const auto nb = g_.neighbors(n.v);
     for (size_t m = 0; m <= nb.size(); ++m) {
@@ -157,7 +154,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
       bool stood = false;
       if (c_stop > 0) {
         stood = u == n.v;
-        if (u != n.v && n.parent >= 0 && (n.stood || came == u)) g += c_move;  // a move from rest
+        if (u != n.v && n.parent >= 0 && (n.stood || came == u)) g += c_stop;  // a move from rest
       }
       const size_t k = key(n.t + 1, u, stood);
       if (stamp_[k] == epoch_ && best_[k] <= g) continue;
@@ -337,7 +334,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   for (int i : set) {
     before += cost_of(path, goals, i, t0, t1, st) * S;
     if (soc) before += count_moves_ ? agent_moves(path, i, t0, t1) : agent_cost(path, goals, i, t0, t1);
-    if (stop_cost_ > 0) before += stop_cost_ * agent_stops(path, i, t0, t1) * (stop_primary_ && soc ? S : 1);
+    if (stop_cost_ > 0) before += stop_cost_ * agent_stops(path, i, t0, t1);
   }
   rng.shuffle(set.data(), static_cast<int>(set.size()));
   std::vector<std::vector<Vertex>> fresh(set.size());
@@ -360,7 +357,7 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
     if (soc) after += S * (settle ? (last_off < 0 ? 0 : last_off - t0 + 1) : t1 - t0);
     for (int t = t0 + 1; stop_cost_ > 0 && t < t1; ++t) {
       const Vertex a = fresh[m][t - 1 - t0], v = fresh[m][t - t0], u = fresh[m][t + 1 - t0];
-      after += stop_cost_ * (u != v && (a == v || a == u)) * (stop_primary_ && soc ? S : 1);
+      after += stop_cost_ * (u != v && (a == v || a == u));
     }
     if (after >= before) ok = false;  // cannot win any more
   }
@@ -372,16 +369,6 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
     weight_[h] = std::max(1e-3, (won ? kGamma * static_cast<double>(before - after) / static_cast<double>(S * set.size()) : 0.0) +
                                     (1 - kGamma) * weight_[h]);
   if (!won) return false;
-  last_extra_ = 0;
-  if (stop_primary_ && soc && stop_cost_ > 0) {  // the stop cost beside the SOC (BestPath::splice)
-    for (size_t m = 0; m < set.size(); ++m) {
-      last_extra_ -= stop_cost_ * agent_stops(path, set[m], t0, t1);
-      for (int t = t0 + 1; t < t1; ++t) {
-        const Vertex a = fresh[m][t - 1 - t0], v = fresh[m][t - t0], u = fresh[m][t + 1 - t0];
-        last_extra_ += stop_cost_ * (u != v && (a == v || a == u));
-      }
-    }
-  }
   for (size_t m = 0; m < set.size(); ++m)
     for (int t = t0; t <= t1; ++t) path[t][set[m]] = fresh[m][t - t0];
   return true;

@@ -54,9 +54,7 @@ class BestPath {
   // The path with its nodes after `from` replaced by `window` (window.back() is the path's
   // own node there), where only `agents` moved differently: adopted, and true, unless
   // costlier (an LNS window of the same standard SOC has a lower loss).
-  // `extra`: a cost change beside the standard SOC that the window brings (LNS's stop cost
-  // in its primary cost, LnsRefiner::last_extra()): accepted while the SOC plus it does not rise.
-  bool splice(const HNode* from, const std::vector<HNode*>& window, const std::vector<int>& agents, int64_t extra = 0);
+  bool splice(const HNode* from, const std::vector<HNode*>& window, const std::vector<int>& agents);
 
  private:
   int64_t price(const std::vector<int32_t>& last) const;

@@ -116,7 +116,6 @@ struct LacamOptions {
   // executors drive without stopping (issue 21). Not for the refiner threads.
   int lns_stop_cost = 0;
   bool lns_count_moves = false;  // LnsRefiner::set_count_moves
-  bool lns_stop_primary = false;  // LnsRefiner::set_stop_primary
   // Engineering LaCAM* (Okumura, AAMAS-24) guidance, with refine, all in the refinement's own
   // budget (a third slot of the rotation LNS / LaCAM* / guide; the first solution's search is
   // untouched):
@@ -505,7 +504,6 @@ class Lacam {
   HNode* splice_from_ = nullptr;
   std::vector<HNode*> spliced_;
   std::vector<int> splice_set_;
-  int64_t splice_extra_ = 0;  // LnsRefiner::last_extra() of the window (BestPath::splice)
   std::vector<uint8_t> stays_;    // scratch: per agent, on its goal from an LNS window's end on
   std::vector<Config> pending_;   // that window: configurations [pending_next_, end) still to insert
   size_t pending_next_ = 0;

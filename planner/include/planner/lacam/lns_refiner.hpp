@@ -88,10 +88,6 @@ class LnsRefiner {
   // executor spends time on moves, and on waits only through what it waits for), so at an
   // equal standard SOC a step prefers waiting to detouring.
   void set_count_moves(bool on) { count_moves_ = on; }
-  // Under soc: the stop cost joins the primary cost (standard SOC + c x stops) instead of the
-  // tie-break; last_extra() is what the last improving step changed it by beside the SOC.
-  void set_stop_primary(bool on) { stop_primary_ = on; }
-  int64_t last_extra() const { return last_extra_; }
   int window() const { return window_; }
   // The window x |V| tables are allocated once, for the largest window (the constructor's,
   // or a larger one set later), and their pages are mapped on first touch (lazy_table.hpp).
@@ -137,8 +133,6 @@ class LnsRefiner {
   int window_;
   int stop_cost_ = 0;
   bool count_moves_ = false;
-  bool stop_primary_ = false;
-  int64_t last_extra_ = 0;
   int max_window_;  // the largest window the tables are allocated for
   LnsNeighbourhood nbh_;
   Objective obj_;
