@@ -52,6 +52,24 @@ TEST(ControllerDive, YamlKeyDefaultsOnAndParses)
                std::exception);
 }
 
+// planner.stop_cost / planner.lns_moves (issue 21, LNS's tie-break for physical executors):
+// off by default, parsed, and a negative cost is a one-line error naming the key.
+TEST(ControllerDive, StopCostKeysDefaultOffAndParse)
+{
+  const Config d = parse_config(kNet + "fleet: {count: 3}\n", "t.yaml", RTLACAM_CONFIGS);
+  EXPECT_EQ(d.planner.stop_cost, 0);
+  EXPECT_FALSE(d.planner.lns_moves);
+  const Config c = parse_config(kNet + "fleet: {count: 3}\nplanner: {stop_cost: 2, lns_moves: true}\n", "t.yaml", RTLACAM_CONFIGS);
+  EXPECT_EQ(c.planner.stop_cost, 2);
+  EXPECT_TRUE(c.planner.lns_moves);
+  try {
+    parse_config(kNet + "fleet: {count: 3}\nplanner: {stop_cost: -1}\n", "t.yaml", RTLACAM_CONFIGS);
+    ADD_FAILURE() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("planner.stop_cost"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ControllerDive, DemoExecutesACheaperStandardSocWithDives)
 {
   double on_sum = 0, off_sum = 0;

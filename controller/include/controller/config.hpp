@@ -117,6 +117,11 @@ struct PlannerSection {
   // aisles that solution's backtracking costs 3-4x the bound; a rollout is a far cheaper path
   // (controller/README.md, "Dives").
   bool dive = true;
+  // LNS stop cost (LacamOptions::lns_stop_cost): a planned move from rest (after a wait, or a
+  // reversal) costs this many steps more in LNS's tie-break, so the refinement prefers plans
+  // an AGV drives without stopping. 0: off.
+  int stop_cost = 0;
+  bool lns_moves = false;  // LacamOptions::lns_count_moves: LNS's tie-break counts moves, not the loss
   // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
   // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top
   // speed, v_fast the fastest cell's (controller/lane_costs.hpp; planner Graph::set_move_costs).

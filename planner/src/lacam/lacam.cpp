@@ -27,6 +27,8 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lg_.set_window(opt.lg_window);
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
+  lns_.set_stop_cost(opt.lns_stop_cost);
+  lns_.set_count_moves(opt.lns_count_moves);
   lns_wanted_ = opt.lns;
   if (opt.zones) {  // LNS and the refiner threads plan without PIBT's zone rule
     pibt_.set_zones(opt.zones.get());

@@ -14,6 +14,23 @@ int64_t LnsRefiner::agent_cost(const std::vector<Config>& path, const Config& go
   return c;
 }
 
+int64_t LnsRefiner::agent_moves(const std::vector<Config>& path, int i, int t0, int t1)
+{
+  int64_t c = 0;
+  for (int t = t0; t < t1; ++t) c += path[t + 1][i] != path[t][i];
+  return c;
+}
+
+int64_t LnsRefiner::agent_stops(const std::vector<Config>& path, int i, int t0, int t1)
+{
+  int64_t c = 0;
+  for (int t = t0 + 1; t < t1; ++t) {
+    const Vertex a = path[t - 1][i], v = path[t][i], u = path[t + 1][i];
+    c += u != v && (a == v || a == u);
+  }
+  return c;
+}
+
 int64_t LnsRefiner::agent_soc(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1, bool stays)
 {
   if (!stays) return t1 - t0;
@@ -34,8 +51,9 @@ void LnsRefiner::reserve_tables()
   max_window_ = std::max(max_window_, window_);
   const size_t cells = static_cast<size_t>(max_window_ + 1) * g_.size();
   occ_.ensure(cells);
-  best_.ensure(cells);
-  stamp_.ensure(cells);
+  // a stop cost doubles the A*'s states (stood or not); the second half is touched only then
+  best_.ensure(stop_cost_ > 0 ? 2 * cells : cells);
+  stamp_.ensure(stop_cost_ > 0 ? 2 * cells : cells);
   if (nbh_ == LnsNeighbourhood::blocking || nbh_ == LnsNeighbourhood::adaptive) at_.ensure(cells);
 }
 
@@ -80,12 +98,20 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
   }
   nodes_.clear();
   open_ = {};
-  auto h = [&](Vertex v) { return static_cast<int64_t>(std::abs(dist_.get(i, v) - d_end)); };
+  // Stop cost: g = P x (the step cost) + c x (moves from rest); P = 1 where the step cost is
+  // the loss (the secondary cost, which the stops join), and above any stop total where it is
+  // the standard SOC (settle: it stays primary, so the stops only break its ties).
+  const int64_t c_stop = stop_cost_;
+  const bool moves = count_moves_ && obj_ == Objective::soc;  // secondary: moves, not the loss
+  const int64_t P = (c_stop > 0 || moves) && settle ? (c_stop + 1) * static_cast<int64_t>(t1 - t0 + 1) + 1 : 1;
+  auto h = [&](Vertex v) { return P * static_cast<int64_t>(std::abs(dist_.get(i, v) - d_end)); };
   auto slot = [&](int t, Vertex v) { return static_cast<size_t>(t - t0) * V + static_cast<size_t>(v); };
+  const size_t half = best_.size() / 2;  // stood states' offset (stop cost only)
+  auto key = [&](int t, Vertex v, bool stood) { return slot(t, v) + (stood ? half : 0); };
   const Vertex s = path[t0][i];
-  nodes_.push_back({s, t0, 0, -1});
-  best_[slot(t0, s)] = 0;
-  stamp_[slot(t0, s)] = epoch_;
+  nodes_.push_back({s, t0, 0, -1, false});
+  best_[key(t0, s, false)] = 0;
+  stamp_[key(t0, s, false)] = epoch_;
   open_.push({h(s), -t0, 0});
   int free_from = t1 + 1;  // settle: the goal is free of others from here to t1
   if (settle) {
@@ -105,7 +131,7 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
     auto [f, negt, idx] = open_.top();
     open_.pop();
     const AstarNode n = nodes_[idx];
-    if (best_[slot(n.t, n.v)] < n.g) continue;
+    if (best_[key(n.t, n.v, n.stood)] < n.g) continue;
     if (n.t == t1 || (settle && n.v == goal && n.t >= free_from)) {
       if (n.v != end) continue;
       out.assign(W, goal);  // settle: waits on the goal after arriving
@@ -113,7 +139,8 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
       found = true;
       break;
     }
-    if (t1 - n.t < h(n.v)) continue;  // cannot reach the end in time
+    if (P * (t1 - n.t) < h(n.v)) continue;  // cannot reach the end in time
+    const Vertex came = n.parent >= 0 ? nodes_[n.parent].v : n.v;  // came == v: stood (or no history)
     const auto nb = g_.neighbors(n.v);
     for (size_t m = 0; m <= nb.size(); ++m) {
       const Vertex u = m < nb.size() ? nb[m] : n.v;
@@ -123,11 +150,17 @@ bool LnsRefiner::replan(int i, const std::vector<Config>& path, const Config& go
         const int32_t j = occ_[slot(n.t, u)];
         if (j != 0 && occ_[slot(n.t + 1, n.v)] == j) continue;  // swap conflict
       }
-      const int64_t g = n.g + (settle || !(n.v == goal && u == goal));
-      if (stamp_[at] == epoch_ && best_[at] <= g) continue;
-      stamp_[at] = epoch_;
-      best_[at] = static_cast<int32_t>(g);
-      nodes_.push_back({u, n.t + 1, g, idx});
+      int64_t g = n.g + (settle ? P + (moves && u != n.v) : moves ? (u != n.v) : !(n.v == goal && u == goal));
+      bool stood = false;
+      if (c_stop > 0) {
+        stood = u == n.v;
+        if (u != n.v && n.parent >= 0 && (n.stood || came == u)) g += c_stop;  // a move from rest
+      }
+      const size_t k = key(n.t + 1, u, stood);
+      if (stamp_[k] == epoch_ && best_[k] <= g) continue;
+      stamp_[k] = epoch_;
+      best_[k] = static_cast<int32_t>(g);
+      nodes_.push_back({u, n.t + 1, g, idx, stood});
       open_.push({g + h(u), -(n.t + 1), static_cast<int32_t>(nodes_.size() - 1)});
     }
   }
@@ -295,11 +328,13 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
   // Under soc the cost is (standard SOC, loss) lexicographically: soc x S + loss, S above any
   // loss of the set. A step that keeps the standard SOC and lowers the loss wins too: it frees
   // room (waits, detours of agents whose SOC is fixed by a later leave) for the next steps.
-  const int64_t S = soc ? static_cast<int64_t>(t1 - t0 + 1) * static_cast<int64_t>(set.size()) + 1 : 1;
+  // A stop cost c adds c per move from rest to the loss (secondary under soc): S grows with it.
+  const int64_t S = soc ? (1 + stop_cost_) * static_cast<int64_t>(t1 - t0 + 1) * static_cast<int64_t>(set.size()) + 1 : 1;
   int64_t before = 0;
   for (int i : set) {
     before += cost_of(path, goals, i, t0, t1, st) * S;
-    if (soc) before += agent_cost(path, goals, i, t0, t1);
+    if (soc) before += count_moves_ ? agent_moves(path, i, t0, t1) : agent_cost(path, goals, i, t0, t1);
+    if (stop_cost_ > 0) before += stop_cost_ * agent_stops(path, i, t0, t1);
   }
   rng.shuffle(set.data(), static_cast<int>(set.size()));
   std::vector<std::vector<Vertex>> fresh(set.size());
@@ -317,9 +352,13 @@ bool LnsRefiner::step(std::vector<Config>& path, const Config& goals, int k, Rng
       occ_[key] = i + 1;
       written_.push_back(key);
       if (v != goals[i]) last_off = t;
-      if (t < t1) after += !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
+      if (t < t1) after += soc && count_moves_ ? v != fresh[m][t - t0 + 1] : !(v == goals[i] && fresh[m][t - t0 + 1] == goals[i]);
     }
     if (soc) after += S * (settle ? (last_off < 0 ? 0 : last_off - t0 + 1) : t1 - t0);
+    for (int t = t0 + 1; stop_cost_ > 0 && t < t1; ++t) {
+      const Vertex a = fresh[m][t - 1 - t0], v = fresh[m][t - t0], u = fresh[m][t + 1 - t0];
+      after += stop_cost_ * (u != v && (a == v || a == u));
+    }
     if (after >= before) ok = false;  // cannot win any more
   }
   for (size_t key : written_) occ_[key] = 0;

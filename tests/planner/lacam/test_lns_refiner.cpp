@@ -158,3 +158,62 @@ TEST(LnsRefiner, TablesAreAllocatedOnceAndWarmedAhead)
   EXPECT_EQ(b.table_allocations(), 3);
   EXPECT_EQ(validate_plan(g, ins.starts, ins.goals, warm, true), "");
 }
+
+// Stop cost (issue 21): agent 0 follows agent 1, who creeps along a corridor (wait, move,
+// wait, move), and copies its stop-and-go: two moves from rest. Waiting first and then driving
+// on costs the same (loss and standard SOC) with one move from rest. Only a stop cost makes a
+// step prefer it; without one the step finds nothing better and the path keeps both stops.
+TEST(LnsRefiner, StopCostMergesStopAndGoIntoOneStop)
+{
+  Graph g = test::grid({"......"});
+  const Config s = test::at(g, {{0, 0}, {2, 0}}), t = test::at(g, {{4, 0}, {5, 0}});
+  const int x0[] = {0, 1, 1, 2, 2, 3, 4}, x1[] = {2, 2, 3, 3, 4, 4, 5};
+  for (Objective obj : {Objective::loss, Objective::soc})
+    for (int c : {0, 1}) {
+      std::vector<Config> p;
+      for (int k = 0; k < 7; ++k) p.push_back(test::at(g, {{x0[k], 0}, {x1[k], 0}}));
+      ASSERT_EQ(validate_plan(g, s, t, p, true), "");
+      ASSERT_EQ(LnsRefiner::agent_stops(p, 0, 0, 6), 2);
+      DistTable d(g);
+      d.set_goals(t);
+      LnsRefiner lns(g, d, 32, LnsNeighbourhood::random, obj);
+      lns.set_stop_cost(c);
+      Rng rng(5);
+      bool improved = false;
+      for (int k = 0; k < 10; ++k) improved |= lns.step(p, t, 1, rng, Clock::time_point::max(), nullptr, 0);
+      EXPECT_EQ(validate_plan(g, s, t, p, true), "");
+      EXPECT_EQ(improved, c > 0) << "objective " << static_cast<int>(obj) << " stop cost " << c;
+      EXPECT_EQ(LnsRefiner::agent_stops(p, 0, 0, 6), c > 0 ? 1 : 2);
+      EXPECT_EQ(cost(p, t), 6 + 6);  // neither's loss changes
+      EXPECT_EQ(p[6][0], t[0]);
+    }
+}
+
+// Moves tie-break (issue 21): agent 0 detours around agent 1, who leaves the corridor cell
+// (1, 0) at step 3, and arrives at step 4; waiting two steps and going straight arrives at
+// step 4 too (same standard SOC, same loss) with 2 moves instead of 4. Only counting moves
+// instead of the loss makes a step prefer the wait (a physical executor spends time on
+// moves, not on planned waits); with the loss the step finds nothing better.
+TEST(LnsRefiner, CountMovesPrefersWaitingToDetouring)
+{
+  Graph g = test::grid({"...", "..."});
+  const Config s = test::at(g, {{0, 0}, {1, 0}}), t = test::at(g, {{2, 0}, {1, 1}});
+  const int x0[] = {0, 0, 1, 2, 2, 2}, y0[] = {0, 1, 1, 1, 0, 0}, y1[] = {0, 0, 0, 1, 1, 1};
+  for (bool moves : {false, true}) {
+    std::vector<Config> p;
+    for (int k = 0; k < 6; ++k) p.push_back(test::at(g, {{x0[k], y0[k]}, {1, y1[k]}}));
+    ASSERT_EQ(validate_plan(g, s, t, p, true), "");
+    ASSERT_EQ(LnsRefiner::agent_moves(p, 0, 0, 5), 4);
+    DistTable d(g);
+    d.set_goals(t);
+    LnsRefiner lns(g, d, 32, LnsNeighbourhood::random, Objective::soc);
+    lns.set_count_moves(moves);
+    Rng rng(5);
+    bool improved = false;
+    for (int k = 0; k < 10; ++k) improved |= lns.step(p, t, 1, rng, Clock::time_point::max(), nullptr, 0);
+    EXPECT_EQ(validate_plan(g, s, t, p, true), "");
+    EXPECT_EQ(improved, moves);
+    EXPECT_EQ(LnsRefiner::agent_moves(p, 0, 0, 5), moves ? 2 : 4);
+    EXPECT_EQ(LnsRefiner::agent_soc(p, t, 0, 0, 5, true), 4);  // arrives at step 4 either way
+  }
+}

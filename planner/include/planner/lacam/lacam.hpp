@@ -118,6 +118,11 @@ struct LacamOptions {
   int lns_agents = 8;
   int lns_window = 256; // time steps replanned per LNS step (the occupancy table is window x |V|)
   LnsNeighbourhood lns_neighbourhood = LnsNeighbourhood::random;  // which agents a step replans
+  // LNS stop cost (LnsRefiner::set_stop_cost; 0: off): a move from rest (after a wait, or a
+  // reversal) costs this much more in LNS's secondary cost, for plans that physical
+  // executors drive without stopping (issue 21). Not for the refiner threads.
+  int lns_stop_cost = 0;
+  bool lns_count_moves = false;  // LnsRefiner::set_count_moves
   // Engineering LaCAM* (Okumura, AAMAS-24) guidance, with refine, all in the refinement's own
   // budget (a third slot of the rotation LNS / LaCAM* / guide; the first solution's search is
   // untouched):

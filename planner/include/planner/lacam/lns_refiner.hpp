@@ -77,6 +77,17 @@ class LnsRefiner {
   // occupancy table, the A* nodes and pops): a caller with a budget in expansions charges it.
   uint64_t work() const { return work_; }
   void set_window(int window) { window_ = window; }
+  // Stop cost c (0: off): a move that starts from rest -- right after a wait, or a reversal
+  // onto the cell the agent just left -- costs c more in the secondary cost (the loss under
+  // soc, the cost under loss), so at an equal primary cost a step prefers plans an AGV can
+  // drive without stopping (issue 21: a move from rest costs a physical executor ~2 s, a
+  // chained one 1 s; lock-step pays nothing). The window's first move (no history) is free.
+  void set_stop_cost(int c) { stop_cost_ = c < 0 ? 0 : c; }
+  int stop_cost() const { return stop_cost_; }
+  // Under soc: the secondary cost counts moves instead of the loss (waits are free: a physical
+  // executor spends time on moves, and on waits only through what it waits for), so at an
+  // equal standard SOC a step prefers waiting to detouring.
+  void set_count_moves(bool on) { count_moves_ = on; }
   int window() const { return window_; }
   // The window x |V| tables are allocated once, for the largest window (the constructor's,
   // or a larger one set later), and their pages are mapped on first touch (lazy_table.hpp).
@@ -93,6 +104,10 @@ class LnsRefiner {
   int last_heuristic() const { return last_h_; }
   const double* weights() const { return weight_; }
 
+  // Moves from rest (after a wait, or reversing) of agent i between steps t0 and t1, the
+  // move out of t0 not counted (its history is outside the window).
+  static int64_t agent_moves(const std::vector<Config>& path, int i, int t0, int t1);
+  static int64_t agent_stops(const std::vector<Config>& path, int i, int t0, int t1);
   // LaCAM* cost (the loss) of agent i's path between steps t0 and t1.
   static int64_t agent_cost(const std::vector<Config>& path, const Config& goals, int i, int t0, int t1);
   // Standard SOC of agent i's path between steps t0 and t1 when it stays on its goal after
@@ -116,6 +131,8 @@ class LnsRefiner {
   const Graph& g_;
   DistTable& dist_;
   int window_;
+  int stop_cost_ = 0;
+  bool count_moves_ = false;
   int max_window_;  // the largest window the tables are allocated for
   LnsNeighbourhood nbh_;
   Objective obj_;
@@ -131,11 +148,14 @@ class LnsRefiner {
     int t;
     int64_t g;
     int32_t parent;
+    bool stood;  // the agent waited on v the step before t (stop cost: its next move starts from rest)
   };
   using Item = std::tuple<int64_t, int, int32_t>;  // f, -t (deeper first), node
   std::vector<AstarNode> nodes_;
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open_;
-  LazyTable<int32_t> best_;  // (t - t0) * |V| + v -> best g (<= the window), valid where stamp_ == epoch_
+  // (t - t0) * |V| + v (+ one table of cells more for `stood` states under a stop cost)
+  // -> best g, valid where stamp_ == epoch_
+  LazyTable<int32_t> best_;
   LazyTable<uint32_t> stamp_;
   uint32_t epoch_ = 0;
   uint64_t clock_pops_ = 0;  // A* pops since construction: the deadline is read every 64
