@@ -205,10 +205,14 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
     cmd = [os.path.join(build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(steps),
            "--budget-ms", "1000", "--budget-expansions", str(expansions), "--solver", solver,
            "--quiet", "--out", out + ".log.json"]
-    if not agents:
-        cmd += urgency  # the config's tasks.urgency (its own fleet only: a sweep is the bare layout)
+    if not agents:  # the config's tasks.urgency (its own fleet only: a sweep is the bare layout)
+        u = list(urgency)
+        if "pocket_cost" in rot and "--pocket-cost" in u:  # the row's cost instead (CLI11 takes one)
+            k = u.index("--pocket-cost")
+            del u[k:k + 2]
+        cmd += u
     if "pocket_cost" in rot:
-        cmd += ["--pocket-cost", str(rot.pop("pocket_cost"))]  # after the config's: CLI11 keeps the last
+        cmd += ["--pocket-cost", str(rot.pop("pocket_cost"))]
     if solver in ROTATION:  # a turn is one grid step, as fleet.turn_s defaults to one tick in SUMO
         cmd += twin_rotation_args(solver, rot)
     cmd += ["--executor", executor]
