@@ -48,7 +48,7 @@ ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation acti
 VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "none"), "distance": ("priority", "distance"),
                    "age": ("priority", "age")}
 # "+pocket" (any solver): tasks.urgency.pocket_cost 100 in SUMO (PIBT ranks a move into another
-# station's dead-end stub 100 moves worse; pibt-rot honours it since s35), --pocket-cost 100 in
+# station's dead-end stub 100 moves worse; pibt-rot since s35, epibt and wppl since s36), --pocket-cost 100 in
 # the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam does not
 # gain with it (docs/twin_bench.md "Session 35").
 POCKET_COST = 100
@@ -167,7 +167,32 @@ def twin_problem(a, base, work):
     q = (cfg.get("tasks") or {}).get("queues") or {}
     keep = (cfg.get("planner") or {}).get("keep_priorities", False)
     steps_per_tick = round(cfg["run"]["tick_s"] / cfg["sumo"]["step_length"])
-    return prob, q, keep, steps_per_tick
+    return prob, q, keep, steps_per_tick, twin_urgency(cfg) if MIRROR_URGENCY else []
+
+
+MIRROR_URGENCY = True  # --no-twin-urgency: the twin without the config's tasks.urgency (as before s36)
+
+
+def twin_urgency(cfg):
+    """rtlacam-lifelong flags for the config's tasks.urgency, as rtlacam-sumo applies it
+    (controller/src/lifelong.cpp): stall hints on with station queues unless `stalls` says
+    otherwise, and each rule the config sets. mouth_cost has no rtlacam-lifelong flag: the
+    twin runs without it (bench_twin prints a note)."""
+    t = cfg.get("tasks") or {}
+    u = t.get("urgency") or {}
+    stalls = u.get("stalls", "auto")
+    on = ((t.get("queues") or {}).get("capacity", 0) > 0) if stalls == "auto" else bool(stalls)
+    args = ["--urgency-stalls" if on else "--no-urgency-stalls"]
+    for key, flag in (("swap_after", "--stall-swap-after"), ("head_after", "--stall-head-after"),
+                      ("load_cost", "--station-load-cost"), ("pocket_cost", "--pocket-cost")):
+        if u.get(key):
+            args += [flag, str(u[key])]
+    for key, flag in (("drop_hints", "--drop-hints"), ("sticky", "--sticky-stalls")):
+        if u.get(key):
+            args.append(flag)
+    if u.get("mouth_cost"):
+        print(f"# twin: tasks.urgency.mouth_cost {u['mouth_cost']} is not mirrored (rtlacam-lifelong has no flag for it)", flush=True)
+    return args
 
 
 def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=None):
@@ -175,11 +200,17 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
     on `executor` with the Bernoulli delay model at p (as SUMO's delays: 1-5 steps). `agents`:
     another fleet size than the config's, with queues off and priorities reset (the layout's
     own limit; bench_twin_sweep.py --fleet)."""
-    prob, q, keep, _ = twin
+    prob, q, keep, _, urgency = twin
     solver, rot = variant(solver)
     cmd = [os.path.join(build, "apps", "rtlacam-lifelong"), "--problem", prob, "--steps", str(steps),
            "--budget-ms", "1000", "--budget-expansions", str(expansions), "--solver", solver,
            "--quiet", "--out", out + ".log.json"]
+    if not agents:  # the config's tasks.urgency (its own fleet only: a sweep is the bare layout)
+        u = list(urgency)
+        if "pocket_cost" in rot and "--pocket-cost" in u:  # the row's cost instead (CLI11 takes one)
+            k = u.index("--pocket-cost")
+            del u[k:k + 2]
+        cmd += u
     if "pocket_cost" in rot:
         cmd += ["--pocket-cost", str(rot.pop("pocket_cost"))]
     if solver in ROTATION:  # a turn is one grid step, as fleet.turn_s defaults to one tick in SUMO
@@ -218,14 +249,17 @@ def main():
     ap.add_argument("--out", help="keep runs here (default: a temporary folder)")
     ap.add_argument("--twin-only", action="store_true",
                     help="run the grid twin side only (e.g. after a change to the twin, against an earlier SUMO side)")
+    ap.add_argument("--no-twin-urgency", action="store_true",
+                    help="the twin without the config's tasks.urgency rules (the twin of sessions 29-35)")
     ap.add_argument("--sumo-only", action="store_true",
                     help="run the SUMO side only (e.g. its twin rows run in another process)")
     a = ap.parse_args()
     if a.twin_only and a.sumo_only:
         sys.exit("bench_twin.py: --twin-only and --sumo-only: one of them")
     a.build = os.path.abspath(a.build)
-    global TREND_WINDOW
+    global TREND_WINDOW, MIRROR_URGENCY
     TREND_WINDOW = a.trend_window
+    MIRROR_URGENCY = not a.no_twin_urgency
     if a.trend_window <= 0:
         sys.exit(f"bench_twin.py: --trend-window {a.trend_window}: must be positive")
     a.trend_window = min(a.trend_window, a.ticks)  # a shorter run: both windows are the whole run

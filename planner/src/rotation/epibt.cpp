@@ -1,6 +1,7 @@
 #include "planner/rotation/epibt.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -95,6 +96,13 @@ void Epibt::set_guidance(Guidance gd)
   set_goals(goals, test_);
   ++stamp_;  // candidates ranked by the old costs are stale
   if (tf_) tf_reset();  // guide tables in the old costs: all anew
+}
+
+void Epibt::set_pockets(std::vector<Vertex> pocket, float cost)
+{
+  if (!pocket.empty() && pocket.size() != static_cast<size_t>(g_.size())) throw std::invalid_argument("pockets: one label per vertex");
+  pocket_ = std::move(pocket);
+  pocket_moves_ = cost > 0 ? cost : 0;
 }
 
 void Epibt::set_goals(const Config& goals, GoalTest test)
@@ -200,6 +208,10 @@ void Epibt::candidates(int i)
   int k = 0;
   Vertex cells[8];
   int32_t edges[8];
+  // Foreign pockets: in the units of the guided costs (a forward move costs at least
+  // min_forward(); 1 unguided), as RotationPibt charges them.
+  const bool pockets = pocket_moves_ > 0 && !pocket_.empty();
+  const uint32_t pocket_cost = pockets ? static_cast<uint32_t>(std::lround(pocket_moves_ * dist_.guidance().min_forward())) : 0;
   for (size_t op = 0; op < m; ++op) {
     const bool wait = static_cast<int>(op) == wait_;
     int o = 0;
@@ -230,6 +242,18 @@ void Epibt::candidates(int i)
         }
       }
       if (!first) cost += own ? std::min<uint32_t>(tf_->h(i, cells[D - 1], o), 1u << 24) : dist_.get(goal_table_[i], cells[D - 1], o);
+    }
+    if (pockets) {
+      const Vertex mine = pocket_[goal];
+      Vertex from = current_[i];
+      for (int d = 0; d < D; ++d) {
+        const Vertex p = pocket_[cells[d]];
+        if (p >= 0 && p != pocket_[from] && p != mine) {  // enters a foreign pocket
+          cost += (own ? TrafficFlow::kScale : 1) * pocket_cost;
+          break;
+        }
+        from = cells[d];
+      }
     }
     if (tf_ && !own) cost *= TrafficFlow::kScale;  // one scale for every robot (LNS gains)
     score_of_[static_cast<size_t>(i) * m + op] = cost * static_cast<uint32_t>(m) + static_cast<uint32_t>(op);

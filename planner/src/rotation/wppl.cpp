@@ -1,6 +1,7 @@
 #include "planner/rotation/wppl.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace planner {
@@ -82,7 +83,8 @@ void Wppl::initial_plan()
     for (int i = 0; i < n; ++i) tail_[i].push_back({pibt_.current()[i], pibt_.headings()[i]});
     pibt_.restore(snap);
     int64_t tail_obj = 0;
-    for (int i = 0; i < n; ++i) tail_obj += windowed_cost(pibt_.dist(), pibt_.goal_table(i), goals()[i], tail_[i]);
+    for (int i = 0; i < n; ++i)
+      tail_obj += windowed_cost(pibt_.dist(), pibt_.goal_table(i), goals()[i], tail_[i]) + pocket_penalty(i, tail_[i]);
     if (tail_obj < objective_) {
       plan_.swap(tail_);
       for (int i = 0; i < n; ++i) cost_[i] = cost(i);
@@ -145,6 +147,25 @@ void Wppl::neighbourhood(std::vector<int>& nb)
   }
 }
 
+void Wppl::set_pockets(std::vector<Vertex> pocket, float cost)
+{
+  pibt_.set_pockets(pocket, cost);  // checks the labels
+  pocket_ = std::move(pocket);
+  pocket_cost_ = cost > 0 ? std::lround(cost * pibt_.dist().guidance().min_forward()) : 0;
+  planned_ = false;
+}
+
+int64_t Wppl::pocket_penalty(int i, const RotPath& p) const
+{
+  if (pocket_cost_ == 0 || pocket_.empty()) return 0;
+  const Vertex mine = pocket_[goals()[i]];
+  for (size_t t = 1; t < p.size(); ++t) {
+    const Vertex q = pocket_[p[t].v];
+    if (q >= 0 && q != pocket_[p[t - 1].v] && q != mine) return pocket_cost_;
+  }
+  return 0;
+}
+
 bool Wppl::lns_iteration(Clock::time_point deadline)
 {
   std::vector<int>& nb = nb_;
@@ -163,6 +184,7 @@ bool Wppl::lns_iteration(Clock::time_point deadline)
     const int i = nb[k];
     costs[k] = astar_.plan(plan_[i][0], goals()[i], pibt_.goal_table(i), res_, paths[k], deadline);
     if (costs[k] < 0) break;
+    costs[k] += pocket_penalty(i, paths[k]);
     res_.add(i, paths[k]);
     new_sum += costs[k];
   }

@@ -208,6 +208,37 @@ TEST(Epibt, AStepCutShortByItsDeadlineIsStillValid)
   EXPECT_LE(p.timeouts(), 20u);
 }
 
+// Foreign pockets (Epibt::set_pockets, tasks.urgency.pocket_cost; RotationPibt's rule):
+// robot 1 stands on its goal in a corridor above a one-cell dead end, facing south into it;
+// robot 0 (west-bound, older: it goes first) drives FFF through robot 1's cell. Robot 1 must
+// leave: into the stub (FWW: 3 actions + 3 back to its goal) or ahead of robot 0 (RFF: 3 + 4).
+// Without pockets it takes the stub; with the stub a pocket that is not its goal's, RFF. Bound
+// for the stub, its own pocket costs nothing.
+TEST(Epibt, AForeignPocketIsTheLastResortOfAPushedRobot)
+{
+  const Graph g = test::grid({".....", "@@.@@"});
+  const Vertex stub = g.at(2, 1), mouth = g.at(2, 0);
+  for (int rounds : {0, 20}) {
+    auto op = [&](bool pockets, Vertex goal1) {
+      planner::EpibtOptions opt;
+      opt.priority = planner::EpibtOptions::Priority::Age;
+      opt.lns_rounds = rounds;
+      Epibt p(g, {g.at(4, 0), mouth}, {g.at(0, 0), goal1}, opt);
+      p.set_headings({2, 1});  // robot 0 west, robot 1 south (facing the stub)
+      if (pockets) {
+        std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
+        pocket[static_cast<size_t>(stub)] = stub;
+        p.set_pockets(pocket, 100.0f);
+      }
+      p.search(planner::Budget{});
+      return std::make_pair(p.operation(0), p.operation(1));
+    };
+    EXPECT_EQ(op(false, mouth), std::make_pair(std::string("FFF"), std::string("FWW"))) << "rounds " << rounds;
+    EXPECT_EQ(op(true, mouth), std::make_pair(std::string("FFF"), std::string("RFF"))) << "rounds " << rounds;
+    EXPECT_EQ(op(true, stub).second[0], 'F') << "rounds " << rounds;  // bound for the stub: drives in
+  }
+}
+
 TEST(Epibt, BadInputIsRefused)
 {
   const Graph line = Graph::from_edges(2, {{0, 1}});

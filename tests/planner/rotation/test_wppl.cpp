@@ -321,6 +321,34 @@ TEST(Wppl, WithoutLnsItTakesPibtRotsSteps)
   }
 }
 
+// Foreign pockets reach wppl's rollout (Wppl::set_pockets; RotationPibt's test
+// AForeignPocketIsTheLastResortOfAPushedRobot): robot 1 on its goal above a one-cell dead end,
+// facing into it, is asked to vacate by robot 0. Without pockets it drives into the stub;
+// with the stub a pocket that is not its goal's it turns west instead. LNS on (the default
+// iterations): it keeps the rollout's step, which is already optimal for the window.
+TEST(Wppl, AForeignPocketIsTheLastResortOfAPushedRobot)
+{
+  const Graph g = test::grid({".....", "@@.@@"});
+  const Vertex stub = g.at(2, 1), mouth = g.at(2, 0);
+  for (uint64_t iters : {0, 20}) {
+    auto step = [&](bool pockets) {
+      Wppl w(g, {g.at(3, 0), mouth}, {g.at(0, 0), mouth}, 0);
+      w.set_headings({2, 1});  // robot 0 west, robot 1 south (facing the stub)
+      if (pockets) {
+        std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
+        pocket[static_cast<size_t>(stub)] = stub;
+        w.set_pockets(pocket, 100.0f);
+      }
+      w.search(planner::Budget::expansion_count(iters));
+      return std::make_pair(w.actions(), w.next());
+    };
+    const auto [a_off, n_off] = step(false);
+    EXPECT_EQ(n_off[1], stub) << a_off << " iters " << iters;  // into the stub
+    const auto [a_on, n_on] = step(true);
+    EXPECT_EQ(n_on[1], mouth) << a_on << " iters " << iters;   // stays out: turns
+  }
+}
+
 TEST(Wppl, SameSeedAndIterationBudgetGiveTheSameSteps)
 {
   DenseRun a(10, 10, 10, 25, 5), b(10, 10, 10, 25, 5);

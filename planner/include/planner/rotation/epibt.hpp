@@ -123,6 +123,13 @@ class Epibt : public RotationPlanner {
   // unguided every action costs 1, the paper's ranking.
   void set_guidance(Guidance gd) override;
   void set_deadline(RotationDist::Deadline d) override { dist_.set_deadline(d); }
+  // Foreign pockets (RealtimePlanner::set_pockets, tasks.urgency.pocket_cost; RotationPibt's
+  // rule): an operation whose F enters, from outside, a dead-end pocket other than the
+  // robot's goal's ranks `cost` forward moves worse. Turns, waits and moves inside a pocket
+  // are never charged; it only reorders candidates (a robot with no other way still takes
+  // the stub). Empty or 0: off (unchanged decisions). Why: an idle robot pushed into a
+  // one-cell station stub traps the holders bound there (docs/twin_bench.md, s34 trace).
+  void set_pockets(std::vector<Vertex> pocket, float cost) override;
 
   // The operation each robot holds (after search(): the planned one), e.g. "RFF".
   std::string operation(int agent) const { return ops_[static_cast<size_t>(op_[agent])].acts; }
@@ -171,6 +178,8 @@ class Epibt : public RotationPlanner {
   std::vector<double> key_;         // priority: larger first
   std::vector<double> age_;         // Priority::Age: RotationPibt's priority
   std::vector<int32_t> order_;
+  std::vector<Vertex> pocket_;      // vertex -> its dead-end pocket, or -1 (set_pockets)
+  float pocket_moves_ = 0;          // foreign-pocket cost in forward moves (0: off)
   std::vector<uint8_t> cand_;       // agent * ops: candidate operations, best first
   std::vector<uint32_t> score_of_;  // agent * ops: cost * ops + op (lower better), valid operations
   std::vector<double> power_;       // LNS: weight of a robot's gain (priority rank, squared)

@@ -84,6 +84,12 @@ class Wppl : public RotationPlanner {
   // still counts steps (a plan that reaches its goal at t costs t < W + any h).
   void set_guidance(Guidance gd) override { pibt_.set_guidance(std::move(gd)); }
   void set_deadline(RotationDist::Deadline d) override { pibt_.set_deadline(d); }
+  // Foreign pockets (tasks.urgency.pocket_cost): the rollout's PIBT ranks a move into a
+  // dead-end pocket other than the robot's goal's `cost` moves worse (RotationPibt::set_pockets),
+  // and a windowed path that enters one from outside costs `cost` moves more in the LNS
+  // objective, so the LNS does not undo it for a shorter path (space-time A* plans without
+  // it; its paths into a foreign stub lose). Empty or 0: off (unchanged decisions).
+  void set_pockets(std::vector<Vertex> pocket, float cost) override;
 
   void set_options(const WpplOptions& opt);  // between steps
   const WpplOptions& options() const { return opt_; }
@@ -101,7 +107,8 @@ class Wppl : public RotationPlanner {
   void initial_plan();
   bool lns_iteration(Clock::time_point deadline);
   void neighbourhood(std::vector<int>& out);
-  int64_t cost(int i) const { return windowed_cost(pibt_.dist(), pibt_.goal_table(i), goals()[i], plan_[i]); }
+  int64_t cost(int i) const { return windowed_cost(pibt_.dist(), pibt_.goal_table(i), goals()[i], plan_[i]) + pocket_penalty(i, plan_[i]); }
+  int64_t pocket_penalty(int i, const RotPath& p) const;  // pocket_cost_ if p enters a foreign pocket, else 0
 
   const Graph& g_;
   RotationPibt pibt_;
@@ -110,6 +117,8 @@ class Wppl : public RotationPlanner {
   StAstarRot astar_;
   RotReservations res_;
   std::vector<RotPath> plan_, tail_;
+  std::vector<Vertex> pocket_;  // vertex -> its dead-end pocket, or -1 (set_pockets)
+  int64_t pocket_cost_ = 0;     // in the units of h (guided: min_forward() per move)
   std::vector<int64_t> cost_;
   std::vector<int> in_nb_;  // per robot: stamp of the neighbourhood it is in
   std::vector<uint16_t> h0_;  // per robot: h of its state now (this step's)
