@@ -122,6 +122,14 @@ struct PlannerSection {
   // an AGV drives without stopping. 0: off.
   int stop_cost = 0;
   bool lns_moves = false;  // LacamOptions::lns_count_moves: LNS's tie-break counts moves, not the loss
+  // PIBT's tie-break among equally short moves toward the goal (LacamOptions::free_first): a
+  // free cell first, one whose AGV comes head-on or is parked on its goal last. On by default
+  // in the CLI's and Python's RT-LaCAM* (grid first solutions gm 0.956). Off here until its
+  // K is checked: in SUMO (50 expansions/step, seeds 1-4) lifelong errands/tick on/off gm
+  // 1.134 (small_warehouse_lifelong) and 1.062 (large), but one small run's longest stall went
+  // 206 -> 392; one-shot large_warehouse_agv (adg-follow, seeds 1-8) makespan gm 1.023 (p = 0)
+  // and 0.965 (p = 0.01). controller/README.md "planner.free_first".
+  bool free_first = false;
   // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
   // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top
   // speed, v_fast the fastest cell's (controller/lane_costs.hpp; planner Graph::set_move_costs).
