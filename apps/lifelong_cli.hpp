@@ -80,6 +80,9 @@ struct SolverCli {
     app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit,
                  "epibt: each step starts from the tails of the last step's operations")
         ->capture_default_str();
+    app.add_flag("--epibt-pocket-exit,!--no-epibt-pocket-exit", ep.pocket_exit,
+                 "epibt: no operation goes deeper into a dead-end pocket that a robot in it has to leave (needs --urgency-stalls' pockets)")
+        ->capture_default_str();
     app.add_flag("--epibt-wait-op", ep.wait_op,
                  "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");
     app.add_option("--epibt-lns", ep.lns_rounds,

@@ -46,7 +46,9 @@ ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation acti
 # controller's planner.rotation defaults (controller/config.hpp): guidance arrows for pibt-rot
 # and epibt, none for wppl; back_last on; epibt priority age (rtlacam-lifelong: distance).
 VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "none"), "distance": ("priority", "distance"),
-                   "age": ("priority", "age")}
+                   "age": ("priority", "age"), "noexit": ("pocket_exit", False)}
+# "+noexit" (epibt): planner.rotation.pocket_exit false / --no-epibt-pocket-exit, the stub
+# livelock of sessions 35-36 back (EpibtOptions::pocket_exit), for before/after rows.
 # "+pocket" (any solver): tasks.urgency.pocket_cost 100 in SUMO (PIBT ranks a move into another
 # station's dead-end stub 100 moves worse; pibt-rot since s35, epibt and wppl since s36), --pocket-cost 100 in
 # the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam does not
@@ -63,7 +65,9 @@ def variant(name):
             rot["pocket_cost"] = POCKET_COST
             continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
-            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +pocket with any")
+            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noexit with epibt; +pocket with any")
+        if o == "noexit" and solver != "epibt":
+            sys.exit(f"bench_twin.py: --solvers: '{name}': +noexit goes with epibt")
         k, v = VARIANT_OPTIONS[o]
         rot[k] = v
     return solver, rot
@@ -73,6 +77,8 @@ def twin_rotation_args(solver, rot):
     args = ["--action-model", "rotation", "--guidance", rot.get("guidance", "none" if solver == "wppl" else "arrows")]
     if solver == "epibt":
         args += ["--epibt-priority", rot.get("priority", "age")]
+        if rot.get("pocket_exit", True) is False:
+            args += ["--no-epibt-pocket-exit"]
     else:
         args += ["--rot-back-last"]
     return args

@@ -36,6 +36,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
     if (r.guidance == "arrows") opt.guidance = planner::arrow_guidance(g, r.guidance_costs[0], r.guidance_costs[1], r.guidance_costs[2]);
     opt.epibt.depth = r.depth;
     opt.epibt.lns_rounds = r.lns_rounds;
+    opt.epibt.pocket_exit = r.pocket_exit;
     opt.epibt.priority = r.priority == "age" ? planner::EpibtOptions::Priority::Age : planner::EpibtOptions::Priority::Distance;
     opt.epibt.tf.on = r.traffic_flow;
     opt.wppl.window = r.window;

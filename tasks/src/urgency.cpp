@@ -58,7 +58,8 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
 void hint_pockets(const TaskManager& tm, planner::RealtimePlanner& p)
 {
   const int cost = tm.urgency().pocket_cost;
-  if (cost > 0 && !tm.dead_end_pockets().empty()) p.set_pockets(tm.dead_end_pockets(), static_cast<float>(cost));
+  // Also at cost 0 (off for every cost rule): epibt's pocket exit rule needs the labels alone.
+  if (!tm.dead_end_pockets().empty()) p.set_pockets(tm.dead_end_pockets(), static_cast<float>(std::max(0, cost)));
 }
 
 }  // namespace tasks

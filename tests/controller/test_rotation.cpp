@@ -275,6 +275,12 @@ TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
                                  RTLACAM_CONFIGS);
   EXPECT_EQ(ok.planner.rotation.window, 8);
   EXPECT_TRUE(ok.planner.rotation_solver());
+  // epibt's pocket exit rule (EpibtOptions::pocket_exit): on unless the YAML turns it off.
+  EXPECT_TRUE(ok.planner.rotation.pocket_exit);
+  EXPECT_FALSE(parse_config(net + "planner: {solver: epibt, rotation: {pocket_exit: false}}\n", "t.yaml", RTLACAM_CONFIGS)
+                   .planner.rotation.pocket_exit);
+  EXPECT_EQ(err("planner: {solver: pibt-rot, rotation: {pocket_exit: false}}\n"),
+            "t.yaml: planner.rotation.pocket_exit: only with solver epibt, not pibt-rot");
 
   // A net whose cells are not on a lattice: refused before SUMO starts, naming the net.
   Config diag = parse_config("sumo:\n  net: " + std::string(RTLACAM_CONTROLLER_DATA) +

@@ -103,6 +103,39 @@ void Epibt::set_pockets(std::vector<Vertex> pocket, float cost)
   if (!pocket.empty() && pocket.size() != static_cast<size_t>(g_.size())) throw std::invalid_argument("pockets: one label per vertex");
   pocket_ = std::move(pocket);
   pocket_moves_ = cost > 0 ? cost : 0;
+  // Depth of each pocket cell: actions from the pocket's mouth (1 next to it), so that "deeper"
+  // is known for the exit rule (pocket_exit). Breadth first from the cells next to the outside.
+  depth_.assign(pocket_.size(), 0);
+  leaving_.assign(pocket_.size(), 0);
+  std::vector<Vertex> front, next;
+  for (Vertex v = 0; v < static_cast<Vertex>(pocket_.size()); ++v) {
+    if (pocket_[v] < 0) continue;
+    for (Vertex u : g_.neighbors(v))
+      if (pocket_[u] != pocket_[v]) {
+        depth_[v] = 1, front.push_back(v);
+        break;
+      }
+  }
+  for (int d = 2; !front.empty(); ++d, front.swap(next)) {
+    next.clear();
+    for (Vertex v : front)
+      for (Vertex u : g_.neighbors(v))
+        if (pocket_[u] == pocket_[v] && depth_[u] == 0) depth_[u] = d, next.push_back(u);
+  }
+}
+
+bool Epibt::enters_blocked_pocket(int i, const Vertex* cells) const
+{
+  Vertex from = current_[i];
+  for (int d = 0; d < opt_.depth; ++d) {
+    const Vertex c = cells[d];
+    if (c != from) {
+      const Vertex p = pocket_[c];
+      if (p >= 0 && leaving_[p] && depth_[c] > (pocket_[from] == p ? depth_[from] : 0)) return true;
+    }
+    from = c;
+  }
+  return false;
 }
 
 void Epibt::set_goals(const Config& goals, GoalTest test)
@@ -211,6 +244,7 @@ void Epibt::candidates(int i)
   // Foreign pockets: in the units of the guided costs (a forward move costs at least
   // min_forward(); 1 unguided), as RotationPibt charges them.
   const bool pockets = pocket_moves_ > 0 && !pocket_.empty();
+  const bool exit_rule = opt_.pocket_exit && !pocket_.empty();
   const uint32_t pocket_cost = pockets ? static_cast<uint32_t>(std::lround(pocket_moves_ * dist_.guidance().min_forward())) : 0;
   for (size_t op = 0; op < m; ++op) {
     const bool wait = static_cast<int>(op) == wait_;
@@ -256,8 +290,11 @@ void Epibt::candidates(int i)
       }
     }
     if (tf_ && !own) cost *= TrafficFlow::kScale;  // one scale for every robot (LNS gains)
+    // The exit rule: never deeper into a pocket that a robot has to leave (not a candidate;
+    // its gain for LNS stays defined).
+    const bool blocked = exit_rule && enters_blocked_pocket(i, cells);
     score_of_[static_cast<size_t>(i) * m + op] = cost * static_cast<uint32_t>(m) + static_cast<uint32_t>(op);
-    if (wait && !opt_.wait_op && !on_goal) continue;
+    if ((wait && !opt_.wait_op && !on_goal) || blocked) continue;
     c[k++] = {cost, static_cast<uint8_t>(op)};
   }
   std::stable_sort(c, c + k);  // cost, then the better operation
@@ -345,6 +382,14 @@ Status Epibt::search(const Budget& b)
   if (tf_) tf_work(deadline_ == Clock::time_point::max() ? deadline_ : start + std::chrono::duration_cast<Clock::duration>((deadline_ - start) * opt_.tf.share));
   ++stamp_;
   ++round_;
+  if (opt_.pocket_exit && !pocket_.empty()) {  // pockets that a robot in them has to leave
+    for (Vertex p : leaving_list_) leaving_[p] = 0;
+    leaving_list_.clear();
+    for (int i = 0; i < n; ++i) {
+      const Vertex p = pocket_[current_[i]];
+      if (p >= 0 && pocket_[goals_[i]] != p && !leaving_[p]) leaving_[p] = 1, leaving_list_.push_back(p);
+    }
+  }
   for (int i = 0; i < n; ++i)
     key_[i] = opt_.priority == Priority::Age ? age_[i] : -static_cast<double>(h(i));
   for (int i = 0; i < n; ++i) order_[i] = i;

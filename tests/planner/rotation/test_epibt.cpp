@@ -239,6 +239,45 @@ TEST(Epibt, AForeignPocketIsTheLastResortOfAPushedRobot)
   }
 }
 
+// The pocket exit rule (EpibtOptions::pocket_exit): a one-wide stub of two cells under a
+// corridor; robot 0 holds the station at the stub's end, facing the wall, its new goal at the
+// corridor's west end; robot 1, at the mouth facing the stub, is the next holder. By the
+// paper's priority (nearest first) robot 1 plans first, cannot take the station cell (robot 0
+// needs three actions to leave it) and drives into the stub: robot 0 is walled in behind it
+// and neither moves again (the trap behind the collapse of the warehouse twins, s36). With
+// the rule robot 1 stays out while robot 0 is in the stub, robot 0 leaves, then robot 1 enters.
+TEST(Epibt, NobodyGoesDeeperIntoAPocketThatARobotMustLeave)
+{
+  const Graph g = test::grid({"@@.@@", "@@.@@", "....."});
+  const Vertex station = g.at(2, 0), inner = g.at(2, 1), mouth = g.at(2, 2);
+  std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
+  pocket[static_cast<size_t>(station)] = pocket[static_cast<size_t>(inner)] = station;
+  for (int rounds : {0, 20})
+    for (bool rule : {false, true}) {
+      planner::EpibtOptions opt;
+      opt.lns_rounds = rounds;
+      opt.pocket_exit = rule;
+      Epibt p(g, {station, mouth}, {g.at(0, 2), station}, opt);
+      p.set_headings({3, 3});  // both face north: robot 0 the wall, robot 1 the stub
+      p.set_pockets(pocket, 0.0f);  // labels only: no foreign-pocket cost
+      p.search(planner::Budget{});
+      EXPECT_EQ(p.next()[1] == inner, !rule) << "rounds " << rounds << " rule " << rule;
+      int out = -1, in = -1;  // steps until robot 0 is out of the stub, robot 1 on the station
+      for (int t = 1; t <= 20; ++t) {
+        p.commit();
+        p.search(planner::Budget{});
+        if (out < 0 && pocket[static_cast<size_t>(p.current()[0])] < 0) out = t;
+        if (in < 0 && p.current()[1] == station) in = t;
+      }
+      if (rule) {
+        EXPECT_GT(out, 0) << "rounds " << rounds;
+        EXPECT_GT(in, out) << "rounds " << rounds;
+      } else {
+        EXPECT_EQ(out, -1) << "rounds " << rounds;  // walled in: the trap
+      }
+    }
+}
+
 TEST(Epibt, BadInputIsRefused)
 {
   const Graph line = Graph::from_edges(2, {{0, 1}});

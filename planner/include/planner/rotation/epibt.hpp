@@ -64,6 +64,14 @@ struct EpibtOptions {
   bool inherit = true;  // start each step from the tails of last step's operations (paper: IO)
   bool wait_op = false; // WWW among every robot's candidates (paper: only as the kept operation)
   Priority priority = Priority::Distance;
+  // The pocket exit rule (needs set_pockets' labels, any cost): while a robot stands in a
+  // dead-end pocket with its goal outside it, no operation moves anyone deeper into that
+  // pocket. Why: in a one-wide station stub the next holder followed the leaving one in and
+  // the queue behind it; the leaver, unable to push the whole line out, reversed (an off-goal
+  // robot has no wait candidate) and the line followed it back: a livelock that took the
+  // twins of the large and huge warehouses to 0-0.03 errands per step (s36 trace,
+  // docs/twin_bench.md). Off: the paper's EPIBT.
+  bool pocket_exit = true;
   // EPIBT+LNS (the paper's EPIBT_LNS): after the pass, rounds in random order in which each
   // robot tries its candidates again, pushing anyone (no priority rule), kept only when the
   // weighted sum of the robots' gains does not drop. 0: off; -1: until the deadline (the
@@ -155,6 +163,7 @@ class Epibt : public RotationPlanner {
   void unplace(int i);
   void set_op(int i, int op);
   Result build(int i, double root_key, bool lns);
+  bool enters_blocked_pocket(int i, const Vertex* cells) const;  // pocket_exit: cells after each action
   void lns();
   void tf_reset();                  // (re)creates tf_ and queues every robot
   void tf_work(Clock::time_point deadline);  // queued guide tables, then refreshes
@@ -180,6 +189,9 @@ class Epibt : public RotationPlanner {
   std::vector<int32_t> order_;
   std::vector<Vertex> pocket_;      // vertex -> its dead-end pocket, or -1 (set_pockets)
   float pocket_moves_ = 0;          // foreign-pocket cost in forward moves (0: off)
+  std::vector<int> depth_;          // pocket cell -> actions from its mouth (1 next to it); 0 outside
+  std::vector<char> leaving_;       // pocket label -> a robot in it has its goal outside (this step)
+  std::vector<Vertex> leaving_list_;
   std::vector<uint8_t> cand_;       // agent * ops: candidate operations, best first
   std::vector<uint32_t> score_of_;  // agent * ops: cost * ops + op (lower better), valid operations
   std::vector<double> power_;       // LNS: weight of a robot's gain (priority rank, squared)
