@@ -294,7 +294,10 @@ def pocket_clear(a, build, tmp):
     --off-build the off side runs that build (e.g. main's: also without this build's other changes)."""
     clean = True
     off_build = os.path.abspath(a.off_build) if a.off_build else build
-    print(f"# on: tasks.queues.clear_after {a.pocket_clear} ({build}); off: the config without clear_after ({off_build})")
+    off_what = f"the same clear_after {a.pocket_clear}" if a.off_as_is else "the config without clear_after"
+    off_what += ", without in_line"
+    on_what = f"tasks.queues.clear_after {a.pocket_clear}" + (", in_line true" if a.in_line else "")
+    print(f"# on: {on_what} ({build}); off: {off_what} ({off_build})")
     print("| config | seed | ticks | errands/tick on | off | on / off | K on (stall max / p99) | K off | errand ticks max on / off | clearings on |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     seeds = [int(x) for x in a.seeds.split(",") if x]
@@ -306,7 +309,11 @@ def pocket_clear(a, build, tmp):
         for seed in seeds:
             out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{seed}_clear")
             res = {}
-            for label, b, extra in (("on", build, {"queues": queues}), ("off", off_build, {"queues": plain})):
+            off_queues = dict(queues if a.off_as_is else plain)
+            off_queues.pop("in_line", None)  # off: without in_line (and readable by older builds)
+            if a.in_line:
+                queues["in_line"] = True
+            for label, b, extra in (("on", build, {"queues": queues}), ("off", off_build, {"queues": off_queues})):
                 m, err = run(b, base, f"{out}_{label}", ticks, a.expansions, None, extra, {"fleet": {"seed": seed}})
                 if m is None:
                     print(f"# {base} {label}: {err}", file=sys.stderr)
@@ -345,6 +352,10 @@ def main():
                     help="tasks.queues.clear_after N against the config as is (--clear-configs, --seeds, --off-build)")
     ap.add_argument("--clear-configs", nargs="+",
                     default=["config/large_warehouse_queues.yaml", "config/large_warehouse_parking.yaml"])
+    ap.add_argument("--in-line", action="store_true",
+                    help="--pocket-clear: tasks.queues.in_line true on the on side (the off side never has it)")
+    ap.add_argument("--off-as-is", action="store_true",
+                    help="--pocket-clear: the off side keeps clear_after N too (compares two builds, e.g. --off-build of main)")
     ap.add_argument("--off-build", help="--pocket-clear: the build of the off side (default --build)")
     ap.add_argument("--stall-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml"])

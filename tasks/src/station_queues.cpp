@@ -127,6 +127,26 @@ void StationQueues::build_queue(Station& s)
   }
 }
 
+void StationQueues::in_line(int i, const planner::Config& positions)
+{
+  Station& s = st_[i];
+  auto nearer = [&](int x, int y) { return dist_.from_goal(s.cell, positions[x]) < dist_.from_goal(s.cell, positions[y]); };
+  // An admitted agent in the pocket keeps its place (it is past the lane); then only the
+  // queue is re-ranked.
+  bool fixed = false;
+  for (int a : s.admitted) fixed = fixed || pocket_of_[positions[a]] == i;
+  if (fixed || s.admitted.empty()) {
+    std::stable_sort(s.waiting.begin(), s.waiting.end(), nearer);
+    return;
+  }
+  std::vector<int> line = s.admitted;
+  line.insert(line.end(), s.waiting.begin(), s.waiting.end());
+  std::stable_sort(line.begin(), line.end(), nearer);
+  const long na = static_cast<long>(s.admitted.size());
+  s.admitted.assign(line.begin(), line.begin() + na);
+  s.waiting.assign(line.begin() + na, line.end());
+}
+
 void StationQueues::drop_place(int agent)
 {
   Station& s = st_[place_[agent]];
@@ -192,6 +212,7 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
       auto it = inside.find(i);
       return static_cast<int>(s.admitted.size()) + (it == inside.end() ? 0 : it->second) < opt_.capacity;
     };
+    if (opt_.in_line) in_line(i, positions);
     while (room() && !s.waiting.empty()) {
       s.admitted.push_back(s.waiting.front());
       s.waiting.erase(s.waiting.begin());

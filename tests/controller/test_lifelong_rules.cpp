@@ -340,9 +340,33 @@ TEST(LifelongRules, PocketClearingLetsAWedgedDeadEndStationEmpty)
 {
   Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", "pocket_clearing", 400, 5);
   EXPECT_EQ(cfg.tasks.queue_clear_after, 20);  // shipped on
+  cfg.tasks.queue_in_line = false;             // clearing alone (with in_line too: K 233, s36)
   Controller c(cfg);
   const Metrics m = c.run();
   ctest_util::expect_checked_every_step(cfg, m);
   EXPECT_GT(m.clearings, 0);
   EXPECT_LE(m.stalls.max_stall, 230);
+}
+
+// Queues in line (tasks.queues.in_line, tasks/station_queues.hpp) on the shipped large
+// warehouse with parking: a queue lane is single file, and places given in request order left
+// a station's admitted AGV behind queued AGVs and leavers that had to let it through first
+// (traced at drop15, session 36: the admitted AGV 9 cells up the lane for 150+ ticks, the
+// station free). With in_line the admitted AGV and the queue cells go to the agents in the
+// order they stand. The config's 5 expansions per SUMO step (deterministic).
+TEST(LifelongRules, QueuesInLineLetTheAgentNearestTheStationGoFirst)
+{
+  auto run = [](bool in_line) {
+    Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", in_line ? "in_line_on" : "in_line_off", 400, 5);
+    EXPECT_TRUE(cfg.tasks.queue_in_line);  // shipped on
+    cfg.tasks.queue_in_line = in_line;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ctest_util::expect_checked_every_step(cfg, m);
+    return m;
+  };
+  // 400 ticks (~1.8 s each): on 178 errands, off 156 (at 600 ticks: 278 against 233).
+  const Metrics on = run(true);
+  const Metrics off = run(false);
+  EXPECT_GE(on.errands_finished, off.errands_finished * 11 / 10);
 }

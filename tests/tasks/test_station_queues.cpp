@@ -297,3 +297,38 @@ TEST(Parking, AParkingCellOnTheQueueOfAStationInUseIsNotUsed)
   p.apply({1, 0}, pos, &q.reserved_cells(), goals, &q.in_use_cells());
   EXPECT_EQ(goals[0], g.at(0, 7));
 }
+
+// in_line: a queue lane is single file, so the admitted agent and the queue cells go to the
+// placed agents in the order they stand (nearest the station first), not in request order.
+// Without it the admitted agent stays behind the queued one that stands between it and the
+// station (traced on large_warehouse_parking, session 36).
+TEST(StationQueues, InLineTheAgentNearestTheStationIsAdmittedFirst)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  QueueOptions o{1, 3, 0};
+  for (bool in_line : {true, false}) {
+    o.in_line = in_line;
+    StationQueues q(g, {s}, o);
+    const std::vector<Vertex> qc = q.queue_cells(0);  // (3, 3), (3, 4), (3, 5)
+    Config pos{g.at(3, 4), g.at(3, 6), g.at(0, 7)};  // a0 nearest (4 moves), then a1 (6), a2 (10)
+    std::vector<Vertex> errand{s, s, s};
+    Config goals(3);
+    std::vector<char> unplaced;
+    q.apply(errand, pos, goals, unplaced);
+    ASSERT_EQ(q.admitted(0), (std::vector<int>{0}));
+    // a0 and a1 trade places in the lane (a test of the ranking: in a real lane they cannot);
+    // a2 comes up between them.
+    pos = {g.at(3, 6), g.at(3, 3), g.at(3, 5)};
+    goals = errand;  // the task manager's goals: the errand cells
+    q.apply(errand, pos, goals, unplaced);
+    if (in_line) {
+      EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+      EXPECT_EQ(q.waiting(0), (std::vector<int>{2, 0}));
+      EXPECT_EQ(goals, (Config{qc[1], s, qc[0]}));
+    } else {  // request order: a0 stays admitted behind a1 and a2
+      EXPECT_EQ(q.admitted(0), (std::vector<int>{0}));
+      EXPECT_EQ(q.waiting(0), (std::vector<int>{1, 2}));
+    }
+  }
+}

@@ -62,6 +62,16 @@ struct QueueOptions {
   // pushed onto a dead-end station stood there the rest of the run with the station's
   // admitted AGV behind it and its queue behind that (K 594, 964).
   int clear_after = 0;
+  // In line (off: false): every step the station's admitted agent (while it is outside the
+  // pocket) and its queued agents are ranked by their distance to the station, nearest
+  // admitted first, then the queue cells in that order. A queue lane is single file: an
+  // agent cannot overtake the ones between it and the station, so places given in request
+  // order (fifo) leave the admitted agent, or queue cell 0's, behind others that must let it
+  // through first, and nobody there can move. Traced on large_warehouse_parking (session 36,
+  // 2000-4000 ticks): drop15's admitted AGV stood 9 cells up its queue lane behind a queued
+  // AGV and two leavers for 150+ ticks, with the station free. Only the agents already placed
+  // are re-ranked: the request order still decides who gets a place (fifo).
+  bool in_line = false;
   bool on() const { return capacity > 0; }
 };
 
@@ -110,6 +120,7 @@ class StationQueues {
   };
   void build_queue(Station& s);
   void drop_place(int agent);
+  void in_line(int i, const planner::Config& positions);  // QueueOptions::in_line
 
   const planner::Graph& g_;
   QueueOptions opt_;
