@@ -9,6 +9,7 @@
 #include <string>
 
 #include "controller/config.hpp"
+#include "controller/controller.hpp"
 #include "controller/metrics.hpp"
 #include "temp_path.hpp"
 
@@ -69,6 +70,15 @@ inline void expect_checked_every_step(const controller::Config& cfg, const contr
   EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
   EXPECT_EQ(m.safety_checks, m.ticks * cfg.steps_per_tick());
   expect_no_sumo_collision(cfg.output.dir);
+}
+
+// Runs `cfg` to its end and expects it checked every step (above); its metrics.
+inline controller::Metrics run_checked(const controller::Config& cfg)
+{
+  controller::Controller c(cfg);
+  const controller::Metrics m = c.run();
+  expect_checked_every_step(cfg, m);
+  return m;
 }
 
 }  // namespace ctest_util

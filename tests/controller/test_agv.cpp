@@ -191,9 +191,7 @@ TEST(AgvPhysics, LifelongErrandsKeepCompletingUnderDelays)
   // The shipped lifelong config (physics, stops at p = 0.01, one slow AGV), 400 ticks:
   // never more than K = 150 ticks without a completed errand (measured: <= 84 over 1000).
   Config cfg = ctest_util::lifelong_agv_config("agv_lifelong", 400);
-  Controller c(cfg);
-  const Metrics m = c.run();
-  ctest_util::expect_checked_every_step(cfg, m);
+  const Metrics m = ctest_util::run_checked(cfg);
   EXPECT_GT(m.delay_stops, 0);
   const nlohmann::json j = nlohmann::json::parse(ctest_util::slurp(cfg.output.dir + "/" + cfg.tasks.log));
   long last = 0, gap = 0;

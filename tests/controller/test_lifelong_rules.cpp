@@ -226,9 +226,7 @@ TEST(LifelongRules, LowChargeAgvsGetPlannerPriorityAndNoneRunsEmpty)
     cfg.tasks.urgency_swap_after = cfg.tasks.urgency_head_after = cfg.tasks.urgency_pocket_cost = 0;
     cfg.tasks.urgency_mouth_cost = 0;
     cfg.tasks.urgency_drop_hints = cfg.tasks.urgency_sticky = false;
-    Controller c(cfg);
-    const Metrics m = c.run();
-    ctest_util::expect_checked_every_step(cfg, m);
+    const Metrics m = ctest_util::run_checked(cfg);
     EXPECT_TRUE(m.battery.active);
     return m;
   };
@@ -262,10 +260,7 @@ TEST(LifelongRules, WithStationQueuesStalledErrandsGetPriorityAndStallLess)
     cfg.tasks.queue_capacity = 1;
     cfg.tasks.queue_length = 3;
     if (!stalls) cfg.tasks.urgency_stalls = 0;  // default -1: on with the queues
-    Controller c(cfg);
-    const Metrics m = c.run();
-    ctest_util::expect_checked_every_step(cfg, m);
-    return m;
+    return ctest_util::run_checked(cfg);
   };
   const Metrics on = run(true);
   EXPECT_LE(on.stalls.max_stall, 50);
@@ -287,10 +282,7 @@ TEST(LifelongRules, StallRulesBoundTheLongestStallWithoutLosingErrands)
                                             600, 50);
     cfg.tasks.urgency_swap_after = on ? 30 : 0;
     cfg.tasks.urgency_head_after = on ? 60 : 0;
-    Controller c(cfg);
-    const Metrics m = c.run();
-    ctest_util::expect_checked_every_step(cfg, m);
-    return m;
+    return ctest_util::run_checked(cfg);
   };
   const Metrics on = run(true);
   EXPECT_LE(on.stalls.max_stall, 100);
@@ -316,10 +308,7 @@ TEST(LifelongRules, ForeignPocketCostKeepsAgvsOutOfOtherStationsStubs)
     cfg.tasks.urgency_mouth_cost = 0;
     cfg.tasks.urgency_sticky = false;
     if (!on) cfg.tasks.urgency_pocket_cost = 0;
-    Controller c(cfg);
-    const Metrics m = c.run();
-    ctest_util::expect_checked_every_step(cfg, m);
-    return m;
+    return ctest_util::run_checked(cfg);
   };
   const Metrics on = run(true);
   const Metrics off = run(false);
@@ -341,9 +330,7 @@ TEST(LifelongRules, PocketClearingLetsAWedgedDeadEndStationEmpty)
   Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", "pocket_clearing", 400, 5);
   EXPECT_EQ(cfg.tasks.queue_clear_after, 20);  // shipped on
   cfg.tasks.queue_in_line = false;             // clearing alone (with in_line too: K 233, s36)
-  Controller c(cfg);
-  const Metrics m = c.run();
-  ctest_util::expect_checked_every_step(cfg, m);
+  const Metrics m = ctest_util::run_checked(cfg);
   EXPECT_GT(m.clearings, 0);
   EXPECT_LE(m.stalls.max_stall, 230);
 }
@@ -360,10 +347,7 @@ TEST(LifelongRules, QueuesInLineLetTheAgentNearestTheStationGoFirst)
     Config cfg = ctest_util::shipped_config("large_warehouse_parking.yaml", in_line ? "in_line_on" : "in_line_off", 400, 5);
     EXPECT_TRUE(cfg.tasks.queue_in_line);  // shipped on
     cfg.tasks.queue_in_line = in_line;
-    Controller c(cfg);
-    const Metrics m = c.run();
-    ctest_util::expect_checked_every_step(cfg, m);
-    return m;
+    return ctest_util::run_checked(cfg);
   };
   // 400 ticks (~1.8 s each): on 178 errands, off 156 (at 600 ticks: 278 against 233).
   const Metrics on = run(true);

@@ -231,9 +231,7 @@ TEST(StuckReplan, LifelongReplansCarryChainedMoves)
   cfg.delays.spec.p = 0.05;
   cfg.delays.spec.min_ticks = 3;
   cfg.delays.spec.max_ticks = 25;
-  Controller c(cfg);
-  const Metrics m = c.run();
-  ctest_util::expect_checked_every_step(cfg, m);
+  const Metrics m = ctest_util::run_checked(cfg);
   EXPECT_GT(m.replans, 0);
   EXPECT_GT(m.chained, 0);
   EXPECT_GT(m.errands_finished, 0);
@@ -254,9 +252,7 @@ TEST(StuckReplan, FollowLifelongReplansKeepTheCutPlanValid)
     cfg.delays.spec.min_ticks = 3;
     cfg.delays.spec.max_ticks = 25;
     cfg.delays.spec.seed = seed;
-    Controller c(cfg);
-    const Metrics m = c.run();
-    ctest_util::expect_checked_every_step(cfg, m);
+    const Metrics m = ctest_util::run_checked(cfg);
     EXPECT_GT(m.replans, 0);
     EXPECT_GT(m.errands_finished, 0);
   }
