@@ -49,4 +49,14 @@ inline planner::Vertex random_goal(const planner::Graph& g, const std::vector<in
   }
 }
 
+// Pocket labels as set_pockets takes them (-1 outside any pocket): `cells` form one dead-end
+// pocket labelled by its station `label`.
+inline std::vector<planner::Vertex> pocket_labels(const planner::Graph& g, const std::vector<planner::Vertex>& cells,
+                                                  planner::Vertex label)
+{
+  std::vector<planner::Vertex> pocket(static_cast<size_t>(g.size()), -1);
+  for (planner::Vertex v : cells) pocket[static_cast<size_t>(v)] = label;
+  return pocket;
+}
+
 }  // namespace test

@@ -225,11 +225,7 @@ TEST(Epibt, AForeignPocketIsTheLastResortOfAPushedRobot)
       opt.lns_rounds = rounds;
       Epibt p(g, {g.at(4, 0), mouth}, {g.at(0, 0), goal1}, opt);
       p.set_headings({2, 1});  // robot 0 west, robot 1 south (facing the stub)
-      if (pockets) {
-        std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
-        pocket[static_cast<size_t>(stub)] = stub;
-        p.set_pockets(pocket, 100.0f);
-      }
+      if (pockets) p.set_pockets(test::pocket_labels(g, {stub}, stub), 100.0f);
       p.search(planner::Budget{});
       return std::make_pair(p.operation(0), p.operation(1));
     };
@@ -250,8 +246,7 @@ TEST(Epibt, NobodyGoesDeeperIntoAPocketThatARobotMustLeave)
 {
   const Graph g = test::grid({"@@.@@", "@@.@@", "....."});
   const Vertex station = g.at(2, 0), inner = g.at(2, 1), mouth = g.at(2, 2);
-  std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
-  pocket[static_cast<size_t>(station)] = pocket[static_cast<size_t>(inner)] = station;
+  const std::vector<Vertex> pocket = test::pocket_labels(g, {station, inner}, station);
   for (int rounds : {0, 20})
     for (bool rule : {false, true}) {
       planner::EpibtOptions opt;

@@ -214,11 +214,7 @@ TEST(RotationPibt, AForeignPocketIsTheLastResortOfAPushedRobot)
   auto step = [&](bool pockets, Vertex goal1) {
     RotationPibt p(g, {g.at(3, 0), mouth}, {g.at(0, 0), goal1}, 0);
     p.set_headings({2, 1});  // robot 0 west, robot 1 south (facing the stub)
-    if (pockets) {
-      std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
-      pocket[static_cast<size_t>(stub)] = stub;
-      p.set_pockets(pocket, 100.0f);
-    }
+    if (pockets) p.set_pockets(test::pocket_labels(g, {stub}, stub), 100.0f);
     p.search(planner::Budget{});
     return std::make_pair(p.actions(), p.next());
   };

@@ -334,11 +334,7 @@ TEST(Wppl, AForeignPocketIsTheLastResortOfAPushedRobot)
     auto step = [&](bool pockets) {
       Wppl w(g, {g.at(3, 0), mouth}, {g.at(0, 0), mouth}, 0);
       w.set_headings({2, 1});  // robot 0 west, robot 1 south (facing the stub)
-      if (pockets) {
-        std::vector<Vertex> pocket(static_cast<size_t>(g.size()), -1);
-        pocket[static_cast<size_t>(stub)] = stub;
-        w.set_pockets(pocket, 100.0f);
-      }
+      if (pockets) w.set_pockets(test::pocket_labels(g, {stub}, stub), 100.0f);
       w.search(planner::Budget::expansion_count(iters));
       return std::make_pair(w.actions(), w.next());
     };
