@@ -240,6 +240,34 @@ TEST(Pibt, LacamStaysCompleteUnderMoveCosts)
   }
 }
 
+// free_first's tests: one PIBT step of agents 0, 1, ... in that order, over 32 seeds, with
+// the tie-break on or off; how often agent 0 took agent 1's vertex. Every step is checked, and
+// with `toward` agent 0 must move one step closer to its goal (fatal failures, as ASSERTs: the
+// caller wraps it in ASSERT_NO_FATAL_FAILURE).
+namespace {
+void onto_agent_1(const Graph& g, const Config& from, const Config& goals, bool on, bool toward, int& onto)
+{
+  std::vector<int32_t> order(from.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int32_t>(i);
+  DistTable d(g);
+  d.set_goals(goals);
+  Pibt pibt(g, d);
+  pibt.set_free_first(on);
+  pibt.set_goals(goals);
+  onto = 0;
+  for (uint64_t seed = 0; seed < 32; ++seed) {
+    Rng rng(seed);
+    Config to(from.size());
+    ASSERT_TRUE(pibt.generate(from.data(), order.data(), nullptr, to.data(), rng));
+    ASSERT_EQ(Validator::check_transition(g, from, to), "");
+    if (toward) {
+      ASSERT_EQ(d.get(0, to[0]), d.get(0, from[0]) - 1) << "agent 0 moves toward its goal";
+    }
+    onto += to[0] == from[1];
+  }
+}
+}  // namespace
+
 // free_first: agent 0 has two equally short first moves toward its goal, one onto agent 1
 // (parked on its goal) and one onto a free cell. With the tie-break it always takes the free
 // one and agent 1 stays; with random ties some seeds push agent 1 off its goal.
@@ -248,22 +276,9 @@ TEST(Pibt, FreeFirstTakesTheFreeOfTwoEquallyShortMoves)
   const Graph g = test::grid({"...", "...", "..."});
   const Config from = test::at(g, {{0, 0}, {1, 0}});
   const Config goals = test::at(g, {{2, 2}, {1, 0}});
-  std::vector<int32_t> order = {0, 1};
   for (bool on : {false, true}) {
-    DistTable d(g);
-    d.set_goals(goals);
-    Pibt pibt(g, d);
-    pibt.set_free_first(on);
-    pibt.set_goals(goals);
     int pushed = 0;
-    for (uint64_t seed = 0; seed < 32; ++seed) {
-      Rng rng(seed);
-      Config to(2);
-      ASSERT_TRUE(pibt.generate(from.data(), order.data(), nullptr, to.data(), rng));
-      ASSERT_EQ(Validator::check_transition(g, from, to), "");
-      ASSERT_EQ(d.get(0, to[0]), d.get(0, from[0]) - 1) << "agent 0 moves toward its goal";
-      pushed += to[0] == from[1];
-    }
+    ASSERT_NO_FATAL_FAILURE(onto_agent_1(g, from, goals, on, true, pushed));
     if (on)
       EXPECT_EQ(pushed, 0);
     else
@@ -280,21 +295,9 @@ TEST(Pibt, FreeFirstPushesAnAgentOnItsWayBeforeOneComingHeadOn)
   const Graph g = test::grid({"...", "...", "..."});
   const Config from = test::at(g, {{0, 0}, {1, 0}, {0, 1}});
   const Config goals = test::at(g, {{2, 2}, {0, 0}, {0, 2}});
-  std::vector<int32_t> order = {0, 1, 2};
   for (bool on : {false, true}) {
-    DistTable d(g);
-    d.set_goals(goals);
-    Pibt pibt(g, d);
-    pibt.set_free_first(on);
-    pibt.set_goals(goals);
     int head_on = 0;
-    for (uint64_t seed = 0; seed < 32; ++seed) {
-      Rng rng(seed);
-      Config to(3);
-      ASSERT_TRUE(pibt.generate(from.data(), order.data(), nullptr, to.data(), rng));
-      ASSERT_EQ(Validator::check_transition(g, from, to), "");
-      head_on += to[0] == from[1];
-    }
+    ASSERT_NO_FATAL_FAILURE(onto_agent_1(g, from, goals, on, false, head_on));
     if (on)
       EXPECT_EQ(head_on, 0);
     else
