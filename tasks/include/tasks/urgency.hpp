@@ -94,7 +94,8 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
 // Agents leaving a dead-end pocket (head hints): above every stall, below battery urgency.
 inline constexpr float kLeavingUrgency = 5000.0f;
 
-// pocket_cost on: hands p the foreign-pocket labels and cost (RealtimePlanner::set_pockets).
+// Hands p the dead-end pocket labels and pocket_cost (RealtimePlanner::set_pockets), also at
+// cost 0: epibt's pocket exit rule needs the labels alone (every cost rule is off at 0).
 void hint_pockets(const TaskManager& tm, planner::RealtimePlanner& p);
 
 // Sets p's hints for its next epoch start (call right before set_goals / restart_at).
