@@ -80,10 +80,11 @@ def main():
     ap.add_argument("--expansions", type=int, default=0, help="planner expansions per SUMO step instead of budget_ms")
     a = ap.parse_args()
     tmp = tempfile.mkdtemp(prefix="bench_closed_")
+    per_step_of = {}  # (config, p, executor) -> ticks per plan step over the seeds (one-shot, solved)
     ratio_of = {}  # (config, seed, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
     print("| config | seed | p | executor | makespan or errands/tick | bound | ratio | plan's bound | solved | error | "
-          "collisions | overshoot m | replans | wall s |")
-    print("|---|---:|---:|---|---:|---:|---:|---:|---|---|---:|---:|---:|---:|")
+          "collisions | overshoot m | replans | ticks / plan step | wall s |")
+    print("|---|---:|---:|---|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|")
     for c, seed, p, ex in itertools.product(a.configs, a.seeds, a.ps, a.executors):
         name, _, sets = ex.partition(":")
         cfg = yaml_variant(c, name, p, window=a.window, max_ticks=a.max_ticks)
@@ -92,7 +93,7 @@ def main():
         try:
             m = sumo_run(a.build, cfg, os.path.join(tmp, re.sub(r"[^\w.-]", "_", f"{c}_{seed}_{ex}_{p}")))
         except FileNotFoundError:  # no metrics.json: the instance was refused (e.g. a zone holding two goals)
-            print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | - | - | - | - | - | refused (no metrics.json) | - | - | - | - |",
+            print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | - | - | - | - | - | refused (no metrics.json) | - | - | - | - | - |",
                   flush=True)
             continue
         life = m.get("lifelong")
@@ -102,11 +103,19 @@ def main():
         else:
             val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
             plan = m["plan_bound_ticks"]
+        # Ticks per committed plan step (one-shot): what executing the plan costs, apart from
+        # how long the plan is. Plan lengths of one instance vary by up to 1.4x between runs
+        # (the real-time search's timing differs per executor and p), lockstep's is 1 by
+        # construction (session 37).
+        commits = m["executor"].get("commits", 0)
+        per_step = f"{m['makespan'] / commits:.3f}" if not life and commits else "-"
         # an unfinished one-shot run has no makespan to compare
         ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
+        if per_step != "-" and m["solved"]:
+            per_step_of.setdefault((c, p, ex), []).append(m["makespan"] / commits)
         print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | {plan:.4g} | "
               f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
-              f"{m['executor'].get('replans', 0)} | {m['_wall']:.1f} |", flush=True)
+              f"{m['executor'].get('replans', 0)} | {per_step} | {m['_wall']:.1f} |", flush=True)
     # The targets (issue 21), against baselines of this run: at p = 0 the executor's ratio over
     # lockstep's (one-shot: makespan/bound, lower is better; lifelong: lockstep's
     # errands per tick / bound over the executor's, so > 1 is worse alike); at p > 0, the same
@@ -124,13 +133,13 @@ def main():
               f"{rel(ratio_of.get((c, seed, 0.0, ex)), 1)} |")
     if len(a.seeds) > 1:
         print("\nGeometric means over the seeds (runs with a ratio on both sides only):")
-        print("| config | p | executor | vs lockstep (same p) | vs itself at p = 0 | seeds |\n|---|---:|---|---:|---:|---:|")
+        print("| config | p | executor | vs lockstep (same p) | vs itself at p = 0 | seeds | ticks / plan step |\n|---|---:|---|---:|---:|---:|---:|")
         for c in a.configs:
             for p in a.ps:
                 for ex in a.executors:
                     g = [rels.get((c, p, ex, w), []) for w in (0, 1)]
-                    gm = ["-" if not x else f"{math.exp(sum(map(math.log, x)) / len(x)):.3f}" for x in g]
-                    print(f"| {c} | {p} | {ex} | {gm[0]} | {gm[1]} | {max(len(g[0]), len(g[1]))} |")
+                    gm = ["-" if not x else f"{math.exp(sum(map(math.log, x)) / len(x)):.3f}" for x in g + [per_step_of.get((c, p, ex), [])]]
+                    print(f"| {c} | {p} | {ex} | {gm[0]} | {gm[1]} | {max(len(g[0]), len(g[1]))} | {gm[2]} |")
 
 
 if __name__ == "__main__":
