@@ -39,6 +39,8 @@ int main(int argc, char** argv)
   int lns_agents = LacamOptions{}.lns_agents;
   std::string lns_nbh = "random", objective = "soc";
   bool scatter = true, dive = LacamOptions{}.dive, scatter_first = false;  // scatter: measured, docs/rt_lacam_star.md
+  bool scatter_live = LacamOptions{}.scatter_live, scatter_live_keep = LacamOptions{}.scatter_live_keep;
+  double scatter_live_share = LacamOptions{}.scatter_live_share;
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
       scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
   double cold_factor = LacamOptions{}.cold_factor;
@@ -100,6 +102,12 @@ int main(int argc, char** argv)
   app.add_flag("--lg-rest,!--no-lg-rest", lg_rest, "local guidance: an agent on its goal is guided to stay");
   bool lg_first = LacamOptions{}.lg_first;
   app.add_flag("--lg-first,!--no-lg-first", lg_first, "local guidance in the search for the first solution");
+  int lg_window_unpaused = LacamOptions::kStarLgWindowUnpaused;
+  auto* lg_unpaused_opt =
+      app.add_option("--lg-window-unpaused", lg_window_unpaused,
+                     "local guidance window in the first search when --cutoff-ms is below --pause-min-ms (every iteration "
+                     "one expansion); 0 = off. Default " + std::to_string(LacamOptions::kStarLgWindowUnpaused) + " for RT-LaCAM* (--solver rtlacam --refine), 0 otherwise")
+          ->check(CLI::Range(0, 64));
   bool lg_refine = LacamOptions{}.lg_refine;
   app.add_flag("--lg-refine,!--no-lg-refine", lg_refine, "local guidance in refinement's expansions");
   bool resumable = LacamOptions{}.resumable;
@@ -170,6 +178,16 @@ int main(int argc, char** argv)
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
   app.add_flag("--scatter-first", scatter_first, "SUO before the first solution (changes LaCAM's tree)");
+  app.add_flag("--scatter-live,!--no-scatter-live", scatter_live,
+               "with --refine: SUO from the start shares the calls before the first solution, each agent's path "
+               "guiding PIBT as soon as it is planned (changes LaCAM's tree; lacam.hpp)")
+      ->capture_default_str();
+  app.add_option("--scatter-live-share", scatter_live_share, "with --scatter-live: SUO's share of each call before the first solution")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_flag("--scatter-live-keep,!--no-scatter-live-keep", scatter_live_keep,
+               "with --scatter-live: refinement goes on with that SUO (dive from the root) instead of a fresh one ahead")
+      ->capture_default_str();
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
       ->capture_default_str();
   app.add_option("--anytime-ms", anytime_ms,
@@ -221,6 +239,9 @@ int main(int argc, char** argv)
     lopt.scatter_dive_passes = scatter_dive_passes;
     lopt.dive = dive;
     lopt.scatter_first = scatter_first;
+    lopt.scatter_live = scatter_live;
+    lopt.scatter_live_share = scatter_live_share;
+    lopt.scatter_live_keep = scatter_live_keep;
     lopt.scatter_dive_guard = scatter_dive_guard;
     lopt.reprice = reprice;
     lopt.scatter_lead_dive = scatter_lead_dive;
@@ -237,6 +258,10 @@ int main(int argc, char** argv)
     lopt.mc_refine = mc_refine;
     lopt.lg_window = lg_window;
     lopt.lg_first = lg_first;
+    // Default: RT-LaCAM* only (measured: docs/rt_lacam_star.md, session 37), as free_first.
+    if (lg_unpaused_opt->count() == 0)
+      lg_window_unpaused = refine && parse_solver(solver) == Solver::RtLacam ? LacamOptions::kStarLgWindowUnpaused : 0;
+    lopt.lg_window_unpaused = lg_window_unpaused;
     lopt.lg_rest = lg_rest;
     lopt.lg_collision_weight = lg_weight;
     lopt.lg_refine = lg_refine;
@@ -357,6 +382,7 @@ int main(int argc, char** argv)
     j["mc_refine"] = mc_refine;
     j["local_guidance"] = lg_window;
     j["lg_first"] = lg_first;
+    j["lg_window_unpaused"] = lg_window_unpaused;
     j["lg_rest"] = lg_rest;
     j["lg_collision_weight"] = lg_weight;
     j["lg_refine"] = lg_refine;
@@ -377,6 +403,9 @@ int main(int argc, char** argv)
     j["scatter_dive_passes"] = scatter_dive_passes;
     j["dive"] = dive;
     j["scatter_first"] = scatter_first;
+    j["scatter_live"] = scatter_live;
+    j["scatter_live_share"] = scatter_live_share;
+    j["scatter_live_keep"] = scatter_live_keep;
     j["scatter_dive_guard"] = scatter_dive_guard;
     j["reprice"] = reprice;
     j["scatter_lead_dive"] = scatter_lead_dive;

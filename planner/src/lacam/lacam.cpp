@@ -24,7 +24,7 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
 {
   pibt_.set_preference(pref);
   pibt_.set_free_first(opt.free_first);
-  lg_.set_window(opt.lg_window);
+  lg_.set_window(opt.lg_window > 0 ? opt.lg_window : opt.lg_window_unpaused);
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
   lns_.set_stop_cost(opt.lns_stop_cost);
@@ -100,6 +100,18 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   if (opt_.scatter_first && !test) {
     scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
     scatter_started_ = true;
+  }
+  live_ = false;
+  scatter_.set_live(false);
+  if (opt_.scatter_live && opt_.refine && opt_.scatter && !opt_.scatter_first && !test) {
+    // SUO from the start, its paths guiding PIBT one by one as they end (search(): live_slice).
+    scatter_.set_live(true);
+    scatter_.reset(start, opt_.scatter_margin, opt_.seed + 3, opt_.scatter_max_passes);
+    scatter_started_ = live_ = true;
+    scatter_reroots0_ = reroots_;
+    scatter_lead_ = 0;
+    guide_spent_ = 0;
+    pibt_.set_scatter(&scatter_);
   }
   // PIBT's first call reads every agent's distance one BFS level past its start: a lazy BFS
   // of that level for N tables (11 ms in the first iteration of warehouse-20-40-10-2-2,
@@ -338,6 +350,11 @@ Status Lacam::search(const Budget& b, bool until_solved)
     done = paid;
     if (done >= b.expansions) return status_;
   }
+  if (live_ && !refining_ && status_ == Status::Searching) live_slice(b, t0, deadline, done);
+  // lg_window_unpaused: guided while no expansion can pause (every iteration one expansion);
+  // set per call, it takes effect at PIBT's next start().
+  if (opt_.lg_window == 0 && opt_.lg_window_unpaused > 0 && !refining_ && status_ == Status::Searching)
+    pibt_.set_local_guidance(timed_ && opt_.resumable && b.ms < opt_.pause_min_ms ? &lg_ : nullptr);
   bool first = true;
   // A LaCAM expansion may stop here (resumable), unless the cutoff is below pause_min_ms.
   const bool pausing = opt_.resumable && b.ms >= opt_.pause_min_ms;
@@ -397,6 +414,32 @@ Status Lacam::search(const Budget& b, bool until_solved)
   }
   pause_at_ = Clock::time_point::max();  // expand() called alone never pauses
   return status_;
+}
+
+// scatter_live: SUO's share of a call before the first solution, first (its paths guide the
+// expansions that follow): timed, until share x the call's time; by expansions, share x the
+// budget in SUO's work units (N per expansion, as scatter_step charges), counted as done.
+void Lacam::live_slice(const Budget& b, Clock::time_point t0, Clock::time_point deadline, uint64_t& done)
+{
+  if (scatter_.done()) return;
+  const double share = std::clamp(opt_.scatter_live_share, 0.0, 1.0);
+  const uint64_t n = static_cast<uint64_t>(std::max(n_, 1));
+  if (timed_) {
+    const auto until = t0 + std::chrono::duration_cast<Clock::duration>((deadline - t0) * share);
+    while (!scatter_.done() && Clock::now() < until) {
+      if (scatter_.pass_complete()) scatter_.publish(until);
+      else scatter_.step(until, UINT64_MAX, false);
+    }
+    return;
+  }
+  if (b.expansions == Budget{}.expansions) {  // no budget: the whole SUO first (scatter_first)
+    scatter_.step(Clock::time_point::max());
+    return;
+  }
+  const uint64_t units = static_cast<uint64_t>(share * static_cast<double>(b.expansions));
+  if (units == 0) return;
+  scatter_.step(Clock::time_point::max(), units * n);
+  done += std::min<uint64_t>(units, std::max<uint64_t>(1, scatter_.work() / n));
 }
 
 double Lacam::room_ms() const

@@ -57,6 +57,17 @@ void Lacam::start_refining()
   refining_ = preparing_ = true;
   prepare_next_ = 0;
   pibt_.set_local_guidance(nullptr);  // refine_expand() guides its expansions one by one
+  if (live_) {  // scatter_live: SUO from the start no longer shares the calls
+    live_ = false;
+    if (opt_.scatter_live_keep) {
+      scatter_probed_ = true;  // its start is behind the agents: no restart ahead, dive from the root
+    } else {  // a fresh SUO ahead on the best path, as without scatter_live
+      scatter_.set_live(false);
+      scatter_.clear();
+      pibt_.set_scatter(nullptr);
+      scatter_started_ = false;
+    }
+  }
   if (!timed_) prepare_step();  // no deadline: at once, in this expansion (deterministic runs)
 }
 

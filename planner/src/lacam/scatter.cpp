@@ -302,8 +302,22 @@ bool Scatter::run_astar(Clock::time_point deadline, uint64_t max_work)
   cur_ = top_ = 0;
   level_sorted_ = false;
   enroll(i);
+  if (live_ && passes_ == 0) show(i);
   in_astar_ = false;
   return true;
+}
+
+// The first pass's path of agent i as guidance now (its sorted successor list, what
+// publish() builds for every agent at the pass's end): O(its length x log).
+void Scatter::show(int i)
+{
+  if (next_.size() != static_cast<size_t>(n_)) next_.assign(n_, {});
+  const auto& p = paths_[i];
+  auto& nx = next_[i];
+  nx.clear();
+  for (size_t t = 0; t + 1 < p.size(); ++t) nx.emplace_back(p[t], p[t + 1]);
+  std::sort(nx.begin(), nx.end());
+  work_ += p.size();
 }
 
 void Scatter::end_pass()

@@ -3,11 +3,14 @@
 // step PIBT tries first.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "grid.hpp"
 #include "planner/lacam/lacam.hpp"
 #include "planner/lacam/local_guidance.hpp"
 #include "planner/lacam/pibt.hpp"
 #include "planner/lacam/priority.hpp"
+#include "planner/lacam/rt_lacam.hpp"
 #include "planner/lacam/runner.hpp"
 #include "planner/movingai.hpp"
 #include "planner/rng.hpp"
@@ -153,6 +156,35 @@ TEST(LocalGuidance, LacamsFirstSolutionIsCheaperWithGuidance)
       (w ? on : off) += r.soc;
     }
   }
+  EXPECT_LT(static_cast<double>(on), 0.95 * static_cast<double>(off)) << "off " << off << ", on " << on;
+}
+
+// lg_window_unpaused (RT-LaCAM*'s default in rtlacam-bench): below pause_min_ms every
+// iteration is one expansion and the agents execute LaCAM's first descent move by move, so
+// guiding it lowers the executed standard SOC (0.01 ms; docs/rt_lacam_star.md, session 37).
+// Checked: with the option's branch in Lacam::search() switched off, on == off and it fails.
+TEST(LocalGuidance, RtLacamStarBelowThePauseCutoffExecutesAGuidedDescent)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const Graph g = load_map(dir + "random-32-32-20.map");
+  long long off = 0, on = 0;
+  for (const char* scen : {"random-32-32-20-random-1.scen", "random-32-32-20-random-2.scen"}) {
+    const Instance ins = load_scen(dir + scen, g, 200);
+    RunOptions ropt;
+    ropt.per_iteration = Budget::time_ms(0.01);
+    ropt.record_plan = false;
+    for (int w : {0, 5}) {
+      LacamOptions o;
+      o.refine = o.scatter = o.free_first = true;  // RT-LaCAM* as rtlacam-bench runs it
+      o.lg_window_unpaused = w;
+      RtLacam rt(g, ins.starts, ins.goals, o);
+      const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ropt);
+      ASSERT_TRUE(r.solved) << scen << " window " << w;
+      ASSERT_EQ(r.validation_error, "") << scen << " window " << w;
+      (w ? on : off) += r.soc;
+    }
+  }
+  std::printf("standard SOC at 0.01 ms, scens 1 + 2: off %lld, on %lld\n", off, on);
   EXPECT_LT(static_cast<double>(on), 0.95 * static_cast<double>(off)) << "off " << off << ", on " << on;
 }
 

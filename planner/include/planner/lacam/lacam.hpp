@@ -189,6 +189,16 @@ struct LacamOptions {
   // SUO before the first solution (lacam3's order; counts against the iterations' budget).
   // It changes PIBT and so the tree: the first solution is then not LaCAM's.
   bool scatter_first = false;
+  // SUO from the start before the first solution *without waiting* for it (issue 22, session
+  // 37): with refine and scatter, each search() call before the first solution gives
+  // scatter_live_share of its budget to SUO's first pass from the start configuration and
+  // the rest to LaCAM's search, and every agent's path guides PIBT as soon as its A* ends
+  // (Scatter::set_live; the others keep the distances). With scatter_live_keep the
+  // refinement goes on with this SUO (its passes, then a guided dive from the root); without,
+  // refinement starts a fresh SUO ahead on the best path as before.
+  bool scatter_live = false;
+  double scatter_live_share = 0.5;
+  bool scatter_live_keep = false;
   // A LaCAM expansion before the first solution may stop at a timed search()'s deadline
   // and go on in the next call (Pibt::start/resume): at N = 1000 one PIBT call is more
   // than a 0.1 ms iteration. The agents wait meanwhile (top() stays the expanded node); the
@@ -223,6 +233,15 @@ struct LacamOptions {
   int lg_collision_weight = 0;  // 0: collisions first (lexicographic); k: a collision costs k steps
   bool lg_rest = false;         // an agent on its goal is guided to stay (local_guidance.hpp)
   bool lg_first = true;   // in the search for the first solution (changes LaCAM's tree)
+  // Local guidance with this window in the search for the first solution of a timed call
+  // whose cutoff is below pause_min_ms (lg_window 0 only; 0 = off): there every iteration is
+  // one expansion, the search never runs ahead of the agents, and the executed plan is
+  // LaCAM's first descent move by move, so a better successor is all that helps, whatever it
+  // costs (the cutoff cannot be kept by any expansion anyway). At 1 ms the same guidance
+  // delays the first solution and the refinement (warehouse cells 1.02-1.09x, random-64-64-20
+  // N = 1000 1.48x): not above pause_min_ms. Measured in docs/rt_lacam_star.md, session 37.
+  int lg_window_unpaused = 0;
+  static constexpr int kStarLgWindowUnpaused = 5;  // RT-LaCAM*'s (rtlacam-bench, Python rtlacam)
   // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
   // apart) fits the iteration, else unguided. Dives and LNS are never guided.
   bool lg_refine = true;
@@ -457,6 +476,8 @@ class Lacam {
   Scatter scatter_;
   LocalGuidance lg_;
   bool scatter_started_ = false, first_dive_done_ = false;
+  bool live_ = false;  // scatter_live: SUO shares the calls of the first search
+  void live_slice(const Budget& b, Clock::time_point t0, Clock::time_point deadline, uint64_t& done);
   HNode* scatter_root_ = nullptr;  // the node whose configuration SUO started from
   int passes_dived_ = 0;           // SUO passes already followed by a dive
   bool scatter_probed_ = false;    // the lead was checked against SUO's speed

@@ -47,6 +47,11 @@ class Scatter {
   // to ties between nodes with equal (collisions, f, g), so the paths may differ. Takes
   // effect at the next reset().
   void set_bucket_queue(bool on) { bucket_next_ = on; }
+  // Live first pass (LacamOptions::scatter_live): each agent's path guides PIBT (next()) as
+  // soon as its A* of the first pass ends, not only once the whole pass is published; the
+  // agents not planned yet keep PIBT's distances. Later passes publish whole, as before.
+  void set_live(bool on) { live_ = on; }
+  bool live() const { return live_; }
 
   // Works until done, `deadline`, or about `max_work` units; true once done. With
   // `end_passes` false a step stops once a pass is complete and leaves its publication (O(the
@@ -59,7 +64,7 @@ class Scatter {
   bool publish(Clock::time_point deadline);
   void end_pass();
   bool done() const { return done_; }
-  bool ready() const { return !next_.empty(); }  // a complete pass has been published
+  bool ready() const { return !next_.empty(); }  // a complete pass has been published (live: one path)
   uint64_t work() const { return work_; }         // of the last step()
   int passes() const { return passes_; }
   int planned() const { return pos_; }  // agents done in the running pass
@@ -75,6 +80,8 @@ class Scatter {
 
  private:
   long occupancy_builds_ = 0;
+  bool live_ = false;
+  void show(int i);  // live: agent i's path of the first pass guides at once
   struct Node {
     uint64_t key;  // (collisions, f, len_max_ - g), packed by key()
     Vertex v, parent;
