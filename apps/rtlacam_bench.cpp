@@ -102,11 +102,10 @@ int main(int argc, char** argv)
   app.add_flag("--lg-rest,!--no-lg-rest", lg_rest, "local guidance: an agent on its goal is guided to stay");
   bool lg_first = LacamOptions{}.lg_first;
   app.add_flag("--lg-first,!--no-lg-first", lg_first, "local guidance in the search for the first solution");
-  int lg_window_unpaused = LacamOptions::kStarLgWindowUnpaused;
-  auto* lg_unpaused_opt =
-      app.add_option("--lg-window-unpaused", lg_window_unpaused,
+  int lg_window_unpaused = 0;
+  app.add_option("--lg-window-unpaused", lg_window_unpaused,
                      "local guidance window in the first search when --cutoff-ms is below --pause-min-ms (every iteration "
-                     "one expansion); 0 = off. Default " + std::to_string(LacamOptions::kStarLgWindowUnpaused) + " for RT-LaCAM* (--solver rtlacam --refine), 0 otherwise")
+                     "one expansion); 0 = off (default: it costs each iteration ~4x; " + std::to_string(LacamOptions::kStarLgWindowUnpaused) + " measured, docs/rt_lacam_star.md)")
           ->check(CLI::Range(0, 64));
   bool lg_refine = LacamOptions{}.lg_refine;
   app.add_flag("--lg-refine,!--no-lg-refine", lg_refine, "local guidance in refinement's expansions");
@@ -258,9 +257,6 @@ int main(int argc, char** argv)
     lopt.mc_refine = mc_refine;
     lopt.lg_window = lg_window;
     lopt.lg_first = lg_first;
-    // Default: RT-LaCAM* only (measured: docs/rt_lacam_star.md, session 37), as free_first.
-    if (lg_unpaused_opt->count() == 0)
-      lg_window_unpaused = refine && parse_solver(solver) == Solver::RtLacam ? LacamOptions::kStarLgWindowUnpaused : 0;
     lopt.lg_window_unpaused = lg_window_unpaused;
     lopt.lg_rest = lg_rest;
     lopt.lg_collision_weight = lg_weight;

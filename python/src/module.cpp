@@ -278,8 +278,6 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.pref = pref;
           opt.lacam.refine = opt.lacam.scatter = refine;  // as rtlacam-bench: RT-LaCAM* unless refine=False
           opt.lacam.free_first = refine && parse_solver(solver) == Solver::RtLacam;  // as rtlacam-bench
-          opt.lacam.lg_window_unpaused =  // as rtlacam-bench (RT-LaCAM* only)
-              refine && parse_solver(solver) == Solver::RtLacam ? LacamOptions::kStarLgWindowUnpaused : 0;
           opt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           return make_planner(parse_solver(solver), g, starts, goals, opt);
@@ -306,7 +304,6 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.lacam.seed = seed;  // run_full_horizon (lacam) reads it there
           sopt.lacam.refine = sopt.lacam.scatter = refine;  // as rtlacam-bench (lacam: executes its first solution either way)
           sopt.lacam.free_first = refine && s == Solver::RtLacam;  // as rtlacam-bench (RT-LaCAM* only)
-          sopt.lacam.lg_window_unpaused = refine && s == Solver::RtLacam ? LacamOptions::kStarLgWindowUnpaused : 0;
           sopt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           sopt.pref = pref;

@@ -159,7 +159,7 @@ TEST(LocalGuidance, LacamsFirstSolutionIsCheaperWithGuidance)
   EXPECT_LT(static_cast<double>(on), 0.95 * static_cast<double>(off)) << "off " << off << ", on " << on;
 }
 
-// lg_window_unpaused (RT-LaCAM*'s default in rtlacam-bench): below pause_min_ms every
+// lg_window_unpaused (opt-in, rtlacam-bench --lg-window-unpaused): below pause_min_ms every
 // iteration is one expansion and the agents execute LaCAM's first descent move by move, so
 // guiding it lowers the executed standard SOC (0.01 ms; docs/rt_lacam_star.md, session 37).
 // Checked: with the option's branch in Lacam::search() switched off, on == off and it fails.

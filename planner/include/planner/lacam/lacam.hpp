@@ -240,8 +240,11 @@ struct LacamOptions {
   // costs (the cutoff cannot be kept by any expansion anyway). At 1 ms the same guidance
   // delays the first solution and the refinement (warehouse cells 1.02-1.09x, random-64-64-20
   // N = 1000 1.48x): not above pause_min_ms. Measured in docs/rt_lacam_star.md, session 37.
+  // Off by default everywhere (opt-in: rtlacam-bench --lg-window-unpaused 5): it multiplies the
+  // iteration's time by ~4 (0.01 ms p99 0.088 -> 0.372 ms), so a "0.01 ms" RT-LaCAM* would
+  // cost more per iteration than a 0.1 ms one.
   int lg_window_unpaused = 0;
-  static constexpr int kStarLgWindowUnpaused = 5;  // RT-LaCAM*'s (rtlacam-bench, Python rtlacam)
+  static constexpr int kStarLgWindowUnpaused = 5;  // the window measured (docs/rt_lacam_star.md)
   // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
   // apart) fits the iteration, else unguided. Dives and LNS are never guided.
   bool lg_refine = true;
