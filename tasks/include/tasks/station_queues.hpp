@@ -81,6 +81,8 @@ struct QueueOptions {
   // ticks): drop15's stub held three AGVs with the mouth and the cells beside it full, and
   // clearing stayed on for the last 1143 steps. Only while a station clears: the leaving
   // priority for every pocket under stall hints cost throughput (session 36, dropped).
+  // Measured there (s37, seeds 1-4, 4000 ticks): 1.02-1.05x errands/tick, K 348-906 against
+  // 597-1221 (controller/README.md "Leavers first while clearing").
   bool leavers_first = false;
   bool on() const { return capacity > 0; }
 };
