@@ -23,6 +23,8 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
                          [--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]]
+                         [--queue-variants JSON... [--clear-configs CONFIG...] [--seeds 1,2]
+                          [--large-ticks-list 1000,2000] [--jobs 2]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
                           [--head-after 60] [--load-cost 0] [--pocket-cost 100] [--drop-hints [--against-rules]]]
 
@@ -63,6 +65,7 @@ import os
 import subprocess
 import sys
 import tempfile
+import time
 
 import yaml  # PyYAML
 
@@ -327,6 +330,58 @@ def pocket_clear(a, build, tmp):
     return 0 if clean else 1
 
 
+def queue_variants(a, build, tmp):
+    """tasks.queues overrides (JSON mappings, --queue-variants) against the config as is, per
+    config (--clear-configs), fleet seed (--seeds) and tick count (--large-ticks-list), on
+    one build: the first row of each (config, seed, ticks) is the config as is, the others print
+    their ratio to it. --jobs runs that many rtlacam-sumo at once (decisions do not depend on
+    timing: the planner has a fixed number of expansions per step)."""
+    from concurrent.futures import ThreadPoolExecutor
+    variants = [("as is", {})] + [(v, json.loads(v)) for v in a.queue_variants]
+    seeds = [int(x) for x in a.seeds.split(",") if x]
+    ticks_list = [int(x) for x in str(a.large_ticks_list).split(",") if x]
+    jobs = []
+    for base in a.clear_configs:
+        cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+        for ticks in ticks_list:
+            for seed in seeds:
+                for k, (label, over) in enumerate(variants):
+                    queues = dict(cfg["tasks"].get("queues") or {}, **over)
+                    out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{ticks}_{seed}_v{k}")
+                    jobs.append((base, ticks, seed, label, out, queues))
+    t0 = time.time()
+    with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
+        futs = [ex.submit(run, build, base, out, ticks, a.expansions, None, {"queues": q}, {"fleet": {"seed": seed}})
+                for base, ticks, seed, label, out, q in jobs]
+        return queue_rows(jobs, futs, t0, a, build)
+
+
+def queue_rows(jobs, futs, t0, a, build):
+    """queue_variants' table, a row as each run ends (in order)."""
+    print(f"# build {build}, {a.jobs} runs at once, {a.expansions} expansions per step", flush=True)
+    print("| config | ticks | seed | tasks.queues | errands/tick | / as is | K (stall max / p99) | errand ticks max | clearings | longest clearing | clean |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    clean, base_rate = True, None
+    for (base, ticks, seed, label, out, q), f in zip(jobs, futs):
+        m, err = f.result()
+        if m is None:
+            print(f"# {base} {label}: {err}", file=sys.stderr)
+            return 1
+        ok = run_clean(m)
+        clean = clean and ok
+        l = m["lifelong"]
+        rate = l["errandThroughput"]
+        if label == "as is":
+            base_rate = rate
+        print(f"| {base} | {m['ticks']} | {seed} | {label} | {rate:.3f} | {rate / base_rate if base_rate else 0:.2f} | "
+              f"{l['stallTicks']['max']} / {l['stallTicks']['p99']} | {l['errandTicks']['max']} | "
+              f"{l.get('queues', {}).get('clearings', '-')} | {l.get('queues', {}).get('longestClearing', '-')} | "
+              f"{'yes' if ok else 'NO'} |", flush=True)
+    print(f"# {len(jobs)} runs in {time.time() - t0:.0f} s")
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default="build")
@@ -373,7 +428,14 @@ def main():
     ap.add_argument("--urgency-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
                              "config/small_warehouse_lifelong.yaml"])
+    ap.add_argument("--queue-variants", nargs="+", metavar="JSON",
+                    help="tasks.queues overrides, e.g. '{\"leavers_first\": true}', each against the config as is "
+                         "(--clear-configs, --seeds, --large-ticks-list, --jobs)")
+    ap.add_argument("--large-ticks-list", default=None, help="--queue-variants: tick counts, e.g. 1000,2000 (default --large-ticks)")
+    ap.add_argument("--jobs", type=int, default=1, help="--queue-variants: runs at once")
     a = ap.parse_args()
+    if a.large_ticks_list is None:
+        a.large_ticks_list = str(a.large_ticks)
     global QUEUES, EXECUTOR, SOLVER
     QUEUES, EXECUTOR, SOLVER = a.queues, a.executor, a.solver
     dflt = "the config's"
@@ -394,6 +456,8 @@ def main():
         return stall_rules(a, build, tmp)
     if a.pocket_clear:
         return pocket_clear(a, build, tmp)
+    if a.queue_variants:
+        return queue_variants(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:

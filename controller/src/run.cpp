@@ -472,6 +472,8 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.max_heading = n.max_heading;
   m_.queued_ticks = n.queued_ticks;
   m_.clearings = n.clearings;
+  m_.clearing_steps = n.clearing_steps;
+  m_.longest_clearing = n.longest_clearing;
   m_.idle_at_end = n.idle;
   m_.parked_at_end = n.parked;
   m_.errands_finished = tm_->errands_finished();

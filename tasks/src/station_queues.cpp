@@ -199,6 +199,9 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
         s.admitted.clear(), s.waiting.clear();
         if (std::find(touched.begin(), touched.end(), static_cast<int>(i)) == touched.end()) touched.push_back(static_cast<int>(i));
       }
+      s.cleared_for = s.clearing ? s.cleared_for + 1 : 0;
+      clearing_steps_ += s.clearing ? 1 : 0;
+      longest_clearing_ = std::max(longest_clearing_, s.cleared_for);
     }
   std::sort(touched.begin(), touched.end());
   std::vector<std::pair<int32_t, int>> order;

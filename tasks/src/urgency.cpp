@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "tasks/station_queues.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace tasks {
@@ -16,7 +17,9 @@ bool battery_urgent(const TaskManager& tm, int a)
 std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* positions)
 {
   const UrgencyOptions& o = tm.urgency();
-  if (!o.on()) return {};
+  const StationQueues* q = tm.queues();
+  const bool leavers_first = q && q->options().leavers_first && q->options().clear_after > 0 && positions;
+  if (!o.on() && !leavers_first) return {};
   const int n = tm.num_agents();
   std::vector<float> h(n, 0.0f);
   if (o.head_after > 0 && !o.stalls && tm.stalls() && positions) {
@@ -52,6 +55,11 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
       h[a] = kBatteryUrgency + static_cast<float>(kBatteryUrgency * (1.0 - f));
     }
   }
+  if (leavers_first)  // StationQueues::leavers_first: out of a clearing station's pocket first
+    for (int a = 0; a < n; ++a) {
+      const int i = q->pocket_of((*positions)[a]);
+      if (i >= 0 && q->clearing(i) && q->pocket_of(tm.goals()[a]) != i) h[a] = std::max(h[a], kLeavingUrgency);
+    }
   return h;
 }
 

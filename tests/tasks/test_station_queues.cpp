@@ -253,6 +253,7 @@ TEST(StationQueues, AStationWhosePocketHoldsALeaverTooLongGivesUpItsPlacesUntilI
     EXPECT_TRUE(q.waiting(0).empty());
     EXPECT_EQ(unplaced, (std::vector<char>{0, 1, 1}));  // the caller parks them (off the stub)
     EXPECT_EQ(q.clearings(), 1);
+    EXPECT_TRUE(q.clearing(0));  // leavers_first's test (urgency.cpp)
     // a1 backs out; a0 still inside: nobody is let in.
     pos[1] = g.at(3, 3);
     apply();
@@ -265,6 +266,9 @@ TEST(StationQueues, AStationWhosePocketHoldsALeaverTooLongGivesUpItsPlacesUntilI
     EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
     EXPECT_EQ(goals[1], s);
     EXPECT_EQ(q.clearings(), 1);
+    EXPECT_FALSE(q.clearing(0));
+    EXPECT_EQ(q.longest_clearing(), 2);  // the apply() calls with the places given up
+    EXPECT_EQ(q.clearing_steps(), 2);
   }
 }
 

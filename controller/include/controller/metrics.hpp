@@ -118,6 +118,8 @@ struct Metrics {
   int max_heading = 0;
   long long queued_ticks = 0;
   long clearings = 0;  // station pockets cleared (tasks.queues.clear_after)
+  long clearing_steps = 0;   // steps stations spent clearing, summed over stations
+  int longest_clearing = 0;  // the longest clearing in steps
   int idle_at_end = 0, parked_at_end = 0;
   // fleet.battery (tasks/battery.hpp), metrics.json "battery": charging errands begun,
   // AGVs whose charge reached 0 (must be 0), the share of AGV-ticks spent charging on a

@@ -72,6 +72,18 @@ struct QueueOptions {
   // AGV and two leavers for 150+ ticks, with the station free. Only the agents already placed
   // are re-ranked: the request order still decides who gets a place (fifo).
   bool in_line = false;
+  // Leavers first while clearing (off: false; with clear_after): an agent in the pocket of a
+  // clearing station on its way out gets the leaving priority (urgency.hpp, kLeavingUrgency)
+  // whatever else the hints say. With queues `tasks.urgency.stalls` is on by default, and
+  // stall hints skip the head hints' leaving rule, so the leaver ranked lowest: the AGVs
+  // standing at the mouth and on the lane (unplaced ones of the station, idle ones, passers-by)
+  // never made way for it. Traced on large_warehouse_parking (session 36, seed 4, 4000
+  // ticks): drop15's stub held three AGVs with the mouth and the cells beside it full, and
+  // clearing stayed on for the last 1143 steps. Only while a station clears: the leaving
+  // priority for every pocket under stall hints cost throughput (session 36, dropped).
+  // Measured there (s37, seeds 1-4, 4000 ticks): 1.02-1.05x errands/tick, K 348-906 against
+  // 597-1221 (controller/README.md "Leavers first while clearing").
+  bool leavers_first = false;
   bool on() const { return capacity > 0; }
 };
 
@@ -104,8 +116,14 @@ class StationQueues {
   // Per vertex: the pocket, mouth and queue cells of the stations with an agent admitted or
   // queued (or clearing) at the last apply(): where an idle agent must not park (parking.hpp).
   const std::vector<uint8_t>& in_use_cells() const { return in_use_; }
+  // Station i is clearing its pocket (clear_after): places given up until it is empty.
+  bool clearing(int i) const { return st_[i].clearing; }
   // Times a station gave up its places to clear its pocket (clear_after).
   long clearings() const { return clearings_; }
+  // Steps the stations spent clearing (summed over stations), and the longest clearing so
+  // far in steps (one still going counts to now).
+  long clearing_steps() const { return clearing_steps_; }
+  int longest_clearing() const { return longest_clearing_; }
   void share_dist_cache(std::shared_ptr<planner::DistCache> cache) { dist_.share(std::move(cache)); }
 
  private:
@@ -117,6 +135,7 @@ class StationQueues {
     std::vector<int> admitted, waiting;
     int blocked = 0;        // consecutive apply() calls with a leaver in the pocket
     bool clearing = false;  // places given up until the pocket is empty (clear_after)
+    int cleared_for = 0;    // apply() calls in the current clearing
   };
   void build_queue(Station& s);
   void drop_place(int agent);
@@ -133,6 +152,8 @@ class StationQueues {
   std::vector<long> asked_;        // per agent: that request's stamp (a counter of requests)
   long requests_ = 0;
   long clearings_ = 0;
+  long clearing_steps_ = 0;
+  int longest_clearing_ = 0;
   std::vector<uint8_t> in_use_;           // in_use_cells()
   std::vector<planner::Vertex> in_use_list_;  // its set cells
   std::vector<std::vector<planner::Vertex>> area_;  // per station: pocket, mouth and queue cells

@@ -16,7 +16,9 @@
 //  - battery: an agent on its way to a charger, or holding a task while low (below the
 //    threshold or the distance-aware reserve), gets kBattery + kBattery x (1 - its charge
 //    fraction): above every stall, and the emptier one first (two low AGVs head-on: one
-//    yields, they no longer swap priorities and oscillate).
+//    yields, they no longer swap priorities and oscillate);
+//  - leavers first while clearing (StationQueues' QueueOptions::leavers_first): an agent in
+//    the pocket of a station that is clearing it, on its way out, gets kLeavingUrgency.
 // Hints only order conflicts; the planners' guarantees stay (RT-LaCAM's tree of an epoch is
 // one complete search whatever the root's priorities). Battery urgency also narrows the
 // epoch's goal test to the low agents (battery_urgent, below): still one complete search,
