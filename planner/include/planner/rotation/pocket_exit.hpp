@@ -1,0 +1,47 @@
+#pragma once
+// PocketExit: the pocket exit rule for the rotation solvers that rank cells (pibt-rot, and
+// wppl through its rollouts): while a robot stands in a dead-end pocket (the task layer's
+// labels, RealtimePlanner::set_pockets) with its goal outside it, nobody moves deeper into
+// that pocket (to a cell farther from its mouth), the leaver included.
+//
+// Why: a station at the end of a one-wide stub. Robots bound for it follow the holder in and
+// face the station; the holder's next goal is outside. A cell robot backs out in one move, a
+// robot with a heading needs a half turn first (three actions to leave), and the line behind
+// it (the stub, then the crowd on the cross aisle at its mouth) must do the same in the same
+// steps, so the holder never gets out: large_warehouse_lifelong (200 AGVs, 3-cell station
+// stubs), grid twin, pibt-rot+arrows 194 errands in the first 1000 steps, 30 in the last
+// (session 37, docs/twin_bench.md). With the rule the next robots wait at the mouth, where a
+// quarter turn takes them out of the holder's way. epibt has the same rule for its
+// operations (EpibtOptions::pocket_exit, session 36).
+#include <vector>
+
+#include "planner/config.hpp"
+#include "planner/graph.hpp"
+
+namespace planner {
+
+class PocketExit {
+ public:
+  // `pocket`: per vertex its pocket's label, -1 outside (empty: no pockets, the rule is off).
+  void set(const Graph& g, std::vector<Vertex> pocket);
+  // Marks the pockets that hold a robot whose goal is outside them (call once per step).
+  void mark(const Config& current, const Config& goals);
+  // Is the move from `from` to `to` deeper into a marked pocket?
+  bool blocks(Vertex from, Vertex to) const
+  {
+    if (leaving_.empty() || from == to) return false;
+    const Vertex p = pocket_[to];
+    return p >= 0 && leaving_[p] && depth_[to] > (pocket_[from] == p ? depth_[from] : 0);
+  }
+  bool any() const { return !leaving_list_.empty(); }
+  // Must a robot at `at` with goal `goal` leave its pocket?
+  bool leaving(Vertex at, Vertex goal) const { return !pocket_.empty() && pocket_[at] >= 0 && pocket_[goal] != pocket_[at]; }
+
+ private:
+  std::vector<Vertex> pocket_;   // vertex -> pocket label, -1
+  std::vector<int> depth_;       // pocket cell -> moves from its mouth (1 next to it); 0 outside
+  std::vector<char> leaving_;    // label -> a robot in it has its goal outside (this step)
+  std::vector<Vertex> leaving_list_;
+};
+
+}  // namespace planner
