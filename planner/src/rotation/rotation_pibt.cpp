@@ -117,11 +117,12 @@ Status RotationPibt::search(const Budget&)
     occ_next_[c] = i;
   }
   if (exit_rule) {
-    // Leavers first: a robot that must get out of a pocket ranks above everyone else, so it
-    // pushes the robots waiting at the mouth aside (a quarter turn) rather than waiting for
-    // them; they age while it waits, and a leaver's priority restarted with its new goal.
+    // Leavers first (PocketExit::first): a robot that must get out of a pocket whose way out
+    // is taken plans before everyone else, so it pushes the robots waiting at the mouth aside
+    // (a quarter turn) rather than waiting for them; they age while it waits, and a leaver's
+    // priority restarted with its new goal.
     for (int32_t i : order_)
-      if (decided_[i] < 0 && exit_.leaving(current_[i], goals_[i])) pibt(i, -1);
+      if (decided_[i] < 0 && exit_.first(current_[i], goals_[i])) pibt(i, -1);
   }
   for (int32_t i : order_)
     if (decided_[i] < 0) pibt(i, -1);
