@@ -101,7 +101,6 @@ void Epibt::set_guidance(Guidance gd)
 void Epibt::set_pockets(std::vector<Vertex> pocket, float cost)
 {
   if (!pocket.empty() && pocket.size() != static_cast<size_t>(g_.size())) throw std::invalid_argument("pockets: one label per vertex");
-  first_.set(g_, pocket);
   pocket_ = std::move(pocket);
   pocket_moves_ = cost > 0 ? cost : 0;
   // Depth of each pocket cell: actions from the pocket's mouth (1 next to it), so that "deeper"
@@ -393,11 +392,9 @@ Status Epibt::search(const Budget& b)
   }
   for (int i = 0; i < n; ++i)
     key_[i] = opt_.priority == Priority::Age ? age_[i] : -static_cast<double>(h(i));
-  if (opt_.pocket_exit && opt_.leavers_first && !leaving_list_.empty()) {
-    first_.mark(current_, goals_);
+  if (opt_.pocket_exit && opt_.leavers_first && !leaving_list_.empty())
     for (int i = 0; i < n; ++i)
-      if (first_.first(current_[i], goals_[i])) key_[i] += kLeaverKey;
-  }
+      if (const Vertex p = pocket_[current_[i]]; p >= 0 && pocket_[goals_[i]] != p) key_[i] += kLeaverKey;
   for (int i = 0; i < n; ++i) order_[i] = i;
   std::stable_sort(order_.begin(), order_.end(), [this](int32_t x, int32_t y) { return key_[x] > key_[y]; });
   for (int32_t i : order_) {

@@ -52,7 +52,6 @@
 
 #include "planner/rng.hpp"
 #include "planner/rotation/rotation_dist.hpp"
-#include "planner/rotation/pocket_exit.hpp"
 #include "planner/rotation/rotation_planner.hpp"
 #include "planner/rotation/traffic_flow.hpp"
 
@@ -73,12 +72,14 @@ struct EpibtOptions {
   // twins of the large and huge warehouses to 0-0.03 errands per step (s36 trace,
   // docs/twin_bench.md). Off: the paper's EPIBT.
   bool pocket_exit = true;
-  // Leavers first (with pocket_exit): a robot that stands in a dead-end pocket (two cells deep
-  // or more) with its goal outside, and whose way out is taken (PocketExit::first), ranks
-  // above every other robot, so it may push the robots in the pocket and at its mouth aside. Why: with the exit rule alone the robots bound for the station wait at the mouth
-  // and, older than the leaver (its age restarted with its new goal), are never pushed:
-  // large_warehouse_lifelong's twin still fell to 0.27 of its first 1000 steps (session 37,
-  // docs/twin_bench.md; pibt-rot's rule, planner/rotation/pocket_exit.hpp).
+  // Leavers first (with pocket_exit): a robot that stands in a dead-end pocket with its goal
+  // outside ranks above every other robot, so it may push the robots in the pocket and at
+  // its mouth aside. Why: with the exit rule alone the robots bound for the station wait at
+  // the mouth and, older than the leaver (its age restarted with its new goal), are never
+  // pushed: large_warehouse_lifelong's twin fell to 0.27 of its first 1000 steps, the huge
+  // one's to 0.37-0.63 (session 37, docs/twin_bench.md). Every leaver, unlike pibt-rot's
+  // PocketExit::first (deep, crowded pockets only): limited so, the huge twin stayed at 0.56;
+  // every leaver costs MR23-I-08 5 % (3.823 -> 3.631 errands/step).
   bool leavers_first = true;
   // EPIBT+LNS (the paper's EPIBT_LNS): after the pass, rounds in random order in which each
   // robot tries its candidates again, pushing anyone (no priority rule), kept only when the
@@ -197,7 +198,6 @@ class Epibt : public RotationPlanner {
   std::vector<double> age_;         // Priority::Age: RotationPibt's priority
   std::vector<int32_t> order_;
   std::vector<Vertex> pocket_;      // vertex -> its dead-end pocket, or -1 (set_pockets)
-  PocketExit first_;                // leavers_first: which leavers rank above all (PocketExit::first)
   float pocket_moves_ = 0;          // foreign-pocket cost in forward moves (0: off)
   std::vector<int> depth_;          // pocket cell -> actions from its mouth (1 next to it); 0 outside
   std::vector<char> leaving_;       // pocket label -> a robot in it has its goal outside (this step)

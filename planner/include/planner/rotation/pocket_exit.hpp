@@ -39,7 +39,7 @@ class PocketExit {
   bool any() const { return !leaving_list_.empty(); }
   // Leavers first: must a robot at `at` with goal `goal` leave a pocket at least two cells
   // deep whose way out is taken (another robot in it, or one on a cell at its mouth, at the
-  // last mark())? Such a robot plans first (RotationPibt) or ranks above all (Epibt).
+  // last mark())? Such a robot plans first (RotationPibt; epibt ranks every leaver first).
   // Why only those: on MR23-I-08 (random map, 800 robots, many dead ends around task cells)
   // every leaver first cost pibt-rot 29 % (1.481 -> 1.057 errands/step); one-cell pockets
   // are the dead-end boost's already, and a leaver with a free way needs no help.
