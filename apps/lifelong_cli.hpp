@@ -33,7 +33,7 @@ namespace cli {
 struct SolverCli {
   std::string solver = "rtlacam", policy_file;
   uint64_t seed = 0;
-  bool refine = true, reset_priorities = false, rot_back_last = true;
+  bool refine = true, reset_priorities = false, rot_back_last = true, rot_pocket_exit = true;
   // Default arrows (pibt-rot, epibt): +8 to +20 % errands/step for pibt-rot on all five
   // MR23 instances (5 seeds) and on RANDOM-01..05 (docs/rotation_lorr.md "Guidance graph").
   std::string guidance = "arrows", guidance_costs = "1,3,1";
@@ -66,6 +66,10 @@ struct SolverCli {
     app.add_flag("--rot-back-last,!--no-rot-back-last", rot_back_last,
                  "pibt-rot: a robot asked to vacate its cell tries the cell behind it last")
         ->capture_default_str();
+    app.add_flag("--rot-pocket-exit,!--no-rot-pocket-exit", rot_pocket_exit,
+                 "pibt-rot, wppl: no move deeper into a dead-end pocket that a robot in it has to leave "
+                 "(planner/rotation/pocket_exit.hpp; epibt: --epibt-pocket-exit)")
+        ->capture_default_str();
     app.add_option("--guidance", guidance,
                    "pibt-rot, epibt, wppl: none | arrows (one-way lanes: rows alternate east/west, columns south/north) | "
                    "FILE (forward costs per cell and heading, planner/guidance.hpp); default arrows, wppl: none; other "
@@ -82,6 +86,9 @@ struct SolverCli {
         ->capture_default_str();
     app.add_flag("--epibt-pocket-exit,!--no-epibt-pocket-exit", ep.pocket_exit,
                  "epibt: no operation goes deeper into a dead-end pocket that a robot in it has to leave (needs --urgency-stalls' pockets)")
+        ->capture_default_str();
+    app.add_flag("--epibt-leavers-first,!--no-epibt-leavers-first", ep.leavers_first,
+                 "epibt, with --epibt-pocket-exit: a robot that must leave a dead-end pocket ranks above all others")
         ->capture_default_str();
     app.add_flag("--epibt-wait-op", ep.wait_op,
                  "epibt: WWW among every robot's candidates (default: only kept when nothing else fits)");
@@ -135,6 +142,7 @@ struct SolverCli {
     so.lacam.keep_priorities = !reset_priorities;
     so.lacam.refine = refine;
     so.back_last = rot_back_last;
+    so.pocket_exit = rot_pocket_exit;
     if (!planner::plans_rotation(kind)) {
       if (app.count("--guidance") && guidance != "none")
         throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot, epibt or wppl)");

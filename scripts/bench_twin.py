@@ -46,9 +46,13 @@ ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation acti
 # controller's planner.rotation defaults (controller/config.hpp): guidance arrows for pibt-rot
 # and epibt, none for wppl; back_last on; epibt priority age (rtlacam-lifelong: distance).
 VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "none"), "distance": ("priority", "distance"),
-                   "age": ("priority", "age"), "noexit": ("pocket_exit", False)}
-# "+noexit" (epibt): planner.rotation.pocket_exit false / --no-epibt-pocket-exit, the stub
-# livelock of sessions 35-36 back (EpibtOptions::pocket_exit), for before/after rows.
+                   "age": ("priority", "age"), "noexit": ("pocket_exit", False),
+                   "noleavers": ("leavers_first", False)}
+# "+noexit" (any rotation solver): planner.rotation.pocket_exit false / --no-epibt-pocket-exit
+# (epibt) or --no-rot-pocket-exit (pibt-rot, wppl): the stub jams of sessions 30-36 back
+# (EpibtOptions::pocket_exit, planner/rotation/pocket_exit.hpp), for before/after rows.
+# "+noleavers" (epibt): planner.rotation.leavers_first false / --no-epibt-leavers-first
+# (session 36's exit rule without session 37's leavers first).
 # "+pocket" (any solver): tasks.urgency.pocket_cost 100 in SUMO (PIBT ranks a move into another
 # station's dead-end stub 100 moves worse; pibt-rot since s35, epibt and wppl since s36), --pocket-cost 100 in
 # the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam does not
@@ -65,9 +69,9 @@ def variant(name):
             rot["pocket_cost"] = POCKET_COST
             continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
-            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noexit with epibt; +pocket with any")
-        if o == "noexit" and solver != "epibt":
-            sys.exit(f"bench_twin.py: --solvers: '{name}': +noexit goes with epibt")
+            sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noleavers with epibt; +pocket with any")
+        if o == "noleavers" and solver != "epibt":
+            sys.exit(f"bench_twin.py: --solvers: '{name}': +noleavers goes with epibt")
         k, v = VARIANT_OPTIONS[o]
         rot[k] = v
     return solver, rot
@@ -79,8 +83,12 @@ def twin_rotation_args(solver, rot):
         args += ["--epibt-priority", rot.get("priority", "age")]
         if rot.get("pocket_exit", True) is False:
             args += ["--no-epibt-pocket-exit"]
+        if rot.get("leavers_first", True) is False:
+            args += ["--no-epibt-leavers-first"]
     else:
         args += ["--rot-back-last"]
+        if rot.get("pocket_exit", True) is False:
+            args += ["--no-rot-pocket-exit"]
     return args
 VTYPE = {"length": 0.8, "width": 0.6, "min_gap": 0.1, "accel": 0.5, "decel": 1.0, "max_speed": 1.0}
 

@@ -233,12 +233,12 @@ static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver 
   if (!planner::plans_rotation(kind))
     r.fail(key, "only with a rotation solver (pibt-rot | epibt | wppl), not " + std::string(planner::to_string(kind)));
   r.keys(n, key, {"back_last", "guidance", "guidance_costs", "traffic_flow", "depth", "lns_rounds", "priority",
-                  "pocket_exit", "window", "neighbourhood"});
+                  "pocket_exit", "leavers_first", "window", "neighbourhood"});
   const std::pair<const char*, planner::Solver> only[] = {{"traffic_flow", planner::Solver::Epibt},
                                                          {"depth", planner::Solver::Epibt},
                                                          {"lns_rounds", planner::Solver::Epibt},
                                                          {"priority", planner::Solver::Epibt},
-                                                         {"pocket_exit", planner::Solver::Epibt},
+                                                         {"leavers_first", planner::Solver::Epibt},
                                                          {"window", planner::Solver::Wppl},
                                                          {"neighbourhood", planner::Solver::Wppl}};
   for (const auto& [k, s] : only)
@@ -266,6 +266,7 @@ static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver 
   r.integer(n, key, "lns_rounds", out.lns_rounds, -1, 1000000);
   r.choice(n, key, "priority", out.priority, {"distance", "age"});
   r.flag(n, key, "pocket_exit", out.pocket_exit);
+  r.flag(n, key, "leavers_first", out.leavers_first);
   r.integer(n, key, "window", out.window, 1, 1000);
   r.integer(n, key, "neighbourhood", out.neighbourhood, 1, 100000);
 }

@@ -37,6 +37,8 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
     opt.epibt.depth = r.depth;
     opt.epibt.lns_rounds = r.lns_rounds;
     opt.epibt.pocket_exit = r.pocket_exit;
+    opt.epibt.leavers_first = r.leavers_first;
+    opt.pocket_exit = r.pocket_exit;
     opt.epibt.priority = r.priority == "age" ? planner::EpibtOptions::Priority::Age : planner::EpibtOptions::Priority::Distance;
     opt.epibt.tf.on = r.traffic_flow;
     opt.wppl.window = r.window;

@@ -20,6 +20,7 @@ void apply(RotationPlanner& p, const SolverOptions& opt)
   if (opt.max_dist_tables) p.set_max_dist_tables(opt.max_dist_tables);
   if (!opt.headings.empty()) p.set_headings(opt.headings);
   p.set_back_last(opt.back_last);
+  p.set_pocket_exit(opt.pocket_exit);
   if (!opt.guidance.uniform()) p.set_guidance(opt.guidance);
 }
 

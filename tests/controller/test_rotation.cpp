@@ -279,8 +279,13 @@ TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
   EXPECT_TRUE(ok.planner.rotation.pocket_exit);
   EXPECT_FALSE(parse_config(net + "planner: {solver: epibt, rotation: {pocket_exit: false}}\n", "t.yaml", RTLACAM_CONFIGS)
                    .planner.rotation.pocket_exit);
-  EXPECT_EQ(err("planner: {solver: pibt-rot, rotation: {pocket_exit: false}}\n"),
-            "t.yaml: planner.rotation.pocket_exit: only with solver epibt, not pibt-rot");
+  // Since session 37 every rotation solver has it (pibt-rot, wppl: pocket_exit.hpp); leavers
+  // first is epibt's own switch.
+  EXPECT_FALSE(parse_config(net + "planner: {solver: pibt-rot, rotation: {pocket_exit: false}}\n", "t.yaml", RTLACAM_CONFIGS)
+                   .planner.rotation.pocket_exit);
+  EXPECT_TRUE(ok.planner.rotation.leavers_first);
+  EXPECT_EQ(err("planner: {solver: pibt-rot, rotation: {leavers_first: false}}\n"),
+            "t.yaml: planner.rotation.leavers_first: only with solver epibt, not pibt-rot");
 
   // A net whose cells are not on a lattice: refused before SUMO starts, naming the net.
   Config diag = parse_config("sumo:\n  net: " + std::string(RTLACAM_CONTROLLER_DATA) +

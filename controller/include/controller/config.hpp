@@ -93,7 +93,10 @@ struct RotationSection {
   bool traffic_flow = true;         // epibt: congestion-aware guide paths (traffic_flow.hpp)
   int depth = 3;                    // epibt: actions per operation (3..5)
   int lns_rounds = 20;              // epibt: LNS rounds after the pass (0 off)
-  bool pocket_exit = true;          // epibt: nobody deeper into a dead-end pocket a robot must leave (EpibtOptions)
+  // Every rotation solver: nobody deeper into a dead-end pocket a robot must leave, leavers
+  // first (pibt-rot, wppl: planner/rotation/pocket_exit.hpp; epibt: EpibtOptions::pocket_exit).
+  bool pocket_exit = true;
+  bool leavers_first = true;        // epibt, with pocket_exit: leavers rank above all (EpibtOptions)
   // epibt: age (pibt-rot's rule) | distance (nearest goal first: the paper's and LoRR's
   // default). Age here: with distance, 16 AGVs on the small lifelong warehouse swung
   // between two cells in the one-cell aisles (0.007 errands/tick over 300 ticks; age 0.143).

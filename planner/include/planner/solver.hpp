@@ -46,6 +46,7 @@ struct SolverOptions {
   int heading = 0;                   // every robot's heading at the start (0 east .. 3 north; LoRR: east)
   std::vector<int> headings;         // one per robot instead of `heading` (RotationPlanner::set_headings)
   bool back_last = true;             // pibt-rot, wppl: RotationPibt::set_back_last
+  bool pocket_exit = true;           // pibt-rot, wppl: RotationPibt::set_pocket_exit (epibt: epibt.pocket_exit)
   Guidance guidance;                 // distances in these costs (guidance.hpp); default: none
   EpibtOptions epibt;                // epibt: operation depth, revisits, LNS rounds, traffic flow
   WpplOptions wppl;                  // wppl: window, neighbourhood, ...

@@ -392,6 +392,9 @@ Status Epibt::search(const Budget& b)
   }
   for (int i = 0; i < n; ++i)
     key_[i] = opt_.priority == Priority::Age ? age_[i] : -static_cast<double>(h(i));
+  if (opt_.pocket_exit && opt_.leavers_first && !leaving_list_.empty())
+    for (int i = 0; i < n; ++i)
+      if (const Vertex p = pocket_[current_[i]]; p >= 0 && pocket_[goals_[i]] != p) key_[i] += kLeaverKey;
   for (int i = 0; i < n; ++i) order_[i] = i;
   std::stable_sort(order_.begin(), order_.end(), [this](int32_t x, int32_t y) { return key_[x] > key_[y]; });
   for (int32_t i : order_) {

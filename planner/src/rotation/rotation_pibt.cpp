@@ -67,6 +67,7 @@ void RotationPibt::set_goals(const Config& goals, GoalTest test)
 void RotationPibt::set_pockets(std::vector<Vertex> pocket, float cost)
 {
   if (!pocket.empty() && pocket.size() != static_cast<size_t>(g_.size())) throw std::invalid_argument("pockets: one label per vertex");
+  exit_.set(g_, pocket);
   pocket_ = std::move(pocket);
   // `cost` moves, in the distances' costs (a forward move costs at least min_forward()).
   pocket_cost_ = cost > 0 ? static_cast<uint32_t>(std::lround(cost * dist_.guidance().min_forward())) : 0;
@@ -99,18 +100,29 @@ Status RotationPibt::search(const Budget&)
   decided_.assign(static_cast<size_t>(n), -1);
   memo_.assign(static_cast<size_t>(n), 0);
   if (target_.size() != static_cast<size_t>(n)) target_.assign(static_cast<size_t>(n), -1), blocked_.assign(static_cast<size_t>(n), 0);
+  if (pocket_exit_) exit_.mark(current_, goals_);
+  const bool exit_rule = pocket_exit_ && exit_.any();
   // A robot still turning toward the cell it chose keeps it: PIBT does not replan it, and
   // the cell stays reserved (the start kit's causal PIBT). Facing it, it is planned anew.
   for (int i = 0; i < n; ++i) {
     const Vertex c = target_[i];
     const bool facing = dist_.ahead(current_[i], heading_[i]) == c;
-    if (c < 0 || c == current_[i] || (facing && blocked_[i] > kPatience) || occ_next_[c] >= 0) {
+    if (c < 0 || c == current_[i] || (facing && blocked_[i] > kPatience) || occ_next_[c] >= 0 ||
+        (exit_rule && exit_.blocks(current_[i], c))) {
       target_[i] = -1;
       blocked_[i] = 0;
       continue;
     }
     decided_[i] = c;
     occ_next_[c] = i;
+  }
+  if (exit_rule) {
+    // Leavers first (PocketExit::first): a robot that must get out of a pocket whose way out
+    // is taken plans before everyone else, so it pushes the robots waiting at the mouth aside
+    // (a quarter turn) rather than waiting for them; they age while it waits, and a leaver's
+    // priority restarted with its new goal.
+    for (int32_t i : order_)
+      if (decided_[i] < 0 && exit_.first(current_[i], goals_[i])) pibt(i, -1);
   }
   for (int32_t i : order_)
     if (decided_[i] < 0) pibt(i, -1);
@@ -150,6 +162,7 @@ bool RotationPibt::pibt(int i, int asker)
   for (int d = 0; d < 4; ++d) {
     const Vertex c = dist_.ahead(v, d);
     if (c < 0) continue;
+    if (pocket_exit_ && exit_.blocks(v, c)) continue;  // deeper into a pocket a robot must leave
     const uint32_t turns = static_cast<uint32_t>(quarter_turns(o, d));
     // In the distances' costs (guidance.hpp; 1 per action without guidance).
     uint32_t cost = turns * dist_.turn_cost() + dist_.forward_cost(v, d) + dist_.get(t, c, d);

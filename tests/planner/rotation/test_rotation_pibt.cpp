@@ -229,6 +229,48 @@ TEST(RotationPibt, AForeignPocketIsTheLastResortOfAPushedRobot)
   EXPECT_EQ(n_own[1], stub);
 }
 
+// The pocket exit rule with leavers first (planner/rotation/pocket_exit.hpp), as on
+// large_warehouse_lifelong: robot 0 stands on a station at the end of a three-cell stub,
+// facing the wall, its next goal outside; four older robots (hint 5), all bound for the
+// station, crowd the stub's mouth: on it facing in, below it, and on the cross aisle at both
+// sides. Without the rule they follow each other in and face the station: robot 0 needs a
+// half turn and the line to back out, which it never does (its way to the station is
+// ahead), so robot 0 is still walled in after 40 steps. With it nobody goes deeper while
+// robot 0 must leave, robot 0 plans first and pushes the mouth's robot aside, gets out,
+// and then a robot of the crowd reaches the station.
+TEST(RotationPibt, ALeaverGetsOutOfAStubBeforeAnyoneGoesDeeper)
+{
+  const Graph g = test::grid({"@@.@@", "@@.@@", "@@.@@", ".....", "@@.@@", "@@.@@"});
+  const Vertex station = g.at(2, 0), mouth = g.at(2, 3);
+  const std::vector<Vertex> pocket = test::pocket_labels(g, {station, g.at(2, 1), g.at(2, 2)}, station);
+  for (bool rule : {false, true}) {
+    const Config starts{station, mouth, g.at(2, 4), g.at(1, 3), g.at(3, 3)};
+    RotationPibt p(g, starts, Config(5, station), 0);
+    p.set_headings({3, 3, 3, 0, 2});  // robot 0 faces the wall; the crowd faces the mouth
+    p.set_back_last(true);
+    p.set_pocket_exit(rule);
+    p.set_pockets(pocket, 0.0f);  // labels only: no foreign-pocket cost
+    p.set_priority_hint({0.0f, 5.0f, 5.0f, 5.0f, 5.0f});
+    p.set_goals({g.at(0, 3), station, station, station, station});  // robot 0's next errand is outside
+    int out = -1, in = -1;  // steps until robot 0 is out of the stub, another robot on the station
+    bool deeper = false;    // a robot of the crowd went into the stub while robot 0 was in it
+    for (int t = 1; t <= 40; ++t) {
+      p.search(planner::Budget{});
+      p.commit();
+      for (int i = 1; i < 5; ++i)
+        deeper = deeper || (out < 0 && pocket[static_cast<size_t>(p.current()[static_cast<size_t>(i)])] >= 0);
+      if (out < 0 && pocket[static_cast<size_t>(p.current()[0])] < 0) out = t;
+      for (int i = 1; i < 5; ++i)
+        if (in < 0 && p.current()[static_cast<size_t>(i)] == station) in = t;
+    }
+    EXPECT_EQ(deeper, !rule);
+    if (rule) {
+      EXPECT_GT(out, 0);
+      EXPECT_GT(in, out);
+    }
+  }
+}
+
 TEST(RotationPibt, NeedsAGridAndDistinctStarts)
 {
   const Graph line = Graph::from_edges(2, {{0, 1}});

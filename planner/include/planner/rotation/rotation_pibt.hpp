@@ -43,6 +43,7 @@
 #include <vector>
 
 #include "planner/rng.hpp"
+#include "planner/rotation/pocket_exit.hpp"
 #include "planner/rotation/rotation_dist.hpp"
 #include "planner/rotation/rotation_planner.hpp"
 
@@ -70,6 +71,10 @@ class RotationPibt : public RotationPlanner {
   // one-cell station stubs) PIBT pushed idle AGVs into stubs whose holders then stood in
   // the only way out; a robot in a one-cell stub cannot be pushed out past them (s34 trace).
   void set_pockets(std::vector<Vertex> pocket, float cost) override;
+  // The pocket exit rule (pocket_exit.hpp; needs set_pockets' labels, any cost): no move
+  // deeper into a dead-end pocket that a robot in it must leave. Off in the class; the
+  // factory turns it on by default (SolverOptions::pocket_exit).
+  void set_pocket_exit(bool on) override { pocket_exit_ = on; }
 
   const Config& current() const override { return current_; }
   const Config& goals() const override { return goals_; }
@@ -147,6 +152,8 @@ class RotationPibt : public RotationPlanner {
   bool back_last_ = false;
   uint32_t wait_cost_ = 1;
   std::vector<Vertex> pocket_;  // vertex -> its dead-end pocket, or -1 (set_pockets)
+  PocketExit exit_;             // the pocket exit rule's labels and depths (set_pockets)
+  bool pocket_exit_ = false;
   uint32_t pocket_cost_ = 0;    // in the distances' costs
   uint64_t steps_planned_ = 0;
 };

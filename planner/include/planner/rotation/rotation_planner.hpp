@@ -27,6 +27,9 @@ class RotationPlanner : public RealtimePlanner {
   virtual bool precompute(std::chrono::steady_clock::time_point deadline) = 0;
   virtual size_t pending() const = 0;
   virtual void set_back_last(bool on) = 0;  // RotationPibt::set_back_last
+  // The pocket exit rule (pocket_exit.hpp): pibt-rot and wppl (its rollouts); epibt has it
+  // in EpibtOptions::pocket_exit.
+  virtual void set_pocket_exit(bool on) { (void)on; }
   // Every robot's heading (0 east .. 3 north), one per robot, before the first step: robots
   // that do not all face one way at the start (SUMO AGVs face along their start lanes).
   virtual void set_headings(const std::vector<int>& headings) = 0;

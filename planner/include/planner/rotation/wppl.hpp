@@ -79,6 +79,7 @@ class Wppl : public RotationPlanner {
   bool precompute(std::chrono::steady_clock::time_point deadline) override { return pibt_.precompute(deadline); }
   size_t pending() const override { return pibt_.pending(); }
   void set_back_last(bool on) override { pibt_.set_back_last(on); }
+  void set_pocket_exit(bool on) override { pibt_.set_pocket_exit(on); }
   void set_headings(const std::vector<int>& headings) override;
   // Guidance reaches the rollout's PIBT and h(end state) of the objective; the windowed part
   // still counts steps (a plan that reaches its goal at t costs t < W + any h).
