@@ -43,8 +43,9 @@ os.environ.setdefault("SUMO_HOME", "/usr/share/sumo")
 ROTATION = {"pibt-rot", "epibt", "wppl"}  # solvers that plan LoRR rotation actions
 # Variants of a rotation solver: "SOLVER+OPTION+..." with OPTION one of arrows / unguided
 # (guidance arrows / none), distance / age (epibt's priority). The twin mirrors the
-# controller's planner.rotation defaults (controller/config.hpp): guidance arrows for pibt-rot
-# and epibt, none for wppl; back_last on; epibt priority age (rtlacam-lifelong: distance).
+# controller's planner.rotation defaults (controller/config.hpp): guidance arrows for every
+# rotation solver (wppl since s37; rtlacam-lifelong: none for wppl); back_last on; epibt
+# priority age (rtlacam-lifelong: distance).
 VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "none"), "distance": ("priority", "distance"),
                    "age": ("priority", "age"), "noexit": ("pocket_exit", False),
                    "noleavers": ("leavers_first", False)}
@@ -78,7 +79,7 @@ def variant(name):
 
 
 def twin_rotation_args(solver, rot):
-    args = ["--action-model", "rotation", "--guidance", rot.get("guidance", "none" if solver == "wppl" else "arrows")]
+    args = ["--action-model", "rotation", "--guidance", rot.get("guidance", "arrows")]
     if solver == "epibt":
         args += ["--epibt-priority", rot.get("priority", "age")]
         if rot.get("pocket_exit", True) is False:

@@ -411,11 +411,13 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
   r.file(p, "planner", "policy", c.planner.policy, false);
   const planner::Solver kind = planner::parse_solver(c.planner.solver);
-  // Arrow guidance by default for pibt-rot and epibt, as in rtlacam-lifelong (wppl: none):
-  // on SUMO warehouses it keeps opposite flows apart in one-cell aisles (pibt-rot, large
-  // warehouse with queues, grid twin: 0.327 vs 0.127 errands/step; small in SUMO: 0.101 vs
-  // 0.084; docs/twin_bench.md).
-  if (kind == planner::Solver::PibtRot || kind == planner::Solver::Epibt) c.planner.rotation.guidance = "arrows";
+  // Arrow guidance by default for every rotation solver: on SUMO warehouses it keeps opposite
+  // flows apart in one-cell aisles (pibt-rot, large warehouse with queues, grid twin: 0.327 vs
+  // 0.127 errands/step; small in SUMO: 0.101 vs 0.084). wppl since session 37: unguided it
+  // decays at 1000 AGVs in SUMO (0.165 errands/tick, last/first 0.71; with arrows 0.581, 0.99)
+  // and on the large twin (0.191 vs 0.282). rtlacam-lifelong keeps none for wppl (LoRR maps).
+  // docs/twin_bench.md.
+  if (planner::plans_rotation(kind)) c.planner.rotation.guidance = "arrows";
   read_rotation(r, p, kind, c.planner.rotation);
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");

@@ -274,6 +274,14 @@ TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
   const Config ok = parse_config(net + "planner: {solver: wppl, rotation: {window: 8, guidance: arrows}}\n", "t.yaml",
                                  RTLACAM_CONFIGS);
   EXPECT_EQ(ok.planner.rotation.window, 8);
+  // Arrow guidance is every rotation solver's default (wppl since session 37); none is kept.
+  for (const char* s : {"pibt-rot", "epibt", "wppl"})
+    EXPECT_EQ(parse_config(net + "planner: {solver: " + s + "}\n", "t.yaml", RTLACAM_CONFIGS).planner.rotation.guidance,
+              "arrows")
+        << s;
+  EXPECT_EQ(parse_config(net + "planner: {solver: wppl, rotation: {guidance: none}}\n", "t.yaml", RTLACAM_CONFIGS)
+                .planner.rotation.guidance,
+            "none");
   EXPECT_TRUE(ok.planner.rotation_solver());
   // epibt's pocket exit rule (EpibtOptions::pocket_exit): on unless the YAML turns it off.
   EXPECT_TRUE(ok.planner.rotation.pocket_exit);
