@@ -103,37 +103,15 @@ void Epibt::set_pockets(std::vector<Vertex> pocket, float cost)
   if (!pocket.empty() && pocket.size() != static_cast<size_t>(g_.size())) throw std::invalid_argument("pockets: one label per vertex");
   pocket_ = std::move(pocket);
   pocket_moves_ = cost > 0 ? cost : 0;
-  // Depth of each pocket cell: actions from the pocket's mouth (1 next to it), so that "deeper"
-  // is known for the exit rule (pocket_exit). Breadth first from the cells next to the outside.
-  depth_.assign(pocket_.size(), 0);
-  leaving_.assign(pocket_.size(), 0);
-  std::vector<Vertex> front, next;
-  for (Vertex v = 0; v < static_cast<Vertex>(pocket_.size()); ++v) {
-    if (pocket_[v] < 0) continue;
-    for (Vertex u : g_.neighbors(v))
-      if (pocket_[u] != pocket_[v]) {
-        depth_[v] = 1, front.push_back(v);
-        break;
-      }
-  }
-  for (int d = 2; !front.empty(); ++d, front.swap(next)) {
-    next.clear();
-    for (Vertex v : front)
-      for (Vertex u : g_.neighbors(v))
-        if (pocket_[u] == pocket_[v] && depth_[u] == 0) depth_[u] = d, next.push_back(u);
-  }
+  exit_.set(g_, pocket_);  // depths for the exit rule (pocket_exit)
 }
 
 bool Epibt::enters_blocked_pocket(int i, const Vertex* cells) const
 {
   Vertex from = current_[i];
   for (int d = 0; d < opt_.depth; ++d) {
-    const Vertex c = cells[d];
-    if (c != from) {
-      const Vertex p = pocket_[c];
-      if (p >= 0 && leaving_[p] && depth_[c] > (pocket_[from] == p ? depth_[from] : 0)) return true;
-    }
-    from = c;
+    if (exit_.blocks(from, cells[d])) return true;
+    from = cells[d];
   }
   return false;
 }
@@ -382,19 +360,12 @@ Status Epibt::search(const Budget& b)
   if (tf_) tf_work(deadline_ == Clock::time_point::max() ? deadline_ : start + std::chrono::duration_cast<Clock::duration>((deadline_ - start) * opt_.tf.share));
   ++stamp_;
   ++round_;
-  if (opt_.pocket_exit && !pocket_.empty()) {  // pockets that a robot in them has to leave
-    for (Vertex p : leaving_list_) leaving_[p] = 0;
-    leaving_list_.clear();
-    for (int i = 0; i < n; ++i) {
-      const Vertex p = pocket_[current_[i]];
-      if (p >= 0 && pocket_[goals_[i]] != p && !leaving_[p]) leaving_[p] = 1, leaving_list_.push_back(p);
-    }
-  }
+  if (opt_.pocket_exit) exit_.mark(current_, goals_);  // pockets that a robot in them has to leave
   for (int i = 0; i < n; ++i)
     key_[i] = opt_.priority == Priority::Age ? age_[i] : -static_cast<double>(h(i));
-  if (opt_.pocket_exit && opt_.leavers_first && !leaving_list_.empty())
+  if (opt_.pocket_exit && opt_.leavers_first && exit_.any())
     for (int i = 0; i < n; ++i)
-      if (const Vertex p = pocket_[current_[i]]; p >= 0 && pocket_[goals_[i]] != p) key_[i] += kLeaverKey;
+      if (exit_.leaving(current_[i], goals_[i])) key_[i] += kLeaverKey;
   for (int i = 0; i < n; ++i) order_[i] = i;
   std::stable_sort(order_.begin(), order_.end(), [this](int32_t x, int32_t y) { return key_[x] > key_[y]; });
   for (int32_t i : order_) {

@@ -16,7 +16,7 @@ void PocketExit::set(const Graph& g, std::vector<Vertex> pocket)
   crowded_.assign(pocket_.size(), 0);
   maxd_.assign(pocket_.size(), 0);
   mouths_.clear();
-  // Breadth first from the pocket cells next to the outside (depth 1), as Epibt::set_pockets.
+  // Breadth first from the pocket cells next to the outside (depth 1).
   std::vector<Vertex> front, next;
   for (Vertex v = 0; v < static_cast<Vertex>(pocket_.size()); ++v) {
     if (pocket_[v] < 0) continue;

@@ -52,6 +52,7 @@
 
 #include "planner/rng.hpp"
 #include "planner/rotation/rotation_dist.hpp"
+#include "planner/rotation/pocket_exit.hpp"
 #include "planner/rotation/rotation_planner.hpp"
 #include "planner/rotation/traffic_flow.hpp"
 
@@ -199,9 +200,7 @@ class Epibt : public RotationPlanner {
   std::vector<int32_t> order_;
   std::vector<Vertex> pocket_;      // vertex -> its dead-end pocket, or -1 (set_pockets)
   float pocket_moves_ = 0;          // foreign-pocket cost in forward moves (0: off)
-  std::vector<int> depth_;          // pocket cell -> actions from its mouth (1 next to it); 0 outside
-  std::vector<char> leaving_;       // pocket label -> a robot in it has its goal outside (this step)
-  std::vector<Vertex> leaving_list_;
+  PocketExit exit_;                 // the exit rule's depths and this step's leaving pockets (set_pockets)
   std::vector<uint8_t> cand_;       // agent * ops: candidate operations, best first
   std::vector<uint32_t> score_of_;  // agent * ops: cost * ops + op (lower better), valid operations
   std::vector<double> power_;       // LNS: weight of a robot's gain (priority rank, squared)

@@ -14,8 +14,9 @@
 // quarter turn takes them out of the holder's way, if the holder plans first: the robots
 // at the mouth are older (its priority restarted with its new goal), and with the exit rule
 // alone they never yield (pibt-rot: 0.0204 errands/step, a deadlock). So a leaver whose way
-// out is taken plans first (first()). epibt has the same rule for its operations
-// (EpibtOptions::pocket_exit, session 36, and leavers_first, session 37).
+// out is taken plans first (first()). epibt applies the same marks and blocks() to its
+// operations (EpibtOptions::pocket_exit, session 36; its leavers_first ranks every leaving()
+// robot first, session 37).
 #include <vector>
 
 #include "planner/config.hpp"
