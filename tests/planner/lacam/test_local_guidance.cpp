@@ -137,25 +137,38 @@ TEST(LocalGuidance, APausedGenerationMakesTheSameSuccessor)
   EXPECT_NE(a, c);
 }
 
+// The standard SOC that run(instance, window) gives on random-32-32-20 with 200 agents, scens 1
+// and 2 summed, with the window 0 (off) and 5 (on); every run solved.
+template <class Run>
+void soc_off_on(Run run, long long& off, long long& on)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const Graph g = load_map(dir + "random-32-32-20.map");
+  off = on = 0;
+  for (const char* scen : {"random-32-32-20-random-1.scen", "random-32-32-20-random-2.scen"}) {
+    const Instance ins = load_scen(dir + scen, g, 200);
+    for (int w : {0, 5}) {
+      const RunResult r = run(g, ins, w);
+      ASSERT_TRUE(r.solved) << scen << " window " << w;
+      ASSERT_EQ(r.validation_error, "") << scen << " window " << w;
+      (w ? on : off) += r.soc;
+    }
+  }
+}
+
 // What it is for: LaCAM's first solution on random-32-32-20 with 200 agents (two scens) is
 // cheaper on the standard SOC when PIBT follows the guided first steps (LG-LaCAM reports up
 // to half; measured here 15 % and more, 5 % asserted).
 TEST(LocalGuidance, LacamsFirstSolutionIsCheaperWithGuidance)
 {
-  const std::string dir = RTLACAM_TEST_DATA "/planner/";
-  const Graph g = load_map(dir + "random-32-32-20.map");
   long long off = 0, on = 0;
-  for (const char* scen : {"random-32-32-20-random-1.scen", "random-32-32-20-random-2.scen"}) {
-    const Instance ins = load_scen(dir + scen, g, 200);
-    RunOptions ropt;
-    for (int w : {0, 5}) {
-      LacamOptions o;
-      o.lg_window = w;
-      const RunResult r = run_full_horizon(g, ins.starts, ins.goals, o, ropt);
-      ASSERT_TRUE(r.solved) << scen << " window " << w;
-      (w ? on : off) += r.soc;
-    }
-  }
+  ASSERT_NO_FATAL_FAILURE(soc_off_on(
+      [](const Graph& g, const Instance& ins, int w) {
+        LacamOptions o;
+        o.lg_window = w;
+        return run_full_horizon(g, ins.starts, ins.goals, o, RunOptions{});
+      },
+      off, on));
   EXPECT_LT(static_cast<double>(on), 0.95 * static_cast<double>(off)) << "off " << off << ", on " << on;
 }
 
@@ -165,25 +178,19 @@ TEST(LocalGuidance, LacamsFirstSolutionIsCheaperWithGuidance)
 // Checked: with the option's branch in Lacam::search() switched off, on == off and it fails.
 TEST(LocalGuidance, RtLacamStarBelowThePauseCutoffExecutesAGuidedDescent)
 {
-  const std::string dir = RTLACAM_TEST_DATA "/planner/";
-  const Graph g = load_map(dir + "random-32-32-20.map");
   long long off = 0, on = 0;
-  for (const char* scen : {"random-32-32-20-random-1.scen", "random-32-32-20-random-2.scen"}) {
-    const Instance ins = load_scen(dir + scen, g, 200);
-    RunOptions ropt;
-    ropt.per_iteration = Budget::time_ms(0.01);
-    ropt.record_plan = false;
-    for (int w : {0, 5}) {
-      LacamOptions o;
-      o.refine = o.scatter = o.free_first = true;  // RT-LaCAM* as rtlacam-bench runs it
-      o.lg_window_unpaused = w;
-      RtLacam rt(g, ins.starts, ins.goals, o);
-      const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ropt);
-      ASSERT_TRUE(r.solved) << scen << " window " << w;
-      ASSERT_EQ(r.validation_error, "") << scen << " window " << w;
-      (w ? on : off) += r.soc;
-    }
-  }
+  ASSERT_NO_FATAL_FAILURE(soc_off_on(
+      [](const Graph& g, const Instance& ins, int w) {
+        RunOptions ropt;
+        ropt.per_iteration = Budget::time_ms(0.01);
+        ropt.record_plan = false;
+        LacamOptions o;
+        o.refine = o.scatter = o.free_first = true;  // RT-LaCAM* as rtlacam-bench runs it
+        o.lg_window_unpaused = w;
+        RtLacam rt(g, ins.starts, ins.goals, o);
+        return run_realtime(rt, g, ins.starts, ins.goals, ropt);
+      },
+      off, on));
   std::printf("standard SOC at 0.01 ms, scens 1 + 2: off %lld, on %lld\n", off, on);
   EXPECT_LT(static_cast<double>(on), 0.95 * static_cast<double>(off)) << "off " << off << ", on " << on;
 }
