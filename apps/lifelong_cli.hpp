@@ -330,6 +330,7 @@ struct TaskCli {
   bool urgency = false;
   std::string urgency_stalls, urgency_battery;  // "": as --urgency; "true" | "false": that hint alone
   BatteryCli battery;
+  CLI::Option* in_line_opt = nullptr;  // --queue-in-line: given, or the solver's default (default_in_line)
 
   void bind(CLI::App& app)
   {
@@ -391,10 +392,21 @@ struct TaskCli {
         ->capture_default_str();
     app.add_flag("--queue-fifo,!--no-queue-fifo", o.queues.fifo,
                  "station queues: agents beyond a queue are taken oldest request first (default on; off: nearest first)");
+    in_line_opt = app.add_flag("--queue-in-line,!--no-queue-in-line", o.queues.in_line,
+                               "station queues: each step the admitted and queued agents of a station are re-ranked by "
+                               "their distance to it, nearest admitted (YAML tasks.queues.in_line; default on with "
+                               "--solver epibt, off otherwise)");
     app.add_option("--parking", parking_file,
                    "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                    "(tasks/parking.hpp)");
     battery.bind(app);
+  }
+
+  // --queue-in-line's default for `solver` (as the controller's tasks.queues.in_line): on for
+  // epibt, which cannot undo a one-wide queue lane out of request order (controller/src/config.cpp).
+  void default_in_line(const std::string& solver)
+  {
+    if (in_line_opt && in_line_opt->count() == 0) o.queues.in_line = solver == "epibt";
   }
 
   // The task manager of `pr`'s tasks on `g` (mode: the problem's default unless --mode).

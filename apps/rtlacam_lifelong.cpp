@@ -88,6 +88,7 @@ int main(int argc, char** argv)
     if (steps < 0) steps = pr.simulation_time;
     if (steps < 0) throw planner::input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass --steps");
 
+    tc.default_in_line(sc.solver);
     const std::unique_ptr<TaskManager> tm = tc.make(pr, g, file);
 
     LifelongOptions opt;

@@ -59,6 +59,9 @@ VARIANT_OPTIONS = {"arrows": ("guidance", "arrows"), "unguided": ("guidance", "n
 # the twin. Not in huge_warehouse_lifelong.yaml itself: its default solver rtlacam does not
 # gain with it (docs/twin_bench.md "Session 35").
 POCKET_COST = 100
+# "+inline" / "+noinline" (any solver): tasks.queues.in_line true / false in SUMO, --queue-in-line /
+# --no-queue-in-line in the twin (tasks/station_queues.hpp QueueOptions::in_line: a station's admitted
+# and queued agents re-ranked by distance every step; session 38: epibt's 1000-AGV collapse).
 
 
 def variant(name):
@@ -68,6 +71,9 @@ def variant(name):
     for o in opts:
         if o == "pocket":
             rot["pocket_cost"] = POCKET_COST
+            continue
+        if o in ("inline", "noinline"):
+            rot["in_line"] = o == "inline"
             continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
             sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noleavers with epibt; +pocket with any")
@@ -129,6 +135,8 @@ def sumo_config(base, solver, p, out, ticks, expansions, executor):
     cfg["planner"].pop("rotation", None)  # the row's options only, as in the twin
     if "pocket_cost" in rot:
         cfg["tasks"].setdefault("urgency", {})["pocket_cost"] = rot.pop("pocket_cost")
+    if "in_line" in rot:
+        cfg["tasks"].setdefault("queues", {})["in_line"] = rot.pop("in_line")
     if rot:
         cfg["planner"]["rotation"] = rot
     cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
@@ -235,6 +243,10 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
         cmd += ["--agents", str(agents)]
     elif q.get("capacity", 0) > 0:
         cmd += ["--queue-capacity", str(q["capacity"]), "--queue-length", str(q.get("length", 8))]
+        in_line = rot.pop("in_line", q.get("in_line"))  # the row's choice, else the config's (else the default)
+        if in_line is not None:
+            cmd.append("--queue-in-line" if in_line else "--no-queue-in-line")
+    rot.pop("in_line", None)
     if not keep or agents:
         cmd.append("--reset-priorities")
     if p > 0:

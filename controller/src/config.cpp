@@ -418,6 +418,16 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   // and on the large twin (0.191 vs 0.282). rtlacam-lifelong keeps none for wppl (LoRR maps).
   // docs/twin_bench.md.
   if (planner::plans_rotation(kind)) c.planner.rotation.guidance = "arrows";
+  // Station queues in line by default for epibt (tasks.queues.in_line; QueueOptions::in_line):
+  // AGVs reach a queue lane in another order than they asked, and in a one-wide lane nobody
+  // passes, so in request order the admitted AGV (or queue cell 0's) stands behind queued AGVs
+  // on their cells. PIBT-style solvers push the line out and back; epibt cannot (an off-goal
+  // robot has no wait, an operation that meets two robots is no candidate): at 1000 AGVs in
+  // SUMO its stations starved behind such lines (pickup26: the admitted AGV behind five queued
+  // ones for 1000+ ticks, the station free) and it collapsed (huge, 2500 ticks, p = 0: 0.245
+  // errands/tick, last/first 500 0.58; in line 0.546, 1.00). Session 38, docs/twin_bench.md.
+  // The other solvers keep request order (large_warehouse_queues' pibt-rot rows were mixed, s36).
+  c.tasks.queue_in_line = kind == planner::Solver::Epibt;
   read_rotation(r, p, kind, c.planner.rotation);
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");

@@ -242,6 +242,12 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
   EXPECT_EQ(parse_config(kNetAdd + ll + "  queues: {capacity: 1, clear_after: 20}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_clear_after, 20);
   EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_in_line);
   EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, in_line: true}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_in_line);
+  // In line by default with epibt (session 38), and `in_line: false` keeps request order.
+  const std::string ep = "planner: {solver: epibt}\n";
+  EXPECT_TRUE(parse_config(kNetAdd + ep + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_in_line);
+  EXPECT_FALSE(parse_config(kNetAdd + ep + ll + "  queues: {capacity: 1, in_line: false}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_in_line);
+  EXPECT_FALSE(parse_config(kNetAdd + "planner: {solver: pibt-rot}\n" + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS)
+                   .tasks.queue_in_line);
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, in_line: 3}\n").rfind("t.yaml: tasks.queues.in_line: ", 0), 0u);
   EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_leavers_first);
   EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, clear_after: 20, leavers_first: true}\n", "t.yaml", RTLACAM_CONFIGS)

@@ -179,7 +179,7 @@ struct TasksSection {
   // queue cells per station, pool admission limit (0: capacity + length, -1: none).
   int queue_capacity = 0, queue_length = 4, queue_admission = 0;
   int queue_clear_after = 0;  // tasks::QueueOptions::clear_after (0: off)
-  bool queue_in_line = false;  // tasks::QueueOptions::in_line
+  bool queue_in_line = false;  // tasks::QueueOptions::in_line (default true with solver epibt: config.cpp)
   bool queue_leavers_first = false;  // tasks::QueueOptions::leavers_first
   bool queue_fifo = true;  // beyond a queue, the oldest request first (tasks::QueueOptions::fifo)
   // Parking (tasks/parking.hpp): off, the sumo.additional parkingAreas (parking_auto), or a list.
