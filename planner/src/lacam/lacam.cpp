@@ -27,6 +27,9 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lg_.set_window(opt.lg_window > 0 ? opt.lg_window : opt.lg_window_unpaused);
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
+  lg_.set_refresh(opt.lg_refresh);
+  lg_.set_budget(opt.lg_budget);
+  lg_.set_repair(opt.lg_repair);
   lns_.set_stop_cost(opt.lns_stop_cost);
   lns_.set_count_moves(opt.lns_count_moves);
   lns_wanted_ = opt.lns;
