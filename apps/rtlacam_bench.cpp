@@ -122,6 +122,12 @@ int main(int argc, char** argv)
   bool lg_repair = LacamOptions{}.lg_repair;
   app.add_flag("--lg-repair,!--no-lg-repair", lg_repair,
                "amortized local guidance: a kept path that meets a path planned before it is planned again");
+  double lg_gate = LacamOptions{}.lg_gate;
+  app.add_option("--lg-gate", lg_gate,
+                 "local guidance in the first search only if at least this share of the first N windowed paths are "
+                 "slowed by other agents (congestion at the start); 0 = always")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   bool lg_refine = LacamOptions{}.lg_refine;
   app.add_flag("--lg-refine,!--no-lg-refine", lg_refine, "local guidance in refinement's expansions");
   bool resumable = LacamOptions{}.resumable;
@@ -279,6 +285,7 @@ int main(int argc, char** argv)
     lopt.lg_refresh = lg_refresh;
     lopt.lg_budget = lg_budget;
     lopt.lg_repair = lg_repair;
+    lopt.lg_gate = lg_gate;
     RunOptions ropt;
     // An expansions budget alone is deterministic: the default 1 ms wall cutoff would cut its
     // iterations by the machine's speed and load.
@@ -405,6 +412,7 @@ int main(int argc, char** argv)
     j["lg_refresh"] = lg_refresh;
     j["lg_budget"] = lg_budget;
     j["lg_repair"] = lg_repair;
+    j["lg_gate"] = lg_gate;
     j["swap"] = !no_swap;
     j["free_first"] = free_first;
     j["refine"] = refine;

@@ -92,6 +92,8 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   scratch_.assign(n_, -1);
   pibt_.set_scatter(nullptr);
   pibt_.set_local_guidance(opt_.lg_window > 0 && opt_.lg_first ? &lg_ : nullptr);
+  lg_gated_ = false;
+  lg_.forget_first();
   scatter_.clear();
   scatter_started_ = first_dive_done_ = false;
   scatter_root_ = nullptr;
@@ -389,6 +391,12 @@ Status Lacam::search(const Budget& b, bool until_solved)
       }
     }
     first = false;
+    // lg_gate: the first search stays guided only if the start is congested enough (decided
+    // once, as soon as the first N paths are planned; it takes effect at PIBT's next start()).
+    if (opt_.lg_gate > 0 && !lg_gated_ && !refining_ && lg_.first_conflicted() >= 0) {
+      lg_gated_ = true;
+      if (lg_.first_conflicted() < opt_.lg_gate) pibt_.set_local_guidance(nullptr);
+    }
     units_ = 1;
     left_ = b.expansions - done;
     last_step_ = Step::none;

@@ -186,6 +186,11 @@ void LocalGuidance::plan(int32_t i)
     for (Vertex u : g_.neighbors(x.v)) push(u);
     push(x.v);
   }
+  if (first_share_ < 0) {  // the first N paths: how many are slowed by the others (first_conflicted)
+    const Node& e = nodes_[found >= 0 ? found : best];
+    first_hit_ += e.coll > 0 || e.g + d_.get(i, e.v) > d_.get(i, from_[i]);
+    if (++first_planned_ >= n_) first_share_ = static_cast<double>(first_hit_) / first_planned_;
+  }
   nodes_total_ += nodes_.size();
   round_nodes_ += nodes_.size();
   // The path, padded by staying where a cut A* stopped.

@@ -346,3 +346,45 @@ TEST(LocalGuidance, AmortizedGuidanceKeepsTheGuidedDescentForFewerNodes)
   EXPECT_LT(static_cast<double>(amortized), 0.95 * static_cast<double>(off));
   EXPECT_LT(static_cast<double>(nodes_amortized), 0.6 * static_cast<double>(nodes_plain));
 }
+
+// lg_gate (session 38): guidance in the first search stays only where the start is congested.
+// On random-32-32-20 with 200 agents a quarter of the first windowed paths are slowed by
+// others: the gated search is the guided one, node for node. On warehouse-10-20-10-2-1 with 100
+// agents few are: after the first N paths the search goes on unguided (far fewer A* nodes).
+// Checked: with the gate's switch in Lacam::search() off, the warehouse ratio is 1 and it fails.
+TEST(LocalGuidance, TheGateKeepsGuidanceOnlyWhereTheStartIsCongested)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  struct Case {
+    const char *map, *scen;
+    int n;
+    bool congested;
+  };
+  for (const Case& c : {Case{"random-32-32-20.map", "random-32-32-20-random-1.scen", 200, true},
+                        Case{"warehouse-10-20-10-2-1.map", "warehouse-10-20-10-2-1-random-2-first200.scen", 100, false}}) {
+    const Graph g = load_map(dir + c.map);
+    const Instance ins = load_scen(dir + c.scen, g, c.n);
+    uint64_t nodes[2] = {0, 0};
+    double share = -1;
+    for (int gated = 0; gated < 2; ++gated) {
+      LacamOptions o;
+      o.lg_window = 5;
+      o.lg_gate = gated ? 0.2 : 0.0;
+      DistTable dist(g);
+      Lacam lacam(g, dist, o);
+      lacam.reset(ins.starts, ins.goals);
+      ASSERT_EQ(lacam.search(Budget::unlimited()), Status::Solved) << c.map << " gated " << gated;
+      nodes[gated] = lacam.lg_nodes();
+      share = lacam.lg_first_conflicted();
+    }
+    std::printf("%s N = %d: slowed share %.3f, A* nodes %llu ungated, %llu gated\n", c.map, c.n, share,
+                static_cast<unsigned long long>(nodes[0]), static_cast<unsigned long long>(nodes[1]));
+    if (c.congested) {
+      EXPECT_GE(share, 0.2);
+      EXPECT_EQ(nodes[1], nodes[0]);
+    } else {
+      EXPECT_LT(share, 0.2);
+      EXPECT_LT(5 * nodes[1], nodes[0]);
+    }
+  }
+}

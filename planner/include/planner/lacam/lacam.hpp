@@ -254,6 +254,12 @@ struct LacamOptions {
   int lg_refresh = 0;
   double lg_budget = 0;
   bool lg_repair = false;  // amortized: a kept path that meets an earlier agent's is planned again
+  // Local guidance in the first search (lg_window, lg_first) only where the start is congested:
+  // once the first N windowed paths are planned, guidance stops for the rest of the first
+  // search if fewer than this share of them were slowed by the others (LocalGuidance::
+  // first_conflicted). 0 = off (always guided). Session 38: guidance at 1 ms gains where
+  // agents meet and costs the first solution's time where they do not.
+  double lg_gate = 0;
   // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
   // apart) fits the iteration, else unguided. Dives and LNS are never guided.
   bool lg_refine = true;
@@ -369,6 +375,7 @@ class Lacam {
   uint64_t guided_expansions() const { return guided_; }  // refinement's, with local guidance
   uint64_t lg_nodes() const { return lg_.nodes(); }  // local guidance's A* nodes pushed, all rounds
   uint64_t lg_kept() const { return lg_.kept(); }    // amortized: paths kept across a round
+  double lg_first_conflicted() const { return lg_.first_conflicted(); }  // lg_gate's signal
   // A LaCAM expansion stopped at a deadline, to go on in the next search() (resumable).
   bool expansion_paused() const { return gen_ != Gen::none; }
   // Top-level agents PIBT has handled in LaCAM expansions before the first solution, since
@@ -489,6 +496,7 @@ class Lacam {
   LnsRefiner lns_;
   Scatter scatter_;
   LocalGuidance lg_;
+  bool lg_gated_ = false;  // lg_gate decided for this reset
   bool scatter_started_ = false, first_dive_done_ = false;
   bool live_ = false;  // scatter_live: SUO shares the calls of the first search
   void live_slice(const Budget& b, Clock::time_point t0, Clock::time_point deadline, uint64_t& done);

@@ -82,7 +82,12 @@ class LocalGuidance {
   bool repair() const { return repair_; }
   bool stale(int32_t i) const { return planned(i) && refresh_ > 0 && age_[i] >= refresh_; }
   bool over() const { return budget_ > 0 && static_cast<double>(round_nodes_) >= budget_ * n_; }
-  uint64_t kept() const { return kept_total_; }  // paths kept across a round, over all rounds (tests)
+  uint64_t kept() const { return kept_total_; }
+  // Congestion at the start: the share of the first N paths planned (N agents) that could not
+  // run at full speed (they wait, detour or keep a collision); -1 until N paths are planned.
+  // Lacam's lg_gate reads it (lacam.hpp).
+  double first_conflicted() const { return first_share_; }
+  void forget_first() { first_share_ = -1, first_planned_ = first_hit_ = 0; }  // a new instance  // paths kept across a round, over all rounds (tests)
   // The first step of agent i's path in this round (-1 while it is not planned).
   Vertex next(int32_t i) const { return planned(i) ? paths_[static_cast<size_t>(i) * (w_ + 1) + 1] : -1; }
   // Agent i's path, w + 1 vertices from t = 0 (valid while planned(i)).
@@ -128,6 +133,8 @@ class LocalGuidance {
   std::vector<uint8_t> marked_;    // amortized: agent -> its path is in the tables
   std::vector<uint16_t> age_;      // amortized: agent -> rounds since its path was planned
   uint64_t round_nodes_ = 0, kept_total_ = 0;
+  int first_planned_ = 0, first_hit_ = 0;
+  double first_share_ = -1;
   std::vector<Node> nodes_;
   std::vector<std::pair<uint64_t, int32_t>> open_;  // min-heap by key
   uint64_t nodes_total_ = 0;
