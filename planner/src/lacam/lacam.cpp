@@ -391,11 +391,15 @@ Status Lacam::search(const Budget& b, bool until_solved)
       }
     }
     first = false;
-    // lg_gate: the first search stays guided only if the start is congested enough (decided
-    // once, as soon as the first N paths are planned; it takes effect at PIBT's next start()).
-    if (opt_.lg_gate > 0 && !lg_gated_ && !refining_ && lg_.first_conflicted() >= 0) {
+    // lg_gate: the first search stays guided only if the start is congested enough and, in a
+    // timed call, a guided expansion (the first, every agent planned: the dearest) fits the
+    // cutoff; decided once, when the first N paths are planned and that expansion is learnt.
+    // It takes effect at PIBT's next start().
+    if (opt_.lg_gate > 0 && !lg_gated_ && !refining_ && lg_.first_conflicted() >= 0 &&
+        (!timed_ || lg_cost_.samples() > 0)) {
       lg_gated_ = true;
-      if (lg_.first_conflicted() < opt_.lg_gate) pibt_.set_local_guidance(nullptr);
+      if (lg_.first_conflicted() < opt_.lg_gate || (timed_ && lg_cost_.predict_ms(1) > b.ms))
+        pibt_.set_local_guidance(nullptr);
     }
     units_ = 1;
     left_ = b.expansions - done;

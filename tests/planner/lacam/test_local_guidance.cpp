@@ -388,3 +388,32 @@ TEST(LocalGuidance, TheGateKeepsGuidanceOnlyWhereTheStartIsCongested)
     }
   }
 }
+
+// lg_gate in a timed call: a guided expansion that does not fit the cutoff ends guidance too,
+// congested or not. RT-LaCAM with a 1 us cutoff on random-32-32-20 N = 200 (congested: share
+// 0.265, guided throughout without a cutoff above): after the first expansion the search goes on
+// unguided. Checked: without the cutoff condition in Lacam::search() the ratio is 1 and it fails.
+TEST(LocalGuidance, TheGateEndsGuidanceThatDoesNotFitTheCutoff)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const Graph g = load_map(dir + "random-32-32-20.map");
+  const Instance ins = load_scen(dir + "random-32-32-20-random-1.scen", g, 200);
+  uint64_t nodes[2] = {0, 0};
+  for (int gated = 0; gated < 2; ++gated) {
+    RunOptions ropt;
+    ropt.per_iteration = Budget::time_ms(0.001);
+    ropt.record_plan = false;
+    LacamOptions o;
+    o.lg_window = 5;
+    o.lg_refine = false;
+    o.lg_gate = gated ? 0.2 : 0.0;
+    RtLacam rt(g, ins.starts, ins.goals, o);
+    const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ropt);
+    ASSERT_TRUE(r.solved) << "gated " << gated;
+    ASSERT_EQ(r.validation_error, "") << "gated " << gated;
+    nodes[gated] = rt.lacam().lg_nodes();
+  }
+  std::printf("A* nodes at 1 us: %llu ungated, %llu gated\n", static_cast<unsigned long long>(nodes[0]),
+              static_cast<unsigned long long>(nodes[1]));
+  EXPECT_LT(5 * nodes[1], nodes[0]);
+}
