@@ -30,6 +30,7 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lg_.set_refresh(opt.lg_refresh);
   lg_.set_budget(opt.lg_budget);
   lg_.set_repair(opt.lg_repair);
+  if (opt.lg_window > 0 || opt.lg_window_unpaused > 0) lg_.prepare();  // its tables, outside any iteration
   lns_.set_stop_cost(opt.lns_stop_cost);
   lns_.set_count_moves(opt.lns_count_moves);
   lns_wanted_ = opt.lns;

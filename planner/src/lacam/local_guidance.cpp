@@ -5,22 +5,27 @@
 
 namespace planner {
 
-void LocalGuidance::begin(const Vertex* from, int n, const Vertex* goals)
+bool LocalGuidance::prepare()
 {
   const size_t V = static_cast<size_t>(g_.size());
+  if (tw_ == w_ && V_ == V) return false;
+  tw_ = w_, V_ = V;  // (re)size: everything unmarked
+  cnt_.assign(V_ * (w_ + 1), 0);
+  who_.assign(V_ * (w_ + 1), -1);
+  closed_.assign(V_ * (w_ + 1), 0);
+  call_ = 0;
+  from_copy_.clear();
+  planned_list_.clear();
+  marked_.clear();
+  paths_.clear();
+  return true;
+}
+
+void LocalGuidance::begin(const Vertex* from, int n, const Vertex* goals)
+{
   const size_t len = static_cast<size_t>(n) * (w_ + 1);
   round_nodes_ = 0;
-  if (tw_ != w_ || V_ != V) {  // (re)size: everything unmarked
-    tw_ = w_, V_ = V;
-    cnt_.assign(V_ * (w_ + 1), 0);
-    who_.assign(V_ * (w_ + 1), -1);
-    closed_.assign(V_ * (w_ + 1), 0);
-    call_ = 0;
-    from_copy_.clear();
-    planned_list_.clear();
-    marked_.clear();
-    paths_.clear();
-  }
+  prepare();
   if (refresh_ > 0 && paths_.size() == len && marked_.size() == static_cast<size_t>(n) &&
       std::equal(goals, goals + n, goals_copy_.begin(), goals_copy_.end())) {
     keep(from, n);
