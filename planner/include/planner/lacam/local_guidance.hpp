@@ -26,12 +26,14 @@
 // agent's path by the step the configuration advanced (0 when the same configuration is
 // expanded again, 1 when it is the last round's successor), drops a path that no longer starts
 // at the agent's vertex (PIBT did not follow it, or the search jumped elsewhere), and extends a
-// kept one by one greedy step at the window's end; the space-time table keeps the kept paths.
-// Pibt then plans (due()) the agents without a path first, in priority order, then those whose
-// path is R rounds old; with set_budget(k) a round pushes at most about k x N A* nodes (a full
-// round pushes ~30 x N at w = 5), the agents past it keep their old path or go unguided. So
-// the work per generation is bounded, whatever the congestion, and counted in nodes (the same
-// on every machine: the plan does not depend on the clock).
+// kept one by one greedy step at the window's end. Pibt's guide phase then walks the agents in
+// priority order: a kept path goes back into the space-time table at its agent's turn (hold),
+// so that an agent planned again meets only the paths before it, as in LG-LaCAM; an A* runs
+// for an agent without a path, with a kept path that meets an earlier one (repair) or one R
+// rounds old. With set_budget(k) a round pushes at most about k x N A* nodes (a full round
+// pushes ~25-30 x N at w = 5); the agents past it keep their old path or go unguided. So the
+// work per generation is bounded, whatever the congestion, and counted in nodes (the same on
+// every machine: the plan does not depend on the clock).
 #include <cstdint>
 #include <vector>
 
@@ -74,8 +76,6 @@ class LocalGuidance {
   // Agent i's windowed path around the agents planned so far in this round.
   void plan(int32_t i);
   bool planned(int32_t i) const { return stamp_of_[i] == round_; }
-  // Amortized: agent i has a kept path that is R rounds old (Pibt plans it again after the
-  // agents without a path, while the round's budget lasts: over()).
   // Amortized: agent i's kept path into the tables, at its turn in priority order (the agents
   // planned after it meet it); nothing for an agent without a path or in plain rounds.
   void hold(int32_t i);
@@ -84,14 +84,16 @@ class LocalGuidance {
   bool blocked(int32_t i) const;
   void set_repair(bool on) { repair_ = on; }
   bool repair() const { return repair_; }
+  // Amortized: agent i has a kept path that is R rounds old (planned again while the round's
+  // budget lasts: over()).
   bool stale(int32_t i) const { return planned(i) && refresh_ > 0 && age_[i] >= refresh_; }
   bool over() const { return budget_ > 0 && static_cast<double>(round_nodes_) >= budget_ * n_; }
-  uint64_t kept() const { return kept_total_; }
+  uint64_t kept() const { return kept_total_; }  // paths kept across a round, over all rounds (tests)
   // Congestion at the start: the share of the first N paths planned (N agents) that could not
   // run at full speed (they wait, detour or keep a collision); -1 until N paths are planned.
   // Lacam's lg_gate reads it (lacam.hpp).
   double first_conflicted() const { return first_share_; }
-  void forget_first() { first_share_ = -1, first_planned_ = first_hit_ = 0; }  // a new instance  // paths kept across a round, over all rounds (tests)
+  void forget_first() { first_share_ = -1, first_planned_ = first_hit_ = 0; }  // a new instance
   // The first step of agent i's path in this round (-1 while it is not planned).
   Vertex next(int32_t i) const { return planned(i) ? paths_[static_cast<size_t>(i) * (w_ + 1) + 1] : -1; }
   // Agent i's path, w + 1 vertices from t = 0 (valid while planned(i)).
