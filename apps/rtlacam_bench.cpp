@@ -107,6 +107,27 @@ int main(int argc, char** argv)
                      "local guidance window in the first search when --cutoff-ms is below --pause-min-ms (every iteration "
                      "one expansion); 0 = off (default: it costs each iteration ~4x; " + std::to_string(LacamOptions::kStarLgWindowUnpaused) + " measured, docs/rt_lacam_star.md)")
           ->check(CLI::Range(0, 64));
+  int lg_refresh = LacamOptions{}.lg_refresh;
+  app.add_option("--lg-refresh", lg_refresh,
+                 "amortized local guidance: keep each agent's windowed path while it is followed and plan it again "
+                 "after R rounds (or when it is not followed); 0 = every agent every round (local_guidance.hpp)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+  double lg_budget = LacamOptions{}.lg_budget;
+  app.add_option("--lg-budget", lg_budget,
+                 "local guidance: at most about K A* nodes per agent per round (a full round at window 5 pushes ~30); "
+                 "0 = no cap")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  bool lg_repair = LacamOptions{}.lg_repair;
+  app.add_flag("--lg-repair,!--no-lg-repair", lg_repair,
+               "amortized local guidance: a kept path that meets a path planned before it is planned again");
+  double lg_gate = LacamOptions{}.lg_gate;
+  app.add_option("--lg-gate", lg_gate,
+                 "local guidance in the first search only if at least this share of the first N windowed paths are "
+                 "slowed by other agents (congestion at the start); 0 = always")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   bool lg_refine = LacamOptions{}.lg_refine;
   app.add_flag("--lg-refine,!--no-lg-refine", lg_refine, "local guidance in refinement's expansions");
   bool resumable = LacamOptions{}.resumable;
@@ -261,6 +282,10 @@ int main(int argc, char** argv)
     lopt.lg_rest = lg_rest;
     lopt.lg_collision_weight = lg_weight;
     lopt.lg_refine = lg_refine;
+    lopt.lg_refresh = lg_refresh;
+    lopt.lg_budget = lg_budget;
+    lopt.lg_repair = lg_repair;
+    lopt.lg_gate = lg_gate;
     RunOptions ropt;
     // An expansions budget alone is deterministic: the default 1 ms wall cutoff would cut its
     // iterations by the machine's speed and load.
@@ -341,6 +366,8 @@ int main(int argc, char** argv)
         threads_json["cold_steps"] = rt->lacam().cold_steps();
         threads_json["guided_expansions_timed"] = rt->lacam().guided_expansion_cost().samples();
         threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
+        threads_json["lg_nodes"] = rt->lacam().lg_nodes();
+        threads_json["lg_kept"] = rt->lacam().lg_kept();
       }
       if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && refine_threads > 0) {
         threads_json["refine_threads"] = refine_threads;
@@ -382,6 +409,10 @@ int main(int argc, char** argv)
     j["lg_rest"] = lg_rest;
     j["lg_collision_weight"] = lg_weight;
     j["lg_refine"] = lg_refine;
+    j["lg_refresh"] = lg_refresh;
+    j["lg_budget"] = lg_budget;
+    j["lg_repair"] = lg_repair;
+    j["lg_gate"] = lg_gate;
     j["swap"] = !no_swap;
     j["free_first"] = free_first;
     j["refine"] = refine;

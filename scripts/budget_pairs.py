@@ -54,7 +54,8 @@ def main():
                     sys.exit(f"budget_pairs.py: no {sc} (set --data)")
                 for name, cmd in variants:
                     out = subprocess.run(["nice"] + cmd[:1] + ["--map", mp, "--scen", sc, "-N", n, "--solver", "rtlacam",
-                                          "--cutoff-ms", str(a.cutoff_ms), "--json", "--progress-s", "0", "--timeout-s", "120"]
+                                          "--json", "--progress-s", "0", "--timeout-s", "120"]
+                                         + ([] if "--cutoff-ms" in cmd else ["--cutoff-ms", str(a.cutoff_ms)])
                                          + cmd[1:], capture_output=True, text=True).stdout
                     j = json.loads(out[out.index("{"):out.rindex("}") + 1])
                     r = dict(key=(rep, cell, s), ok=bool(j["solved"] and j["valid"]), soc=j["soc"],

@@ -27,6 +27,10 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lg_.set_window(opt.lg_window > 0 ? opt.lg_window : opt.lg_window_unpaused);
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
+  lg_.set_refresh(opt.lg_refresh);
+  lg_.set_budget(opt.lg_budget);
+  lg_.set_repair(opt.lg_repair);
+  if (opt.lg_window > 0 || opt.lg_window_unpaused > 0) lg_.prepare();  // its tables, outside any iteration
   lns_.set_stop_cost(opt.lns_stop_cost);
   lns_.set_count_moves(opt.lns_count_moves);
   lns_wanted_ = opt.lns;
@@ -89,6 +93,8 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   scratch_.assign(n_, -1);
   pibt_.set_scatter(nullptr);
   pibt_.set_local_guidance(opt_.lg_window > 0 && opt_.lg_first ? &lg_ : nullptr);
+  lg_gated_ = false;
+  lg_.forget_first();
   scatter_.clear();
   scatter_started_ = first_dive_done_ = false;
   scatter_root_ = nullptr;
@@ -386,6 +392,16 @@ Status Lacam::search(const Budget& b, bool until_solved)
       }
     }
     first = false;
+    // lg_gate: the first search stays guided only if the start is congested enough and, in a
+    // timed call, a guided expansion (the first, every agent planned: the dearest) fits the
+    // cutoff; decided once, when the first N paths are planned and that expansion is learnt.
+    // It takes effect at PIBT's next start().
+    if (opt_.lg_gate > 0 && !lg_gated_ && !refining_ && lg_.first_conflicted() >= 0 &&
+        (!timed_ || lg_cost_.samples() > 0)) {
+      lg_gated_ = true;
+      if (lg_.first_conflicted() < opt_.lg_gate || (timed_ && lg_cost_.predict_ms(1) > b.ms))
+        pibt_.set_local_guidance(nullptr);
+    }
     units_ = 1;
     left_ = b.expansions - done;
     last_step_ = Step::none;

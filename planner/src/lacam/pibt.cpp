@@ -113,10 +113,18 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
     if (lg_) lg_->begin(from, n_, goals_.data());
   }
   if (phase_ == Phase::guide) {
-    // Windowed paths in priority order (local_guidance.hpp): one A* per agent.
+    // Windowed paths in priority order (local_guidance.hpp): one A* per agent (LG-LaCAM);
+    // amortized, only for an agent without a path or with a stale one while the round's node
+    // budget lasts, a kept path going back into the tables at its agent's turn.
     for (; k_ < n_; ++k_) {
+      const int32_t i = order_[k_];
+      if (lg_->planned(i) && (lg_->over() || (!lg_->stale(i) && !(lg_->repair() && lg_->blocked(i))))) {
+        lg_->hold(i);
+        continue;
+      }
+      if (lg_->over()) continue;
       if (stop(kGuideEvery)) return Gen::paused;
-      lg_->plan(order_[k_]);
+      lg_->plan(i);
     }
     phase_ = Phase::plan, k_ = 0;
   }

@@ -244,3 +244,176 @@ TEST(LocalGuidance, AnAgentOnItsGoalStaysWhenToldToRest)
     EXPECT_EQ(stays, rest) << (rest ? "resting" : "not resting");
   }
 }
+
+// Amortized rounds (set_refresh, set_repair, set_budget; session 38): successive generations
+// along a descent (each from the last one's successor) keep the followed paths, shifted one
+// step, so far fewer A* nodes are pushed than when every round plans every agent; every path
+// a round guides with is legal and starts at its agent's vertex; with a budget, no round
+// pushes more than k x N nodes plus the one A* that crosses it. Checked: with refresh 0 in
+// the amortized LocalGuidance (every round from scratch), kept() is 0 and it fails.
+TEST(LocalGuidance, AmortizedRoundsKeepFollowedPathsWithinTheirBudget)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const Graph g = load_map(dir + "random-32-32-20.map");
+  const Instance ins = load_scen(dir + "random-32-32-20-random-1.scen", g, 200);
+  const int n = 200, rounds = 30;
+  DistTable d(g);
+  d.set_goals(ins.goals);
+  std::vector<float> prio(n);
+  std::vector<int32_t> order(n);
+  init_priorities(ins.starts.data(), n, d, prio.data());
+  initial_order(prio.data(), n, order.data());
+  // Nodes pushed per round along `rounds` generations, each from the last successor.
+  auto descend = [&](int refresh, double budget, uint64_t& kept, uint64_t& first, uint64_t& most) {
+    LocalGuidance lg(g, d);
+    lg.set_window(5);
+    lg.set_refresh(refresh);
+    lg.set_repair(refresh > 0);
+    lg.set_budget(budget);
+    Pibt pibt(g, d);
+    pibt.set_goals(ins.goals);
+    pibt.set_local_guidance(&lg);
+    Rng rng(3);
+    Config from = ins.starts, to(n);
+    first = most = 0;
+    for (int r = 0; r < rounds; ++r) {
+      const uint64_t before = lg.nodes();
+      if (!pibt.generate(from.data(), order.data(), nullptr, to.data(), rng)) break;
+      const uint64_t pushed = lg.nodes() - before;
+      if (r == 0) first = pushed;
+      most = std::max(most, pushed);
+      for (int i = 0; i < n; ++i)
+        if (lg.planned(i)) {
+          const Vertex* p = lg.path(i);
+          EXPECT_EQ(p[0], from[i]) << "round " << r << " agent " << i;
+          for (int t = 0; t < lg.window(); ++t)
+            EXPECT_TRUE(p[t] == p[t + 1] || g.adjacent(p[t], p[t + 1])) << "round " << r << " agent " << i;
+        }
+      from = to;
+    }
+    kept = lg.kept();
+    return lg.nodes();
+  };
+  uint64_t kept0 = 0, kept1 = 0, kept2 = 0, first0 = 0, first1 = 0, first2 = 0, most0 = 0, most1 = 0, most2 = 0;
+  const uint64_t plain = descend(0, 0, kept0, first0, most0);
+  const uint64_t amortized = descend(5, 0, kept1, first1, most1);
+  const double k = 2;
+  const uint64_t capped = descend(5, k, kept2, first2, most2);
+  std::printf("A* nodes over %d rounds: plain %llu, amortized %llu (kept %llu), budget %.0f/agent %llu (largest round %llu)\n",
+              rounds, static_cast<unsigned long long>(plain), static_cast<unsigned long long>(amortized),
+              static_cast<unsigned long long>(kept1), k, static_cast<unsigned long long>(capped),
+              static_cast<unsigned long long>(most2));
+  EXPECT_EQ(kept0, 0u);
+  EXPECT_GT(kept1, static_cast<uint64_t>(n) * rounds / 2) << "most followed paths are kept";
+  EXPECT_LT(static_cast<double>(amortized), 0.6 * static_cast<double>(plain));
+  EXPECT_LE(most2, static_cast<uint64_t>(k * n) + LocalGuidance::kMaxNodes);
+  EXPECT_LT(2 * first2, first0) << "the budget cuts the first (full) round";
+}
+
+// RT-LaCAM* at 0.01 ms with amortized guidance (lg_refresh 5, lg_repair): the guided descent's
+// gain stays (standard SOC < 0.95 x unguided, scens 1 + 2, N = 200) for well under the A*
+// work of LG-LaCAM's every-agent rounds. Checked: with lg_refresh 0 the node ratio is 1 and
+// it fails.
+TEST(LocalGuidance, AmortizedGuidanceKeepsTheGuidedDescentForFewerNodes)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const Graph g = load_map(dir + "random-32-32-20.map");
+  long long off = 0, plain = 0, amortized = 0;
+  uint64_t nodes_plain = 0, nodes_amortized = 0;
+  for (const char* scen : {"random-32-32-20-random-1.scen", "random-32-32-20-random-2.scen"}) {
+    const Instance ins = load_scen(dir + scen, g, 200);
+    for (int v = 0; v < 3; ++v) {  // off, LG-LaCAM rounds, amortized rounds
+      RunOptions ropt;
+      ropt.per_iteration = Budget::time_ms(0.01);
+      ropt.record_plan = false;
+      LacamOptions o;
+      o.refine = o.scatter = o.free_first = true;
+      o.lg_window_unpaused = v > 0 ? 5 : 0;
+      o.lg_refresh = v == 2 ? 5 : 0;
+      o.lg_repair = v == 2;
+      RtLacam rt(g, ins.starts, ins.goals, o);
+      const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ropt);
+      ASSERT_TRUE(r.solved) << scen << " variant " << v;
+      ASSERT_EQ(r.validation_error, "") << scen << " variant " << v;
+      (v == 0 ? off : v == 1 ? plain : amortized) += r.soc;
+      if (v == 1) nodes_plain += rt.lacam().lg_nodes();
+      if (v == 2) nodes_amortized += rt.lacam().lg_nodes();
+    }
+  }
+  std::printf("standard SOC at 0.01 ms, scens 1 + 2: off %lld, LG %lld (%llu A* nodes), amortized %lld (%llu)\n", off,
+              plain, static_cast<unsigned long long>(nodes_plain), amortized,
+              static_cast<unsigned long long>(nodes_amortized));
+  EXPECT_LT(static_cast<double>(amortized), 0.95 * static_cast<double>(off));
+  EXPECT_LT(static_cast<double>(nodes_amortized), 0.6 * static_cast<double>(nodes_plain));
+}
+
+// lg_gate (session 38): guidance in the first search stays only where the start is congested.
+// On random-32-32-20 with 200 agents a quarter of the first windowed paths are slowed by
+// others: the gated search is the guided one, node for node. On warehouse-10-20-10-2-1 with 100
+// agents few are: after the first N paths the search goes on unguided (far fewer A* nodes).
+// Checked: with the gate's switch in Lacam::search() off, the warehouse ratio is 1 and it fails.
+TEST(LocalGuidance, TheGateKeepsGuidanceOnlyWhereTheStartIsCongested)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  struct Case {
+    const char *map, *scen;
+    int n;
+    bool congested;
+  };
+  for (const Case& c : {Case{"random-32-32-20.map", "random-32-32-20-random-1.scen", 200, true},
+                        Case{"warehouse-10-20-10-2-1.map", "warehouse-10-20-10-2-1-random-2-first200.scen", 100, false}}) {
+    const Graph g = load_map(dir + c.map);
+    const Instance ins = load_scen(dir + c.scen, g, c.n);
+    uint64_t nodes[2] = {0, 0};
+    double share = -1;
+    for (int gated = 0; gated < 2; ++gated) {
+      LacamOptions o;
+      o.lg_window = 5;
+      o.lg_gate = gated ? 0.2 : 0.0;
+      DistTable dist(g);
+      Lacam lacam(g, dist, o);
+      lacam.reset(ins.starts, ins.goals);
+      ASSERT_EQ(lacam.search(Budget::unlimited()), Status::Solved) << c.map << " gated " << gated;
+      nodes[gated] = lacam.lg_nodes();
+      share = lacam.lg_first_conflicted();
+    }
+    std::printf("%s N = %d: slowed share %.3f, A* nodes %llu ungated, %llu gated\n", c.map, c.n, share,
+                static_cast<unsigned long long>(nodes[0]), static_cast<unsigned long long>(nodes[1]));
+    if (c.congested) {
+      EXPECT_GE(share, 0.2);
+      EXPECT_EQ(nodes[1], nodes[0]);
+    } else {
+      EXPECT_LT(share, 0.2);
+      EXPECT_LT(5 * nodes[1], nodes[0]);
+    }
+  }
+}
+
+// lg_gate in a timed call: a guided expansion that does not fit the cutoff ends guidance too,
+// congested or not. RT-LaCAM with a 1 us cutoff on random-32-32-20 N = 200 (congested: share
+// 0.265, guided throughout without a cutoff above): after the first expansion the search goes on
+// unguided. Checked: without the cutoff condition in Lacam::search() the ratio is 1 and it fails.
+TEST(LocalGuidance, TheGateEndsGuidanceThatDoesNotFitTheCutoff)
+{
+  const std::string dir = RTLACAM_TEST_DATA "/planner/";
+  const Graph g = load_map(dir + "random-32-32-20.map");
+  const Instance ins = load_scen(dir + "random-32-32-20-random-1.scen", g, 200);
+  uint64_t nodes[2] = {0, 0};
+  for (int gated = 0; gated < 2; ++gated) {
+    RunOptions ropt;
+    ropt.per_iteration = Budget::time_ms(0.001);
+    ropt.record_plan = false;
+    LacamOptions o;
+    o.lg_window = 5;
+    o.lg_refine = false;
+    o.lg_gate = gated ? 0.2 : 0.0;
+    RtLacam rt(g, ins.starts, ins.goals, o);
+    const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ropt);
+    ASSERT_TRUE(r.solved) << "gated " << gated;
+    ASSERT_EQ(r.validation_error, "") << "gated " << gated;
+    nodes[gated] = rt.lacam().lg_nodes();
+  }
+  std::printf("A* nodes at 1 us: %llu ungated, %llu gated\n", static_cast<unsigned long long>(nodes[0]),
+              static_cast<unsigned long long>(nodes[1]));
+  EXPECT_LT(5 * nodes[1], nodes[0]);
+}

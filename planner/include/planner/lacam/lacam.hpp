@@ -245,6 +245,23 @@ struct LacamOptions {
   // cost more per iteration than a 0.1 ms one.
   int lg_window_unpaused = 0;
   static constexpr int kStarLgWindowUnpaused = 5;  // the window measured (docs/rt_lacam_star.md)
+  // Amortized local guidance (local_guidance.hpp, session 38): a round keeps the last round's
+  // windowed paths that still start at their agents' vertices (shifted one step when the
+  // search went on to the successor) and plans again only the agents without one, then those
+  // whose path is lg_refresh rounds old; 0 = every agent every round (LG-LaCAM). lg_budget
+  // caps a round's A* work at about this many nodes per agent (a full round at window 5 pushes
+  // ~30); 0 = no cap. Both apply wherever local guidance runs.
+  int lg_refresh = 0;
+  double lg_budget = 0;
+  bool lg_repair = false;  // amortized: a kept path that meets an earlier agent's is planned again
+  // Local guidance in the first search (lg_window, lg_first) only where the start is congested:
+  // once the first N windowed paths are planned, guidance stops for the rest of the first
+  // search if fewer than this share of them were slowed by the others (LocalGuidance::
+  // first_conflicted), or, in a timed call, if the first guided expansion took longer than the
+  // cutoff (at 0.1 ms a guided generation spans iterations and the agents wait for it: 1.4-2.2x
+  // worse). 0 = off (always guided). Session 38: guidance at 1 ms gains where agents meet and
+  // costs the first solution's time where they do not.
+  double lg_gate = 0;
   // In refinement's LaCAM* expansions, each one guided only when its predicted cost (learnt
   // apart) fits the iteration, else unguided. Dives and LNS are never guided.
   bool lg_refine = true;
@@ -358,6 +375,9 @@ class Lacam {
 
   uint64_t expansions() const { return expansions_; }  // since construction, over all resets
   uint64_t guided_expansions() const { return guided_; }  // refinement's, with local guidance
+  uint64_t lg_nodes() const { return lg_.nodes(); }  // local guidance's A* nodes pushed, all rounds
+  uint64_t lg_kept() const { return lg_.kept(); }    // amortized: paths kept across a round
+  double lg_first_conflicted() const { return lg_.first_conflicted(); }  // lg_gate's signal
   // A LaCAM expansion stopped at a deadline, to go on in the next search() (resumable).
   bool expansion_paused() const { return gen_ != Gen::none; }
   // Top-level agents PIBT has handled in LaCAM expansions before the first solution, since
@@ -478,6 +498,7 @@ class Lacam {
   LnsRefiner lns_;
   Scatter scatter_;
   LocalGuidance lg_;
+  bool lg_gated_ = false;  // lg_gate decided for this reset
   bool scatter_started_ = false, first_dive_done_ = false;
   bool live_ = false;  // scatter_live: SUO shares the calls of the first search
   void live_slice(const Budget& b, Clock::time_point t0, Clock::time_point deadline, uint64_t& done);
