@@ -305,6 +305,7 @@ void Driver::before_step()
                         ? static_cast<int>(DriveStats::kAccel)
                         : split_of(i, v, static_cast<int>(why[i]));
     ++split_pending_[i][cat];
+    if (!trace_.empty()) trace_[i].push_back(static_cast<char>('a' + cat));
     noact_run_[i] = cat == DriveStats::kNoAction ? noact_run_[i] + 1 : 0;
     if (rem_[i] > 1e-12 && v * p_.dt > rem_[i] - 1e-9) v = std::max(lo, (rem_[i] - 1e-9) / p_.dt);
     if (rem_[i] <= 1e-12) v = lo;

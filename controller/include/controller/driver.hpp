@@ -231,6 +231,11 @@ class Driver {
   bool zone_gated() const { return zone_of_ != nullptr; }
   // Statistics only (DriveStats::split): agent i's goal now (unset: no goals known).
   void set_goal_of(std::function<planner::Vertex(int)> goal_of) { goal_of_ = std::move(goal_of); }
+  // Statistics only: keep every agent-step's DriveStats::Split category, one letter per SUMO
+  // step ('a' + category) per agent (scripts/closed_loop_decompose.py sums them along the
+  // executed critical path).
+  void set_trace(bool on) { trace_.assign(on ? agv_.size() : 0, std::string()); }
+  const std::vector<std::string>& trace() const { return trace_; }
 
  private:
   struct Agv {
@@ -289,6 +294,7 @@ class Driver {
   std::vector<std::array<long long, DriveStats::kSplitCount>> split_pending_;
   std::function<planner::Vertex(int)> goal_of_;
   std::vector<long long> noact_run_;  // per agent: consecutive no_action steps up to now
+  std::vector<std::string> trace_;    // set_trace: per agent, one letter per SUMO step
   DriveStats st_;
   const std::vector<std::vector<int>>* zone_of_ = nullptr;
   std::vector<int> gated_;
