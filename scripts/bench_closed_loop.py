@@ -78,7 +78,9 @@ def main():
     ap.add_argument("--max-ticks", type=int, default=None)
     ap.add_argument("--seeds", nargs="+", type=int, default=[None], help="fleet.seed (tasks.seed: +1); default: the config's")
     ap.add_argument("--expansions", type=int, default=0, help="planner expansions per SUMO step instead of budget_ms")
+    ap.add_argument("--split", action="store_true", help="also print where the AGV-steps go (metrics.json executor.split)")
     a = ap.parse_args()
+    split_of = {}  # (config, p, executor) -> [category -> agent-s summed over the seeds, agent-plan-steps, moves from rest]
     tmp = tempfile.mkdtemp(prefix="bench_closed_")
     per_step_of = {}  # (config, p, executor) -> ticks per plan step over the seeds (one-shot, solved)
     ratio_of = {}  # (config, seed, p, executor) -> makespan/bound (one-shot) or throughput/bound (lifelong)
@@ -113,6 +115,14 @@ def main():
         ratio_of[(c, seed, p, ex)] = (ratio if life or m["solved"] else None, bool(life))
         if per_step != "-" and m["solved"]:
             per_step_of.setdefault((c, p, ex), []).append(m["makespan"] / commits)
+            if "split" in m["executor"]:
+                acc = split_of.setdefault((c, p, ex), [{}, 0, 0, 0, 0])
+                for k, n in m["executor"]["split"].items():
+                    acc[0][k] = acc[0].get(k, 0) + n * m["step_length"]
+                acc[1] += m["agents"] * commits
+                acc[2] += m["executor"]["starts_from_rest"]
+                acc[3] += m["executor"]["starved"]["starts"]
+                acc[4] += m["executor"]["starved"]["steps"] * m["step_length"]
         print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | {plan:.4g} | "
               f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
               f"{m['executor'].get('replans', 0)} | {per_step} | {m['_wall']:.1f} |", flush=True)
@@ -140,6 +150,22 @@ def main():
                     g = [rels.get((c, p, ex, w), []) for w in (0, 1)]
                     gm = ["-" if not x else f"{math.exp(sum(map(math.log, x)) / len(x)):.3f}" for x in g + [per_step_of.get((c, p, ex), [])]]
                     print(f"| {c} | {p} | {ex} | {gm[0]} | {gm[1]} | {max(len(g[0]), len(g[1]))} | {gm[2]} |")
+
+    if a.split and split_of:
+        # Each AGV's SUMO steps up to its last arrival, by what held it (controller/driver.hpp,
+        # DriveStats::Split), in agent-seconds per agent per committed plan step (solved
+        # one-shot runs, summed over the seeds): lock-step spends at most 1 s per plan step.
+        keys = list(split_of)
+        cats = [k for k in next(iter(split_of.values()))[0] if any(split_of[x][0].get(k, 0) for x in keys)]
+        print("\nWhere the AGV-steps go (s per agent per plan step, up to each AGV's last arrival; solved runs):")
+        print("| category | " + " | ".join(f"{ex} p={p}" for (_, p, ex) in keys) + " |")
+        print("|---|" + "---:|" * len(keys))
+        for k in cats:
+            print(f"| {k} | " + " | ".join(f"{split_of[x][0].get(k, 0) / split_of[x][1]:.4f}" for x in keys) + " |")
+        print("| **total** | " + " | ".join(f"{sum(split_of[x][0].values()) / split_of[x][1]:.4f}" for x in keys) + " |")
+        print("| moves from rest | " + " | ".join(f"{split_of[x][2] / split_of[x][1]:.4f}" for x in keys) + " |")
+        print("| of them right after no_action | " + " | ".join(f"{split_of[x][3] / split_of[x][1]:.4f}" for x in keys) + " |")
+        print("| no_action s before those | " + " | ".join(f"{split_of[x][4] / split_of[x][1]:.4f}" for x in keys) + " |")
 
 
 if __name__ == "__main__":

@@ -22,11 +22,13 @@ bound for any ADG executor on that plan) and, for physical executors, the execut
 reversals (u -> v -> u) and the planned stops (a wait between two moves: an AGV that keeps the
 plan's waits comes to rest there). So one sees whether the plan executed is the same length as
 lock-step's, and whether the extra ticks are physics (ramps of stops the plan forces), the
-executor (slowdown, rests with the dependency met), or waits.
+executor (slowdown, rests with the dependency met), or waits. With the run's split_trace.txt (adg
+runs with fcd on: every AGV's SUMO steps by the Driver's category, DriveStats::Split) it also sums
+the executed critical path by category, with the time each category lost against top speed.
 
   scripts/closed_loop_decompose.py [--build build] [--config large_warehouse_agv.yaml]
         [--seed 1] [--expansions 50] [--executors lockstep adg-follow[:key=value]]
-        [--max-ticks 1500] [--out DIR] [--trace N]
+        [--max-ticks 1500] [--out DIR] [--trace N] [--p 0]
   scripts/closed_loop_decompose.py --runs OUT1 OUT2 ...   (each with config.yaml, fcd.xml, plan.txt, metrics.json)
 """
 import argparse
@@ -45,9 +47,9 @@ from plan_stop_bound import rest_to_rest_s, read_plan  # noqa: E402
 
 
 def make_run(a, ex, out):
-    """The config of one row (p = 0) with fcd on, run once; returns the run's folder."""
+    """The config of one row (p = --p, default 0) with fcd on, run once; returns the run's folder."""
     name, _, sets = ex.partition(":")
-    cfg = yaml_variant(a.config, name, 0.0, window=a.window, max_ticks=a.max_ticks)
+    cfg = yaml_variant(a.config, name, a.p, window=a.window, max_ticks=a.max_ticks)
     with_agv_vtype(cfg)
     set_run_keys(cfg, sets, a.seed, a.expansions)
     s = open(cfg).read()
@@ -235,7 +237,19 @@ def _dir(u, v):
     return (v[0] - u[0], v[1] - u[1])
 
 
-def executed_path(path, speeds, dt, acc, dec, vmax):
+def read_split_trace(path):
+    """split_trace.txt (written beside the fcd by adg runs): category names by letter, and per
+    vehicle id its SUMO steps' letters."""
+    if not os.path.exists(path):
+        return None, None
+    with open(path) as f:
+        head = f.readline()
+        names = dict(x.split("=") for x in head.split() if "=" in x)
+        rows = dict(line.split() if len(line.split()) == 2 else (line.split()[0], "") for line in f if line.strip())
+    return names, rows
+
+
+def executed_path(path, speeds, dt, acc, dec, vmax, trace=None):
     """The executed run's critical path, back from the last arrival: each move's completion and
     start read from fcd (every move is one cell, 1 m on these nets: the fcd distance equals the
     plan's moves to 1 cm), and at each step back the constraint met last -- the hand-over's
@@ -264,7 +278,19 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             start[x] = max(t0, last_rest) if rested[x] else t0
     up = math.sqrt(2 / acc) if math.sqrt(2 / acc) * acc <= vmax else 1 / vmax + vmax / (2 * acc)
     out = dict(from_rest=0.0, from_rest_least=0.0, chained=0.0, chained_least=0.0, rest=0.0,
-               links=0, n_from_rest=0, n_chained=0, stood=[], events=[], kinds={})
+               links=0, n_from_rest=0, n_chained=0, stood=[], events=[], kinds={}, cats={}, lost={})
+    names, letters = trace or (None, None)
+
+    def on_path(agent, t0, t1):
+        # the Driver's category of each SUMO step of agent's that the path spends in [t0, t1)
+        if not letters:
+            return
+        row, v = letters.get(f"agv{agent}", ""), speeds.get(f"agv{agent}", [])
+        for j in range(int(round(t0 / dt)), int(round(t1 / dt))):
+            c = names.get(row[j], "?") if j < len(row) else "after trace"
+            out["cats"][c] = out["cats"].get(c, 0.0) + dt
+            # time lost against top speed in this step (a step at rest loses dt)
+            out["lost"][c] = out["lost"].get(c, 0.0) + dt * (1 - min(vmax, v[j] if j < len(v) else 0.0) / vmax)
     x = max(end, key=lambda y: end[y])
     node = ("end", x)
     tol = dt + 1e-9
@@ -284,6 +310,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
                 out["events"].append(f"{start[x]:8.2f} agv{a_} {u_}->{v_} (step {t_}) from rest, {end[x] - start[x]:.2f} s,"
                                      f" after standing {out['stood'][-1]:.2f} s")
                 out["from_rest"] += end[x] - start[x]
+                on_path(a_, start[x], end[x])
                 out["from_rest_least"] += up
                 # what it waited for: its leader's start (as the "start" node below), the follower
                 # entering on the leader's line out of the cell (a train start) or from another
@@ -304,6 +331,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
             else:
                 out["events"].append(f"{start[x]:8.2f} agv{a_} {u_}->{v_} (step {t_}) chained, {end[x] - start[x]:.2f} s")
                 out["chained"] += end[x] - start[x]
+                on_path(a_, start[x], end[x])
                 out["chained_least"] += 1 / vmax
                 out["n_chained"] += 1
                 node = ("end", prev[x]) if x in prev else None
@@ -315,6 +343,7 @@ def executed_path(path, speeds, dt, acc, dec, vmax):
                 node = ("start", h) if rested[h] else ("end", prev[h]) if h in prev else None
                 continue
             out["rest"] += start[x] - t0
+            on_path(moves[x][0], t0, start[x])
             rev = x in prev and moves[x][2] == moves[prev[x]][1]
             why = "rest_reversal" if rev else "rest_first" if x not in prev else \
                 "rest_leader_started_before" if h is not None and start[h] < start[x] - tol else \
@@ -340,7 +369,8 @@ def analyse(d, absorb=(0, 1, 2, 5)):
         rows = {k: (r[0], r[1], 0.0, r[0] - r[1] - r[4], r[4], r[5]) for k, r in rows.items()}
         last = max(rows, key=lambda k: rows[k][0])
         tot = [sum(r[k] for r in rows.values()) for k in range(6)]
-    exe = executed_path(os.path.join(d, "plan.txt"), speeds, dt, acc, dec, vmax) if ex != "lockstep" else None
+    trace = read_split_trace(os.path.join(d, "split_trace.txt"))
+    exe = executed_path(os.path.join(d, "plan.txt"), speeds, dt, acc, dec, vmax, trace) if ex != "lockstep" else None
     crit = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax)
     crit_free = critical_path(os.path.join(d, "plan.txt"), acc, dec, vmax, free_reversals=True)
     kv = dict(x.strip().split(": ") for x in re.search(r"vtype: \{([^}]*)\}", cfg).group(1).split(","))
@@ -360,6 +390,7 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--expansions", type=int, default=50)
     ap.add_argument("--window", type=int, default=16)
+    ap.add_argument("--p", type=float, default=0.0, help="delay probability (bench_closed_loop.py's stops of 1-5 s); the bounds assume none")
     ap.add_argument("--max-ticks", type=int, default=1500)
     ap.add_argument("--executors", nargs="+", default=["lockstep", "adg-follow"])
     ap.add_argument("--out", default=None, help="folder for the runs (default: a temporary one)")
@@ -445,6 +476,16 @@ def main():
     for r in res:
         for kind, (cnt, sec, planned) in sorted((r["exe"] or {}).get("kinds", {}).items()):
             print(f"| {r['run']} | {kind} | {cnt} | {sec:.1f} | {sec / cnt:.2f} | {planned} |")
+    if any(r["exe"] and r["exe"]["cats"] for r in res):
+        print("\nThe executed critical path by the Driver's category of each SUMO step on it (split_trace.txt;"
+              " controller/driver.hpp DriveStats::Split), s\n")
+        for r in res:
+            if r["exe"] and r["exe"]["cats"]:
+                c = r["exe"]["cats"]
+                lost = r["exe"]["lost"]
+                print(f"| {r['run']} | " + ", ".join(f"{k} {v:.1f} ({lost.get(k, 0):.1f} lost)"
+                                                    for k, v in sorted(c.items(), key=lambda kv: -kv[1]))
+                      + f" | total {sum(c.values()):.1f} ({sum(lost.values()):.1f} lost against top speed) |")
     if a.trace:
         for r in res:
             if r["exe"]:

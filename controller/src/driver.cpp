@@ -9,6 +9,8 @@
 namespace controller {
 
 namespace {
+// What bounds an AGV's speed this step (before_step).
+enum class Why : uint8_t { None, Held, Cruise, Follow, End, Lane };
 // Distance left to the end of the agent's last running (released) move.
 double left_to_drive(const std::vector<double>& dist, double done)
 {
@@ -17,6 +19,16 @@ double left_to_drive(const std::vector<double>& dist, double done)
   return r;
 }
 }  // namespace
+
+const char* DriveStats::split_name(int k)
+{
+  static const char* names[kSplitCount] = {
+      "cruise",          "accel",          "follow",         "end_dependency", "end_rest",     "end_last",
+      "lane",            "gap_stand",      "finish_wait",    "leader_arriving", "leader_waiting", "leader_rule",
+      "leader_delayed",  "leader_strict",  "own_group",      "start_rule",     "turn",         "delay",
+      "no_action_goal",  "no_action"};
+  return names[k];
+}
 
 double stop_speed(double room, double decel, double dt)
 {
@@ -70,6 +82,9 @@ Driver::Driver(Commander& cmd, executor::Adg& adg, const executor::DelayModel& d
     : cmd_(cmd), adg_(adg), delays_(delays), p_(p), agv_(adg.num_agents()), waiting_start_(adg.num_agents(), 0),
       gated_(adg.num_agents(), -1)
 {
+  split_pending_.resize(adg.num_agents());
+  noact_run_.assign(adg.num_agents(), 0);
+  for (auto& c : split_pending_) c.fill(0);
   for (int i = 0; i < adg.num_agents(); ++i) agv_[i].lane = cmd_.pose(i).lane;
 }
 
@@ -167,6 +182,9 @@ bool Driver::start_moves(int i, bool count)
       }
       waiting_start_[i] = !go;
       if (!go) return false;
+      ++st_.starts_from_rest;
+      if (noact_run_[i] > 0) ++st_.starved_starts, st_.starved_steps += noact_run_[i];
+      noact_run_[i] = 0;
       if (follow)
         adg_.start_following(id);
       else
@@ -223,7 +241,6 @@ void Driver::before_step()
   }
   std::vector<double> speed(n, 0.0);
   rem_.assign(n, 0.0);
-  enum class Why : uint8_t { None, Held, Cruise, Follow, End, Lane };
   std::vector<Why> why(n, Why::None);
   for (int i = 0; i < n; ++i) {
     Agv& g = agv_[i];
@@ -284,6 +301,12 @@ void Driver::before_step()
     } else if (g.run.empty() && !delays_.stopped(i) && adg_.next_action(i) >= 0 && waiting_start_[i]) {
       ++st_.time.start_wait;
     }
+    const int cat = why[i] != Why::None && why[i] != Why::Held && speed[i] > hi + 1e-12
+                        ? static_cast<int>(DriveStats::kAccel)
+                        : split_of(i, v, static_cast<int>(why[i]));
+    ++split_pending_[i][cat];
+    if (!trace_.empty()) trace_[i].push_back(static_cast<char>('a' + cat));
+    noact_run_[i] = cat == DriveStats::kNoAction ? noact_run_[i] + 1 : 0;
     if (rem_[i] > 1e-12 && v * p_.dt > rem_[i] - 1e-9) v = std::max(lo, (rem_[i] - 1e-9) / p_.dt);
     if (rem_[i] <= 1e-12) v = lo;
     st_.overshoot = std::max(st_.overshoot, v * p_.dt - std::max(0.0, rem_[i]));
@@ -292,6 +315,43 @@ void Driver::before_step()
     cmd_.drive(i, v, std::fabs(g.cmd - g.v) > 1e-9);
     g.cmd = v;
   }
+}
+
+int Driver::split_of(int i, double v, int why_int) const
+{
+  using S = DriveStats;
+  const Agv& g = agv_[i];
+  const Why why = static_cast<Why>(why_int);
+  if (why == Why::Held) return S::kDelay;
+  if (why != Why::None) {
+    if (why == Why::Follow) return v <= 1e-12 && g.v <= 1e-12 ? S::kGapStand : S::kFollow;
+    if (why == Why::Cruise) return S::kCruise;
+    if (why == Why::Lane) return S::kLane;
+    // Braking for the end of its released moves: why the next one is not chained.
+    const int id = adg_.undone(i, g.run.size());
+    if (id < 0) return S::kEndLast;
+    const executor::Action& a = adg_.action(id);
+    if (cmd_.needs_rest(i, a.from, a.to) || (cmd_.headings() && cmd_.move_heading(a.from, a.to) != cmd_.heading(i)) ||
+        (cmd_.changes_lane(i, a.from, a.to) && g.lane != cmd_.pose(i).lane))
+      return S::kEndRest;
+    return S::kEndDep;
+  }
+  if (!g.run.empty()) return S::kFinishWait;  // on its target, completion waits (ADG order)
+  if (delays_.stopped(i)) return S::kDelay;
+  const int id = adg_.next_action(i);
+  if (id < 0) return goal_of_ && goal_of_(i) == adg_.at(i) ? S::kNoActionGoal : S::kNoAction;
+  if (g.turning) return S::kTurn;
+  if (waiting_start_[i]) return S::kStartRule;
+  const executor::Action& a = adg_.action(id);
+  if (a.prev >= 0 && adg_.action(a.prev).group >= 0 && !adg_.group_done(adg_.action(a.prev).group))
+    return S::kOwnGroup;
+  if (a.handover < 0) return S::kLeaderStrict;  // a group member waiting for the others' dependencies
+  const executor::Action& h = adg_.action(a.handover);
+  if (h.state != executor::State::Pending) return S::kLeaderStrict;
+  if (delays_.stopped(h.agent)) return S::kLeaderDelayed;
+  if (h.prev >= 0 && adg_.action(h.prev).state != executor::State::Done) return S::kLeaderArriving;
+  if (adg_.released_following(a.handover) || adg_.released(a.handover)) return S::kLeaderRule;
+  return S::kLeaderWaiting;
 }
 
 double Driver::ahead(int agent, int action) const
@@ -439,6 +499,8 @@ bool Driver::arrive(int i, const VehiclePose& pose)
       g.target.erase(g.target.begin());
       g.from.erase(g.from.begin());
       adg_.finish(id);
+      for (int k = 0; k < DriveStats::kSplitCount; ++k) st_.split[k] += split_pending_[i][k];
+      split_pending_[i].fill(0);
       if (g.run.empty()) {
         // The last target reached: the front must be on the cell.
         const gridify::SumoPose& want = cmd_.pose(i);

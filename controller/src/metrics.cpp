@@ -142,6 +142,13 @@ nlohmann::json Metrics::to_json() const
                    {"end_stop_steps", end_stop_steps},
                    {"ms_per_step", latency_json(executor_ms_per_step)}};
   if (turn_steps > 0) j["executor"]["turn_steps"] = turn_steps;  // adg with headings only
+  if (!split.empty()) {  // adg only
+    nlohmann::json s = nlohmann::json::object();
+    for (const auto& [k, n] : split) s[k] = n;
+    j["executor"]["split"] = s;
+    j["executor"]["starts_from_rest"] = starts_from_rest;
+    j["executor"]["starved"] = {{"starts", starved_starts}, {"steps", starved_steps}};
+  }
   if (costly_cells > 0 || lane_ticks > 0) j["lane_speeds"] = {{"costly_cells", costly_cells}, {"lockstep_ticks", lane_ticks}};
   if (!goal_s.empty()) j["executor"]["goal_s"] = goal_s;  // adg one-shot: per AGV, -1 = not there
   if (rules.active)

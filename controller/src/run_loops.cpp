@@ -159,6 +159,8 @@ void Run::loop_adg()
   dp.gap_handover = cfg_.run.gap_handover && !cmd_->headings();
   dp.lane_speeds = cfg_.run.lane_speeds;
   Driver drv(*cmd_, adg, *delays_, dp);
+  drv.set_goal_of([this](int i) { return p_->goals()[i]; });
+  drv.set_trace(cfg_.sumo.outputs.fcd && !tm_);  // split_trace.txt beside the fcd (one-shot runs)
   if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) drv.set_zones(&rules_->zones_of());
   // Rotation solvers: the plan's cells go to the ADG like a cell plan (its turns are waits
   // there), the Driver turns each AGV toward its next move (driver.hpp). The solver plans
@@ -306,6 +308,18 @@ void Run::loop_adg()
   m_.time_cruise = t.cruise, m_.time_accel = t.accel, m_.time_follow = t.follow;
   m_.time_lane = t.lane, m_.time_end = t.end, m_.time_start_wait = t.start_wait;
   m_.turn_steps = drv.stats().turn_steps;
+  m_.split.clear();
+  for (int k = 0; k < DriveStats::kSplitCount; ++k) m_.split.emplace_back(DriveStats::split_name(k), drv.stats().split[k]);
+  m_.starts_from_rest = drv.stats().starts_from_rest;
+  m_.starved_starts = drv.stats().starved_starts, m_.starved_steps = drv.stats().starved_steps;
+  if (!drv.trace().empty())
+    planner::write_file(dir_ + "/split_trace.txt", [&](std::ostream& out) {
+      out << "# per AGV, one letter per SUMO step: 'a' + controller::DriveStats::Split:";
+      for (int k = 0; k < DriveStats::kSplitCount; ++k)
+        out << ' ' << static_cast<char>('a' + k) << '=' << DriveStats::split_name(k);
+      out << '\n';
+      for (size_t i = 0; i < drv.trace().size(); ++i) out << cmd_->ids()[i] << ' ' << drv.trace()[i] << '\n';
+    });
 }
 
 void Run::finish()

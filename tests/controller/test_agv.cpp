@@ -7,10 +7,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "controller/driver.hpp"
 #include "controller_test_util.hpp"
 #include "planner/validator.hpp"
 #include "temp_path.hpp"
@@ -226,6 +228,25 @@ TEST(AgvFollow, ConvoysKeepZeroOverlapWithPhysicsAndRandomStops)
   EXPECT_GT(m.followed, 0);  // the convoy case really happened
   EXPECT_GT(m.chained, 0);
   EXPECT_GT(m.delay_stops, 0);
+  // The split of the AGVs' SUMO steps (DriveStats::split, issue 21): every step of every AGV up
+  // to its last arrival falls in exactly one category -- the steps add up to the times the
+  // AGVs reached their goals for good (to a step each) -- and none after it.
+  ASSERT_EQ(m.split.size(), static_cast<size_t>(DriveStats::kSplitCount));
+  std::map<std::string, long long> split(m.split.begin(), m.split.end());
+  long long steps = 0;
+  for (const auto& [k, n] : m.split) steps += n;
+  double arrived_s = 0;
+  for (double t : m.goal_s) {
+    ASSERT_GE(t, 0);
+    arrived_s += t;
+  }
+  const double dt = cfg.sumo.step_length;
+  EXPECT_NEAR(steps * dt, arrived_s, m.goal_s.size() * dt) << steps << " steps, goals at " << arrived_s << " s in all";
+  EXPECT_GT(split["cruise"], 0);
+  EXPECT_GT(split["accel"], 0);
+  EXPECT_GT(split["delay"], 0);  // stopped by its own delay
+  EXPECT_GT(split["leader_waiting"] + split["leader_arriving"] + split["leader_delayed"], 0);
+  EXPECT_GT(m.starts_from_rest, 0);
 }
 
 // The point of following: the same instance, no delays, strict ADG (a follower starts when

@@ -81,6 +81,8 @@
 // arrives once its delays end; with RT-LaCAM's completeness every committed step is
 // eventually executed and the goals are reached (tests/controller/test_agv.cpp).
 // allowed() gives the cells each AGV may occupy now, for Safety.
+#include <array>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -140,6 +142,38 @@ struct DriveStats {
     long long cruise = 0, accel = 0, follow = 0, lane = 0, end = 0, start_wait = 0;
   } time;
   long long turn_steps = 0;        // agent-steps turning on a cell toward the next move (headings)
+  // Where each AGV's SUMO steps go, up to its last arrival (issue 21: ticks per plan step):
+  // one category per agent-step, counted once the agent next arrives somewhere (steps after
+  // its last arrival -- idle on its goal -- are never counted). Names: split_name().
+  enum Split : int {
+    kCruise,         // moving at top speed
+    kAccel,          // moving, speed bounded by accel
+    kFollow,         // moving, braking / held for a leader's back (follow room)
+    kEndDep,         // moving, braking for the end of its released moves: the next move waits for a dependency
+    kEndRest,        // ... the next move needs rest (a reversal, a turn) or the commanded lane
+    kEndLast,        // ... no next move appended (plan wait not yet followed by a move, or its goal)
+    kLane,           // moving, bounded by a lane's speed limit
+    kGapStand,       // standing with a released move: the leader's back (body gap) holds it
+    kFinishWait,     // front on its target, the move's completion waits for the leader's arrival (ADG order)
+    kLeaderArriving, // standing, next move not released: the cell's previous occupant is still moving into it
+    kLeaderWaiting,  // ... the previous occupant stands on the cell, its move out not released (its own dependency)
+    kLeaderRule,     // ... the previous occupant's move out is released but not started (rest before a reversal, turn, group, zone)
+    kLeaderDelayed,  // ... the previous occupant is stopped by a delay
+    kLeaderStrict,   // ... a rotation group: strict release, the previous occupant's move out still running
+    kOwnGroup,       // ... its own previous move's rotation group not done
+    kStartRule,      // standing, next move released, not started (rest before a reversal, group, zone)
+    kTurn,           // turning on its cell (headings)
+    kDelay,          // stopped by a delay
+    kNoActionGoal,   // standing on its goal, no next move appended yet (it will make way later)
+    kNoAction,       // standing off its goal, no next move appended yet: execution is ahead of the commits (run.window)
+    kSplitCount
+  };
+  static const char* split_name(int k);
+  long long split[kSplitCount] = {};
+  long long starts_from_rest = 0;  // moves started with the AGV at rest (not chained)
+  // Starts from rest right after a no_action stretch (the move was released as soon as it was
+  // committed: the window held the AGV), and the no_action steps before them.
+  long long starved_starts = 0, starved_steps = 0;
 };
 
 // The highest speed for the next step from which braking at `decel` in whole steps of `dt`
@@ -195,6 +229,13 @@ class Driver {
   // Per agent, the zone whose mutex held its next move in the last before_step(), -1 if none.
   const std::vector<int>& gated() const { return gated_; }
   bool zone_gated() const { return zone_of_ != nullptr; }
+  // Statistics only (DriveStats::split): agent i's goal now (unset: no goals known).
+  void set_goal_of(std::function<planner::Vertex(int)> goal_of) { goal_of_ = std::move(goal_of); }
+  // Statistics only: keep every agent-step's DriveStats::Split category, one letter per SUMO
+  // step ('a' + category) per agent (scripts/closed_loop_decompose.py sums them along the
+  // executed critical path).
+  void set_trace(bool on) { trace_.assign(on ? agv_.size() : 0, std::string()); }
+  const std::vector<std::string>& trace() const { return trace_; }
 
  private:
   struct Agv {
@@ -248,6 +289,12 @@ class Driver {
   std::vector<Agv> agv_;
   std::vector<double> rem_;  // per agent: distance it may still drive (set in before_step)
   std::vector<char> waiting_start_;  // per agent: released, not started (DriveStats::Time)
+  // DriveStats::split: this agent-step's category; counts held per agent until it next arrives.
+  int split_of(int i, double v, int why) const;
+  std::vector<std::array<long long, DriveStats::kSplitCount>> split_pending_;
+  std::function<planner::Vertex(int)> goal_of_;
+  std::vector<long long> noact_run_;  // per agent: consecutive no_action steps up to now
+  std::vector<std::string> trace_;    // set_trace: per agent, one letter per SUMO step
   DriveStats st_;
   const std::vector<std::vector<int>>* zone_of_ = nullptr;
   std::vector<int> gated_;

@@ -61,6 +61,10 @@ struct Metrics {
   long long time_cruise = 0, time_accel = 0, time_follow = 0, time_lane = 0, time_end = 0, time_start_wait = 0;
   double overshoot_m = 0;           // adg: most a speed command ever drove past a stopping point (0: never)
   long long turn_steps = 0;         // adg with headings: agent-steps turning toward the next move (driver.hpp)
+  // adg: agent-steps up to each AGV's last arrival by category (DriveStats::split, names as
+  // DriveStats::split_name), and the moves started from rest: metrics.json executor.split.
+  std::vector<std::pair<std::string, long long>> split;
+  long long starts_from_rest = 0, starved_starts = 0, starved_steps = 0;
   // Lane speeds (metrics.json "lane_speeds" when either is > 0): cells a slow lane makes
   // costlier for the planner (planner.lane_costs), ticks lockstep added to keep to lane
   // speeds (run.lane_speeds: steps stretched beyond their ticks without them).
