@@ -91,9 +91,17 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
       else if (k == "length") o.queues.length = v.cast<int>();
       else if (k == "admission") o.queues.admission = v.cast<int>();
       else if (k == "fifo") o.queues.fifo = v.cast<bool>();
-      else return false;
+      else if (k == "in_line") o.queues.in_line = v.cast<bool>();
+      else if (k == "leavers_first") o.queues.leavers_first = v.cast<bool>();
+      else if (k == "clear_after") {
+        const int n = v.cast<int>();
+        if (n < 0) throw InputError("queues.clear_after: must be >= 0, not " + std::to_string(n));
+        o.queues.clear_after = n;
+      } else return false;
       return true;
     });
+  if (o.queues.leavers_first && o.queues.clear_after == 0)
+    throw InputError("queues.leavers_first: needs clear_after > 0 (it acts while a station clears its pocket)");
   if (!urgency.is_none())
     each_key(urgency, "urgency", [&](const std::string& k, const py::handle& v) {
       if (k == "stalls" && py::isinstance<py::str>(v)) {
@@ -104,12 +112,13 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
       else if (k == "battery") o.urgency.battery = v.cast<bool>();
       else if (k == "drop_hints") o.urgency.drop_hints = v.cast<bool>();
       else if (k == "sticky") o.urgency.sticky = v.cast<bool>();
-      else if (k == "swap_after" || k == "head_after" || k == "load_cost" || k == "pocket_cost") {
+      else if (k == "swap_after" || k == "head_after" || k == "load_cost" || k == "pocket_cost" || k == "escalate_after") {
         const int n = v.cast<int>();
         if (n < 0) throw InputError("urgency." + k + ": must be >= 0, not " + std::to_string(n));
         (k == "swap_after"   ? o.urgency.swap_after
          : k == "head_after" ? o.urgency.head_after
          : k == "load_cost"  ? o.urgency.load_cost
+         : k == "escalate_after" ? o.urgency.escalate_after
                              : o.urgency.pocket_cost) = n;
       } else return false;
       return true;

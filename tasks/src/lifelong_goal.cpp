@@ -1,5 +1,6 @@
 #include "tasks/lifelong_goal.hpp"
 
+#include "tasks/escalation.hpp"
 #include "tasks/task_manager.hpp"
 #include "tasks/urgency.hpp"
 
@@ -35,6 +36,14 @@ planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Co
     urgent[a] = busy[a] && battery_urgent(tasks, a);
     any = any || (urgent[a] && positions[a] != tasks.goals()[a]);
   }
+  // Escalation (escalation.hpp): else while an escalated agent is off its goal, the epoch
+  // waits for one of them.
+  if (!any)
+    if (const std::vector<char> esc = escalated_agents(tasks); !esc.empty())
+      for (int a = 0; a < tasks.num_agents(); ++a) {
+        urgent[a] = busy[a] && tasks.heading(a) && esc[a];
+        any = any || (urgent[a] && positions[a] != tasks.goals()[a]);
+      }
   return lifelong_goal_test(tasks.goals(), positions, any ? urgent : busy);
 }
 
