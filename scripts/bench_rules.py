@@ -23,6 +23,8 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
                          [--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]]
+                         [--task-variants JSON... [--clear-configs CONFIG...] [--seeds 1,2]
+                          [--large-ticks-list 1000,2000] [--jobs 2]]
                          [--queue-variants JSON... [--clear-configs CONFIG...] [--seeds 1,2]
                           [--large-ticks-list 1000,2000] [--jobs 2]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
