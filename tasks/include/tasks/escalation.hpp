@@ -17,8 +17,10 @@
 // heads for its cell:
 //  - its holder gets kEscalatedUrgency + its stall (capped) as priority hint: above every
 //    stall and leaving hint, below battery urgency; the longest-stalled first;
-//  - the epoch's goal test waits for an escalated agent (lifelong_goal.hpp), as for a low
-//    battery, so RT-LaCAM plans a way for it, not for whoever arrives first;
+//  - the epoch's goal test waits for the longest-stalled escalated agent off its goal
+//    (lifelong_goal.hpp), as for a low battery, so RT-LaCAM plans a way for it, not for
+//    whoever arrives first (for any escalated agent: three of them head-on at one junction
+//    jammed small_rules_lifelong, seed 3, 4000 ticks, K 904 against 450);
 //  - the dead-end pocket of its errand cell is cleared for it: every other agent standing in
 //    that pocket whose goal is outside it gets kClearingUrgency (above the escalated one: in a
 //    one-lane stub the way in is the way out, and an escalated AGV wedged in front of an
@@ -30,9 +32,8 @@
 // the planners' guarantees hold as with battery urgency.
 //
 // Not bounded yet, hence off by default (controller/README.md "Session 38: escalation"): at
-// 2000-4000 ticks small_rules_lifelong jams on 2 of 10 seeds (K 748-904, three escalated
-// errands head-on at one junction), and pibt-rot on large_warehouse_queues falls to
-// 0.31-0.54x errands/tick.
+// 4000 ticks small_rules_lifelong still stalls 762 ticks on one seed of 10 (off: 332), and
+// pibt-rot on large_warehouse_queues falls to 0.31-0.54x errands/tick.
 #include <vector>
 
 #include "planner/config.hpp"
