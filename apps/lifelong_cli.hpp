@@ -367,6 +367,12 @@ struct TaskCli {
     app.add_flag("--sticky-stalls,!--no-sticky-stalls", o.urgency.sticky,
                  "stall hints and the stall handover read an errand's longest stall so far, not only the current one "
                  "(tasks.urgency.sticky; default off)");
+    app.add_option("--escalate-after", o.urgency.escalate_after,
+                   "starvation guard: per errand cell, the errand stalled longest, once this many ticks, gets the top "
+                   "priority below battery and the epoch's goal test until it completes (tasks.urgency.escalate_after; "
+                   "tasks/escalation.hpp; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("--station-load-cost", o.urgency.load_cost,
                    "pool mode: extra moves charged per task already bound for a station (tasks.urgency.load_cost; 0 = off)")
         ->check(CLI::NonNegativeNumber)
@@ -392,10 +398,18 @@ struct TaskCli {
         ->capture_default_str();
     app.add_flag("--queue-fifo,!--no-queue-fifo", o.queues.fifo,
                  "station queues: agents beyond a queue are taken oldest request first (default on; off: nearest first)");
+    app.add_option("--queue-clear-after", o.queues.clear_after,
+                   "station queues: a dead-end station whose stub held an agent that must get out this many steps "
+                   "gives up its places until the stub is empty (tasks.queues.clear_after; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     in_line_opt = app.add_flag("--queue-in-line,!--no-queue-in-line", o.queues.in_line,
                                "station queues: each step the admitted and queued agents of a station are re-ranked by "
                                "their distance to it, nearest admitted (YAML tasks.queues.in_line; default on with "
                                "--solver epibt, off otherwise)");
+    app.add_flag("--queue-leavers-first,!--no-queue-leavers-first", o.queues.leavers_first,
+                 "station queues, with --queue-clear-after: the agents leaving a clearing station's stub get the "
+                 "leaving priority (tasks.queues.leavers_first; default off)");
     app.add_option("--parking", parking_file,
                    "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                    "(tasks/parking.hpp)");
@@ -421,6 +435,8 @@ struct TaskCli {
     if (o.queues.admission > 0 && o.queues.admission < o.queues.capacity)
       throw planner::InputError("--queue-admission " + std::to_string(o.queues.admission) +
                                 ": must be >= --queue-capacity, 0 or -1");
+    if (o.queues.leavers_first && o.queues.clear_after == 0)
+      throw planner::InputError("--queue-leavers-first: needs --queue-clear-after > 0 (it acts while a station clears its stub)");
     o.urgency.stalls = urgency_stalls.empty() ? urgency : urgency_stalls == "true";
     o.urgency.battery = urgency_battery.empty() ? urgency : urgency_battery == "true";
     if (!parking_file.empty()) {

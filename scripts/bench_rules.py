@@ -23,6 +23,8 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
                          [--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]]
+                         [--task-variants JSON... [--clear-configs CONFIG...] [--seeds 1,2]
+                          [--large-ticks-list 1000,2000] [--jobs 2]]
                          [--queue-variants JSON... [--clear-configs CONFIG...] [--seeds 1,2]
                           [--large-ticks-list 1000,2000] [--jobs 2]]
                          [--stall-rules [--stall-configs CONFIG...] [--seeds 1,2] [--swap-after 30]
@@ -356,10 +358,56 @@ def queue_variants(a, build, tmp):
         return queue_rows(jobs, futs, t0, a, build)
 
 
+def deep_merge(d, over):
+    """d with `over` merged in, mappings key by key (a copy; neither argument changes)."""
+    out = dict(d or {})
+    for k, v in over.items():
+        out[k] = deep_merge(out.get(k), v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
+    return out
+
+
+def task_variants(a, build, tmp):
+    """tasks.* overrides (JSON mappings merged key by key into the config's tasks section,
+    --task-variants, e.g. '{"urgency": {"escalate_after": 150}}') against the config as is, per
+    config (--clear-configs), tick count (--large-ticks-list) and fleet seed (--seeds), on one
+    build: the same table as --queue-variants, then per variant the mean of its per-run ratios
+    and its K max over the runs."""
+    from concurrent.futures import ThreadPoolExecutor
+    variants = [("as is", {})] + [(v, json.loads(v)) for v in a.task_variants]
+    seeds = [int(x) for x in a.seeds.split(",") if x]
+    ticks_list = [int(x) for x in str(a.large_ticks_list).split(",") if x]
+    jobs = []
+    for base in a.clear_configs:
+        cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+        for ticks in ticks_list:
+            for seed in seeds:
+                for k, (label, over) in enumerate(variants):
+                    out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{ticks}_{seed}_v{k}")
+                    jobs.append((base, ticks, seed, label, out, deep_merge(cfg["tasks"], over)))
+    t0 = time.time()
+    with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
+        futs = [ex.submit(run, build, base, out, ticks, a.expansions, None, t, {"fleet": {"seed": seed}})
+                for base, ticks, seed, label, out, t in jobs]
+        rc = queue_rows(jobs, futs, t0, a, build)
+        summary = {}
+        for (base, ticks, seed, label, out, t), f in zip(jobs, futs):
+            m = f.result()[0]
+            l = m["lifelong"]
+            if label == "as is":
+                base_rate = l["errandThroughput"]
+            s = summary.setdefault((base, ticks, label), [[], []])
+            s[0].append(l["errandThroughput"] / base_rate if base_rate else 0)
+            s[1].append(l["stallTicks"]["max"])
+        for (base, ticks, label), (ratios, ks) in summary.items():
+            print(f"# {base} {ticks} ticks, {label}: mean ratio {sum(ratios) / len(ratios):.3f} "
+                  f"(min {min(ratios):.2f}), K max {max(ks)} (per seed {' / '.join(map(str, ks))})")
+        return rc
+
+
 def queue_rows(jobs, futs, t0, a, build):
     """queue_variants' table, a row as each run ends (in order)."""
     print(f"# build {build}, {a.jobs} runs at once, {a.expansions} expansions per step", flush=True)
-    print("| config | ticks | seed | tasks.queues | errands/tick | / as is | K (stall max / p99) | errand ticks max | clearings | longest clearing | clean |")
+    print("| config | ticks | seed | variant | errands/tick | / as is | K (stall max / p99) | errand ticks max | clearings | longest clearing | clean |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     clean, base_rate = True, None
     for (base, ticks, seed, label, out, q), f in zip(jobs, futs):
@@ -431,6 +479,9 @@ def main():
     ap.add_argument("--queue-variants", nargs="+", metavar="JSON",
                     help="tasks.queues overrides, e.g. '{\"leavers_first\": true}', each against the config as is "
                          "(--clear-configs, --seeds, --large-ticks-list, --jobs)")
+    ap.add_argument("--task-variants", nargs="+", metavar="JSON",
+                    help="tasks overrides merged key by key, e.g. '{\"urgency\": {\"escalate_after\": 150}}', each "
+                         "against the config as is (--clear-configs, --seeds, --large-ticks-list, --jobs)")
     ap.add_argument("--large-ticks-list", default=None, help="--queue-variants: tick counts, e.g. 1000,2000 (default --large-ticks)")
     ap.add_argument("--jobs", type=int, default=1, help="--queue-variants: runs at once")
     a = ap.parse_args()
@@ -458,6 +509,8 @@ def main():
         return pocket_clear(a, build, tmp)
     if a.queue_variants:
         return queue_variants(a, build, tmp)
+    if a.task_variants:
+        return task_variants(a, build, tmp)
     print("| warehouse | rules | ticks | errands/tick | vs off | K (stall max / p99) | errand ticks max | closure changes | zone holds | planner restarts | violations | jumps+resyncs |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name, base, tick_opt, closure, zones in WAREHOUSES:

@@ -493,8 +493,9 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.flag(t, "tasks", "reassign", c.tasks.reassign);
     if (const YAML::Node u = t["urgency"]) {
       if (!u.IsMap())
-        r.fail("tasks.urgency", "expected a mapping {stalls: true|false|auto, battery: true|false, swap_after: N, head_after: N, load_cost: N, pocket_cost: N, drop_hints: true|false, mouth_cost: N, sticky: true|false}");
-      r.keys(u, "tasks.urgency", {"stalls", "battery", "swap_after", "head_after", "load_cost", "pocket_cost", "drop_hints", "mouth_cost", "sticky"});
+        r.fail("tasks.urgency", "expected a mapping {stalls: true|false|auto, battery: true|false, swap_after: N, head_after: N, load_cost: N, pocket_cost: N, drop_hints: true|false, mouth_cost: N, sticky: true|false, escalate_after: N}");
+      r.keys(u, "tasks.urgency", {"stalls", "battery", "swap_after", "head_after", "load_cost", "pocket_cost", "drop_hints", "mouth_cost", "sticky", "escalate_after"});
+      r.integer(u, "tasks.urgency", "escalate_after", c.tasks.urgency_escalate_after, 0, 1000000000);
       r.integer(u, "tasks.urgency", "swap_after", c.tasks.urgency_swap_after, 0, 1000000000);
       r.integer(u, "tasks.urgency", "head_after", c.tasks.urgency_head_after, 0, 1000000000);
       r.integer(u, "tasks.urgency", "load_cost", c.tasks.urgency_load_cost, 0, 1000000);

@@ -117,6 +117,7 @@ tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::Cel
   o.urgency.pocket_cost = t.urgency_pocket_cost;
   o.urgency.drop_hints = t.urgency_drop_hints;
   o.urgency.sticky = t.urgency_sticky;
+  o.urgency.escalate_after = t.urgency_escalate_after;
   o.parking.on = t.parking;
   if (t.parking) o.parking.cells = parking_cells(cfg, map);
   const FleetSection::Battery& b = cfg.fleet.battery;

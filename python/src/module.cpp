@@ -77,9 +77,10 @@ void each_key(const py::object& d, const std::string& what, Set set)
 tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::string& mode, const std::string& assigner,
                                    int pool_size, int k_nearest, bool reassign, const py::object& queues,
                                    const py::object& urgency, const py::object& parking, const py::object& battery,
-                                   const std::vector<Vertex>& chargers)
+                                   const std::vector<Vertex>& chargers, const std::string& solver)
 {
   tasks::TaskLayerOptions o;
+  o.queues.in_line = solver == "epibt";  // queues in line by default with epibt, as the YAML and the CLI
   o.mode = mode.empty() ? pr.default_mode() : mode;
   o.assigner = assigner;
   o.pool_size = pool_size > 0 ? pool_size : pr.pool_size();
@@ -91,9 +92,17 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
       else if (k == "length") o.queues.length = v.cast<int>();
       else if (k == "admission") o.queues.admission = v.cast<int>();
       else if (k == "fifo") o.queues.fifo = v.cast<bool>();
-      else return false;
+      else if (k == "in_line") o.queues.in_line = v.cast<bool>();
+      else if (k == "leavers_first") o.queues.leavers_first = v.cast<bool>();
+      else if (k == "clear_after") {
+        const int n = v.cast<int>();
+        if (n < 0) throw InputError("queues.clear_after: must be >= 0, not " + std::to_string(n));
+        o.queues.clear_after = n;
+      } else return false;
       return true;
     });
+  if (o.queues.leavers_first && o.queues.clear_after == 0)
+    throw InputError("queues.leavers_first: needs clear_after > 0 (it acts while a station clears its pocket)");
   if (!urgency.is_none())
     each_key(urgency, "urgency", [&](const std::string& k, const py::handle& v) {
       if (k == "stalls" && py::isinstance<py::str>(v)) {
@@ -104,12 +113,13 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
       else if (k == "battery") o.urgency.battery = v.cast<bool>();
       else if (k == "drop_hints") o.urgency.drop_hints = v.cast<bool>();
       else if (k == "sticky") o.urgency.sticky = v.cast<bool>();
-      else if (k == "swap_after" || k == "head_after" || k == "load_cost" || k == "pocket_cost") {
+      else if (k == "swap_after" || k == "head_after" || k == "load_cost" || k == "pocket_cost" || k == "escalate_after") {
         const int n = v.cast<int>();
         if (n < 0) throw InputError("urgency." + k + ": must be >= 0, not " + std::to_string(n));
         (k == "swap_after"   ? o.urgency.swap_after
          : k == "head_after" ? o.urgency.head_after
          : k == "load_cost"  ? o.urgency.load_cost
+         : k == "escalate_after" ? o.urgency.escalate_after
                              : o.urgency.pocket_cost) = n;
       } else return false;
       return true;
@@ -157,7 +167,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   if (steps < 0) steps = pr.simulation_time;
   if (steps < 0) throw input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass steps=");
   const TaskLayerOptions layer =
-      task_layer(pr, mode, assigner, pool_size, k_nearest, reassign, queues, urgency, parking, battery, chargers);
+      task_layer(pr, mode, assigner, pool_size, k_nearest, reassign, queues, urgency, parking, battery, chargers, solver);
   std::unique_ptr<TaskManager> tm;
   try {
     tm = make_task_layer(in.tasks, g, layer);
@@ -349,8 +359,8 @@ PYBIND11_MODULE(_rtlacam, m)
         "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
         "The task layer takes the SUMO controller's YAML options (tasks.*, fleet.battery): mode (tasks.assignment: "
         "roundrobin | pool; default the problem's), assigner, pool_size (0: the problem's), k_nearest, reassign; "
-        "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo); urgency: a dict of tasks.urgency's "
-        "(stalls: True | False | 'auto', battery, swap_after, head_after, load_cost, pocket_cost; default all off, as rtlacam-lifelong); parking: parking cell ids; "
+        "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo, in_line (default True with epibt), clear_after, leavers_first); urgency: a dict of tasks.urgency's "
+        "(stalls: True | False | 'auto', battery, swap_after, head_after, load_cost, pocket_cost, escalate_after; default all off, as rtlacam-lifelong); parking: parking cell ids; "
         "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, "
         "reserve_margin, rematch, task_check, target, charge_w, charging) on `chargers` (cell ids), as "
         "rtlacam-lifelong --battery-* --chargers");

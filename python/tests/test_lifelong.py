@@ -111,6 +111,12 @@ def test_lifelong_takes_every_task_layer_option_of_the_yaml():
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, queues=dict(capacity=3, admission=2))
     with pytest.raises(ValueError, match="urgency.swap_after: must be >= 0"):
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, urgency=dict(swap_after=-1))
+    # tasks.queues clear_after / in_line / leavers_first and tasks.urgency.escalate_after reach the grid too.
+    log = rtlacam.lifelong(PROBLEM, steps=30, agents=20, urgency=dict(escalate_after=10),
+                           queues=dict(capacity=1, clear_after=20, in_line=True, leavers_first=True))
+    assert log["numErrandFinished"] > 0 and log["numPlannerErrors"] == 0 and log["queues"]["maxHeading"] <= 1
+    with pytest.raises(ValueError, match="queues.leavers_first: needs clear_after > 0"):
+        rtlacam.lifelong(PROBLEM, steps=5, agents=5, queues=dict(capacity=1, leavers_first=True))
     with pytest.raises(ValueError, match="mode: must be roundrobin or pool"):
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, mode="fifo")
 

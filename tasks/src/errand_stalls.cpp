@@ -49,6 +49,12 @@ long long ErrandStalls::stalled(long t, long task) const
   return sticky_ ? std::max(now, it->second.max_gap) : now;
 }
 
+long long ErrandStalls::longest(long t, long task) const
+{
+  const auto it = open_.find(task);
+  return it == open_.end() ? 0 : std::max(static_cast<long long>(t - it->second.mark), it->second.max_gap);
+}
+
 int32_t ErrandStalls::distance(planner::Vertex cell, planner::Vertex v) const
 {
   planner::DistCache::Table* tab = dist_.cache()->table(cell);

@@ -1,5 +1,8 @@
 #include "tasks/lifelong_goal.hpp"
 
+#include <algorithm>
+
+#include "tasks/escalation.hpp"
 #include "tasks/task_manager.hpp"
 #include "tasks/urgency.hpp"
 
@@ -35,6 +38,24 @@ planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Co
     urgent[a] = busy[a] && battery_urgent(tasks, a);
     any = any || (urgent[a] && positions[a] != tasks.goals()[a]);
   }
+  // Escalation (escalation.hpp): else while an escalated agent is off its goal, the epoch
+  // waits for the longest-stalled of them (waiting for any of them, three escalated errands
+  // head-on at one junction jammed small_rules_lifelong, seed 3, 4000 ticks: K 904 -> 450).
+  if (!any)
+    if (const std::vector<char> esc = escalated_agents(tasks); !esc.empty()) {
+      int top = -1;  // the longest-stalled escalated agent off its goal
+      long long best = -1;
+      for (int a = 0; a < tasks.num_agents(); ++a)
+        if (esc[a] && busy[a] && tasks.heading(a) && positions[a] != tasks.goals()[a]) {
+          const long long s = tasks.stalls()->longest(tasks.now(), tasks.task_of(a)->id);
+          if (s > best) best = s, top = a;
+        }
+      if (top >= 0) {
+        std::fill(urgent.begin(), urgent.end(), 0);
+        urgent[top] = 1;
+        any = true;
+      }
+    }
   return lifelong_goal_test(tasks.goals(), positions, any ? urgent : busy);
 }
 

@@ -1,5 +1,7 @@
 #include "tasks/task_manager.hpp"
 
+#include "tasks/escalation.hpp"
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -305,6 +307,24 @@ void TaskManager::refresh_goals(const planner::Config& positions)
       reserved = &reserved_;
     }
     parking_->apply(idle, positions, reserved, goals_, queues_ ? &queues_->in_use_cells() : nullptr);
+  }
+  evict(positions);
+}
+
+void TaskManager::evict(const planner::Config& positions)
+{
+  // Escalation (escalation.hpp): an idle agent standing in the dead-end pocket of an escalated
+  // errand's cell goes to the nearest cell outside the pockets, and keeps that goal until it
+  // stands there or gets a task (else it would stop at the pocket's mouth).
+  if (urgency_.escalate_after <= 0 || !stalls_) return;
+  evict_.resize(num_agents(), -1);
+  const std::vector<char> clear = escalated_pockets(*this, escalated_agents(*this));
+  for (int a = 0; a < num_agents(); ++a) {
+    const bool idle = holding_[a] < 0 && !charging(a) && goals_[a] == positions[a];
+    if (!idle || evict_[a] == positions[a]) evict_[a] = -1;
+    if (idle && evict_[a] < 0 && !clear.empty() && clear[positions[a]])
+      evict_[a] = evict_cell(stalls_->graph(), dead_end_pocket_, positions[a], queues_ ? &queues_->reserved_cells() : nullptr);
+    if (idle && evict_[a] >= 0) goals_[a] = evict_[a];
   }
 }
 

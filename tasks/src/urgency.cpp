@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "tasks/escalation.hpp"
 #include "tasks/station_queues.hpp"
 #include "tasks/task_manager.hpp"
 
@@ -55,6 +56,7 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
       h[a] = kBatteryUrgency + static_cast<float>(kBatteryUrgency * (1.0 - f));
     }
   }
+  if (positions) escalation_hints(tm, *positions, h);  // the starvation guard (escalation.hpp): above the rest but battery
   if (leavers_first)  // StationQueues::leavers_first: out of a clearing station's pocket first
     for (int a = 0; a < n; ++a) {
       const int i = q->pocket_of((*positions)[a]);

@@ -374,3 +374,17 @@ TEST(LifelongRules, LeaversFirstEndAClearingStationsStandoff)
   EXPECT_LE(m.longest_clearing, 30);
   EXPECT_GE(m.errands_finished, 190);
 }
+
+// The starvation guard (tasks.urgency.escalate_after, tasks/escalation.hpp). small_rules_lifelong
+// (16 AGVs, no queues), 1000 ticks at 50 expansions per step: without it a drop errand for
+// drop3 is swept back and forth along the one-cell cross aisle by three other AGVs for 505
+// ticks (K 505, 229 errands); escalated after 150 ticks it gets the planner's top priority and
+// the epoch's goal test, and no errand stalls 200 ticks (measured K 175, 251 errands).
+TEST(LifelongRules, EscalationEndsALivelockedErrandsStall)
+{
+  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "escalation", 1000, 50);
+  cfg.tasks.urgency_escalate_after = 150;
+  const Metrics m = ctest_util::run_checked(cfg);
+  EXPECT_LE(m.stalls.max_stall, 200);
+  EXPECT_GE(m.errands_finished, 240);
+}

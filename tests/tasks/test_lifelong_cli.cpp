@@ -100,6 +100,22 @@ TEST(LifelongCli, AgentsUsesTheFirstNOfTheTeam)
   EXPECT_NE(bad.err.find("teamSize is 100"), std::string::npos) << bad.err;
 }
 
+// The queues' clearing rules and the starvation guard reach the grid too (tasks.queues.clear_after,
+// in_line, leavers_first; tasks.urgency.escalate_after); leavers first without clearing is a
+// one-line error, as in the YAML.
+TEST(LifelongCli, QueueClearingAndEscalationOptions)
+{
+  const std::string p = ttest::kData + "/2023/random.domain/MR23-I-04.json";
+  const CliRun r = run_cli("--problem " + p + " --agents 20 --steps 30 --quiet --queue-capacity 1 --queue-clear-after 20 "
+                           "--queue-in-line --queue-leavers-first --escalate-after 10");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["teamSize"], 20);
+  const CliRun bad = run_cli("--problem " + p + " --agents 20 --steps 30 --queue-capacity 1 --queue-leavers-first");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--queue-leavers-first: needs --queue-clear-after > 0"), std::string::npos) << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
 // --battery-* / --chargers (tasks/battery.hpp, the SUMO controller's fleet.battery on the
 // grid): 20 agents with half a charge and a drain that empties it in 200 moves (300 steps);
 // the critical charge covers 100 moves, more than the way to a charger (with 0.5 Wh per

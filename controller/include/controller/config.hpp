@@ -203,6 +203,7 @@ struct TasksSection {
   // onto the cell where a station's dead-end stub joins the net.
   int urgency_mouth_cost = 0;
   bool urgency_sticky = false;  // tasks::UrgencyOptions::sticky
+  int urgency_escalate_after = 0;  // tasks::UrgencyOptions::escalate_after (escalation.hpp; 0: off)
 
   bool lifelong() const { return mode == "lifelong"; }
 };

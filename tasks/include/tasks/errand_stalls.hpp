@@ -51,6 +51,8 @@ class ErrandStalls {
   // longest stall the errand has had so far (UrgencyOptions::sticky), not only the current one.
   long long stalled(long t, long task) const;
   void set_sticky(bool on) { sticky_ = on; }
+  // The longest stall of the open errand of `task` so far, whatever `sticky` (escalation.hpp).
+  long long longest(long t, long task) const;
   // The nearest the holder of `task`'s open errand has been to its cell (a new holder starts
   // from its own distance); -1 when none is open.
   int32_t best(long task) const;

@@ -210,6 +210,8 @@ class TaskManager {
   std::unique_ptr<Reachability> reach_;  // set_open_graph; null: nothing closed
   std::unique_ptr<ErrandStalls> stalls_;  // watch_stalls
   std::vector<planner::Vertex> pocket_;   // watch_stalls: pocket()
+  std::vector<planner::Vertex> evict_;    // escalation: an idle agent's way out of a pocket, -1
+  void evict(const planner::Config& positions);  // escalation.hpp: idle agents out of escalated pockets
   std::vector<planner::Vertex> dead_end_pocket_;  // watch_stalls: dead_end_pockets()
   void observe_stalls(const planner::Config& positions);
   bool rematch_ = false;                 // the open graph changed: match free agents again

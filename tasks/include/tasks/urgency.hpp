@@ -18,7 +18,10 @@
 //    fraction): above every stall, and the emptier one first (two low AGVs head-on: one
 //    yields, they no longer swap priorities and oscillate);
 //  - leavers first while clearing (StationQueues' QueueOptions::leavers_first): an agent in
-//    the pocket of a station that is clearing it, on its way out, gets kLeavingUrgency.
+//    the pocket of a station that is clearing it, on its way out, gets kLeavingUrgency;
+//  - escalation (escalate_after, escalation.hpp): per errand cell the errand stalled longest,
+//    past escalate_after ticks, gets kEscalatedUrgency + its stall (above the rest, below
+//    battery) and the epoch's goal test.
 // Hints only order conflicts; the planners' guarantees stay (RT-LaCAM's tree of an epoch is
 // one complete search whatever the root's priorities). Battery urgency also narrows the
 // epoch's goal test to the low agents (battery_urgent, below): still one complete search,
@@ -76,7 +79,11 @@ struct UrgencyOptions {
   // and can stall again and again (traced: the longest errand then never finished in the
   // run; with sticky stalls it did, s34-24c).
   bool sticky = false;
-  bool on() const { return stalls || battery || head_after > 0; }
+  // Escalation (0: off; needs watch_stalls): per errand cell, the errand whose longest stall
+  // so far reached this many ticks gets the planner's top priority below battery urgency and
+  // the epoch's goal test until it completes (escalation.hpp: the starvation guard).
+  int escalate_after = 0;
+  bool on() const { return stalls || battery || head_after > 0 || escalate_after > 0; }
 };
 
 inline constexpr float kBatteryUrgency = 10000.0f;

@@ -1,0 +1,67 @@
+#pragma once
+// Escalation: a starvation guard for lifelong errands (issue 24: "errands never stalling more
+// than K ticks"; UrgencyOptions::escalate_after, 0 = off).
+//
+// The other stall rules order a crowd (urgency.hpp); none of them promises the errand that
+// keeps losing anything. Traced on small_rules_lifelong (session 38, 16 AGVs, no queues, 1000
+// ticks, K 505): a drop errand for drop3 swept back and forth with three other AGVs along the
+// one-cell cross aisle west of it for 505 ticks -- head-on AGVs take turns pushing each other,
+// PIBT's priorities reset at every epoch, and RT-LaCAM's epoch ends whenever anyone arrives,
+// so nobody plans the way out for that one errand.
+//
+// An errand escalates once its longest stall so far (ErrandStalls::longest) reaches
+// escalate_after ticks, and stays escalated until it completes (a step of progress must not
+// drop it behind the crowd again). Only one errand per errand cell, the longest-stalled (ties
+// to the lower agent): one AGV at a time gets into a one-lane stub, and escalating every
+// errand past 60 ticks on small_rules_lifelong jammed it (K 522-718, p99 516-569). While it
+// heads for its cell:
+//  - its holder gets kEscalatedUrgency + its stall (capped) as priority hint: above every
+//    stall and leaving hint, below battery urgency; the longest-stalled first;
+//  - the epoch's goal test waits for the longest-stalled escalated agent off its goal
+//    (lifelong_goal.hpp), as for a low battery, so RT-LaCAM plans a way for it, not for
+//    whoever arrives first (for any escalated agent: three of them head-on at one junction
+//    jammed small_rules_lifelong, seed 3, 4000 ticks, K 904 against 450);
+//  - the dead-end pocket of its errand cell is cleared for it: every other agent standing in
+//    that pocket whose goal is outside it gets kClearingUrgency (above the escalated one: in a
+//    one-lane stub the way in is the way out, and an escalated AGV wedged in front of an
+//    occupant jammed small_rules_lifelong on 5 of 10 seeds, K 395-913), and an idle agent
+//    standing there gets a goal outside (evict_cell), kept until it arrives or gets a task.
+// Hints alone K 335, the goal test alone K 706, both K 175 (seed 1). An errand waiting on a
+// station's queue (not heading) gets none of this: admission is the queues' (clear_after,
+// leavers_first). Hints only order conflicts and the goal test stays one complete search, so
+// the planners' guarantees hold as with battery urgency.
+//
+// Not bounded yet, hence off by default (controller/README.md "Session 38: escalation"): at
+// 4000 ticks small_rules_lifelong still stalls 762 ticks on one seed of 10 (off: 332), and
+// pibt-rot on large_warehouse_queues falls to 0.31-0.54x errands/tick.
+#include <vector>
+
+#include "planner/config.hpp"
+#include "planner/graph.hpp"
+
+namespace tasks {
+
+class TaskManager;
+
+inline constexpr float kEscalatedUrgency = 6000.0f;  // + min(stall, kEscalatedSpan - 1)
+inline constexpr float kEscalatedSpan = 3000.0f;
+inline constexpr float kClearingUrgency = 9500.0f;   // leaving an escalated errand's pocket
+
+// Per agent, 1 where it holds an escalated errand (above); empty when off or none.
+std::vector<char> escalated_agents(const TaskManager& tm);
+
+// Raises h (one hint per agent) for the escalated errands whose holders head for their cells,
+// and for the agents in their pockets bound outside.
+void escalation_hints(const TaskManager& tm, const planner::Config& positions, std::vector<float>& h);
+
+// Per vertex: 1 in the dead-end pocket (TaskManager::dead_end_pockets) of the cell of an
+// escalated errand whose holder heads for it; empty when none (`esc`: escalated_agents).
+std::vector<char> escalated_pockets(const TaskManager& tm, const std::vector<char>& esc);
+
+// Where an idle agent standing at `from` in such a pocket goes: the nearest cell (moves along
+// arcs) outside every dead-end pocket, not next to one (a pocket's mouth carries its traffic)
+// and not in `avoid` (queue cells; may be null); `from` when none.
+planner::Vertex evict_cell(const planner::Graph& g, const std::vector<planner::Vertex>& dead_end_pocket,
+                           planner::Vertex from, const std::vector<uint8_t>* avoid);
+
+}  // namespace tasks
