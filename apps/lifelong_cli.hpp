@@ -408,6 +408,7 @@ struct TaskCli {
 
   // --queue-in-line's default for `solver` (as the controller's tasks.queues.in_line): on for
   // epibt, which cannot undo a one-wide queue lane out of request order (controller/src/config.cpp).
+  // --queue-idle-clear's likewise (tasks.queues.idle_clear; session 38).
   void default_in_line(const std::string& solver)
   {
     if (in_line_opt && in_line_opt->count() == 0) o.queues.in_line = solver == "epibt";
