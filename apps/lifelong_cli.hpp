@@ -331,7 +331,6 @@ struct TaskCli {
   std::string urgency_stalls, urgency_battery;  // "": as --urgency; "true" | "false": that hint alone
   BatteryCli battery;
   CLI::Option* in_line_opt = nullptr;  // --queue-in-line: given, or the solver's default (default_in_line)
-  CLI::Option* idle_clear_opt = nullptr;  // --queue-idle-clear: likewise
 
   void bind(CLI::App& app)
   {
@@ -397,9 +396,9 @@ struct TaskCli {
                                "station queues: each step the admitted and queued agents of a station are re-ranked by "
                                "their distance to it, nearest admitted (YAML tasks.queues.in_line; default on with "
                                "--solver epibt, off otherwise)");
-    idle_clear_opt = app.add_flag("--queue-idle-clear,!--no-queue-idle-clear", o.queues.idle_clear,
-                                  "station queues: idle agents do not rest on the cells beside a dead-end station's "
-                                  "mouth (YAML tasks.queues.idle_clear; default on with --solver epibt, off otherwise)");
+    app.add_flag("--queue-idle-clear,!--no-queue-idle-clear", o.queues.idle_clear,
+                 "station queues: idle agents do not rest on the cells beside a dead-end station's mouth (YAML "
+                 "tasks.queues.idle_clear; default off)");
     app.add_option("--parking", parking_file,
                    "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                    "(tasks/parking.hpp)");
@@ -408,11 +407,9 @@ struct TaskCli {
 
   // --queue-in-line's default for `solver` (as the controller's tasks.queues.in_line): on for
   // epibt, which cannot undo a one-wide queue lane out of request order (controller/src/config.cpp).
-  // --queue-idle-clear's likewise (tasks.queues.idle_clear; session 38).
   void default_in_line(const std::string& solver)
   {
     if (in_line_opt && in_line_opt->count() == 0) o.queues.in_line = solver == "epibt";
-    if (idle_clear_opt && idle_clear_opt->count() == 0) o.queues.idle_clear = solver == "epibt";
   }
 
   // The task manager of `pr`'s tasks on `g` (mode: the problem's default unless --mode).

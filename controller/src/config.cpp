@@ -428,12 +428,6 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   // errands/tick, last/first 500 0.58; in line 0.546, 1.00). Session 38, docs/twin_bench.md.
   // The other solvers keep request order (large_warehouse_queues' pibt-rot rows were mixed, s36).
   c.tasks.queue_in_line = kind == planner::Solver::Epibt;
-  // Idle AGVs off the cells beside a dead-end station's mouth by default for epibt too
-  // (tasks.queues.idle_clear; QueueOptions::idle_clear): an AGV that dropped in a stub rests on
-  // the nearest unreserved cell, beside the mouth, and two such walled in the next leaver, which
-  // epibt then shuttled in and out of the stub (huge twin, p = 0.01, 5000 steps: 1604 -> 1881
-  // errands, last/first 0.67 -> 0.95). Session 38, docs/twin_bench.md.
-  c.tasks.queue_idle_clear = kind == planner::Solver::Epibt;
   read_rotation(r, p, kind, c.planner.rotation);
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");

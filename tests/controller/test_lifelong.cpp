@@ -249,9 +249,8 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
   EXPECT_FALSE(parse_config(kNetAdd + "planner: {solver: pibt-rot}\n" + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS)
                    .tasks.queue_in_line);
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, in_line: 3}\n").rfind("t.yaml: tasks.queues.in_line: ", 0), 0u);
-  // Idle AGVs off the cells beside a mouth by default with epibt too (session 38).
-  EXPECT_TRUE(parse_config(kNetAdd + ep + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
-  EXPECT_FALSE(parse_config(kNetAdd + ep + ll + "  queues: {capacity: 1, idle_clear: false}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
+  // Idle AGVs off the cells beside a mouth (session 38): off by default, epibt too.
+  EXPECT_FALSE(parse_config(kNetAdd + ep + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
   EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
   EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, idle_clear: true}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, idle_clear: 2}\n"),
