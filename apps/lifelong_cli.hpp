@@ -410,6 +410,9 @@ struct TaskCli {
     app.add_flag("--queue-leavers-first,!--no-queue-leavers-first", o.queues.leavers_first,
                  "station queues, with --queue-clear-after: the agents leaving a clearing station's stub get the "
                  "leaving priority (tasks.queues.leavers_first; default off)");
+    app.add_flag("--queue-idle-clear,!--no-queue-idle-clear", o.queues.idle_clear,
+                 "station queues: idle agents do not rest on the cells beside a dead-end station's mouth (YAML "
+                 "tasks.queues.idle_clear; default off)");
     app.add_option("--parking", parking_file,
                    "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                    "(tasks/parking.hpp)");

@@ -62,6 +62,9 @@ POCKET_COST = 100
 # "+inline" / "+noinline" (any solver): tasks.queues.in_line true / false in SUMO, --queue-in-line /
 # --no-queue-in-line in the twin (tasks/station_queues.hpp QueueOptions::in_line: a station's admitted
 # and queued agents re-ranked by distance every step; session 38: epibt's 1000-AGV collapse).
+# "+idleclear" / "+noidleclear" (any solver): tasks.queues.idle_clear true / false in SUMO,
+# --[no-]queue-idle-clear in the twin (QueueOptions::idle_clear: idle agents rest neither beside a
+# dead-end station's mouth nor walk back to a rest cell they were pushed off; session 38).
 
 
 def variant(name):
@@ -74,6 +77,9 @@ def variant(name):
             continue
         if o in ("inline", "noinline"):
             rot["in_line"] = o == "inline"
+            continue
+        if o in ("idleclear", "noidleclear"):
+            rot["idle_clear"] = o == "idleclear"
             continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
             sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noleavers with epibt; +pocket with any")
@@ -137,6 +143,8 @@ def sumo_config(base, solver, p, out, ticks, expansions, executor):
         cfg["tasks"].setdefault("urgency", {})["pocket_cost"] = rot.pop("pocket_cost")
     if "in_line" in rot:
         cfg["tasks"].setdefault("queues", {})["in_line"] = rot.pop("in_line")
+    if "idle_clear" in rot:
+        cfg["tasks"].setdefault("queues", {})["idle_clear"] = rot.pop("idle_clear")
     if rot:
         cfg["planner"]["rotation"] = rot
     cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
@@ -246,7 +254,11 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
         in_line = rot.pop("in_line", q.get("in_line"))  # the row's choice, else the config's (else the default)
         if in_line is not None:
             cmd.append("--queue-in-line" if in_line else "--no-queue-in-line")
+        idle_clear = rot.pop("idle_clear", q.get("idle_clear"))
+        if idle_clear is not None:
+            cmd.append("--queue-idle-clear" if idle_clear else "--no-queue-idle-clear")
     rot.pop("in_line", None)
+    rot.pop("idle_clear", None)
     if not keep or agents:
         cmd.append("--reset-priorities")
     if p > 0:

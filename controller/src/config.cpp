@@ -511,10 +511,11 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
       r.flag(u, "tasks.urgency", "battery", c.tasks.urgency_battery);
     }
     if (const YAML::Node q = t["queues"]) {
-      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, in_line: B, leavers_first: B}");
-      r.keys(q, "tasks.queues", {"capacity", "length", "admission", "fifo", "clear_after", "in_line", "leavers_first"});
+      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, in_line: B, leavers_first: B, idle_clear: B}");
+      r.keys(q, "tasks.queues", {"capacity", "length", "admission", "fifo", "clear_after", "in_line", "leavers_first", "idle_clear"});
       r.flag(q, "tasks.queues", "in_line", c.tasks.queue_in_line);
       r.flag(q, "tasks.queues", "leavers_first", c.tasks.queue_leavers_first);
+      r.flag(q, "tasks.queues", "idle_clear", c.tasks.queue_idle_clear);
       r.integer(q, "tasks.queues", "clear_after", c.tasks.queue_clear_after, 0, 1000000000);
       if (c.tasks.queue_leavers_first && c.tasks.queue_clear_after == 0)
         r.fail("tasks.queues.leavers_first", "needs clear_after > 0 (it acts while a station clears its pocket)");

@@ -108,6 +108,7 @@ tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::Cel
   o.queues.clear_after = t.queue_clear_after;
   o.queues.in_line = t.queue_in_line;
   o.queues.leavers_first = t.queue_leavers_first;
+  o.queues.idle_clear = t.queue_idle_clear;
   // tasks.urgency: stalls `auto` (-1) means on only with station queues (see config.hpp).
   o.urgency.stalls = t.urgency_stalls < 0 ? t.queue_capacity > 0 : t.urgency_stalls != 0;
   o.urgency.battery = t.urgency_battery;

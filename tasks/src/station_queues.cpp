@@ -60,6 +60,10 @@ StationQueues::StationQueues(const planner::Graph& g, std::vector<planner::Verte
     reserved_[k.mouth] = 1;
   }
   for (Station& k : st_) build_queue(k);
+  clear_ = reserved_;
+  for (const Station& k : st_)
+    if (k.mouth != k.cell)
+      for (planner::Vertex u : around(g_, k.mouth)) clear_[u] = 1;
   in_use_.assign(g.size(), 0);
   area_.resize(st_.size());
   for (planner::Vertex v = 0; v < g.size(); ++v)

@@ -301,7 +301,9 @@ void TaskManager::refresh_goals(const planner::Config& positions)
     // Idle agents, and busy ones beyond their station's queue, wait parked.
     std::vector<char> idle(num_agents());
     for (int a = 0; a < num_agents(); ++a) idle[a] = (holding_[a] < 0 && !charging(a)) || unplaced[a];
-    const std::vector<uint8_t>* reserved = queues_ ? &queues_->reserved_cells() : nullptr;
+    const bool clear = queues_ && queues_->options().idle_clear;
+    // idle_clear: the cells beside a dead-end station's mouth are no rest cells either.
+    const std::vector<uint8_t>* reserved = !queues_ ? nullptr : clear ? &queues_->clear_cells() : &queues_->reserved_cells();
     if (battery_) {  // an idle agent must not stand on a charger or a station (or in their dead ends) either
       for (size_t v = 0; v < reserved_.size(); ++v) reserved_[v] = battery_->reserved(v) || station_cells_[v] || (reserved && (*reserved)[v]);
       reserved = &reserved_;

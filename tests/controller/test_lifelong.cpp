@@ -235,7 +235,7 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 2, admission: 1}\n"),
             "t.yaml: tasks.queues.admission: must be >= capacity (2), 0 or -1, got 1");
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: 3\n"),
-            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, in_line: B, leavers_first: B}");
+            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, in_line: B, leavers_first: B, idle_clear: B}");
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, clear_after: -5}\n"),
             "t.yaml: tasks.queues.clear_after: must be in 0..1000000000, got -5");
   EXPECT_EQ(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_clear_after, 0);
@@ -249,6 +249,12 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
   EXPECT_FALSE(parse_config(kNetAdd + "planner: {solver: pibt-rot}\n" + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS)
                    .tasks.queue_in_line);
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, in_line: 3}\n").rfind("t.yaml: tasks.queues.in_line: ", 0), 0u);
+  // Idle AGVs off the cells beside a mouth (session 38): off by default, epibt too.
+  EXPECT_FALSE(parse_config(kNetAdd + ep + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
+  EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
+  EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, idle_clear: true}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_idle_clear);
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, idle_clear: 2}\n"),
+            "t.yaml: tasks.queues.idle_clear: expected true or false, got '2'");
   EXPECT_FALSE(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_leavers_first);
   EXPECT_TRUE(parse_config(kNetAdd + ll + "  queues: {capacity: 1, clear_after: 20, leavers_first: true}\n", "t.yaml", RTLACAM_CONFIGS)
                   .tasks.queue_leavers_first);

@@ -336,3 +336,30 @@ TEST(StationQueues, InLineTheAgentNearestTheStationIsAdmittedFirst)
     }
   }
 }
+
+// idle_clear (session 38): an idle agent does not rest beside a dead-end station's mouth, where
+// it walls in the AGVs leaving the stub; it rests one cell farther along the cross aisle.
+// Without it (the reserved cells only) the agent stays beside the mouth.
+TEST(Parking, IdleClearKeepsIdleAgentsOffTheCellsBesideAMouth)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  QueueOptions o{1, 4, 0};
+  o.idle_clear = true;
+  StationQueues q(g, {s}, o);  // mouth (3, 2); queue cells (3, 3)..(3, 6)
+  for (Vertex v : {g.at(2, 2), g.at(4, 2)}) {
+    EXPECT_FALSE(q.reserved(v)) << v;
+    EXPECT_TRUE(q.clear_cells()[v]) << v;  // beside the mouth
+  }
+  for (Vertex v : {g.at(1, 2), g.at(5, 2), g.at(0, 7)}) EXPECT_FALSE(q.clear_cells()[v]) << v;
+  for (bool on : {true, false}) {
+    Parking p(g, {});
+    // Agent 0 idle beside the mouth, agent 1 on the mouth (reserved), agent 2 in the far cross aisle.
+    Config pos{g.at(2, 2), g.at(3, 2), g.at(0, 7)};
+    Config goals = pos;
+    p.apply({1, 1, 1}, pos, on ? &q.clear_cells() : &q.reserved_cells(), goals);
+    EXPECT_EQ(goals[0], on ? g.at(1, 2) : g.at(2, 2)) << on;
+    EXPECT_EQ(goals[1], on ? g.at(5, 2) : g.at(4, 2)) << on;  // off the mouth: not beside it either
+    EXPECT_EQ(goals[2], g.at(0, 7)) << on;
+  }
+}

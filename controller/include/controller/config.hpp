@@ -181,6 +181,7 @@ struct TasksSection {
   int queue_clear_after = 0;  // tasks::QueueOptions::clear_after (0: off)
   bool queue_in_line = false;  // tasks::QueueOptions::in_line (default true with solver epibt: config.cpp)
   bool queue_leavers_first = false;  // tasks::QueueOptions::leavers_first
+  bool queue_idle_clear = false;     // tasks::QueueOptions::idle_clear (off by default: docs/twin_bench.md s38-20f)
   bool queue_fifo = true;  // beyond a queue, the oldest request first (tasks::QueueOptions::fifo)
   // Parking (tasks/parking.hpp): off, the sumo.additional parkingAreas (parking_auto), or a list.
   bool parking = false, parking_auto = false;

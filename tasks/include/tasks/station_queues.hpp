@@ -84,6 +84,18 @@ struct QueueOptions {
   // Measured there (s37, seeds 1-4, 4000 ticks): 1.02-1.05x errands/tick, K 348-906 against
   // 597-1221 (controller/README.md "Leavers first while clearing").
   bool leavers_first = false;
+  // Idle agents keep clear of the mouths (off: false, the default for every solver): an idle agent (or one beyond its station's queue) rests neither on a
+  // reserved cell nor on a cell beside a dead-end station's mouth (`clear_cells()`): there it
+  // walls in the AGVs leaving the stub, which must then leave through the queue lane. Traced on
+  // the huge warehouse twin with epibt (session 38): an idle robot shuttled in and out of a drop
+  // stub for 1000 steps, the mouth's two cross-aisle neighbours held by idle robots resting on
+  // their claims (an AGV that dropped in a stub claims the nearest unreserved cell: beside the
+  // mouth). Huge twin, epibt, 5000 steps, p = 0.01: 1604 -> 1881 errands, last/first 1000
+  // 0.67 -> 0.95; but in SUMO level (0.425 -> 0.427 errands/tick, last/first 0.77 -> 0.75) and
+  // on the large_warehouse_queues twin at p = 0 worse (1454 -> 1153 errands), so not a default
+  // (docs/twin_bench.md, session 38; session 36 found it mixed for pibt-rot on
+  // large_warehouse_parking: controller/README.md, "Tried and dropped").
+  bool idle_clear = false;
   bool on() const { return capacity > 0; }
 };
 
@@ -110,6 +122,9 @@ class StationQueues {
   int pocket_of(planner::Vertex v) const { return pocket_of_[v]; }
   bool reserved(planner::Vertex v) const { return reserved_[v] != 0; }
   const std::vector<uint8_t>& reserved_cells() const { return reserved_; }
+  // Per vertex: reserved, or beside a dead-end station's mouth (a neighbour of the mouth
+  // outside the pocket): where an idle agent must not rest with `idle_clear`.
+  const std::vector<uint8_t>& clear_cells() const { return clear_; }
   // Agents admitted to station i now (heading for its cell).
   const std::vector<int>& admitted(int i) const { return st_[i].admitted; }
   const std::vector<int>& waiting(int i) const { return st_[i].waiting; }
@@ -146,6 +161,7 @@ class StationQueues {
   std::vector<Station> st_;
   std::unordered_map<planner::Vertex, int> index_;
   std::vector<uint8_t> reserved_;  // per vertex: station, pocket or queue cell
+  std::vector<uint8_t> clear_;     // clear_cells()
   std::vector<int> pocket_of_;     // per vertex: the station whose pocket it is in, -1
   std::vector<int> place_;         // per agent: station index it is admitted or queued at, -1
   std::vector<int> asked_at_;      // per agent: the station of its open request (fifo), -1
