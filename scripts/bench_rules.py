@@ -338,24 +338,7 @@ def queue_variants(a, build, tmp):
     one build: the first row of each (config, seed, ticks) is the config as is, the others print
     their ratio to it. --jobs runs that many rtlacam-sumo at once (decisions do not depend on
     timing: the planner has a fixed number of expansions per step)."""
-    from concurrent.futures import ThreadPoolExecutor
-    variants = [("as is", {})] + [(v, json.loads(v)) for v in a.queue_variants]
-    seeds = [int(x) for x in a.seeds.split(",") if x]
-    ticks_list = [int(x) for x in str(a.large_ticks_list).split(",") if x]
-    jobs = []
-    for base in a.clear_configs:
-        cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
-        for ticks in ticks_list:
-            for seed in seeds:
-                for k, (label, over) in enumerate(variants):
-                    queues = dict(cfg["tasks"].get("queues") or {}, **over)
-                    out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{ticks}_{seed}_v{k}")
-                    jobs.append((base, ticks, seed, label, out, queues))
-    t0 = time.time()
-    with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
-        futs = [ex.submit(run, build, base, out, ticks, a.expansions, None, {"queues": q}, {"fleet": {"seed": seed}})
-                for base, ticks, seed, label, out, q in jobs]
-        return queue_rows(jobs, futs, t0, a, build)
+    return variant_runs(a, build, tmp, [(v, {"queues": json.loads(v)}) for v in a.queue_variants], summary=False)
 
 
 def deep_merge(d, over):
@@ -372,8 +355,15 @@ def task_variants(a, build, tmp):
     config (--clear-configs), tick count (--large-ticks-list) and fleet seed (--seeds), on one
     build: the same table as --queue-variants, then per variant the mean of its per-run ratios
     and its K max over the runs."""
+    return variant_runs(a, build, tmp, [(v, json.loads(v)) for v in a.task_variants], summary=True)
+
+
+def variant_runs(a, build, tmp, overrides, summary):
+    """The runs of --queue-variants / --task-variants: each (label, tasks override) merged key by
+    key into each config's tasks section, after the config as is; queue_rows' table, then with
+    `summary` per variant the mean ratio and K max."""
     from concurrent.futures import ThreadPoolExecutor
-    variants = [("as is", {})] + [(v, json.loads(v)) for v in a.task_variants]
+    variants = [("as is", {})] + overrides
     seeds = [int(x) for x in a.seeds.split(",") if x]
     ticks_list = [int(x) for x in str(a.large_ticks_list).split(",") if x]
     jobs = []
@@ -389,16 +379,18 @@ def task_variants(a, build, tmp):
         futs = [ex.submit(run, build, base, out, ticks, a.expansions, None, t, {"fleet": {"seed": seed}})
                 for base, ticks, seed, label, out, t in jobs]
         rc = queue_rows(jobs, futs, t0, a, build)
-        summary = {}
+        if not summary:
+            return rc
+        per = {}
         for (base, ticks, seed, label, out, t), f in zip(jobs, futs):
             m = f.result()[0]
             l = m["lifelong"]
             if label == "as is":
                 base_rate = l["errandThroughput"]
-            s = summary.setdefault((base, ticks, label), [[], []])
+            s = per.setdefault((base, ticks, label), [[], []])
             s[0].append(l["errandThroughput"] / base_rate if base_rate else 0)
             s[1].append(l["stallTicks"]["max"])
-        for (base, ticks, label), (ratios, ks) in summary.items():
+        for (base, ticks, label), (ratios, ks) in per.items():
             print(f"# {base} {ticks} ticks, {label}: mean ratio {sum(ratios) / len(ratios):.3f} "
                   f"(min {min(ratios):.2f}), K max {max(ks)} (per seed {' / '.join(map(str, ks))})")
         return rc

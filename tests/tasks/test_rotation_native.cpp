@@ -142,69 +142,13 @@ TEST(RotationNative, PoolModeRunsClean)
 
 namespace {
 
-// large_warehouse_lifelong's grid twin (sumo_scenarios/large.net.xml gridified, 61 x 31):
-// three cross aisles (rows 3, 15, 27) joined by one-wide picking aisles every 4th column,
-// pick-up stations at the ends of three-cell stubs below the bottom aisle, drop stations
-// above the top one; `agents` robots on random cells, 3000 random pick-up -> drop tasks.
-// Writes the LoRR problem files; returns the problem's path.
-std::string stub_warehouse(int agents)
+// Writes `rows` (a MovingAI map, '.' free) as a LoRR problem under test::temp_path(name):
+// `agents` robots on random free cells, 3000 random tasks from a bottom-row cell (x = 0, 8, ..., 56)
+// to a top-row drop (x = 4, 12, ..., 60); returns the problem's path.
+std::string write_problem(const std::string& name, const std::vector<std::string>& rows, int agents)
 {
-  const int W = 61, H = 31;
-  std::vector<std::string> rows(H, std::string(W, '@'));
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) {
-      const bool cross = y == 3 || y == 15 || y == 27;
-      const bool aisle = y > 3 && y < 27 && x % 4 == 0;
-      const bool drop_stub = y < 3 && x % 8 == 4;
-      const bool pick_stub = y > 27 && x % 8 == 0 && x < 60;
-      if (cross || aisle || drop_stub || pick_stub) rows[y][x] = '.';
-    }
-  const std::string dir = test::temp_path("stubs");
-  std::system(("mkdir -p " + dir).c_str());
-  std::ofstream(dir + "/w.map") << "type octile\nheight " << H << "\nwidth " << W << "\nmap\n" << [&] {
-    std::string m;
-    for (const std::string& r : rows) m += r + "\n";
-    return m;
-  }();
-  uint64_t rng = 12345;
-  auto next = [&](uint64_t n) {
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (rng >> 33) % n;
-  };
-  std::vector<int> free;
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x)
-      if (rows[y][x] == '.') free.push_back(y * W + x);
-  std::ofstream a(dir + "/w.agents");
-  a << agents << "\n";
-  for (int i = 0; i < agents; ++i) {
-    const uint64_t k = i + next(free.size() - i);
-    std::swap(free[i], free[k]);
-    a << free[i] << "\n";
-  }
-  std::ofstream t(dir + "/w.tasks");
-  t << "# 2024\n3000\n";
-  for (int i = 0; i < 3000; ++i) t << (30 * W + 8 * static_cast<int>(next(8))) << "," << (4 + 8 * static_cast<int>(next(8))) << "\n";
-  std::ofstream(dir + "/w.json") << R"({"mapFile": "w.map", "agentFile": "w.agents", "teamSize": )" << agents
-                                 << R"(, "taskFile": "w.tasks", "numTasksReveal": 1.5, "version": "2024 LoRR"})";
-  return dir + "/w.json";
-}
-
-// huge_warehouse_lifelong's layout, narrowed (61 x 77 instead of 189 x 77): eight cross aisles
-// (rows 3, 13, ..., 73) joined by one-wide picking aisles every 4th column, drop stations
-// above the top aisle and pick-up stations below the bottom one, each at the end of a
-// two-cell stub; `agents` robots on random cells, 3000 random pick-up -> drop tasks.
-std::string queue_warehouse(int agents)
-{
-  const int W = 61, H = 77;
-  std::vector<std::string> rows(H, std::string(W, '@'));
-  for (int y = 0; y < H; ++y)
-    for (int x = 0; x < W; ++x) {
-      const bool cross = y >= 3 && y <= 73 && y % 10 == 3;
-      const bool aisle = y > 3 && y < 73 && x % 4 == 0;
-      if (cross || aisle || (y < 3 && x % 8 == 4) || (y > 73 && x % 8 == 0)) rows[y][x] = '.';
-    }
-  const std::string dir = test::temp_path("queues");
+  const int H = static_cast<int>(rows.size()), W = static_cast<int>(rows[0].size());
+  const std::string dir = test::temp_path(name);
   std::system(("mkdir -p " + dir).c_str());
   std::ofstream(dir + "/w.map") << "type octile\nheight " << H << "\nwidth " << W << "\nmap\n" << [&] {
     std::string m;
@@ -233,6 +177,43 @@ std::string queue_warehouse(int agents)
   std::ofstream(dir + "/w.json") << R"({"mapFile": "w.map", "agentFile": "w.agents", "teamSize": )" << agents
                                  << R"(, "taskFile": "w.tasks", "numTasksReveal": 1.5, "version": "2024 LoRR"})";
   return dir + "/w.json";
+}
+
+// large_warehouse_lifelong's grid twin (sumo_scenarios/large.net.xml gridified, 61 x 31):
+// three cross aisles (rows 3, 15, 27) joined by one-wide picking aisles every 4th column,
+// pick-up stations at the ends of three-cell stubs below the bottom aisle, drop stations
+// above the top one; `agents` robots on random cells, 3000 random pick-up -> drop tasks.
+// Writes the LoRR problem files; returns the problem's path.
+std::string stub_warehouse(int agents)
+{
+  const int W = 61, H = 31;
+  std::vector<std::string> rows(H, std::string(W, '@'));
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const bool cross = y == 3 || y == 15 || y == 27;
+      const bool aisle = y > 3 && y < 27 && x % 4 == 0;
+      const bool drop_stub = y < 3 && x % 8 == 4;
+      const bool pick_stub = y > 27 && x % 8 == 0 && x < 60;
+      if (cross || aisle || drop_stub || pick_stub) rows[y][x] = '.';
+    }
+  return write_problem("stubs", rows, agents);
+}
+
+// huge_warehouse_lifelong's layout, narrowed (61 x 77 instead of 189 x 77): eight cross aisles
+// (rows 3, 13, ..., 73) joined by one-wide picking aisles every 4th column, drop stations
+// above the top aisle and pick-up stations below the bottom one, each at the end of a
+// two-cell stub; `agents` robots on random cells, 3000 random pick-up -> drop tasks.
+std::string queue_warehouse(int agents)
+{
+  const int W = 61, H = 77;
+  std::vector<std::string> rows(H, std::string(W, '@'));
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const bool cross = y >= 3 && y <= 73 && y % 10 == 3;
+      const bool aisle = y > 3 && y < 73 && x % 4 == 0;
+      if (cross || aisle || (y < 3 && x % 8 == 4) || (y > 73 && x % 8 == 0)) rows[y][x] = '.';
+    }
+  return write_problem("queues", rows, agents);
 }
 
 // Errands finished by rtlacam-lifelong on `problem` with `args` (bench_twin.py's twin flags).
