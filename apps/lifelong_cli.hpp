@@ -423,7 +423,7 @@ struct TaskCli {
   // epibt, which cannot undo a one-wide queue lane out of request order (controller/src/config.cpp).
   void default_in_line(const std::string& solver)
   {
-    if (in_line_opt && in_line_opt->count() == 0) o.queues.in_line = solver == "epibt";
+    if (in_line_opt && in_line_opt->count() == 0) o.queues.in_line = tasks::in_line_by_default(solver);
   }
 
   // The task manager of `pr`'s tasks on `g` (mode: the problem's default unless --mode).

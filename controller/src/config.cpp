@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "planner/solver.hpp"
+#include "tasks/station_queues.hpp"
 
 namespace controller {
 namespace {
@@ -427,7 +428,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   // ones for 1000+ ticks, the station free) and it collapsed (huge, 2500 ticks, p = 0: 0.245
   // errands/tick, last/first 500 0.58; in line 0.546, 1.00). Session 38, docs/twin_bench.md.
   // The other solvers keep request order (large_warehouse_queues' pibt-rot rows were mixed, s36).
-  c.tasks.queue_in_line = kind == planner::Solver::Epibt;
+  c.tasks.queue_in_line = tasks::in_line_by_default(planner::to_string(kind));
   read_rotation(r, p, kind, c.planner.rotation);
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");

@@ -80,7 +80,7 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
                                    const std::vector<Vertex>& chargers, const std::string& solver)
 {
   tasks::TaskLayerOptions o;
-  o.queues.in_line = solver == "epibt";  // queues in line by default with epibt, as the YAML and the CLI
+  o.queues.in_line = tasks::in_line_by_default(solver);
   o.mode = mode.empty() ? pr.default_mode() : mode;
   o.assigner = assigner;
   o.pool_size = pool_size > 0 ? pool_size : pr.pool_size();

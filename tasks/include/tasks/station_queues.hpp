@@ -36,6 +36,7 @@
 // step while queues are on: a way out that clears is no completion); the task manager
 // then starts a new epoch if any goal changed (TaskManager::goals_changed).
 #include <memory>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -98,6 +99,11 @@ struct QueueOptions {
   bool idle_clear = false;
   bool on() const { return capacity > 0; }
 };
+
+// QueueOptions::in_line's default for a solver (the YAML's tasks.queues.in_line, rtlacam-lifelong's
+// --queue-in-line and Python's queues): on for epibt, which cannot undo a one-wide queue lane out
+// of request order (session 38, docs/twin_bench.md); request order for the others.
+inline bool in_line_by_default(const std::string& solver) { return solver == "epibt"; }
 
 class StationQueues {
  public:
