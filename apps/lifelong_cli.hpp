@@ -26,6 +26,7 @@
 #include "tasks/lorr_files.hpp"
 #include "tasks/lorr_problem.hpp"
 #include "tasks/task_layer.hpp"
+#include "tasks/station_queues.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace cli {
@@ -403,6 +404,14 @@ struct TaskCli {
                    "gives up its places until the stub is empty (tasks.queues.clear_after; 0 = off)")
         ->check(CLI::NonNegativeNumber)
         ->capture_default_str();
+    app.add_flag("--queue-one-way,!--no-queue-one-way", o.queues.one_way,
+                 "station queues: each station's queue lane is one-way towards the station in the planners' graph "
+                 "(tasks.queues.one_way; default off)");
+    app.add_option("--queue-jam-after", o.queues.jam_after,
+                   "station queues: a station whose admitted agent came no nearer to it for this many steps "
+                   "gives up its places until its stub and queue cells are empty (tasks.queues.jam_after; 0 = off)")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     in_line_opt = app.add_flag("--queue-in-line,!--no-queue-in-line", o.queues.in_line,
                                "station queues: each step the admitted and queued agents of a station are re-ranked by "
                                "their distance to it, nearest admitted (YAML tasks.queues.in_line; default on with "
@@ -417,6 +426,20 @@ struct TaskCli {
                    "parking cells (the agents-file format: a count, then cell ids): idle agents wait there "
                    "(tasks/parking.hpp)");
     battery.bind(app);
+  }
+
+  // The graph the run plans on: `g`, or with --queue-one-way its one-way queue lanes
+  // (tasks/station_queues.hpp one_way_queue_lanes). Throws InputError naming the option.
+  planner::Graph graph(const planner::Graph& g, const tasks::TaskFile& file) const
+  {
+    if (!o.queues.on() || !o.queues.one_way) return g;
+    std::vector<planner::Vertex> stations;
+    for (const std::vector<planner::Vertex>& t : file.tasks) stations.insert(stations.end(), t.begin(), t.end());
+    try {
+      return tasks::one_way_queue_lanes(g, stations, o.queues);
+    } catch (const std::invalid_argument& e) {
+      throw planner::InputError(std::string("--queue-one-way: ") + e.what());
+    }
   }
 
   // --queue-in-line's default for `solver` (as the controller's tasks.queues.in_line): on for

@@ -82,7 +82,7 @@ int main(int argc, char** argv)
   try {
     const LorrInstance in = load_lorr_instance(problem_file, agents, "--agents ");
     const LorrProblem& pr = in.problem;
-    const planner::Graph& g = in.g;
+    const planner::Graph g = tc.graph(in.g, *in.tasks);
     const planner::Config& starts = in.starts;
     const std::shared_ptr<const TaskFile>& file = in.tasks;
     if (steps < 0) steps = pr.simulation_time;

@@ -65,6 +65,8 @@ POCKET_COST = 100
 # "+idleclear" / "+noidleclear" (any solver): tasks.queues.idle_clear true / false in SUMO,
 # --[no-]queue-idle-clear in the twin (QueueOptions::idle_clear: idle agents rest neither beside a
 # dead-end station's mouth nor walk back to a rest cell they were pushed off; session 38).
+# "+oneway" / "+nooneway" (any solver): tasks.queues.one_way true / false in SUMO, --[no-]queue-one-way
+# in the twin (QueueOptions::one_way: queue lanes one-way towards their station; session 39).
 
 
 def variant(name):
@@ -80,6 +82,9 @@ def variant(name):
             continue
         if o in ("idleclear", "noidleclear"):
             rot["idle_clear"] = o == "idleclear"
+            continue
+        if o in ("oneway", "nooneway"):
+            rot["one_way"] = o == "oneway"
             continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
             sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noleavers with epibt; +pocket with any")
@@ -145,6 +150,8 @@ def sumo_config(base, solver, p, out, ticks, expansions, executor):
         cfg["tasks"].setdefault("queues", {})["in_line"] = rot.pop("in_line")
     if "idle_clear" in rot:
         cfg["tasks"].setdefault("queues", {})["idle_clear"] = rot.pop("idle_clear")
+    if "one_way" in rot:
+        cfg["tasks"].setdefault("queues", {})["one_way"] = rot.pop("one_way")
     if rot:
         cfg["planner"]["rotation"] = rot
     cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
@@ -257,8 +264,12 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
         idle_clear = rot.pop("idle_clear", q.get("idle_clear"))
         if idle_clear is not None:
             cmd.append("--queue-idle-clear" if idle_clear else "--no-queue-idle-clear")
+        one_way = rot.pop("one_way", q.get("one_way"))
+        if one_way is not None:
+            cmd.append("--queue-one-way" if one_way else "--no-queue-one-way")
     rot.pop("in_line", None)
     rot.pop("idle_clear", None)
+    rot.pop("one_way", None)
     if not keep or agents:
         cmd.append("--reset-priorities")
     if p > 0:

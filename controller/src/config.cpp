@@ -512,12 +512,14 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
       r.flag(u, "tasks.urgency", "battery", c.tasks.urgency_battery);
     }
     if (const YAML::Node q = t["queues"]) {
-      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, in_line: B, leavers_first: B, idle_clear: B}");
-      r.keys(q, "tasks.queues", {"capacity", "length", "admission", "fifo", "clear_after", "in_line", "leavers_first", "idle_clear"});
+      if (!q.IsMap()) r.fail("tasks.queues", "expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, jam_after: N, one_way: B, in_line: B, leavers_first: B, idle_clear: B}");
+      r.keys(q, "tasks.queues", {"capacity", "length", "admission", "fifo", "clear_after", "jam_after", "one_way", "in_line", "leavers_first", "idle_clear"});
       r.flag(q, "tasks.queues", "in_line", c.tasks.queue_in_line);
       r.flag(q, "tasks.queues", "leavers_first", c.tasks.queue_leavers_first);
       r.flag(q, "tasks.queues", "idle_clear", c.tasks.queue_idle_clear);
       r.integer(q, "tasks.queues", "clear_after", c.tasks.queue_clear_after, 0, 1000000000);
+      r.integer(q, "tasks.queues", "jam_after", c.tasks.queue_jam_after, 0, 1000000000);
+      r.flag(q, "tasks.queues", "one_way", c.tasks.queue_one_way);
       if (c.tasks.queue_leavers_first && c.tasks.queue_clear_after == 0)
         r.fail("tasks.queues.leavers_first", "needs clear_after > 0 (it acts while a station clears its pocket)");
       r.flag(q, "tasks.queues", "fifo", c.tasks.queue_fifo);
@@ -668,11 +670,12 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   }
 
   const YAML::Node w = root["output"];
-  r.keys(w, "output", {"dir", "plan", "plan_keep", "congestion", "gui_snapshots"});
+  r.keys(w, "output", {"dir", "plan", "plan_keep", "congestion", "queue_trace", "gui_snapshots"});
   r.text(w, "output", "dir", c.output.dir);
   r.flag(w, "output", "plan", c.output.plan);
   r.integer(w, "output", "plan_keep", c.output.plan_keep, 0, 1 << 30);
   r.flag(w, "output", "congestion", c.output.congestion);
+  r.integer(w, "output", "queue_trace", c.output.queue_trace, 0, 1 << 30);
   if (w && w.IsMap() && w["gui_snapshots"]) {
     const YAML::Node l = w["gui_snapshots"];
     if (!l.IsSequence()) r.fail("output.gui_snapshots", "expected a list of simulated seconds");

@@ -106,6 +106,8 @@ tasks::TaskLayerOptions task_layer_options(const Config& cfg, const gridify::Cel
   o.queues.admission = t.queue_admission;
   o.queues.fifo = t.queue_fifo;
   o.queues.clear_after = t.queue_clear_after;
+  o.queues.jam_after = t.queue_jam_after;
+  o.queues.one_way = t.queue_one_way;
   o.queues.in_line = t.queue_in_line;
   o.queues.leavers_first = t.queue_leavers_first;
   o.queues.idle_clear = t.queue_idle_clear;

@@ -58,7 +58,7 @@ nlohmann::json Metrics::to_json() const
     // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
     j["lifelong"]["freeFlowBound"] = free_flow_bound;
     j["lifelong"]["errandThroughputOverFreeFlow"] = free_flow_bound > 0 ? errand_throughput() / free_flow_bound : 0.0;
-    j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}, {"clearings", clearings},
+    j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}, {"clearings", clearings}, {"jamClearings", jam_clearings},
                                    {"clearingSteps", clearing_steps}, {"longestClearing", longest_clearing}};
     j["lifelong"]["parking"] = {{"idleAtEnd", idle_at_end}, {"parkedAtEnd", parked_at_end}};
   }

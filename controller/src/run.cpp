@@ -20,6 +20,8 @@
 #include "policy/weights_file.hpp"
 #include "tasks/lifelong_goal.hpp"
 #include "tasks/lifelong_log.hpp"
+#include "tasks/queue_trace.hpp"
+#include "tasks/station_queues.hpp"
 #include "tasks/stub_mouths.hpp"
 
 namespace controller {
@@ -107,6 +109,18 @@ void Run::prepare()
       for (const std::vector<planner::Vertex>& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
       c_.map_.graph.set_move_costs(tasks::mouth_costs(c_.map_.graph, stations, cfg_.tasks.urgency_mouth_cost));
     }
+    if (const tasks::QueueOptions q = task_layer_options(cfg_, c_.map_).queues; q.on() && q.one_way) {
+      // One-way queue lanes (tasks/station_queues.hpp): the graph every planner, table and
+      // check of this run uses; SUMO's lanes stay as they are.
+      std::vector<planner::Vertex> stations;
+      for (const std::vector<planner::Vertex>& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
+      try {
+        c_.map_.graph = tasks::one_way_queue_lanes(c_.map_.graph, stations, q);
+      } catch (const std::invalid_argument& e) {
+        throw ConfigError(cfg_.path + ": tasks.queues.one_way: " + e.what());
+      }
+      if (drive_graph_) *drive_graph_ = tasks::one_way_queue_lanes(*drive_graph_, stations, q);
+    }
     tm_ = make_task_manager(cfg_, c_.map_, file);
     // The free-flow bound (tasks/free_flow.hpp) prices an errand's shortest path as the
     // executor would drive it alone: a cell per tick in lockstep, one rest-to-rest trapezoid
@@ -163,6 +177,13 @@ void Run::prepare()
     // included, not tasks.urgency.mouth_cost's routing costs), closures or not: tables of
     // their own, exact whatever the step's deadline.
     epochs_->start(drive_graph_ ? *drive_graph_ : g, ins_.starts, std::move(free_flow));
+    if (cfg_.output.queue_trace > 0 && tm_->queues()) {
+      try {
+        queue_trace_ = std::make_unique<tasks::QueueTrace>((fs::path(dir_) / "queue_trace.txt").string(), cfg_.output.queue_trace, g);
+      } catch (const std::runtime_error& e) {
+        throw ConfigError(cfg_.path + ": output.queue_trace: " + e.what());
+      }
+    }
     goals = tm_->goals();
     goal_test = tasks::lifelong_goal_test(*tm_, ins_.starts);
   }
@@ -472,6 +493,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.max_heading = n.max_heading;
   m_.queued_ticks = n.queued_ticks;
   m_.clearings = n.clearings;
+  m_.jam_clearings = n.jam_clearings;
   m_.clearing_steps = n.clearing_steps;
   m_.longest_clearing = n.longest_clearing;
   m_.idle_at_end = n.idle;
@@ -500,7 +522,9 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   // past it; later steps grow them), and the search gets only what is left (a resumable
   // expansion pauses at its deadline; the next steps go on with it).
   auto t0 = Clock::now();
-  if (!epochs_->complete(tick, executed)) return;
+  const bool changed = epochs_->complete(tick, executed);
+  if (queue_trace_) queue_trace_->step(tick, *tm_, executed, epochs_->completed());
+  if (!changed) return;
   const double c0 = planner::thread_cpu_ms();
   const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
   // Its tables stop one expansion's reserve before the step's end, the reserve capped at a

@@ -35,6 +35,7 @@
 #include "policy/policy_preference.hpp"
 #include "tasks/lifelong_epochs.hpp"
 #include "tasks/lifelong_runner.hpp"
+#include "tasks/queue_trace.hpp"
 #include "tasks/step_budget.hpp"
 #include "tasks/task_manager.hpp"
 
@@ -192,6 +193,7 @@ class Run {
   // Lifelong: the task and epoch part shared with the grid's LifelongRun (start,
   // completions on the executed cells, epoch starts, their counts in life_).
   std::unique_ptr<tasks::LifelongEpochs> epochs_;
+  std::unique_ptr<tasks::QueueTrace> queue_trace_;  // output.queue_trace
   bool prefetch_ = false;  // lifelong and planner.prefetch
   planner::Budget budget_;
   int k_ = 1;

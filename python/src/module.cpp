@@ -94,10 +94,15 @@ tasks::TaskLayerOptions task_layer(const tasks::LorrProblem& pr, const std::stri
       else if (k == "fifo") o.queues.fifo = v.cast<bool>();
       else if (k == "in_line") o.queues.in_line = v.cast<bool>();
       else if (k == "leavers_first") o.queues.leavers_first = v.cast<bool>();
+      else if (k == "one_way") o.queues.one_way = v.cast<bool>();
       else if (k == "clear_after") {
         const int n = v.cast<int>();
         if (n < 0) throw InputError("queues.clear_after: must be >= 0, not " + std::to_string(n));
         o.queues.clear_after = n;
+      } else if (k == "jam_after") {
+        const int n = v.cast<int>();
+        if (n < 0) throw InputError("queues.jam_after: must be >= 0, not " + std::to_string(n));
+        o.queues.jam_after = n;
       } else return false;
       return true;
     });
@@ -162,12 +167,22 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   using namespace tasks;
   const LorrInstance in = load_lorr_instance(problem_file, agents, "agents=");
   const LorrProblem& pr = in.problem;
-  const Graph& g = in.g;
   const Config& starts = in.starts;
   if (steps < 0) steps = pr.simulation_time;
   if (steps < 0) throw input_error(problem_file, 0, "no simulation_time.json entry for this problem: pass steps=");
   const TaskLayerOptions layer =
       task_layer(pr, mode, assigner, pool_size, k_nearest, reassign, queues, urgency, parking, battery, chargers, solver);
+  // queues one_way: the run plans on the one-way queue lanes (tasks/station_queues.hpp).
+  const Graph g = [&] {
+    if (!layer.queues.on() || !layer.queues.one_way) return in.g;
+    std::vector<Vertex> stations;
+    for (const std::vector<Vertex>& t : in.tasks->tasks) stations.insert(stations.end(), t.begin(), t.end());
+    try {
+      return one_way_queue_lanes(in.g, stations, layer.queues);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(std::string("queues.one_way: ") + e.what());
+    }
+  }();
   std::unique_ptr<TaskManager> tm;
   try {
     tm = make_task_layer(in.tasks, g, layer);
@@ -359,7 +374,7 @@ PYBIND11_MODULE(_rtlacam, m)
         "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
         "The task layer takes the SUMO controller's YAML options (tasks.*, fleet.battery): mode (tasks.assignment: "
         "roundrobin | pool; default the problem's), assigner, pool_size (0: the problem's), k_nearest, reassign; "
-        "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo, in_line (default True with epibt), clear_after, leavers_first); urgency: a dict of tasks.urgency's "
+        "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo, in_line (default True with epibt), clear_after, jam_after, one_way, leavers_first); urgency: a dict of tasks.urgency's "
         "(stalls: True | False | 'auto', battery, swap_after, head_after, load_cost, pocket_cost, escalate_after; default all off, as rtlacam-lifelong); parking: parking cell ids; "
         "battery: a dict of fleet.battery's keys (capacity_wh, initial, per_m_wh, per_turn_wh, threshold, critical, "
         "reserve_margin, rematch, task_check, target, charge_w, charging) on `chargers` (cell ids), as "

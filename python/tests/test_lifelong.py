@@ -117,6 +117,15 @@ def test_lifelong_takes_every_task_layer_option_of_the_yaml():
     assert log["numErrandFinished"] > 0 and log["numPlannerErrors"] == 0 and log["queues"]["maxHeading"] <= 1
     with pytest.raises(ValueError, match="queues.leavers_first: needs clear_after > 0"):
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, queues=dict(capacity=1, leavers_first=True))
+    # jam_after and one_way (session 39) reach the grid too (as rtlacam-lifelong's --queue-jam-after,
+    # --queue-one-way): stations clear, and the one-way lanes change the run.
+    plain = rtlacam.lifelong(PROBLEM, steps=60, agents=40, queues=dict(capacity=1))
+    log = rtlacam.lifelong(PROBLEM, steps=60, agents=40, queues=dict(capacity=1, jam_after=2))
+    assert log["numErrandFinished"] > 0 and log["queues"]["jamClearings"] > 0 and plain["queues"]["jamClearings"] == 0
+    with pytest.raises(ValueError, match="queues.jam_after: must be >= 0"):
+        rtlacam.lifelong(PROBLEM, steps=5, agents=5, queues=dict(capacity=1, jam_after=-1))
+    log = rtlacam.lifelong(PROBLEM, steps=60, agents=40, queues=dict(capacity=1, one_way=True))
+    assert log["numPlannerErrors"] == 0 and log["numErrandFinished"] > 0 and log["events"] != plain["events"]
     with pytest.raises(ValueError, match="mode: must be roundrobin or pool"):
         rtlacam.lifelong(PROBLEM, steps=5, agents=5, mode="fifo")
 

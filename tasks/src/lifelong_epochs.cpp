@@ -82,6 +82,7 @@ void LifelongEpochs::count(long t, const planner::Config& real)
   // A counter per cell, reset after use: no allocation per step (1000 agents, 5000 steps).
   counts_.idle = counts_.parked = 0;
   counts_.clearings = tasks_.queues() ? tasks_.queues()->clearings() : 0;
+  counts_.jam_clearings = tasks_.queues() ? tasks_.queues()->jam_clearings() : 0;
   counts_.clearing_steps = tasks_.queues() ? tasks_.queues()->clearing_steps() : 0;
   counts_.longest_clearing = tasks_.queues() ? tasks_.queues()->longest_clearing() : 0;
   for (int a = 0; a < tasks_.num_agents(); ++a) {

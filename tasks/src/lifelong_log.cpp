@@ -53,7 +53,7 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   // The task layer's counts (lifelong_epochs.hpp), named as in the SUMO controller's
   // metrics.json "lifelong" (errandTicks and stallTicks: add_task_fields).
   j["maxErrandTicks"] = r.counts.max_goal_ticks;
-  j["queues"] = {{"maxHeading", r.counts.max_heading}, {"queuedTicks", r.counts.queued_ticks}, {"clearings", r.counts.clearings},
+  j["queues"] = {{"maxHeading", r.counts.max_heading}, {"queuedTicks", r.counts.queued_ticks}, {"clearings", r.counts.clearings}, {"jamClearings", r.counts.jam_clearings},
                 {"clearingSteps", r.counts.clearing_steps}, {"longestClearing", r.counts.longest_clearing}};
   j["parking"] = {{"idleAtEnd", r.counts.idle}, {"parkedAtEnd", r.counts.parked}};
   if (r.action_model == ActionModel::Rotation) j["windowFullSteps"] = r.window_full;

@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <queue>
+#include <stdexcept>
+#include <string>
+
+#include "planner/blocked.hpp"
 
 namespace tasks {
 
@@ -188,25 +192,61 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
                                                               std::find(st_[i].admitted.begin(), st_[i].admitted.end(), a) !=
                                                                   st_[i].admitted.end()))
       ++inside[i];
+  auto give_up = [&](size_t i) {
+    Station& s = st_[i];
+    s.clearing = true;
+    ++clearings_;
+    for (std::vector<int>* l : {&s.admitted, &s.waiting})
+      for (int a : *l) place_[a] = -1, fresh[static_cast<int>(i)].push_back(a);
+    s.admitted.clear(), s.waiting.clear();
+    if (std::find(touched.begin(), touched.end(), static_cast<int>(i)) == touched.end()) touched.push_back(static_cast<int>(i));
+  };
+  if (opt_.jam_after > 0) {
+    std::vector<char> held;  // per vertex: an agent stands there
+    for (size_t i = 0; i < st_.size(); ++i) {
+      Station& s = st_[i];
+      if (s.clearing && s.jam) {  // until the station's cells are empty, jam_after steps at most
+        if (held.empty()) {
+          held.assign(g_.size(), 0);
+          for (int a = 0; a < n; ++a) held[positions[a]] = 1;
+        }
+        bool empty = true;
+        for (planner::Vertex v : area_[i]) empty = empty && !held[v];
+        if (empty || s.cleared_for >= opt_.jam_after) s.clearing = s.jam = false, s.cleared_for = 0;
+        continue;
+      }
+      if (s.clearing || s.admitted.empty()) {
+        s.jam_agent = -1;
+        continue;
+      }
+      const int a = s.admitted.front();
+      const int32_t d = dist_.from_goal(s.cell, positions[a]);
+      if (a != s.jam_agent || d < s.jam_best || pocket_of_[positions[a]] == static_cast<int>(i)) {
+        s.jam_agent = a, s.jam_best = d, s.jam_since = 0;
+        continue;
+      }
+      if (++s.jam_since < opt_.jam_after) continue;
+      s.jam_agent = -1;
+      s.jam = true;
+      ++jam_clearings_;
+      give_up(i);
+    }
+  }
   if (opt_.clear_after > 0)
     for (size_t i = 0; i < st_.size(); ++i) {
       Station& s = st_[i];
       if (s.mouth == s.cell) continue;  // no dead end: a leaver can pass on
+      if (s.jam) continue;              // a jam clearing ends by its own rule
       const bool leaver = inside.count(static_cast<int>(i)) > 0;
       s.blocked = leaver ? s.blocked + 1 : 0;
       if (!leaver) s.clearing = false;
-      if (!s.clearing && s.blocked >= opt_.clear_after) {
-        s.clearing = true;
-        ++clearings_;
-        for (std::vector<int>* l : {&s.admitted, &s.waiting})
-          for (int a : *l) place_[a] = -1, fresh[static_cast<int>(i)].push_back(a);
-        s.admitted.clear(), s.waiting.clear();
-        if (std::find(touched.begin(), touched.end(), static_cast<int>(i)) == touched.end()) touched.push_back(static_cast<int>(i));
-      }
-      s.cleared_for = s.clearing ? s.cleared_for + 1 : 0;
-      clearing_steps_ += s.clearing ? 1 : 0;
-      longest_clearing_ = std::max(longest_clearing_, s.cleared_for);
+      if (!s.clearing && s.blocked >= opt_.clear_after) give_up(i);
     }
+  for (Station& s : st_) {
+    s.cleared_for = s.clearing ? s.cleared_for + 1 : 0;
+    clearing_steps_ += s.clearing ? 1 : 0;
+    longest_clearing_ = std::max(longest_clearing_, s.cleared_for);
+  }
   std::sort(touched.begin(), touched.end());
   std::vector<std::pair<int32_t, int>> order;
   for (int i : touched) {
@@ -255,6 +295,31 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
     if (!st_[i].admitted.empty() || !st_[i].waiting.empty() || st_[i].clearing)
       for (planner::Vertex v : area_[i])
         if (!in_use_[v]) in_use_[v] = 1, in_use_list_.push_back(v);
+}
+
+planner::Graph one_way_queue_lanes(const planner::Graph& g, const std::vector<planner::Vertex>& stations,
+                                   const QueueOptions& o)
+{
+  const StationQueues q(g, stations, o);
+  std::vector<planner::Vertex> toward(g.size(), -1);  // per queue cell: its next cell towards the station
+  for (int i = 0; i < q.num_stations(); ++i) {
+    const std::vector<planner::Vertex>& lane = q.queue_cells(i);
+    for (size_t k = 0; k < lane.size(); ++k) toward[lane[k]] = k == 0 ? q.mouth(i) : lane[k - 1];
+  }
+  planner::Graph d = planner::without_arcs(g, [&](planner::Vertex u, planner::Vertex v) {
+    if (toward[u] >= 0) return v != toward[u];  // on a lane: towards the station only
+    return toward[v] >= 0 && toward[v] == u;    // the way back up a lane (the mouth into q1)
+  });
+  int before = 0, count = 0;
+  g.strong_components(&before);
+  const std::vector<int> comp = d.strong_components(&count);
+  if (count > before)
+    for (int i = 0; i < q.num_stations(); ++i)
+      if (comp[q.station(i)] != comp[0] || (!q.queue_cells(i).empty() && comp[q.queue_cells(i).back()] != comp[q.station(i)]))
+        throw std::invalid_argument("one-way queue lanes: the lane of the station at cell " + std::to_string(q.station(i)) +
+                                    " cuts the net (" + std::to_string(count) + " strongly connected parts)");
+  if (count > before) throw std::invalid_argument("one-way queue lanes cut the net (" + std::to_string(count) + " strongly connected parts)");
+  return d;
 }
 
 }  // namespace tasks

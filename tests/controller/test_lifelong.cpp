@@ -6,6 +6,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <sstream>
 #include <algorithm>
 #include <set>
 
@@ -14,6 +16,7 @@
 #include "controller/controller.hpp"
 #include "controller/lifelong.hpp"
 #include "planner/validator.hpp"
+#include "tasks/station_queues.hpp"
 #include "tasks/task_builder.hpp"
 #include "temp_path.hpp"
 
@@ -179,12 +182,42 @@ TEST(ControllerLifelong, StationQueuesAdmitOneAgvPerStation)
   Config cfg = lifelong_config("queues", 200);
   cfg.tasks.queue_capacity = 1;
   cfg.tasks.queue_length = 3;
+  cfg.output.queue_trace = 50;
   Controller c(cfg);
   const Metrics m = c.run();
   expect_clean_lifelong_run(cfg, c, m);
   EXPECT_LE(m.max_heading, 1);   // 16 AGVs, 4 stations: without queues up to 5 at once
   EXPECT_GT(m.queued_ticks, 20); // AGV-ticks standing on their queue cell
   EXPECT_GE(m.errands_finished, 10);
+  // output.queue_trace (tasks/queue_trace.hpp): a line per station every 50 ticks; at most one
+  // AGV admitted; the completions it counts at stations are the run's (every errand cell is one).
+  {
+    std::ifstream in(cfg.output.dir + "/queue_trace.txt");
+    std::string line;
+    std::getline(in, line);
+    EXPECT_EQ(line.rfind("# t station", 0), 0u) << line;
+    int lines = 0;
+    long done = 0;
+    while (std::getline(in, line)) {
+      ++lines;
+      std::istringstream s(line);
+      long t = 0;
+      int station = -1;
+      s >> t >> station;
+      EXPECT_EQ(t % 50, 0) << line;
+      EXPECT_EQ(station, (lines - 1) % 4) << line;
+      const size_t d = line.find(" done ");
+      ASSERT_NE(d, std::string::npos) << line;
+      done += std::stol(line.substr(d + 6));
+      const std::string adm = line.substr(line.find("admitted["), line.find(']') - line.find("admitted["));
+      EXPECT_LE(std::count(adm.begin(), adm.end(), '@'), 1) << line;
+    }
+    EXPECT_EQ(lines, 4 * 4);  // ticks 50, 100, 150, 200; 4 stations
+    const nlohmann::json log = read_json(cfg.output.dir + "/lifelong.json");
+    long by_200 = 0;
+    for (const auto& e : log["events"]) by_200 += e[0].get<long>() <= 200;
+    EXPECT_EQ(done, by_200);
+  }
   const nlohmann::json mj = read_json(cfg.output.dir + "/metrics.json");
   EXPECT_EQ(mj["lifelong"]["queues"]["maxHeading"], m.max_heading);
   // tasks.queues.fifo reaches the task layer's queues (default: oldest request first).
@@ -194,6 +227,59 @@ TEST(ControllerLifelong, StationQueuesAdmitOneAgvPerStation)
     const auto tm = make_task_manager(q, c.map(), make_task_file(q, c.map()));
     ASSERT_NE(tm->queues(), nullptr);
     EXPECT_EQ(tm->queues()->options().fifo, fifo);
+  }
+}
+
+// One-way queue lanes (tasks.queues.one_way, tasks/station_queues.hpp one_way_queue_lanes): the
+// run plans on a graph where each station's queue lane leads only towards the station, so no
+// AGV drives up a lane; off, AGVs do (the way out of a station runs up its lane here). On the
+// small warehouse the lanes are the only links between aisles: refused with a one-line error.
+TEST(ControllerLifelong, OneWayQueueLanesAreNeverDrivenAgainst)
+{
+  std::vector<long> against;
+  std::optional<planner::Graph> lanes;  // the lanes laid on the net's two-way graph (the off run's)
+  for (bool one_way : {false, true}) {
+    // The large warehouse with queues (8 cells down each station's picking aisle), 60 AGVs:
+    // the small one's lanes are the only links between its aisles (one_way refuses it).
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/large_warehouse_queues.yaml");
+    cfg.output.dir = temp_dir(one_way ? "oneway_on" : "oneway_off");
+    cfg.run.progress_s = 0;
+    cfg.run.max_ticks = 300;
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = 20;
+    cfg.fleet.count = 60;
+    cfg.tasks.queue_one_way = one_way;
+    Controller c(cfg);
+    const Metrics m = c.run();
+    expect_clean_lifelong_run(cfg, c, m);  // the executed plan is valid on the run's graph
+    EXPECT_GE(m.errands_finished, 10);
+    EXPECT_EQ(c.map().graph.directed(), one_way);
+    if (!lanes) {
+      std::vector<planner::Vertex> stations;
+      const std::shared_ptr<const tasks::TaskFile> file = make_task_file(cfg, c.map());
+      for (const auto& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
+      lanes = tasks::one_way_queue_lanes(c.map().graph, stations, task_layer_options(cfg, c.map()).queues);
+    }
+    long n = 0;  // executed moves against a lane
+    const auto& plan = c.plan();
+    for (size_t t = 1; t < plan.size(); ++t)
+      for (size_t a = 0; a < plan[t].size(); ++a)
+        n += plan[t][a] != plan[t - 1][a] && !lanes->adjacent(plan[t - 1][a], plan[t][a]);
+    against.push_back(n);
+  }
+  EXPECT_GT(against[0], 0);  // off: AGVs drive up the lanes
+  EXPECT_EQ(against[1], 0);
+  Config small = lifelong_config("oneway_small", 10);
+  small.tasks.queue_capacity = 1;
+  small.tasks.queue_length = 3;
+  small.tasks.queue_one_way = true;
+  try {
+    Controller c(small);
+    c.run();
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("tasks.queues.one_way: one-way queue lanes: the lane of the station at cell"), std::string::npos)
+        << e.what();
   }
 }
 
@@ -235,7 +321,20 @@ TEST(ControllerLifelong, ParkingAndQueueErrorsAreOneLine)
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 2, admission: 1}\n"),
             "t.yaml: tasks.queues.admission: must be >= capacity (2), 0 or -1, got 1");
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: 3\n"),
-            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, in_line: B, leavers_first: B, idle_clear: B}");
+            "t.yaml: tasks.queues: expected a mapping {capacity: K, length: L, admission: A, fifo: B, clear_after: N, jam_after: N, one_way: B, in_line: B, leavers_first: B, idle_clear: B}");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, jam_after: -1}\n"),
+            "t.yaml: tasks.queues.jam_after: must be in 0..1000000000, got -1");
+  EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, one_way: 2}\n"),
+            "t.yaml: tasks.queues.one_way: expected true or false, got '2'");
+  EXPECT_EQ(config_error(kNetAdd + ll + "output: {queue_trace: -3}\n"), "t.yaml: output.queue_trace: must be in 0..1073741824, got -3");
+  {
+    const Config d = parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS);
+    EXPECT_EQ(d.tasks.queue_jam_after, 0);  // both off by default
+    EXPECT_FALSE(d.tasks.queue_one_way);
+    const Config e = parse_config(kNetAdd + ll + "  queues: {capacity: 1, jam_after: 80, one_way: true}\n", "t.yaml", RTLACAM_CONFIGS);
+    EXPECT_EQ(e.tasks.queue_jam_after, 80);
+    EXPECT_TRUE(e.tasks.queue_one_way);
+  }
   EXPECT_EQ(config_error(kNetAdd + ll + "  queues: {capacity: 1, clear_after: -5}\n"),
             "t.yaml: tasks.queues.clear_after: must be in 0..1000000000, got -5");
   EXPECT_EQ(parse_config(kNetAdd + ll + "  queues: {capacity: 1}\n", "t.yaml", RTLACAM_CONFIGS).tasks.queue_clear_after, 0);

@@ -272,6 +272,113 @@ TEST(StationQueues, AStationWhosePocketHoldsALeaverTooLongGivesUpItsPlacesUntilI
   }
 }
 
+// Jam clearing (QueueOptions::jam_after): an admitted agent outside the stub that comes no
+// nearer to its station for jam_after steps (here: an intruder stands in the one-wide queue
+// lane, nobody passes) makes the station give up its places; its agents wait unplaced (the
+// caller parks them off the lane) until the stub, mouth and queue cells are empty, or for
+// jam_after steps at most, and are then let in again in the old order. An admitted agent
+// that keeps coming nearer never triggers it. Off (jam_after 0), the places stay.
+TEST(StationQueues, AStationWhoseAdmittedAgentMakesNoProgressGivesUpItsPlacesUntilItsLaneIsEmpty)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  for (int jam_after : {0, 3})
+    for (bool intruder_leaves : {true, false}) {
+      QueueOptions o{1, 4, 0, true, 0};
+      o.jam_after = jam_after;
+      StationQueues q(g, {s}, o);
+      ASSERT_EQ(q.queue_cells(0), (std::vector<Vertex>{g.at(3, 3), g.at(3, 4), g.at(3, 5), g.at(3, 6)}));
+      // a0 idle in the lane, a1 below it (admitted), a2 farther off (queued).
+      Config pos{g.at(3, 4), g.at(3, 7), g.at(0, 7)};
+      std::vector<Vertex> errand{-1, s, s};
+      Config goals(3);
+      std::vector<char> unplaced;
+      auto apply = [&] {
+        for (int a = 0; a < 3; ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
+        q.apply(errand, pos, goals, unplaced);
+      };
+      for (int k = 0; k < 4; ++k) apply();
+      ASSERT_EQ(q.admitted(0), (std::vector<int>{1}));
+      EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
+      apply();  // a1 watched since the 2nd call: 3 calls without coming nearer
+      if (jam_after == 0) {
+        EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+        EXPECT_EQ(q.clearings(), 0);
+        continue;
+      }
+      EXPECT_TRUE(q.admitted(0).empty());
+      EXPECT_TRUE(q.waiting(0).empty());
+      EXPECT_EQ(unplaced, (std::vector<char>{0, 1, 1}));
+      EXPECT_EQ(q.clearings(), 1);
+      EXPECT_EQ(q.jam_clearings(), 1);
+      EXPECT_TRUE(q.clearing(0));
+      if (intruder_leaves) {
+        apply();
+        EXPECT_TRUE(q.clearing(0));  // a0 still in the lane
+        pos[0] = g.at(0, 2);
+        apply();  // the lane is empty: a1 (the older request) first again
+      } else {
+        for (int k = 0; k < 2; ++k) apply();
+        EXPECT_TRUE(q.clearing(0));
+        apply();  // jam_after calls: the places come back though a0 stayed
+      }
+      EXPECT_FALSE(q.clearing(0)) << intruder_leaves;
+      EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+      EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
+      EXPECT_EQ(goals[2], g.at(3, 3));
+    }
+  // Progress resets the watch: a1 one cell nearer every second call never jams.
+  QueueOptions o{1, 4, 0, true, 0};
+  o.jam_after = 3;
+  StationQueues q(g, {s}, o);
+  Config pos{g.at(0, 2), g.at(0, 7), g.at(5, 7)};
+  const std::vector<Vertex> path{g.at(1, 7), g.at(2, 7), g.at(3, 7), g.at(3, 6), g.at(3, 5), g.at(3, 4)};
+  Config goals(3);
+  std::vector<char> unplaced;
+  for (size_t k = 0; k < 2 * path.size(); ++k) {
+    if (k % 2 == 1) pos[1] = path[k / 2];
+    for (int a = 0; a < 3; ++a) goals[a] = a == 1 ? s : pos[a];
+    q.apply({-1, s, -1}, pos, goals, unplaced);
+  }
+  EXPECT_EQ(q.clearings(), 0);
+  EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
+}
+
+// One-way queue lanes (QueueOptions::one_way): on a lane cell the only move is towards the
+// station, the mouth no longer leads into the lane, and the lane is entered from its far end;
+// every other arc stays. A lane that is the only way between two parts of the net is refused.
+TEST(StationQueues, OneWayQueueLanesLeadOnlyTowardsTheStation)
+{
+  // stub() with a second picking aisle at x = 6: the way down once the lane at x = 3 is one-way.
+  const planner::Graph g = ttest::grid({"###.####", "###.####", "........", "###.##.#", "###.##.#", "###.##.#", "###.##.#", "........"});
+  const Vertex s = g.at(3, 0);
+  QueueOptions o{1, 4};
+  const StationQueues q(g, {s}, o);
+  ASSERT_EQ(q.queue_cells(0), (std::vector<Vertex>{g.at(3, 3), g.at(3, 4), g.at(3, 5), g.at(3, 6)}));
+  ASSERT_EQ(q.mouth(0), g.at(3, 2));
+  const planner::Graph d = one_way_queue_lanes(g, {s}, o);
+  auto arc = [&](int x0, int y0, int x1, int y1) { return d.adjacent(d.at(x0, y0), d.at(x1, y1)); };
+  EXPECT_TRUE(arc(3, 3, 3, 2));   // q1 -> mouth
+  EXPECT_FALSE(arc(3, 2, 3, 3));  // mouth -> q1: no way up the lane from the mouth
+  EXPECT_TRUE(arc(3, 4, 3, 3));
+  EXPECT_FALSE(arc(3, 3, 3, 4));
+  EXPECT_TRUE(arc(3, 7, 3, 6));   // into the lane from its far end
+  EXPECT_FALSE(arc(3, 6, 3, 7));
+  EXPECT_TRUE(arc(3, 1, 3, 2) && arc(3, 2, 3, 1));  // the stub and the aisles stay two-way
+  EXPECT_TRUE(arc(6, 3, 6, 4) && arc(6, 4, 6, 3));
+  EXPECT_TRUE(d.directed());
+  EXPECT_EQ(d.num_one_way(), 5u);
+  EXPECT_TRUE(d.reaches(g.at(3, 2), g.at(3, 7)));  // down by the other aisle
+  EXPECT_TRUE(d.reaches(g.at(3, 7), s));
+  // stub() alone: the lane is the only way between the two cross aisles.
+  try {
+    one_way_queue_lanes(stub(), {s}, o);
+    ADD_FAILURE() << "expected a refusal";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("cuts the net"), std::string::npos) << e.what();
+  }
+}
+
 // A parking cell on the cells of a station in use (its queue laid along a parking lane) is not
 // used, and an agent parked there leaves: it would block the queue it stands on. While the
 // station is idle the cell is a parking cell like any other.

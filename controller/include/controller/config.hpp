@@ -179,6 +179,8 @@ struct TasksSection {
   // queue cells per station, pool admission limit (0: capacity + length, -1: none).
   int queue_capacity = 0, queue_length = 4, queue_admission = 0;
   int queue_clear_after = 0;  // tasks::QueueOptions::clear_after (0: off)
+  int queue_jam_after = 0;    // tasks::QueueOptions::jam_after (0: off)
+  bool queue_one_way = false; // tasks::QueueOptions::one_way
   bool queue_in_line = false;  // tasks::QueueOptions::in_line (default true with solver epibt: config.cpp)
   bool queue_leavers_first = false;  // tasks::QueueOptions::leavers_first
   bool queue_idle_clear = false;     // tasks::QueueOptions::idle_clear (off by default: docs/twin_bench.md s38-20f)
@@ -266,6 +268,7 @@ struct OutputSection {
   // 0: 2^18 vertex ids' worth (1 MB), at least 64 configurations.
   int plan_keep = 0;
   bool congestion = true;  // congestion.png (congestion.hpp)
+  int queue_trace = 0;     // lifelong with station queues: queue_trace.txt every N ticks (tasks/queue_trace.hpp); 0 = none
   std::vector<double> gui_snapshots;  // run.gui: sumo-gui writes gui_<t>.png at these simulated seconds
 };
 

@@ -121,7 +121,8 @@ struct Metrics {
   // heading for its errand), and at the end the idle AGVs and those of them on a parking cell.
   int max_heading = 0;
   long long queued_ticks = 0;
-  long clearings = 0;  // station pockets cleared (tasks.queues.clear_after)
+  long clearings = 0;  // station pockets cleared (tasks.queues.clear_after, jam_after)
+  long jam_clearings = 0;  // of those, jams cleared (tasks.queues.jam_after)
   long clearing_steps = 0;   // steps stations spent clearing, summed over stations
   int longest_clearing = 0;  // the longest clearing in steps
   int idle_at_end = 0, parked_at_end = 0;

@@ -120,7 +120,8 @@ struct EpochCounts {
   long long max_goal_ticks = 0;  // longest any agent kept one goal, idle ones too (open ones to now)
   int max_heading = 0;           // most busy agents heading for one errand cell at once
   long long queued_ticks = 0;    // agent-steps busy, on their goal, that goal not the errand's cell (a queue)
-  long clearings = 0;            // station pockets cleared (tasks.queues.clear_after), so far
+  long clearings = 0;            // station pockets cleared (tasks.queues.clear_after, jam_after), so far
+  long jam_clearings = 0;        // of those, jams cleared (tasks.queues.jam_after)
   long clearing_steps = 0;       // steps stations spent clearing, summed over stations
   int longest_clearing = 0;      // the longest clearing in steps (an open one to now)
   int idle = 0, parked = 0;      // at the last count: agents without a task, those of them on a parking cell

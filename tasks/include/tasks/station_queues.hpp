@@ -97,6 +97,31 @@ struct QueueOptions {
   // (docs/twin_bench.md, session 38; session 36 found it mixed for pibt-rot on
   // large_warehouse_parking: controller/README.md, "Tried and dropped").
   bool idle_clear = false;
+  // Jam clearing (0: off): a station whose admitted agent, outside the station's pocket, has
+  // come no nearer to it (graph distance) for this many consecutive steps gives up its places
+  // as pocket clearing does (clear_after): its admitted and queued agents wait parked, off the
+  // reserved cells, until its pocket, mouth and queue cells hold nobody, or for this many
+  // steps at most; requests keep their order (fifo). Why: a queue lane is a one-wide picking
+  // aisle that other agents also cross. Traced in SUMO on the huge warehouse with epibt
+  // (session 39, 1000 AGVs, p = 0.01): agents queued for other stations and idle ones stood
+  // in drop31's lane between its admitted AGV and the mouth, its queue behind them, nobody
+  // able to pass; the station made no errand for 2246 ticks. Queued agents stand on their
+  // goals and rank high there, so epibt never backs the line off; giving up the places does.
+  // Measured there (N = 100, four seeds): last/first 1000 ticks 0.69 -> 0.75 on average, one seed
+  // worse (docs/twin_bench.md "Session 39"), so off by default.
+  int jam_after = 0;
+  // One-way queue lanes (off: false): the planners' graph has each station's queue lane
+  // one-way towards the station (one_way_queue_lanes() below), so nobody walks a lane
+  // against its queue. Why: a lane is a one-wide picking aisle, and the shortest way out of
+  // a station after its errand often runs up that very aisle, head-on into the queue; queued
+  // agents stand on their goals and rank high, so the one leaving (or a passer-by) is walled
+  // in. Traced in SUMO on the huge warehouse with epibt (session 39, 1000 AGVs, p = 0.01):
+  // agents that had just dropped at drop31 stood in its lane with their next errands
+  // elsewhere, between its admitted AGV and the mouth, the queue behind them; the station
+  // made no errand for 2246 ticks, and such jams piled up over the run. Measured there (four
+  // seeds): worse on every seed (last/first 0.69 -> 0.61 on average): the upward traffic meets
+  // the downward in the other aisles instead (docs/twin_bench.md "Session 39"), so off by default.
+  bool one_way = false;
   bool on() const { return capacity > 0; }
 };
 
@@ -104,6 +129,16 @@ struct QueueOptions {
 // --queue-in-line and Python's queues): on for epibt, which cannot undo a one-wide queue lane out
 // of request order (session 38, docs/twin_bench.md); request order for the others.
 inline bool in_line_by_default(const std::string& solver) { return solver == "epibt"; }
+
+// `g` with every station's queue lane one-way towards the station (QueueOptions::one_way): on a
+// queue cell the only move is to the next cell towards the station (the mouth after q1), and
+// the mouth no longer leads into q1; a lane is entered from its far end (or from the side)
+// only. Stations, pockets and their lanes as StationQueues(g, stations, o) lays them out;
+// vertices, positions, grid view and move costs are kept. Throws std::invalid_argument
+// naming a station if the result is not strongly connected (an errand could then be
+// unreachable: a lane that is the only way between two parts of the net).
+planner::Graph one_way_queue_lanes(const planner::Graph& g, const std::vector<planner::Vertex>& stations,
+                                   const QueueOptions& o);
 
 class StationQueues {
  public:
@@ -120,6 +155,8 @@ class StationQueues {
   int station_index(planner::Vertex v) const;  // -1: not a station
   int num_stations() const { return static_cast<int>(st_.size()); }
   planner::Vertex station(int i) const { return st_[i].cell; }
+  // Where station i's queue starts from: its pocket's junction, or the station itself.
+  planner::Vertex mouth(int i) const { return st_[i].mouth; }
   // The queue cells of station i, q1 first.
   const std::vector<planner::Vertex>& queue_cells(int i) const { return st_[i].queue; }
   // Pool admission: tasks held at once with an errand left at station i (-1: no limit).
@@ -141,6 +178,8 @@ class StationQueues {
   bool clearing(int i) const { return st_[i].clearing; }
   // Times a station gave up its places to clear its pocket (clear_after).
   long clearings() const { return clearings_; }
+  // Of those, jam clearings (jam_after).
+  long jam_clearings() const { return jam_clearings_; }
   // Steps the stations spent clearing (summed over stations), and the longest clearing so
   // far in steps (one still going counts to now).
   long clearing_steps() const { return clearing_steps_; }
@@ -157,6 +196,10 @@ class StationQueues {
     int blocked = 0;        // consecutive apply() calls with a leaver in the pocket
     bool clearing = false;  // places given up until the pocket is empty (clear_after)
     int cleared_for = 0;    // apply() calls in the current clearing
+    bool jam = false;       // the clearing is a jam clearing (jam_after)
+    int jam_agent = -1;     // the admitted agent watched for progress (jam_after)
+    int32_t jam_best = 0;   // its nearest distance to the station so far
+    int jam_since = 0;      // apply() calls since it came nearer
   };
   void build_queue(Station& s);
   void drop_place(int agent);
@@ -174,6 +217,7 @@ class StationQueues {
   std::vector<long> asked_;        // per agent: that request's stamp (a counter of requests)
   long requests_ = 0;
   long clearings_ = 0;
+  long jam_clearings_ = 0;
   long clearing_steps_ = 0;
   int longest_clearing_ = 0;
   std::vector<uint8_t> in_use_;           // in_use_cells()
