@@ -114,8 +114,16 @@ void Run::prepare()
       // check of this run uses; SUMO's lanes stay as they are.
       std::vector<planner::Vertex> stations;
       for (const std::vector<planner::Vertex>& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
+      // A station named as the user knows it: its SUMO stop, else the cell's place on the net.
+      auto name = [&](planner::Vertex v) {
+        const gridify::Cell& cell = c_.map_.cells[v];
+        if (!cell.stations.empty()) return "'" + c_.map_.stations[cell.stations[0]].id + "'";
+        char xy[64];
+        std::snprintf(xy, sizeof xy, "(%.1f, %.1f)", cell.x, cell.y);
+        return std::string("the cell at ") + xy;
+      };
       try {
-        c_.map_.graph = tasks::one_way_queue_lanes(c_.map_.graph, stations, q);
+        c_.map_.graph = tasks::one_way_queue_lanes(c_.map_.graph, stations, q, name);
       } catch (const std::invalid_argument& e) {
         throw ConfigError(cfg_.path + ": tasks.queues.one_way: " + e.what());
       }

@@ -298,7 +298,7 @@ void StationQueues::apply(const std::vector<planner::Vertex>& errand, const plan
 }
 
 planner::Graph one_way_queue_lanes(const planner::Graph& g, const std::vector<planner::Vertex>& stations,
-                                   const QueueOptions& o)
+                                   const QueueOptions& o, const std::function<std::string(planner::Vertex)>& name)
 {
   const StationQueues q(g, stations, o);
   std::vector<planner::Vertex> toward(g.size(), -1);  // per queue cell: its next cell towards the station
@@ -316,8 +316,9 @@ planner::Graph one_way_queue_lanes(const planner::Graph& g, const std::vector<pl
   if (count > before)
     for (int i = 0; i < q.num_stations(); ++i)
       if (comp[q.station(i)] != comp[0] || (!q.queue_cells(i).empty() && comp[q.queue_cells(i).back()] != comp[q.station(i)]))
-        throw std::invalid_argument("one-way queue lanes: the lane of the station at cell " + std::to_string(q.station(i)) +
-                                    " cuts the net (" + std::to_string(count) + " strongly connected parts)");
+        throw std::invalid_argument("one-way queue lanes: the lane of the station at " +
+                                    (name ? name(q.station(i)) : "cell " + std::to_string(q.station(i))) + " cuts the net (" +
+                                    std::to_string(count) + " strongly connected parts)");
   if (count > before) throw std::invalid_argument("one-way queue lanes cut the net (" + std::to_string(count) + " strongly connected parts)");
   return d;
 }

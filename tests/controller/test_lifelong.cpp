@@ -278,7 +278,8 @@ TEST(ControllerLifelong, OneWayQueueLanesAreNeverDrivenAgainst)
     c.run();
     ADD_FAILURE() << "expected a refusal";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("tasks.queues.one_way: one-way queue lanes: the lane of the station at cell"), std::string::npos)
+    // Named as in the net: the station's SUMO stop.
+    EXPECT_NE(std::string(e.what()).find("tasks.queues.one_way: one-way queue lanes: the lane of the station at '"), std::string::npos)
         << e.what();
   }
 }

@@ -35,6 +35,7 @@
 // Goals change only when the task manager calls apply() (its start() and update(), every
 // step while queues are on: a way out that clears is no completion); the task manager
 // then starts a new epoch if any goal changed (TaskManager::goals_changed).
+#include <functional>
 #include <memory>
 #include <string>
 #include <unordered_map>
@@ -135,10 +136,12 @@ inline bool in_line_by_default(const std::string& solver) { return solver == "ep
 // the mouth no longer leads into q1; a lane is entered from its far end (or from the side)
 // only. Stations, pockets and their lanes as StationQueues(g, stations, o) lays them out;
 // vertices, positions, grid view and move costs are kept. Throws std::invalid_argument
-// naming a station if the result is not strongly connected (an errand could then be
-// unreachable: a lane that is the only way between two parts of the net).
+// naming a station (`name`: how to name a cell to the user; default "cell <id>") if the
+// result is not strongly connected (an errand could then be unreachable: a lane that is the
+// only way between two parts of the net).
 planner::Graph one_way_queue_lanes(const planner::Graph& g, const std::vector<planner::Vertex>& stations,
-                                   const QueueOptions& o);
+                                   const QueueOptions& o,
+                                   const std::function<std::string(planner::Vertex)>& name = {});
 
 class StationQueues {
  public:
