@@ -433,10 +433,8 @@ struct TaskCli {
   planner::Graph graph(const planner::Graph& g, const tasks::TaskFile& file) const
   {
     if (!o.queues.on() || !o.queues.one_way) return g;
-    std::vector<planner::Vertex> stations;
-    for (const std::vector<planner::Vertex>& t : file.tasks) stations.insert(stations.end(), t.begin(), t.end());
     try {
-      return tasks::one_way_queue_lanes(g, stations, o.queues);
+      return tasks::one_way_queue_lanes(g, file.errand_cells(), o.queues);
     } catch (const std::invalid_argument& e) {
       throw planner::InputError(std::string("--queue-one-way: ") + e.what());
     }

@@ -101,19 +101,12 @@ void Run::prepare()
   std::unique_ptr<tasks::FreeFlowBound> free_flow;  // lifelong: given to the task layer at its start
   if (cfg_.tasks.lifelong()) {
     const std::shared_ptr<const tasks::TaskFile> file = make_task_file(cfg_, c_.map_);
-    if (cfg_.tasks.urgency_mouth_cost > 0) {
-      // Routing past stations costs more (tasks/stub_mouths.hpp): every distance table on
-      // this graph (planner, assigners) sees it; the free-flow bound keeps the driven graph.
-      drive_graph_ = std::make_unique<planner::Graph>(c_.map_.graph);
-      std::vector<planner::Vertex> stations;
-      for (const std::vector<planner::Vertex>& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
-      c_.map_.graph.set_move_costs(tasks::mouth_costs(c_.map_.graph, stations, cfg_.tasks.urgency_mouth_cost));
-    }
+    const std::vector<planner::Vertex> stations = file->errand_cells();
     if (const tasks::QueueOptions q = task_layer_options(cfg_, c_.map_).queues; q.on() && q.one_way) {
       // One-way queue lanes (tasks/station_queues.hpp): the graph every planner, table and
-      // check of this run uses; SUMO's lanes stay as they are.
-      std::vector<planner::Vertex> stations;
-      for (const std::vector<planner::Vertex>& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
+      // check of this run uses; SUMO's lanes stay as they are. Before the mouth costs, so the
+      // driven graph below is a copy of it (neither rule reads the other: the lanes ignore move
+      // costs, the mouths look along arcs both ways).
       // A station named as the user knows it: its SUMO stop, else the cell's place on the net.
       auto name = [&](planner::Vertex v) {
         const gridify::Cell& cell = c_.map_.cells[v];
@@ -127,7 +120,12 @@ void Run::prepare()
       } catch (const std::invalid_argument& e) {
         throw ConfigError(cfg_.path + ": tasks.queues.one_way: " + e.what());
       }
-      if (drive_graph_) *drive_graph_ = tasks::one_way_queue_lanes(*drive_graph_, stations, q);
+    }
+    if (cfg_.tasks.urgency_mouth_cost > 0) {
+      // Routing past stations costs more (tasks/stub_mouths.hpp): every distance table on
+      // this graph (planner, assigners) sees it; the free-flow bound keeps the driven graph.
+      drive_graph_ = std::make_unique<planner::Graph>(c_.map_.graph);
+      c_.map_.graph.set_move_costs(tasks::mouth_costs(c_.map_.graph, stations, cfg_.tasks.urgency_mouth_cost));
     }
     tm_ = make_task_manager(cfg_, c_.map_, file);
     // The free-flow bound (tasks/free_flow.hpp) prices an errand's shortest path as the

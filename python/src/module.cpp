@@ -175,10 +175,8 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   // queues one_way: the run plans on the one-way queue lanes (tasks/station_queues.hpp).
   const Graph g = [&] {
     if (!layer.queues.on() || !layer.queues.one_way) return in.g;
-    std::vector<Vertex> stations;
-    for (const std::vector<Vertex>& t : in.tasks->tasks) stations.insert(stations.end(), t.begin(), t.end());
     try {
-      return one_way_queue_lanes(in.g, stations, layer.queues);
+      return one_way_queue_lanes(in.g, in.tasks->errand_cells(), layer.queues);
     } catch (const std::invalid_argument& e) {
       throw InputError(std::string("queues.one_way: ") + e.what());
     }

@@ -226,9 +226,7 @@ void TaskManager::set_queues(const planner::Graph& g, const QueueOptions& option
 {
   queues_.reset();
   if (!options.on()) return;
-  std::vector<planner::Vertex> cells;
-  for (const std::vector<planner::Vertex>& t : file_->tasks) cells.insert(cells.end(), t.begin(), t.end());
-  queues_ = std::make_unique<StationQueues>(g, std::move(cells), options);
+  queues_ = std::make_unique<StationQueues>(g, file_->errand_cells(), options);
   if (!parking_) parking_ = std::make_unique<Parking>(g, std::vector<planner::Vertex>{});
 }
 

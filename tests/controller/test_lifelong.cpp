@@ -241,12 +241,7 @@ TEST(ControllerLifelong, OneWayQueueLanesAreNeverDrivenAgainst)
   for (bool one_way : {false, true}) {
     // The large warehouse with queues (8 cells down each station's picking aisle), 60 AGVs:
     // the small one's lanes are the only links between its aisles (one_way refuses it).
-    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/large_warehouse_queues.yaml");
-    cfg.output.dir = temp_dir(one_way ? "oneway_on" : "oneway_off");
-    cfg.run.progress_s = 0;
-    cfg.run.max_ticks = 300;
-    cfg.planner.budget_ms = 0;
-    cfg.planner.expansions = 20;
+    Config cfg = ctest_util::shipped_config("large_warehouse_queues.yaml", one_way ? "oneway_on" : "oneway_off", 300, 20);
     cfg.fleet.count = 60;
     cfg.tasks.queue_one_way = one_way;
     Controller c(cfg);
@@ -254,12 +249,9 @@ TEST(ControllerLifelong, OneWayQueueLanesAreNeverDrivenAgainst)
     expect_clean_lifelong_run(cfg, c, m);  // the executed plan is valid on the run's graph
     EXPECT_GE(m.errands_finished, 10);
     EXPECT_EQ(c.map().graph.directed(), one_way);
-    if (!lanes) {
-      std::vector<planner::Vertex> stations;
-      const std::shared_ptr<const tasks::TaskFile> file = make_task_file(cfg, c.map());
-      for (const auto& t : file->tasks) stations.insert(stations.end(), t.begin(), t.end());
-      lanes = tasks::one_way_queue_lanes(c.map().graph, stations, task_layer_options(cfg, c.map()).queues);
-    }
+    if (!lanes)
+      lanes = tasks::one_way_queue_lanes(c.map().graph, make_task_file(cfg, c.map())->errand_cells(),
+                                         task_layer_options(cfg, c.map()).queues);
     long n = 0;  // executed moves against a lane
     const auto& plan = c.plan();
     for (size_t t = 1; t < plan.size(); ++t)

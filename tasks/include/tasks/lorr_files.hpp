@@ -21,6 +21,13 @@ struct TaskFile {
   std::vector<std::vector<planner::Vertex>> tasks;  // errand vertices per task
   std::vector<int> lines;                           // file line of each task
   int size() const { return static_cast<int>(tasks.size()); }
+  // Every task's errand vertices in file order, repeats kept: the stations (errand cells) of the file.
+  std::vector<planner::Vertex> errand_cells() const
+  {
+    std::vector<planner::Vertex> out;
+    for (const std::vector<planner::Vertex>& t : tasks) out.insert(out.end(), t.begin(), t.end());
+    return out;
+  }
 };
 
 TaskFile load_lorr_tasks(const std::string& path, const planner::Graph& g);
