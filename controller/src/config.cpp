@@ -233,11 +233,12 @@ static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver 
   const std::string key = "planner.rotation";
   if (!planner::plans_rotation(kind))
     r.fail(key, "only with a rotation solver (pibt-rot | epibt | wppl), not " + std::string(planner::to_string(kind)));
-  r.keys(n, key, {"back_last", "guidance", "guidance_costs", "traffic_flow", "depth", "lns_rounds", "priority",
-                  "pocket_exit", "leavers_first", "window", "neighbourhood"});
+  r.keys(n, key, {"back_last", "guidance", "guidance_costs", "traffic_flow", "depth", "lns_rounds", "revisit",
+                  "priority", "pocket_exit", "leavers_first", "window", "neighbourhood"});
   const std::pair<const char*, planner::Solver> only[] = {{"traffic_flow", planner::Solver::Epibt},
                                                          {"depth", planner::Solver::Epibt},
                                                          {"lns_rounds", planner::Solver::Epibt},
+                                                         {"revisit", planner::Solver::Epibt},
                                                          {"priority", planner::Solver::Epibt},
                                                          {"leavers_first", planner::Solver::Epibt},
                                                          {"window", planner::Solver::Wppl},
@@ -265,6 +266,7 @@ static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver 
   r.flag(n, key, "traffic_flow", out.traffic_flow);
   r.integer(n, key, "depth", out.depth, 3, 5);
   r.integer(n, key, "lns_rounds", out.lns_rounds, -1, 1000000);
+  r.integer(n, key, "revisit", out.revisit, 1, 1000000);
   r.choice(n, key, "priority", out.priority, {"distance", "age"});
   r.flag(n, key, "pocket_exit", out.pocket_exit);
   r.flag(n, key, "leavers_first", out.leavers_first);

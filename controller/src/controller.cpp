@@ -36,6 +36,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
     if (r.guidance == "arrows") opt.guidance = planner::arrow_guidance(g, r.guidance_costs[0], r.guidance_costs[1], r.guidance_costs[2]);
     opt.epibt.depth = r.depth;
     opt.epibt.lns_rounds = r.lns_rounds;
+    opt.epibt.revisit = r.revisit;
     opt.epibt.pocket_exit = r.pocket_exit;
     opt.epibt.leavers_first = r.leavers_first;
     opt.pocket_exit = r.pocket_exit;

@@ -14,6 +14,7 @@
 #include "controller/sumo_options.hpp"
 #include "gridify/gridifier.hpp"
 #include "controller_test_util.hpp"
+#include "planner/rotation/epibt.hpp"
 #include "planner/validator.hpp"
 #include "temp_path.hpp"
 
@@ -294,6 +295,15 @@ TEST(ControllerRotation, BadRotationOptionsAreOneLineErrors)
   EXPECT_TRUE(ok.planner.rotation.leavers_first);
   EXPECT_EQ(err("planner: {solver: pibt-rot, rotation: {leavers_first: false}}\n"),
             "t.yaml: planner.rotation.leavers_first: only with solver epibt, not pibt-rot");
+  // epibt's replans per robot per step (EpibtOptions::revisit): the planner's default unless set.
+  EXPECT_EQ(parse_config(net + "planner: {solver: epibt}\n", "t.yaml", RTLACAM_CONFIGS).planner.rotation.revisit,
+            planner::EpibtOptions{}.revisit);
+  EXPECT_EQ(parse_config(net + "planner: {solver: epibt, rotation: {revisit: 25}}\n", "t.yaml", RTLACAM_CONFIGS)
+                .planner.rotation.revisit,
+            25);
+  EXPECT_EQ(err("planner: {solver: epibt, rotation: {revisit: 0}}\n"), "t.yaml: planner.rotation.revisit: must be in 1..1000000, got 0");
+  EXPECT_EQ(err("planner: {solver: wppl, rotation: {revisit: 50}}\n"),
+            "t.yaml: planner.rotation.revisit: only with solver epibt, not wppl");
 
   // A net whose cells are not on a lattice: refused before SUMO starts, naming the net.
   Config diag = parse_config("sumo:\n  net: " + std::string(RTLACAM_CONTROLLER_DATA) +

@@ -93,6 +93,7 @@ struct RotationSection {
   bool traffic_flow = true;         // epibt: congestion-aware guide paths (traffic_flow.hpp)
   int depth = 3;                    // epibt: actions per operation (3..5)
   int lns_rounds = 20;              // epibt: LNS rounds after the pass (0 off)
+  int revisit = 100;                // epibt: replans of one robot per step at most (EpibtOptions::revisit)
   // Every rotation solver: nobody deeper into a dead-end pocket a robot must leave, leavers
   // first (pibt-rot, wppl: planner/rotation/pocket_exit.hpp; epibt: EpibtOptions::pocket_exit).
   bool pocket_exit = true;

@@ -273,6 +273,55 @@ TEST(Epibt, NobodyGoesDeeperIntoAPocketThatARobotMustLeave)
     }
 }
 
+// Two lines meet head-on in a one-wide corridor between two open halls: `down` robots facing
+// south bound for the lower hall, `up` robots facing north bound for the upper one. One line
+// must back out of the corridor; each robot of it needs two turns before it can move, so the
+// chain of operations that makes way ("RRF" down the line, "WWF" for the robot facing it) is
+// found only after the root's earlier candidates (FFF, FFW, WFF, ...) have failed, each of them
+// replanning the whole line again. With the paper's 10 replans per robot per step the line's
+// robots run out before the working chain is tried and the lines face each other for ever
+// (the 1000-AGV warehouse's picking aisles, docs/twin_bench.md "Session 40"); with the
+// default both halls fill.
+TEST(Epibt, ALineBacksOutOfACorridorForALineFacingIt)
+{
+  struct Case {
+    int down, up, length;
+  };
+  for (const Case c : {Case{5, 5, 10}, Case{3, 1, 10}, Case{6, 2, 12}, Case{8, 8, 20}})
+    for (int revisit : {10, planner::EpibtOptions{}.revisit}) {
+      std::vector<std::string> rows(3, "........");
+      rows.insert(rows.end(), static_cast<size_t>(c.length), "@@@.@@@@");
+      rows.insert(rows.end(), 3, "........");
+      const Graph g = test::grid(rows);
+      Config starts, goals;
+      std::vector<int> heads;
+      for (int k = 0; k < c.down; ++k)
+        starts.push_back(g.at(3, 3 + k)), goals.push_back(g.at((2 * k) % 8, c.length + 5 - k / 4)), heads.push_back(1);
+      for (int k = 0; k < c.up; ++k)
+        starts.push_back(g.at(3, c.down + 3 + k)), goals.push_back(g.at(7 - (2 * k) % 8, k / 4)), heads.push_back(3);
+      planner::EpibtOptions opt;
+      opt.priority = planner::EpibtOptions::Priority::Age;  // the warehouse configs' (controller: planner.rotation.priority)
+      opt.revisit = revisit;
+      Epibt p(g, starts, goals, opt);
+      p.set_headings(heads);
+      int t = 0;
+      for (; t < 300 && !p.at_goal(); ++t) {
+        const Config cur = p.current();
+        p.search(planner::Budget{});
+        ASSERT_EQ(planner::Validator::check_transition(g, cur, p.next()), "");
+        p.commit();
+      }
+      const std::string what = std::to_string(c.down) + " down, " + std::to_string(c.up) + " up, corridor " +
+                               std::to_string(c.length) + ", revisit " + std::to_string(revisit);
+      if (revisit == 10) {
+        EXPECT_FALSE(p.at_goal()) << what << ": the paper's limit no longer jams here";
+      } else {
+        EXPECT_TRUE(p.at_goal()) << what;
+        EXPECT_LT(t, 4 * (c.length + 8)) << what;  // a few corridor lengths, not a crawl
+      }
+    }
+}
+
 TEST(Epibt, BadInputIsRefused)
 {
   const Graph line = Graph::from_edges(2, {{0, 1}});

@@ -20,7 +20,7 @@
 //    taken; one that meets exactly one robot j of lower priority than the step's root
 //    (priority inheritance) takes j's place and replans j recursively (j may not take back
 //    what r now holds); on failure it is undone and the next candidate is tried. A robot
-//    may be replanned at most `revisit` times per step (paper: 10); a robot that keeps
+//    may be replanned at most `revisit` times per step (paper: 10; here 100); a robot that keeps
 //    nothing new keeps its old operation. Robots already placed this step are final.
 //  - Candidates: the paper's operation set (all F/R/C/W sequences of length `depth`, less
 //    turns that end an operation, a turn undone before a forward, three equal turns; one
@@ -61,7 +61,13 @@ namespace planner {
 struct EpibtOptions {
   enum class Priority { Distance, Age };
   int depth = 3;        // actions per operation (3..5; paper: 3; below 3 no half turn)
-  int revisit = 10;     // replans of one robot per step at most (paper: 10)
+  // Replans of one robot per step at most (paper: 10). 100: with 10, two lines that meet
+  // head-on in a one-wide corridor face each other for ever (each robot of the line that must
+  // back out needs two turns first; the root's failing candidates use up the line's replans
+  // before the chain that works is tried: test ALineBacksOutOfACorridorForALineFacingIt), which
+  // took the 1000-AGV warehouse to 0.59-0.77 of its first 1000 ticks (docs/twin_bench.md
+  // "Session 40").
+  int revisit = 100;
   bool inherit = true;  // start each step from the tails of last step's operations (paper: IO)
   bool wait_op = false; // WWW among every robot's candidates (paper: only as the kept operation)
   Priority priority = Priority::Distance;
