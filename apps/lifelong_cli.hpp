@@ -82,6 +82,9 @@ struct SolverCli {
     app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
+    app.add_option("--epibt-lns-revisit", ep.lns_revisit, "epibt: the same limit in the LNS rounds")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit,
                  "epibt: each step starts from the tails of the last step's operations")
         ->capture_default_str();

@@ -304,7 +304,7 @@ Epibt::Result Epibt::build(int i, double root_key, bool lns)
       return Accepted;
     }
     if (j == -2) continue;
-    if (placed_[j] == round_ || (visited_[j] == round_ && visits_[j] >= opt_.revisit) || (!lns && key_[j] >= root_key)) continue;
+    if (placed_[j] == round_ || (visited_[j] == round_ && visits_[j] >= (lns ? opt_.lns_revisit : opt_.revisit)) || (!lns && key_[j] >= root_key)) continue;
     unplace(j);
     place(i);
     const Result r = build(j, root_key, lns);

@@ -85,7 +85,7 @@ std::vector<std::string> Epibt::operations(int depth)
 
 void Epibt::set_options(const Options& opt)
 {
-  if (opt.revisit < 1) throw std::invalid_argument("epibt: revisit must be >= 1");
+  if (opt.revisit < 1 || opt.lns_revisit < 1) throw std::invalid_argument("epibt: revisit and lns_revisit must be >= 1");
   const std::vector<std::string> names = operations(opt.depth);
   opt_ = opt;
   ops_.clear();

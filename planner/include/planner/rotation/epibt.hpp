@@ -20,7 +20,7 @@
 //    taken; one that meets exactly one robot j of lower priority than the step's root
 //    (priority inheritance) takes j's place and replans j recursively (j may not take back
 //    what r now holds); on failure it is undone and the next candidate is tried. A robot
-//    may be replanned at most `revisit` times per step (paper: 10; here 100); a robot that keeps
+//    may be replanned at most `revisit` times per step (paper: 10; here 100, 10 in LNS); a robot that keeps
 //    nothing new keeps its old operation. Robots already placed this step are final.
 //  - Candidates: the paper's operation set (all F/R/C/W sequences of length `depth`, less
 //    turns that end an operation, a turn undone before a forward, three equal turns; one
@@ -68,6 +68,9 @@ struct EpibtOptions {
   // took the 1000-AGV warehouse to 0.59-0.77 of its first 1000 ticks (docs/twin_bench.md
   // "Session 40").
   int revisit = 100;
+  // The same limit in the LNS rounds (the paper's 10): LNS only improves a step that is valid
+  // already, and at 100 its rounds cost 3x (MR23-I-08, 800 robots: CPU p50 22 -> 69 ms per step).
+  int lns_revisit = 10;
   bool inherit = true;  // start each step from the tails of last step's operations (paper: IO)
   bool wait_op = false; // WWW among every robot's candidates (paper: only as the kept operation)
   Priority priority = Priority::Distance;
