@@ -65,8 +65,14 @@ void apply(const RotationSettings& s, const Graph& g, SolverOptions& so)
   if (std::string e = check(s); !e.empty()) throw std::invalid_argument(e);
   so.back_last = s.back_last;
   so.pocket_exit = s.pocket_exit;
-  so.guidance = s.guidance == "arrows" ? arrow_guidance(g, s.guidance_costs[0], s.guidance_costs[1], s.guidance_costs[2])
-                                       : Guidance{};
+  so.guidance = Guidance{};
+  if (s.guidance == "arrows") {
+    try {
+      so.guidance = arrow_guidance(g, s.guidance_costs[0], s.guidance_costs[1], s.guidance_costs[2]);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("guidance: ") + e.what());  // e.g. not a grid
+    }
+  }
   so.epibt.depth = s.depth;
   so.epibt.lns_rounds = s.lns_rounds;
   so.epibt.revisit = s.revisit;
