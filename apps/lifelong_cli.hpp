@@ -19,6 +19,7 @@
 #include "planner/error.hpp"
 #include "planner/rotation/guidance.hpp"
 #include "planner/rotation/traffic_flow.hpp"
+#include "planner/rotation_settings.hpp"
 #include "planner/solver.hpp"
 #include "policy/policy_preference.hpp"
 #include "policy/weights_file.hpp"
@@ -147,14 +148,13 @@ struct SolverCli {
     so.lacam.refine = refine;
     so.back_last = rot_back_last;
     so.pocket_exit = rot_pocket_exit;
-    if (!planner::plans_rotation(kind)) {
-      if (app.count("--guidance") && guidance != "none")
-        throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot, epibt or wppl)");
-      guidance = "none";
-    }
-    // wppl: arrows cost 5 % on MR23-I-04 and gain 1 % on I-03 (docs/rotation_lorr.md
-    // "Where it stands"): unguided unless asked.
-    if (kind == planner::Solver::Wppl && !app.count("--guidance")) guidance = "none";
+    if (!planner::plans_rotation(kind) && app.count("--guidance") && guidance != "none")
+      throw planner::InputError("--guidance needs a rotation-native solver (--solver pibt-rot, epibt or wppl)");
+    // Unless asked, the solver's defaults, shared with Python (planner/rotation_settings.hpp:
+    // arrows for pibt-rot and epibt, none for wppl; traffic flow for epibt).
+    const planner::RotationSettings defaults = planner::RotationSettings::lifelong(kind);
+    if (!app.count("--guidance")) guidance = defaults.guidance;
+    if (!app.count("--traffic-flow")) traffic_flow = defaults.traffic_flow ? "on" : "off";
     if (guidance != "none") {
       if (guidance == "arrows") {
         int along = 0, against = 0, turn = 0;
@@ -171,10 +171,7 @@ struct SolverCli {
       }
     }
     ep.priority = ep_priority == "age" ? planner::Epibt::Priority::Age : planner::Epibt::Priority::Distance;
-    if (traffic_flow == "on" && kind != planner::Solver::Epibt) {
-      if (app.count("--traffic-flow")) throw planner::InputError("--traffic-flow on needs --solver epibt");
-      traffic_flow = "off";  // the default applies to epibt only
-    }
+    if (traffic_flow == "on" && kind != planner::Solver::Epibt) throw planner::InputError("--traffic-flow on needs --solver epibt");
     if (traffic_flow == "on") {
       char end = 0;
       if (std::sscanf(tf_weights.c_str(), "%lf,%lf%c", &ep.tf.contraflow, &ep.tf.vertex, &end) != 2 ||

@@ -6,13 +6,18 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <climits>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "planner/error.hpp"
 #include "planner/movingai.hpp"
 #include "planner/plan_io.hpp"
 #include "planner/lacam/runner.hpp"
+#include "planner/rotation/traffic_flow.hpp"
+#include "planner/rotation_settings.hpp"
 #include "planner/solver.hpp"
 #include "planner/validator.hpp"
 #include "policy/policy_preference.hpp"
@@ -68,6 +73,79 @@ void each_key(const py::object& d, const std::string& what, Set set)
   for (const auto& [k, v] : d.cast<py::dict>()) {
     const std::string key = py::str(k);
     if (!set(key, v)) throw InputError(what + ": unknown key '" + key + "'");
+  }
+}
+
+// rotation= on top of `s` for `kind`: a dict of the SUMO YAML's planner.rotation keys
+// (planner/rotation_settings.hpp). An unknown key, a key `kind` does not read, a wrong type or
+// a value out of range is an InputError naming the key ("rotation.window: only with solver
+// wppl, not epibt").
+void read_rotation(const py::object& d, Solver kind, RotationSettings& s)
+{
+  if (d.is_none()) return;
+  if (!plans_rotation(kind))
+    throw InputError(std::string("rotation: only with a rotation solver (pibt-rot | epibt | wppl), not ") + to_string(kind));
+  if (!py::isinstance<py::dict>(d)) throw InputError("rotation: expected a dict of planner.rotation's keys");
+  const std::vector<std::string>& keys = rotation_keys();
+  bool costs = false;
+  for (const auto& [k, v] : d.cast<py::dict>()) {
+    const std::string key = py::str(k);
+    const std::string at = "rotation." + key;
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+      std::string names;
+      for (const std::string& n : keys) names += (names.empty() ? "" : " | ") + n;
+      throw InputError("rotation: unknown key '" + key + "' (" + names + ")");
+    }
+    if (std::string why = rotation_key_misuse(kind, key); !why.empty()) throw InputError(at + ": " + why);
+    auto integer = [&](const py::handle& x, const std::string& where) {
+      if (!py::isinstance<py::int_>(x) || py::isinstance<py::bool_>(x)) throw InputError(where + ": expected an integer");
+      long long n = 0;
+      try {
+        n = x.cast<long long>();
+      } catch (const py::cast_error&) {
+        n = LLONG_MAX;
+      }
+      if (n < INT_MIN || n > INT_MAX) throw InputError(where + ": " + std::string(py::str(x)) + " is out of range");
+      return static_cast<int>(n);
+    };
+    auto flag = [&]() {
+      if (!py::isinstance<py::bool_>(v)) throw InputError(at + ": expected True or False");
+      return v.cast<bool>();
+    };
+    auto text = [&]() {
+      if (!py::isinstance<py::str>(v)) throw InputError(at + ": expected a string");
+      return v.cast<std::string>();
+    };
+    if (key == "back_last") s.back_last = flag();
+    else if (key == "guidance") s.guidance = text();
+    else if (key == "guidance_costs") {
+      if (!(py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) || py::len(v) != 3)
+        throw InputError(at + ": expected [along, against, turn]");
+      const py::sequence c = v.cast<py::sequence>();
+      for (size_t i = 0; i < 3; ++i) s.guidance_costs[i] = integer(c[i], at + "[" + std::to_string(i) + "]");
+      costs = true;
+    } else if (key == "traffic_flow") s.traffic_flow = flag();
+    else if (key == "depth") s.depth = integer(v, at);
+    else if (key == "lns_rounds") s.lns_rounds = integer(v, at);
+    else if (key == "revisit") s.revisit = integer(v, at);
+    else if (key == "priority") s.priority = text();
+    else if (key == "pocket_exit") s.pocket_exit = flag();
+    else if (key == "leavers_first") s.leavers_first = flag();
+    else if (key == "window") s.window = integer(v, at);
+    else if (key == "neighbourhood") s.neighbourhood = integer(v, at);
+  }
+  if (costs && s.guidance != "arrows") throw InputError("rotation.guidance_costs: only with guidance 'arrows'");
+  if (std::string e = check(s); !e.empty()) throw InputError("rotation." + e);
+}
+
+// `s` into `so` for a rotation solver; nothing for a cell solver. InputError as read_rotation.
+void apply_rotation(Solver kind, const RotationSettings& s, const Graph& g, SolverOptions& so)
+{
+  if (!plans_rotation(kind)) return;
+  try {
+    apply(s, g, so);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(std::string("rotation.") + e.what());
   }
 }
 
@@ -162,9 +240,19 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
                     uint64_t budget_expansions, const std::string& mode, const std::string& assigner, uint64_t seed,
                     int agents, bool reassign, const std::string& policy_file, const py::object& battery,
                     const std::vector<Vertex>& chargers, int pool_size, int k_nearest, const py::object& queues,
-                    const py::object& urgency, const py::object& parking)
+                    const py::object& urgency, const py::object& parking, const std::optional<std::string>& action_model,
+                    const py::object& rotation)
 {
   using namespace tasks;
+  // Naming a rotation solver is enough: the action model follows from it (issue 20).
+  const Solver kind = parse_solver(solver);
+  const std::string actions = action_model ? *action_model : plans_rotation(kind) ? "rotation" : "grid4";
+  if (actions != "grid4" && actions != "rotation")
+    throw InputError("action_model: must be 'grid4' or 'rotation', not '" + actions + "'");
+  if (plans_rotation(kind) && actions == "grid4")
+    throw InputError("action_model 'grid4': solver " + solver + " plans rotation actions (leave action_model out, or 'rotation')");
+  RotationSettings rs = RotationSettings::lifelong(kind);  // rtlacam-lifelong's defaults
+  read_rotation(rotation, kind, rs);
   const LorrInstance in = load_lorr_instance(problem_file, agents, "agents=");
   const LorrProblem& pr = in.problem;
   const Config& starts = in.starts;
@@ -196,6 +284,8 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   }
   LifelongOptions opt;
   opt.solver.pref = pref.get();
+  apply_rotation(kind, rs, g, opt.solver);
+  opt.action_model = parse_action_model(actions);
   opt.steps = steps;
   opt.budget = Budget::time_ms(budget_ms);
   if (budget_expansions > 0) opt.budget.expansions = budget_expansions;
@@ -206,6 +296,15 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   }
   nlohmann::json j = lifelong_log(RunInfo{problem_file, solver, layer.mode, assigner, pr.team_size, budget_ms, seed}, r);
   if (pref) j["policy"] = policy_file;
+  // rtlacam-lifelong's solver fields (apps/lifelong_cli.hpp SolverCli::describe).
+  if (plans_rotation(kind) && rs.guidance == "arrows")
+    j["guidance"] = "arrows " + std::to_string(rs.guidance_costs[0]) + "," + std::to_string(rs.guidance_costs[1]) + "," +
+                    std::to_string(rs.guidance_costs[2]);
+  if (const TrafficFlowOptions& tf = opt.solver.epibt.tf; kind == Solver::Epibt && tf.on)
+    j["trafficFlow"] = {{"active", TrafficFlow::fits(starts.size(), g.size(), tf)},
+                        {"contraflow", tf.contraflow},
+                        {"vertex", tf.vertex},
+                        {"refresh", tf.refresh}};
   add_task_fields(j, *tm);
   return to_python(j);
 }
@@ -289,7 +388,10 @@ PYBIND11_MODULE(_rtlacam, m)
 
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
-           policy::PolicyPreference* pref, bool refine, const std::string& objective) {
+           policy::PolicyPreference* pref, bool refine, const std::string& objective, const py::object& rotation) {
+          const Solver kind = parse_solver(solver);
+          RotationSettings rs;  // the planners' own defaults, as before rotation= (no guidance, no traffic flow)
+          read_rotation(rotation, kind, rs);
           if (static_cast<int>(starts.size()) != static_cast<int>(goals.size()))
             throw std::invalid_argument("starts and goals differ in length");
           for (Vertex v : starts)
@@ -303,15 +405,20 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.lacam.free_first = refine && parse_solver(solver) == Solver::RtLacam;  // as rtlacam-bench
           opt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
-          return make_planner(parse_solver(solver), g, starts, goals, opt);
+          apply_rotation(kind, rs, g, opt);
+          return make_planner(kind, g, starts, goals, opt);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
-        py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc", py::keep_alive<0, 2>(),
-        py::keep_alive<0, 6>(),
+        py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
+        py::arg("rotation") = py::none(), py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
         "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan "
         "rotation actions on a grid, every robot facing east at the start); refine=False: the paper's RT-LaCAM "
         "(rtlacam-bench --no-refine --no-resumable), else RT-LaCAM* as the CLI; objective: what refinement lowers, 'soc' "
-        "(standard sum of costs) or 'loss' (sum of loss), as rtlacam-bench --objective");
+        "(standard sum of costs) or 'loss' (sum of loss), as rtlacam-bench --objective; rotation: pibt-rot, epibt, wppl "
+        "only, a dict of the SUMO YAML's planner.rotation keys (back_last, guidance: 'none' | 'arrows', guidance_costs: "
+        "[along, against, turn], traffic_flow, depth, lns_rounds, revisit, priority: 'distance' | 'age', pocket_exit, "
+        "leavers_first, window, neighbourhood; each only with the solver that reads it); unset keys keep the planners' "
+        "own defaults (no guidance, no traffic flow; lifelong() uses rtlacam-lifelong's)");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
@@ -368,8 +475,16 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("assigner") = "greedy", py::arg("seed") = 0, py::arg("agents") = 0, py::arg("reassign") = false,
         py::arg("policy") = "", py::arg("battery") = py::none(), py::arg("chargers") = std::vector<Vertex>{},
         py::arg("pool_size") = 0, py::arg("k_nearest") = 32, py::arg("queues") = py::none(),
-        py::arg("urgency") = py::none(), py::arg("parking") = py::none(),
+        py::arg("urgency") = py::none(), py::arg("parking") = py::none(), py::arg("action_model") = py::none(),
+        py::arg("rotation") = py::none(),
         "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
+        "action_model: 'grid4' | 'rotation' (LoRR's headings, a step per quarter turn); default 'rotation' for the "
+        "rotation solvers (pibt-rot, epibt, wppl: they need it), else 'grid4'. rotation: rotation solvers only, a dict "
+        "of the SUMO YAML's planner.rotation keys (back_last, guidance: 'none' | 'arrows', guidance_costs: [along, "
+        "against, turn], traffic_flow, depth, lns_rounds, revisit, priority: 'distance' | 'age', pocket_exit, "
+        "leavers_first, window, neighbourhood; each only with the solver that reads it); unset keys take "
+        "rtlacam-lifelong's defaults (arrows guidance for pibt-rot and epibt, none for wppl; traffic flow for epibt; "
+        "priority 'distance'). "
         "The task layer takes the SUMO controller's YAML options (tasks.*, fleet.battery): mode (tasks.assignment: "
         "roundrobin | pool; default the problem's), assigner, pool_size (0: the problem's), k_nearest, reassign; "
         "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo, in_line (default True with epibt), clear_after, jam_after, one_way, leavers_first); urgency: a dict of tasks.urgency's "

@@ -159,3 +159,90 @@ def test_lifelong_cli_sets_the_two_urgency_hints_apart_as_python_does():
         ref = json.loads(subprocess.run(cli + flags, capture_output=True, text=True, check=True).stdout)
         assert sig(logs[name]) == sig(ref), name
     assert sig(logs["stalls"]) != sig(logs["battery"])
+
+
+# The rotation solvers with their options (issue 20): rotation= takes the SUMO YAML's
+# planner.rotation keys, naming the solver sets the action model, and unset keys take
+# rtlacam-lifelong's defaults (planner/rotation_settings.hpp), so both give the same run.
+# 100 agents, 60 steps: enough traffic for every key to change the run.
+ROT_ARGS = dict(steps=60, budget_ms=1000, budget_expansions=5, seed=1, agents=100)
+ROT_CLI = ["--problem", PROBLEM, "--steps", "60", "--budget-ms", "1000", "--budget-expansions", "5", "--seed", "1",
+           "--agents", "100", "--action-model", "rotation", "--quiet"]
+
+
+def rot_sig(log):
+    return [log.get(k) for k in ("actionModel", "numTaskFinished", "numErrandFinished", "maxErrandTicks", "stallTicks",
+                                 "guidance", "trafficFlow")]
+
+
+@pytest.mark.parametrize("solver,rotation,flags", [
+    ("pibt-rot", None, []),
+    ("epibt", None, []),
+    ("wppl", None, []),
+    ("rtlacam", None, []),  # a cell solver under action_model="rotation": the rotation executor
+    ("pibt-rot", dict(back_last=False, guidance_costs=[1, 5, 2], pocket_exit=False),
+     ["--no-rot-back-last", "--guidance-costs", "1,5,2", "--no-rot-pocket-exit"]),
+    ("epibt", dict(guidance="none", traffic_flow=False, depth=4, lns_rounds=0, revisit=1, priority="age",
+                   pocket_exit=False, leavers_first=False),
+     ["--guidance", "none", "--traffic-flow", "off", "--epibt-depth", "4", "--epibt-lns", "0", "--epibt-revisit", "1",
+      "--epibt-priority", "age", "--no-epibt-pocket-exit", "--no-epibt-leavers-first"]),
+    ("wppl", dict(back_last=False, guidance="arrows", pocket_exit=False, window=5, neighbourhood=2),
+     ["--no-rot-back-last", "--guidance", "arrows", "--no-rot-pocket-exit", "--wppl-window", "5",
+      "--wppl-neighbourhood", "2"]),
+])
+def test_lifelong_rotation_solver_equals_the_app_with_the_same_options(solver, rotation, flags):
+    app = os.path.join(ROOT, "build", "apps", "rtlacam-lifelong")
+    if not os.path.exists(app):
+        pytest.skip("rtlacam-lifelong not built in build/")
+    extra = dict(action_model="rotation") if solver == "rtlacam" else {}
+    log = rtlacam.lifelong(PROBLEM, solver=solver, rotation=rotation, **ROT_ARGS, **extra)
+    ref = json.loads(subprocess.run([app, "--solver", solver] + ROT_CLI + flags, capture_output=True, text=True,
+                                    check=True).stdout)
+    assert rot_sig(log) == rot_sig(ref)
+    assert log["actionModel"] == "MAPF_T" and log["numPlannerErrors"] == 0 and log["numErrandFinished"] > 0
+    if rotation:  # the options make another run than the defaults
+        assert rot_sig(log) != rot_sig(rtlacam.lifelong(PROBLEM, solver=solver, **ROT_ARGS))
+
+
+def test_lifelong_every_rotation_key_reaches_its_solver():
+    # Each key a solver reads, set away from its default, changes that solver's run.
+    keys = {"pibt-rot": dict(back_last=False, guidance="none", guidance_costs=[1, 5, 2], pocket_exit=False),
+            "epibt": dict(guidance="none", guidance_costs=[1, 5, 2], traffic_flow=False, depth=4, lns_rounds=0,
+                          revisit=1, priority="age", pocket_exit=False, leavers_first=False),
+            "wppl": dict(back_last=False, guidance="arrows", pocket_exit=False, window=5, neighbourhood=2)}
+    for solver, each in keys.items():
+        base = rtlacam.lifelong(PROBLEM, solver=solver, **ROT_ARGS)["events"]
+        assert rtlacam.lifelong(PROBLEM, solver=solver, rotation={}, **ROT_ARGS)["events"] == base
+        for k, v in each.items():
+            assert rtlacam.lifelong(PROBLEM, solver=solver, rotation={k: v}, **ROT_ARGS)["events"] != base, (solver, k)
+
+
+def test_lifelong_rotation_bad_input_is_one_line_naming_the_key():
+    bad = [
+        (dict(solver="epibt", rotation=dict(window=5)), "rotation.window: only with solver wppl, not epibt"),
+        (dict(solver="pibt-rot", rotation=dict(revisit=10)), "rotation.revisit: only with solver epibt, not pibt-rot"),
+        (dict(solver="epibt", rotation=dict(back_last=False)), "rotation.back_last: only with solver pibt-rot or wppl"),
+        (dict(solver="rtlacam", rotation=dict(depth=4)), "rotation: only with a rotation solver .* not rtlacam"),
+        (dict(solver="epibt", rotation=dict(dpeth=4)), "rotation: unknown key 'dpeth'"),
+        (dict(solver="epibt", rotation="depth=4"), "rotation: expected a dict"),
+        (dict(solver="epibt", rotation=dict(depth="4")), "rotation.depth: expected an integer"),
+        (dict(solver="epibt", rotation=dict(depth=True)), "rotation.depth: expected an integer"),
+        (dict(solver="epibt", rotation=dict(traffic_flow=1)), "rotation.traffic_flow: expected True or False"),
+        (dict(solver="epibt", rotation=dict(priority=1)), "rotation.priority: expected a string"),
+        (dict(solver="epibt", rotation=dict(depth=7)), r"rotation.depth: must be in 3\.\.5, got 7"),
+        (dict(solver="epibt", rotation=dict(revisit=0)), r"rotation.revisit: must be in 1\.\.1000000, got 0"),
+        (dict(solver="wppl", rotation=dict(window=2**70)), "rotation.window: .* is out of range"),
+        (dict(solver="epibt", rotation=dict(priority="fifo")), "rotation.priority: must be distance or age"),
+        (dict(solver="pibt-rot", rotation=dict(guidance="map.guidance")), "rotation.guidance: must be none or arrows"),
+        (dict(solver="pibt-rot", rotation=dict(guidance_costs=[1, 0, 1])),
+         r"rotation.guidance_costs\[1\]: must be in 1\.\.60, got 0"),
+        (dict(solver="pibt-rot", rotation=dict(guidance_costs=[1, 3])), r"rotation.guidance_costs: expected \[along"),
+        (dict(solver="wppl", rotation=dict(guidance_costs=[1, 3, 1])),
+         "rotation.guidance_costs: only with guidance 'arrows'"),
+        (dict(solver="epibt", action_model="grid4"), "action_model 'grid4': solver epibt plans rotation actions"),
+        (dict(solver="rtlacam", action_model="hex"), "action_model: must be 'grid4' or 'rotation', not 'hex'"),
+    ]
+    for kw, msg in bad:
+        with pytest.raises(rtlacam.InputError, match=msg) as e:
+            rtlacam.lifelong(PROBLEM, steps=5, agents=5, **kw)
+        assert isinstance(e.value, ValueError) and "\n" not in str(e.value), kw

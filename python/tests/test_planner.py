@@ -66,6 +66,32 @@ def test_search_next_commit_reaches_the_goals_with_valid_moves(grid, scen, solve
     assert v.sum_of_costs >= ins.soc_lower_bound(grid)
 
 
+def test_make_planner_takes_the_rotation_options(grid, scen):
+    # rotation= (the SUMO YAML's planner.rotation keys) reaches each rotation solver; unset keys
+    # keep the planners' own defaults (no guidance, no traffic flow), as before rotation=.
+    ins = rtlacam.load_scen(scen, grid, 30)
+
+    def moves(solver, rotation=None):
+        p = rtlacam.make_planner(solver, grid, ins.starts, ins.goals, seed=1, rotation=rotation)
+        v = rtlacam.Validator(grid, ins.starts, ins.goals)
+        out = []
+        for _ in range(40):
+            p.search(expansions=5)
+            assert v.step(p.next()), v.error
+            out.append(p.next())
+            p.commit()
+        return out
+
+    for solver, key in (("pibt-rot", dict(guidance="arrows")), ("epibt", dict(depth=5)), ("wppl", dict(window=3))):
+        plain = moves(solver)
+        assert moves(solver, {}) == plain and moves(solver, dict(guidance="none")) == plain, solver
+        assert moves(solver, key) != plain, (solver, key)
+    with pytest.raises(rtlacam.InputError, match="rotation.window: only with solver wppl, not epibt"):
+        rtlacam.make_planner("epibt", grid, ins.starts, ins.goals, rotation=dict(window=5))
+    with pytest.raises(ValueError, match="rotation: only with a rotation solver .* not rtlacam"):
+        rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals, rotation={})
+
+
 def test_set_goals_starts_a_new_search_from_where_the_agents_are(grid, scen):
     ins = rtlacam.load_scen(scen, grid, 10)
     p = rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals)

@@ -1,11 +1,13 @@
 // The planner factory (planner/solver.hpp): names <-> Solver, the real-time planners it
-// builds (each one solving a small instance with valid moves), and its refusals.
+// builds (each one solving a small instance with valid moves), and its refusals; the rotation
+// solvers' options by the YAML's planner.rotation names (planner/rotation_settings.hpp).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <stdexcept>
 
 #include "grid.hpp"
+#include "planner/rotation_settings.hpp"
 #include "planner/solver.hpp"
 #include "planner/validator.hpp"
 
@@ -135,4 +137,64 @@ TEST(Solver, RotationSolversTakeOneStartHeadingPerRobot)
   EXPECT_THROW(make_planner(Solver::PibtRot, g, starts, goals, opt), std::invalid_argument);
   opt.headings = {0, 4};
   EXPECT_THROW(make_planner(Solver::Epibt, g, starts, goals, opt), std::invalid_argument);
+}
+
+TEST(Solver, RotationSettingsByTheYamlKeys)
+{
+  const Graph g = test::grid({"....", "...."});
+  // Value-initialised: the planners' own defaults, applied or not.
+  SolverOptions plain, o;
+  apply(RotationSettings{}, g, o);
+  EXPECT_TRUE(o.guidance.uniform());
+  EXPECT_EQ(o.epibt.tf.on, plain.epibt.tf.on);
+  EXPECT_EQ(o.epibt.depth, plain.epibt.depth);
+  EXPECT_EQ(o.epibt.revisit, plain.epibt.revisit);
+  EXPECT_EQ(o.epibt.priority, plain.epibt.priority);
+  EXPECT_EQ(o.wppl.window, plain.wppl.window);
+  EXPECT_EQ(o.back_last, plain.back_last);
+  // rtlacam-lifelong's: arrows for pibt-rot and epibt, none for wppl; traffic flow for epibt.
+  EXPECT_EQ(RotationSettings::lifelong(Solver::PibtRot).guidance, "arrows");
+  EXPECT_EQ(RotationSettings::lifelong(Solver::Epibt).guidance, "arrows");
+  EXPECT_EQ(RotationSettings::lifelong(Solver::Wppl).guidance, "none");
+  EXPECT_TRUE(RotationSettings::lifelong(Solver::Epibt).traffic_flow);
+  EXPECT_FALSE(RotationSettings::lifelong(Solver::PibtRot).traffic_flow);
+  // Every key reaches its field.
+  RotationSettings s;
+  s.back_last = s.pocket_exit = s.leavers_first = false;
+  s.guidance = "arrows";
+  s.traffic_flow = true;
+  s.depth = 4;
+  s.lns_rounds = 0;
+  s.revisit = 10;
+  s.priority = "age";
+  s.window = 9;
+  s.neighbourhood = 2;
+  apply(s, g, o);
+  EXPECT_FALSE(o.back_last || o.pocket_exit || o.epibt.pocket_exit || o.epibt.leavers_first);
+  EXPECT_FALSE(o.guidance.uniform());
+  EXPECT_TRUE(o.epibt.tf.on);
+  EXPECT_EQ(o.epibt.depth, 4);
+  EXPECT_EQ(o.epibt.lns_rounds, 0);
+  EXPECT_EQ(o.epibt.revisit, 10);
+  EXPECT_EQ(o.epibt.priority, EpibtOptions::Priority::Age);
+  EXPECT_EQ(o.wppl.window, 9);
+  EXPECT_EQ(o.wppl.neighbourhood, 2);
+  // Which solver reads which key.
+  EXPECT_EQ(rotation_key_misuse(Solver::Epibt, "window"), "only with solver wppl, not epibt");
+  EXPECT_EQ(rotation_key_misuse(Solver::Wppl, "revisit"), "only with solver epibt, not wppl");
+  EXPECT_EQ(rotation_key_misuse(Solver::Epibt, "back_last").rfind("only with solver pibt-rot or wppl", 0), 0u);
+  EXPECT_EQ(rotation_key_misuse(Solver::RtLacam, "guidance"), "only with a rotation solver (pibt-rot | epibt | wppl), not rtlacam");
+  for (const std::string& k : rotation_keys()) EXPECT_NE(rotation_key_misuse(Solver::Pibt, k), "") << k;
+  for (const char* k : {"guidance", "guidance_costs", "pocket_exit"})
+    for (Solver r : {Solver::PibtRot, Solver::Epibt, Solver::Wppl}) EXPECT_EQ(rotation_key_misuse(r, k), "") << k;
+  EXPECT_THROW(rotation_key_misuse(Solver::Epibt, "dpeth"), std::invalid_argument);
+  // Ranges; costs count only with arrows.
+  s.depth = 7;
+  EXPECT_EQ(check(s), "depth: must be in 3..5, got 7");
+  EXPECT_THROW(apply(s, g, o), std::invalid_argument);
+  s.depth = 3;
+  s.guidance_costs = {1, 0, 1};
+  EXPECT_EQ(check(s), "guidance_costs[1]: must be in 1..60, got 0");
+  s.guidance = "none";
+  EXPECT_EQ(check(s), "");
 }
