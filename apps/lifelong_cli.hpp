@@ -136,7 +136,7 @@ struct SolverCli {
   {
     const planner::Solver kind = planner::parse_solver(solver);
     if (planner::plans_rotation(kind) && !rotation)
-      throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: it needs --action-model rotation");
+      throw planner::InputError("--solver " + solver + " plans LoRR rotation actions: --action-model grid4 cannot run it (leave it out, or --action-model rotation)");
     if (planner::needs_policy(kind) && policy_file.empty()) throw planner::InputError("--solver cspibt needs --policy WEIGHTS");
     // The policy is told the goals by the planner (ActionPreference::set_goals).
     if (!policy_file.empty()) {

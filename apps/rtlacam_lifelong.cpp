@@ -92,6 +92,9 @@ int main(int argc, char** argv)
     const std::unique_ptr<TaskManager> tm = tc.make(pr, g, file);
 
     LifelongOptions opt;
+    // Naming a rotation solver is enough (as planner.solver in the YAML and Python's lifelong):
+    // the action model follows; --action-model grid4 with it stays an error.
+    if (!app.count("--action-model") && planner::plans_rotation(planner::parse_solver(sc.solver))) action_model = "rotation";
     sc.apply(app, g, starts.size(), action_model == "rotation", opt.solver);
     opt.prefetch = prefetch;
     opt.max_dist_tables = max_dist_tables;

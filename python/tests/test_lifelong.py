@@ -208,13 +208,16 @@ def test_lifelong_every_rotation_key_reaches_its_solver():
     # Each key a solver reads, set away from its default, changes that solver's run.
     keys = {"pibt-rot": dict(back_last=False, guidance="none", guidance_costs=[1, 5, 2], pocket_exit=False),
             "epibt": dict(guidance="none", guidance_costs=[1, 5, 2], traffic_flow=False, depth=4, lns_rounds=0,
-                          revisit=1, priority="age", pocket_exit=False, leavers_first=False),
+                          priority="age", pocket_exit=False, leavers_first=False),
             "wppl": dict(back_last=False, guidance="arrows", pocket_exit=False, window=5, neighbourhood=2)}
     for solver, each in keys.items():
         base = rtlacam.lifelong(PROBLEM, solver=solver, **ROT_ARGS)["events"]
         assert rtlacam.lifelong(PROBLEM, solver=solver, rotation={}, **ROT_ARGS)["events"] == base
         for k, v in each.items():
             assert rtlacam.lifelong(PROBLEM, solver=solver, rotation={k: v}, **ROT_ARGS)["events"] != base, (solver, k)
+    # epibt's revisit limits its priority pass (its LNS rounds keep the paper's 10): without LNS.
+    no_lns = rtlacam.lifelong(PROBLEM, solver="epibt", rotation=dict(lns_rounds=0), **ROT_ARGS)["events"]
+    assert rtlacam.lifelong(PROBLEM, solver="epibt", rotation=dict(lns_rounds=0, revisit=1), **ROT_ARGS)["events"] != no_lns
 
 
 def test_lifelong_rotation_bad_input_is_one_line_naming_the_key():

@@ -100,10 +100,19 @@ TEST(EpibtLifelong, RefusedWithGrid4)
   LifelongOptions opt = rotation_options(10);
   opt.action_model = ActionModel::Grid4;
   EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "epibt", 0, opt), std::invalid_argument);
-  // The app: one line naming the option, exit code 2.
+  // The app: naming the solver is enough (the action model follows); grid4 named with it is
+  // one line naming the option, exit code 2.
+  const std::string ok = test::temp_path("epibt.json");
+  ASSERT_EQ(std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
+                         "/2023/random.domain/MR23-I-04.json --solver epibt --steps 5 --quiet >" + ok + " 2>/dev/null")
+                            .c_str()),
+            0);
+  std::ifstream okf(ok);
+  const std::string log((std::istreambuf_iterator<char>(okf)), std::istreambuf_iterator<char>());
+  EXPECT_NE(log.find("\"actionModel\": \"MAPF_T\""), std::string::npos) << log.substr(0, 200);
   const std::string e = test::temp_path("epibt.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
-                              "/2023/random.domain/MR23-I-04.json --solver epibt --steps 5 >/dev/null 2>" + e)
+                              "/2023/random.domain/MR23-I-04.json --solver epibt --action-model grid4 --steps 5 >/dev/null 2>" + e)
                                  .c_str());
   ASSERT_TRUE(WIFEXITED(rc));
   EXPECT_EQ(WEXITSTATUS(rc), 2);
@@ -112,6 +121,6 @@ TEST(EpibtLifelong, RefusedWithGrid4)
   ss << in.rdbuf();
   const std::string err = ss.str();
   EXPECT_NE(err.find("--solver epibt"), std::string::npos) << err;
-  EXPECT_NE(err.find("--action-model rotation"), std::string::npos) << err;
+  EXPECT_NE(err.find("--action-model grid4"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }

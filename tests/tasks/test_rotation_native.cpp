@@ -258,8 +258,9 @@ TEST(RotationNative, StationStubsDoNotJamTheRotationSolvers)
 // and back, so in request order the admitted robot stands behind queued ones and the station
 // starves (huge warehouse in SUMO: 0.245 errands/tick against 0.546 in line, 2500 ticks). On
 // the narrowed huge layout with queues (capacity 1, length 8), 320 robots, 400 steps: the
-// default finishes at least twice the errands of request order (102 against 50; 85 against
-// 31 with the paper's 10 replans per robot per step, EpibtOptions::revisit). Idle robots
+// default finishes at least 1.5x the errands of request order (95 against 49; 85 against 31
+// with the paper's 10 replans per robot per step, EpibtOptions::revisit, which also jams lines
+// meeting head-on: session 40). Idle robots
 // off the cells beside a stub's mouth (tasks.queues.idle_clear / --queue-idle-clear, off by
 // default; session 38): an AGV that dropped in a stub rests on the
 // nearest unreserved cell, beside the mouth, and two such wall in the next leaver. With it at
@@ -271,9 +272,10 @@ TEST(RotationNative, EpibtServesStationQueuesInLine)
   const long in_line = errands_of(problem, q);
   const long fifo = errands_of(problem, q + "--no-queue-in-line");
   EXPECT_GT(fifo, 0);
-  EXPECT_GE(in_line, 2 * fifo) << "epibt: " << fifo << " errands in request order, " << in_line << " in line";
+  EXPECT_GE(2 * in_line, 3 * fifo) << "epibt: " << fifo << " errands in request order, " << in_line << " in line";
   // idle_clear against the jam it clears: with the paper's 10 replans per robot per step (the
-  // default before session 40; with 100, 102 errands either way: lines back off by themselves).
+  // default before session 40; with 100, also in LNS: 102 and 101 errands, the lines back off by
+  // themselves).
   const long in_line10 = errands_of(problem, q + "--epibt-revisit 10");
   const long clear = errands_of(problem, q + "--epibt-revisit 10 --queue-idle-clear");
   std::cout << "epibt: " << fifo << " errands in request order, " << in_line << " in line; revisit 10: " << in_line10
@@ -290,10 +292,19 @@ TEST(RotationNative, RefusedWithGrid4)
   EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "pibt-rot", 0, opt), std::invalid_argument);
   EXPECT_THROW(run_lifelong_exec(L.g, L.starts, rr, "pibt-rot", 0, opt, {}, {}), std::invalid_argument);
   EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "wppl", 0, opt), std::invalid_argument);
-  // The app: one line naming the option, exit code 2.
+  // The app: naming the solver is enough (the action model follows); grid4 named with it is
+  // one line naming the option, exit code 2.
+  const std::string ok = test::temp_path("pibt-rot.json");
+  ASSERT_EQ(std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
+                         "/2023/random.domain/MR23-I-04.json --solver pibt-rot --steps 5 --quiet >" + ok + " 2>/dev/null")
+                            .c_str()),
+            0);
+  std::ifstream okf(ok);
+  const std::string log((std::istreambuf_iterator<char>(okf)), std::istreambuf_iterator<char>());
+  EXPECT_NE(log.find("\"actionModel\": \"MAPF_T\""), std::string::npos) << log.substr(0, 200);
   const std::string e = test::temp_path("pibt-rot.err");
   const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
-                              "/2023/random.domain/MR23-I-04.json --solver pibt-rot --steps 5 >/dev/null 2>" + e)
+                              "/2023/random.domain/MR23-I-04.json --solver pibt-rot --action-model grid4 --steps 5 >/dev/null 2>" + e)
                                  .c_str());
   ASSERT_TRUE(WIFEXITED(rc));
   EXPECT_EQ(WEXITSTATUS(rc), 2);
@@ -301,10 +312,10 @@ TEST(RotationNative, RefusedWithGrid4)
   std::stringstream ss;
   ss << in.rdbuf();
   const std::string err = ss.str();
-  EXPECT_NE(err.find("--action-model rotation"), std::string::npos) << err;
+  EXPECT_NE(err.find("--action-model grid4"), std::string::npos) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   const int rc2 = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
-                               "/2023/random.domain/MR23-I-04.json --solver wppl --steps 5 >/dev/null 2>" + e)
+                               "/2023/random.domain/MR23-I-04.json --solver wppl --action-model grid4 --steps 5 >/dev/null 2>" + e)
                                   .c_str());
   ASSERT_TRUE(WIFEXITED(rc2));
   EXPECT_EQ(WEXITSTATUS(rc2), 2);
