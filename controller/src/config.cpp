@@ -10,6 +10,7 @@
 #include <set>
 #include <sstream>
 
+#include "planner/rotation_settings.hpp"
 #include "planner/solver.hpp"
 #include "tasks/station_queues.hpp"
 
@@ -233,34 +234,25 @@ static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver 
   const std::string key = "planner.rotation";
   if (!planner::plans_rotation(kind))
     r.fail(key, "only with a rotation solver (pibt-rot | epibt | wppl), not " + std::string(planner::to_string(kind)));
-  r.keys(n, key, {"back_last", "guidance", "guidance_costs", "traffic_flow", "depth", "lns_rounds", "revisit",
-                  "priority", "pocket_exit", "leavers_first", "window", "neighbourhood"});
-  const std::pair<const char*, planner::Solver> only[] = {{"traffic_flow", planner::Solver::Epibt},
-                                                         {"depth", planner::Solver::Epibt},
-                                                         {"lns_rounds", planner::Solver::Epibt},
-                                                         {"revisit", planner::Solver::Epibt},
-                                                         {"priority", planner::Solver::Epibt},
-                                                         {"leavers_first", planner::Solver::Epibt},
-                                                         {"window", planner::Solver::Wppl},
-                                                         {"neighbourhood", planner::Solver::Wppl}};
-  for (const auto& [k, s] : only)
-    if (n[k] && kind != s)
-      r.fail(key + "." + k, std::string("only with solver ") + planner::to_string(s) + ", not " + planner::to_string(kind));
-  if (n["back_last"] && kind == planner::Solver::Epibt)
-    r.fail(key + ".back_last", "only with solver pibt-rot or wppl (epibt's operations decide how a robot yields)");
+  // The keys and which solver reads which: planner/rotation_settings.hpp (Python's rotation=
+  // dict has the same rules and messages).
+  const std::vector<std::string>& names = planner::rotation_keys();
+  r.keys(n, key, std::set<std::string>(names.begin(), names.end()));
+  for (const std::string& k : names)
+    if (n[k])
+      if (const std::string why = planner::rotation_key_misuse(kind, k); !why.empty()) r.fail(key + "." + k, why);
   r.flag(n, key, "back_last", out.back_last);
   r.choice(n, key, "guidance", out.guidance, {"none", "arrows"});
   if (n["guidance_costs"]) {
     const YAML::Node c = n["guidance_costs"];
     if (out.guidance != "arrows") r.fail(key + ".guidance_costs", "only with guidance: arrows");
     if (!c.IsSequence() || c.size() != 3) r.fail(key + ".guidance_costs", "expected [along, against, turn]");
-    out.guidance_costs.clear();
     for (size_t i = 0; i < 3; ++i) {
       int v = 0;
       if (!c[i].IsScalar() || !YAML::convert<int>::decode(c[i], v) || v < 1 || v > planner::Guidance::kMaxCost)
         r.fail(key + ".guidance_costs[" + std::to_string(i) + "]",
                "expected an integer in 1.." + std::to_string(planner::Guidance::kMaxCost));
-      out.guidance_costs.push_back(v);
+      out.guidance_costs[i] = v;
     }
   }
   r.flag(n, key, "traffic_flow", out.traffic_flow);

@@ -30,20 +30,8 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.pref = pref;
   const planner::Solver kind = planner::parse_solver(p.solver);
   if (planner::plans_rotation(kind)) {
-    const RotationSection& r = p.rotation;
+    planner::apply(p.rotation, g, opt);  // planner/rotation_settings.hpp
     opt.headings = headings;
-    opt.back_last = r.back_last;
-    if (r.guidance == "arrows") opt.guidance = planner::arrow_guidance(g, r.guidance_costs[0], r.guidance_costs[1], r.guidance_costs[2]);
-    opt.epibt.depth = r.depth;
-    opt.epibt.lns_rounds = r.lns_rounds;
-    opt.epibt.revisit = r.revisit;
-    opt.epibt.pocket_exit = r.pocket_exit;
-    opt.epibt.leavers_first = r.leavers_first;
-    opt.pocket_exit = r.pocket_exit;
-    opt.epibt.priority = r.priority == "age" ? planner::EpibtOptions::Priority::Age : planner::EpibtOptions::Priority::Distance;
-    opt.epibt.tf.on = r.traffic_flow;
-    opt.wppl.window = r.window;
-    opt.wppl.neighbourhood = r.neighbourhood;
   }
   return planner::make_planner(kind, g, starts, goals, opt, std::move(test));
 }

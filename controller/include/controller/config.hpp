@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "executor/delay_model.hpp"
+#include "planner/rotation_settings.hpp"
 
 namespace controller {
 
@@ -83,27 +84,20 @@ struct FleetSection {
 };
 
 // planner.rotation: the options of the rotation solvers (pibt-rot, epibt, wppl), which plan
-// forward / turn / wait actions for AGVs with a heading (planner/solver.hpp).
-struct RotationSection {
-  bool back_last = true;            // pibt-rot, wppl: RotationPibt::set_back_last
-  // none | arrows (planner/rotation/guidance.hpp); default arrows for pibt-rot and epibt
-  // (parse_config), none for wppl.
-  std::string guidance = "none";
-  std::vector<int> guidance_costs = {1, 3, 1};  // arrows: along, against, turn
-  bool traffic_flow = true;         // epibt: congestion-aware guide paths (traffic_flow.hpp)
-  int depth = 3;                    // epibt: actions per operation (3..5)
-  int lns_rounds = 20;              // epibt: LNS rounds after the pass (0 off)
-  int revisit = 100;                // epibt: replans of one robot per step at most (EpibtOptions::revisit)
-  // Every rotation solver: nobody deeper into a dead-end pocket a robot must leave, leavers
-  // first (pibt-rot, wppl: planner/rotation/pocket_exit.hpp; epibt: EpibtOptions::pocket_exit).
-  bool pocket_exit = true;
-  bool leavers_first = true;        // epibt, with pocket_exit: leavers rank above all (EpibtOptions)
-  // epibt: age (pibt-rot's rule) | distance (nearest goal first: the paper's and LoRR's
-  // default). Age here: with distance, 16 AGVs on the small lifelong warehouse swung
-  // between two cells in the one-cell aisles (0.007 errands/tick over 300 ticks; age 0.143).
-  std::string priority = "age";
-  int window = 20;                  // wppl: steps planned ahead
-  int neighbourhood = 8;            // wppl: robots replanned per LNS iteration
+// forward / turn / wait actions for AGVs with a heading: planner::RotationSettings, the same
+// keys, rules and messages as Python's rotation= dict (planner/rotation_settings.hpp), with
+// the SUMO configs' defaults where they differ from the planners':
+// - guidance: arrows for every rotation solver (parse_config; wppl since s37);
+// - traffic_flow on for epibt (congestion-aware guide paths, traffic_flow.hpp);
+// - epibt priority age (pibt-rot's rule), not the paper's distance: with distance, 16 AGVs
+//   on the small lifelong warehouse swung between two cells in the one-cell aisles (0.007
+//   errands/tick over 300 ticks; age 0.143).
+struct RotationSection : planner::RotationSettings {
+  RotationSection()
+  {
+    traffic_flow = true;
+    priority = "age";
+  }
 };
 
 struct PlannerSection {
