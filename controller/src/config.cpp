@@ -256,14 +256,19 @@ static void read_rotation(const Reader& r, const YAML::Node& p, planner::Solver 
     }
   }
   r.flag(n, key, "traffic_flow", out.traffic_flow);
-  r.integer(n, key, "depth", out.depth, 3, 5);
-  r.integer(n, key, "lns_rounds", out.lns_rounds, -1, 1000000);
-  r.integer(n, key, "revisit", out.revisit, 1, 1000000);
+  r.get(n, key, "depth", out.depth, "an integer");
+  r.get(n, key, "lns_rounds", out.lns_rounds, "an integer");
+  r.get(n, key, "revisit", out.revisit, "an integer");
   r.choice(n, key, "priority", out.priority, {"distance", "age"});
   r.flag(n, key, "pocket_exit", out.pocket_exit);
   r.flag(n, key, "leavers_first", out.leavers_first);
-  r.integer(n, key, "window", out.window, 1, 1000);
-  r.integer(n, key, "neighbourhood", out.neighbourhood, 1, 100000);
+  r.get(n, key, "window", out.window, "an integer");
+  r.get(n, key, "neighbourhood", out.neighbourhood, "an integer");
+  // The ranges are the planners' (planner::check: "depth: must be in 3..5, got 7").
+  if (const std::string e = planner::check(out); !e.empty()) {
+    const size_t colon = e.find(": ");
+    r.fail(key + "." + e.substr(0, colon), e.substr(colon + 2));
+  }
 }
 
 bool PlannerSection::rotation_solver() const { return planner::plans_rotation(planner::parse_solver(solver)); }
