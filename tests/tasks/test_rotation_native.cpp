@@ -19,6 +19,7 @@
 #include "tasks/task_pool.hpp"
 #include "tasks/assigner.hpp"
 #include "tasks_test_util.hpp"
+#include "cli_run.hpp"
 #include "temp_path.hpp"
 
 using namespace tasks;
@@ -294,35 +295,17 @@ TEST(RotationNative, RefusedWithGrid4)
   EXPECT_THROW(run_lifelong(L.g, L.starts, rr, "wppl", 0, opt), std::invalid_argument);
   // The app: naming the solver is enough (the action model follows); grid4 named with it is
   // one line naming the option, exit code 2.
-  const std::string ok = test::temp_path("pibt-rot.json");
-  ASSERT_EQ(std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
-                         "/2023/random.domain/MR23-I-04.json --solver pibt-rot --steps 5 --quiet >" + ok + " 2>/dev/null")
-                            .c_str()),
-            0);
-  std::ifstream okf(ok);
-  const std::string log((std::istreambuf_iterator<char>(okf)), std::istreambuf_iterator<char>());
-  EXPECT_NE(log.find("\"actionModel\": \"MAPF_T\""), std::string::npos) << log.substr(0, 200);
-  const std::string e = test::temp_path("pibt-rot.err");
-  const int rc = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
-                              "/2023/random.domain/MR23-I-04.json --solver pibt-rot --action-model grid4 --steps 5 >/dev/null 2>" + e)
-                                 .c_str());
-  ASSERT_TRUE(WIFEXITED(rc));
-  EXPECT_EQ(WEXITSTATUS(rc), 2);
-  std::ifstream in(e);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  const std::string err = ss.str();
-  EXPECT_NE(err.find("--action-model grid4"), std::string::npos) << err;
-  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-  const int rc2 = std::system((std::string(RTLACAM_LIFELONG_BIN) + " --problem " + ttest::kData +
-                               "/2023/random.domain/MR23-I-04.json --solver wppl --action-model grid4 --steps 5 >/dev/null 2>" + e)
-                                  .c_str());
-  ASSERT_TRUE(WIFEXITED(rc2));
-  EXPECT_EQ(WEXITSTATUS(rc2), 2);
-  std::ifstream in2(e);
-  const std::string err2((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
-  EXPECT_NE(err2.find("--solver wppl"), std::string::npos) << err2;
-  EXPECT_EQ(std::count(err2.begin(), err2.end(), '\n'), 1) << err2;
+  const std::string problem = " --problem " + std::string(ttest::kData) + "/2023/random.domain/MR23-I-04.json --steps 5";
+  const test::CliResult ok = test::run_cli(RTLACAM_LIFELONG_BIN, problem + " --solver pibt-rot --quiet");
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_NE(ok.out.find("\"actionModel\": \"MAPF_T\""), std::string::npos) << ok.out.substr(0, 200);
+  for (const char* s : {"pibt-rot", "wppl"}) {
+    const test::CliResult r = test::run_cli(RTLACAM_LIFELONG_BIN, problem + " --solver " + s + " --action-model grid4");
+    EXPECT_EQ(r.code, 2) << s;
+    EXPECT_NE(r.err.find(std::string("--solver ") + s), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("--action-model grid4"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }
 
 TEST(RotationNative, GuidanceOptionOfTheAppAndItsErrors)

@@ -32,6 +32,15 @@ const planner::Graph& stub()
   return g;
 }
 
+// One step of the task manager as the queues see it: every agent's goal is its errand cell,
+// an idle agent's the cell it stands on; then the queues re-place them (goals, unplaced).
+void apply_queues(StationQueues& q, const std::vector<Vertex>& errand, const Config& pos, Config& goals,
+                  std::vector<char>& unplaced)
+{
+  for (size_t a = 0; a < pos.size(); ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
+  q.apply(errand, pos, goals, unplaced);
+}
+
 }  // namespace
 
 TEST(StationQueues, ADeadEndStationQueuesBesideItsMouthAlongTheLongestAisle)
@@ -65,10 +74,7 @@ TEST(StationQueues, AdmitsTheNearestQueuesTheRestAndLetsTheNextInWhenTheWayIsCle
   Config goals(6);
   // The task manager's goals (errand cells, idle agents where they stand), then the queues.
   std::vector<char> unplaced;
-  auto apply = [&] {
-    for (int a = 0; a < 6; ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
-    q.apply(errand, pos, goals, unplaced);
-  };
+  auto apply = [&] { apply_queues(q, errand, pos, goals, unplaced); };
   apply();
   // Distances to S: a1 4, a2 5, a4 7, a3 9, a0 10: a1 admitted, a2, a4, a3 queued in that
   // order, a0 beyond the queue is unplaced (its goal is the caller's); the idle agent is untouched.
@@ -115,10 +121,7 @@ TEST(StationQueues, BeyondTheQueueTheOldestRequestGoesFirstSoNoErrandWaitsForeve
     std::vector<Vertex> errand{s, s, s, -1, -1, -1};
     Config goals(pos.size());
     std::vector<char> unplaced;
-    auto apply = [&] {
-      for (size_t a = 0; a < pos.size(); ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
-      q.apply(errand, pos, goals, unplaced);
-    };
+    auto apply = [&] { apply_queues(q, errand, pos, goals, unplaced); };
     apply();
     EXPECT_EQ(q.admitted(0), (std::vector<int>{1}));
     EXPECT_EQ(unplaced[0], 1);
@@ -231,10 +234,7 @@ TEST(StationQueues, AStationWhosePocketHoldsALeaverTooLongGivesUpItsPlacesUntilI
     std::vector<Vertex> errand{-1, s, s};
     Config goals(3);
     std::vector<char> unplaced;
-    auto apply = [&] {
-      for (int a = 0; a < 3; ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
-      q.apply(errand, pos, goals, unplaced);
-    };
+    auto apply = [&] { apply_queues(q, errand, pos, goals, unplaced); };
     apply();
     ASSERT_EQ(q.admitted(0), (std::vector<int>{1}));
     EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
@@ -293,10 +293,7 @@ TEST(StationQueues, AStationWhoseAdmittedAgentMakesNoProgressGivesUpItsPlacesUnt
       std::vector<Vertex> errand{-1, s, s};
       Config goals(3);
       std::vector<char> unplaced;
-      auto apply = [&] {
-        for (int a = 0; a < 3; ++a) goals[a] = errand[a] >= 0 ? errand[a] : pos[a];
-        q.apply(errand, pos, goals, unplaced);
-      };
+      auto apply = [&] { apply_queues(q, errand, pos, goals, unplaced); };
       for (int k = 0; k < 4; ++k) apply();
       ASSERT_EQ(q.admitted(0), (std::vector<int>{1}));
       EXPECT_EQ(q.waiting(0), (std::vector<int>{2}));
