@@ -1,18 +1,33 @@
 #include "tasks/queue_trace.hpp"
 
-#include <stdexcept>
+#include <cerrno>
+#include <cstring>
 
+#include "planner/output_file.hpp"
 #include "tasks/station_queues.hpp"
 #include "tasks/task_manager.hpp"
 
 namespace tasks {
 
 QueueTrace::QueueTrace(const std::string& path, int every, const planner::Graph& g)
-    : f_(std::fopen(path.c_str(), "w")), every_(every < 1 ? 1 : every), g_(g), at_(g.size(), -1)
+    : path_(path), f_(std::fopen(path.c_str(), "w")), every_(every < 1 ? 1 : every), g_(g), at_(g.size(), -1)
 {
-  if (!f_) throw std::runtime_error(path + ": cannot write the queue trace");
-  std::fprintf(f_, "# t station cell (x,y) done D admitted[...] waiting W pocket[...] queue[...]; agents id@cell "
-                   "H<errand>s<stall> heading, Q<errand> queued or parked with a task, I idle (tasks/queue_trace.hpp)\n");
+  if (!f_) fail();
+  write("# t station cell (x,y) done D admitted[...] waiting W pocket[...] queue[...]; agents id@cell "
+        "H<errand>s<stall> heading, Q<errand> queued or parked with a task, I idle (tasks/queue_trace.hpp)\n");
+}
+
+void QueueTrace::fail() const
+{
+  throw planner::OutputError("cannot write '" + path_ + "': " + (errno ? std::strerror(errno) : "write failed"));
+}
+
+void QueueTrace::write(const std::string& text) const
+{
+  // Flushed at once: a full disk is an error now (planner/output_file.hpp's rule), not a
+  // trace silently cut at the close.
+  errno = 0;
+  if (std::fputs(text.c_str(), f_) < 0 || std::fflush(f_) != 0) fail();
 }
 
 QueueTrace::~QueueTrace()
@@ -51,6 +66,7 @@ void QueueTrace::step(long t, const TaskManager& tm, const planner::Config& posi
     if (const int i = q->station_index(positions[e.agent]); i >= 0) ++done_[i];
   if (t % every_ != 0) return;
   for (size_t a = 0; a < positions.size(); ++a) at_[positions[a]] = static_cast<int>(a);
+  std::string text;
   for (int i = 0; i < q->num_stations(); ++i) {
     std::string line = std::to_string(t) + " " + std::to_string(i) + " " + cell(q->station(i)) + " done " +
                        std::to_string(done_[i]) + " admitted[";
@@ -60,12 +76,11 @@ void QueueTrace::step(long t, const TaskManager& tm, const planner::Config& posi
       if (at_[v] >= 0) line += " " + who(tm, t, at_[v], v);
     line += " ] queue[";
     for (planner::Vertex v : q->queue_cells(i)) line += " " + (at_[v] >= 0 ? who(tm, t, at_[v], v) : std::string("-"));
-    line += " ]\n";
-    std::fputs(line.c_str(), f_);
+    text += line + " ]\n";
     done_[i] = 0;
   }
   for (planner::Vertex v : positions) at_[v] = -1;
-  std::fflush(f_);
+  write(text);
 }
 
 }  // namespace tasks

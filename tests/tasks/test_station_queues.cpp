@@ -4,10 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
 #include "tasks/greedy_assigner.hpp"
 #include "tasks/lifelong_run.hpp"
+#include "planner/output_file.hpp"
 #include "tasks/parking.hpp"
+#include "tasks/queue_trace.hpp"
 #include "tasks/roundrobin.hpp"
 #include "tasks/station_queues.hpp"
 #include "tasks/task_pool.hpp"
@@ -465,5 +468,25 @@ TEST(Parking, IdleClearKeepsIdleAgentsOffTheCellsBesideAMouth)
     EXPECT_EQ(goals[0], on ? g.at(1, 2) : g.at(2, 2)) << on;
     EXPECT_EQ(goals[1], on ? g.at(5, 2) : g.at(4, 2)) << on;  // off the mouth: not beside it either
     EXPECT_EQ(goals[2], g.at(0, 7)) << on;
+  }
+}
+
+// The queue trace (output.queue_trace) is a checked write like every output
+// (planner/output_file.hpp): a full disk or a missing folder is "cannot write 'PATH': reason",
+// never a trace silently cut short.
+TEST(QueueTrace, AFailedWriteNamesTheFileAndTheReason)
+{
+  const auto& g = stub();
+  try {
+    QueueTrace t("/dev/full", 1, g);  // the header's flush meets a full device
+    FAIL() << "no error";
+  } catch (const planner::OutputError& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write '/dev/full': No space left on device");
+  }
+  try {
+    QueueTrace t("/nonexistent-dir/queue_trace.txt", 1, g);
+    FAIL() << "no error";
+  } catch (const planner::OutputError& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write '/nonexistent-dir/queue_trace.txt': No such file or directory");
   }
 }

@@ -29,8 +29,8 @@ class TaskManager;
 
 class QueueTrace {
  public:
-  // Opens `path` for writing (throws std::runtime_error naming it); a snapshot every `every`
-  // steps (>= 1).
+  // Opens `path` for writing; a snapshot every `every` steps (>= 1). A failed open or write
+  // throws planner::OutputError "cannot write 'PATH': reason" (planner/output_file.hpp).
   QueueTrace(const std::string& path, int every, const planner::Graph& g);
   ~QueueTrace();
   QueueTrace(const QueueTrace&) = delete;
@@ -43,7 +43,10 @@ class QueueTrace {
  private:
   std::string who(const TaskManager& tm, long t, int agent, planner::Vertex at) const;
   std::string cell(planner::Vertex v) const;
+  void write(const std::string& text) const;
+  [[noreturn]] void fail() const;
 
+  std::string path_;
   std::FILE* f_ = nullptr;
   int every_;
   const planner::Graph& g_;
