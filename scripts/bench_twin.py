@@ -67,6 +67,9 @@ POCKET_COST = 100
 # dead-end station's mouth nor walk back to a rest cell they were pushed off; session 38).
 # "+oneway" / "+nooneway" (any solver): tasks.queues.one_way true / false in SUMO, --[no-]queue-one-way
 # in the twin (QueueOptions::one_way: queue lanes one-way towards their station; session 39).
+# The three as one table: row option -> (tasks.queues key, rtlacam-lifelong flag).
+QUEUE_FLAGS = {"inline": ("in_line", "queue-in-line"), "idleclear": ("idle_clear", "queue-idle-clear"),
+               "oneway": ("one_way", "queue-one-way")}
 
 
 def variant(name):
@@ -77,14 +80,8 @@ def variant(name):
         if o == "pocket":
             rot["pocket_cost"] = POCKET_COST
             continue
-        if o in ("inline", "noinline"):
-            rot["in_line"] = o == "inline"
-            continue
-        if o in ("idleclear", "noidleclear"):
-            rot["idle_clear"] = o == "idleclear"
-            continue
-        if o in ("oneway", "nooneway"):
-            rot["one_way"] = o == "oneway"
+        if o in QUEUE_FLAGS or (o.startswith("no") and o[2:] in QUEUE_FLAGS):
+            rot[QUEUE_FLAGS[o.removeprefix("no")][0]] = o in QUEUE_FLAGS
             continue
         if o not in VARIANT_OPTIONS or solver not in ROTATION:
             sys.exit(f"bench_twin.py: --solvers: '{name}': options (+arrows, +distance, +age) go with pibt-rot, epibt, wppl; +noleavers with epibt; +pocket with any")
@@ -146,12 +143,9 @@ def sumo_config(base, solver, p, out, ticks, expansions, executor):
     cfg["planner"].pop("rotation", None)  # the row's options only, as in the twin
     if "pocket_cost" in rot:
         cfg["tasks"].setdefault("urgency", {})["pocket_cost"] = rot.pop("pocket_cost")
-    if "in_line" in rot:
-        cfg["tasks"].setdefault("queues", {})["in_line"] = rot.pop("in_line")
-    if "idle_clear" in rot:
-        cfg["tasks"].setdefault("queues", {})["idle_clear"] = rot.pop("idle_clear")
-    if "one_way" in rot:
-        cfg["tasks"].setdefault("queues", {})["one_way"] = rot.pop("one_way")
+    for key, _ in QUEUE_FLAGS.values():
+        if key in rot:
+            cfg["tasks"].setdefault("queues", {})[key] = rot.pop(key)
     if rot:
         cfg["planner"]["rotation"] = rot
     cfg["run"].update({"executor": executor, "max_ticks": ticks, "progress_s": 0})
@@ -258,18 +252,12 @@ def twin_run(build, twin, solver, p, out, steps, expansions, executor, agents=No
         cmd += ["--agents", str(agents)]
     elif q.get("capacity", 0) > 0:
         cmd += ["--queue-capacity", str(q["capacity"]), "--queue-length", str(q.get("length", 8))]
-        in_line = rot.pop("in_line", q.get("in_line"))  # the row's choice, else the config's (else the default)
-        if in_line is not None:
-            cmd.append("--queue-in-line" if in_line else "--no-queue-in-line")
-        idle_clear = rot.pop("idle_clear", q.get("idle_clear"))
-        if idle_clear is not None:
-            cmd.append("--queue-idle-clear" if idle_clear else "--no-queue-idle-clear")
-        one_way = rot.pop("one_way", q.get("one_way"))
-        if one_way is not None:
-            cmd.append("--queue-one-way" if one_way else "--no-queue-one-way")
-    rot.pop("in_line", None)
-    rot.pop("idle_clear", None)
-    rot.pop("one_way", None)
+        for key, flag in QUEUE_FLAGS.values():
+            on = rot.pop(key, q.get(key))  # the row's choice, else the config's (else the default)
+            if on is not None:
+                cmd.append(("--" if on else "--no-") + flag)
+    for key, _ in QUEUE_FLAGS.values():
+        rot.pop(key, None)
     if not keep or agents:
         cmd.append("--reset-priorities")
     if p > 0:
