@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "tasks/task_manager.hpp"
+#include "tasks/urgency.hpp"
 
 namespace tasks {
 
@@ -24,6 +25,22 @@ std::vector<char> escalated_agents(const TaskManager& tm)
   std::vector<char> esc(tm.num_agents(), 0);
   for (const auto& [cell, t] : top) esc[t.second] = 1;
   return esc;
+}
+
+int escalation_focus(const TaskManager& tm, const planner::Config& positions)
+{
+  for (int a = 0; a < tm.num_agents(); ++a)
+    if (tm.awaited(a) && battery_urgent(tm, a) && positions[a] != tm.goals()[a]) return -1;
+  const std::vector<char> esc = escalated_agents(tm);
+  int top = -1;
+  long long best = -1;
+  for (size_t a = 0; a < esc.size(); ++a) {
+    const int i = static_cast<int>(a);
+    if (!esc[a] || !tm.heading(i) || positions[i] == tm.goals()[i]) continue;
+    const long long s = tm.stalls()->longest(tm.now(), tm.task_of(i)->id);
+    if (s > best) best = s, top = i;
+  }
+  return top;
 }
 
 std::vector<char> escalated_pockets(const TaskManager& tm, const std::vector<char>& esc)

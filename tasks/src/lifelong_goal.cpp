@@ -42,19 +42,10 @@ planner::GoalTest lifelong_goal_test(const TaskManager& tasks, const planner::Co
   // waits for the longest-stalled of them (waiting for any of them, three escalated errands
   // head-on at one junction jammed small_rules_lifelong, seed 3, 4000 ticks: K 904 -> 450).
   if (!any)
-    if (const std::vector<char> esc = escalated_agents(tasks); !esc.empty()) {
-      int top = -1;  // the longest-stalled escalated agent off its goal
-      long long best = -1;
-      for (int a = 0; a < tasks.num_agents(); ++a)
-        if (esc[a] && busy[a] && tasks.heading(a) && positions[a] != tasks.goals()[a]) {
-          const long long s = tasks.stalls()->longest(tasks.now(), tasks.task_of(a)->id);
-          if (s > best) best = s, top = a;
-        }
-      if (top >= 0) {
-        std::fill(urgent.begin(), urgent.end(), 0);
-        urgent[top] = 1;
-        any = true;
-      }
+    if (const int top = escalation_focus(tasks, positions); top >= 0) {
+      std::fill(urgent.begin(), urgent.end(), 0);
+      urgent[top] = 1;
+      any = true;
     }
   return lifelong_goal_test(tasks.goals(), positions, any ? urgent : busy);
 }

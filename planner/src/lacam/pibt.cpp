@@ -190,7 +190,9 @@ bool Pibt::plan(int32_t i, Rng& rng)
   if (zones_ && evict_zone_[i] >= 0) {  // asked to leave a zone (evict): out first, else toward a way out
     const int z = evict_zone_[i];
     for (int k = 0; k <= K; ++k)
-      if (zones_->in(C[k], z)) key_[k] = 1e20f + static_cast<float>(exit_dist_[C[k]]);
+      // Scaled, not offset: 1e20f + 1 == 1e20f + 3 in float, which ranked the cells by
+      // neighbour order and swung an evicted agent back and forth inside the zone.
+      if (zones_->in(C[k], z)) key_[k] = 1e20f * static_cast<float>(1 + exit_dist_[C[k]]);
   }
   for (int k = 1; k <= K; ++k) {
     const Vertex u = C[k];

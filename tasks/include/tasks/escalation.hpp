@@ -50,6 +50,11 @@ inline constexpr float kClearingUrgency = 9500.0f;   // leaving an escalated err
 // Per agent, 1 where it holds an escalated errand (above); empty when off or none.
 std::vector<char> escalated_agents(const TaskManager& tm);
 
+// The escalated agent an epoch waits for (lifelong_goal.hpp): the longest-stalled escalated
+// holder heading for its cell and off it at `positions` (ties to the lower agent); -1 when
+// none, or while an agent low on charge is pending (battery urgency comes first).
+int escalation_focus(const TaskManager& tm, const planner::Config& positions);
+
 // Raises h (one hint per agent) for the escalated errands whose holders head for their cells,
 // and for the agents in their pockets bound outside.
 void escalation_hints(const TaskManager& tm, const planner::Config& positions, std::vector<float>& h);

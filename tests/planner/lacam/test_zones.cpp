@@ -174,3 +174,35 @@ TEST(Zones, PibtNeverPlansTwoAgentsIntoAZone)
   }
   EXPECT_GT(entries, 20);  // agents did cross the zone
 }
+
+// Priority inheritance for a zone (Pibt::evict): an agent standing in a zone that a higher
+// agent asks to enter leaves it by the way out farthest from the asker. The ranking was a
+// float offset, 1e20f + exit distance, which rounds every exit distance away: the evicted
+// agent took its moves in neighbour order, and in one of the two directions below it stepped
+// toward the asker and back for ever (small_rules_lifelong, fleet seed 4: an errand stalled
+// 600 ticks at the zone's mouth). A one-wide corridor, the zone its cells 3-5, the holder
+// parked on its goal in the middle, the asker beside the zone bound for the far end.
+TEST(Zones, AnEvictedAgentLeavesByTheWayOutAwayFromTheAsker)
+{
+  const Graph g = test::grid({"........."});
+  LacamOptions o;
+  o.zones = Zones::from_cells(g.size(), {{g.at(3, 0), g.at(4, 0), g.at(5, 0)}});
+  for (const bool east : {true, false}) {
+    const int from = east ? 2 : 6, to = east ? 8 : 0, away = east ? 5 : 3;
+    const Config s{g.at(from, 0), g.at(4, 0)}, goal{g.at(to, 0), g.at(4, 0)};
+    PibtPlanner p(g, s, goal, o);
+    p.set_priority_hint({100.0f, 0.0f});  // the asker moves first
+    p.set_goals(goal);
+    p.search(Budget::unlimited());
+    p.commit();
+    EXPECT_EQ(p.current()[1], g.at(away, 0)) << (east ? "east" : "west") << ": the holder stepped toward the asker";
+    int entered = -1;  // the step the asker is in the zone
+    for (int t = 1; t <= 10 && entered < 0; ++t) {
+      p.search(Budget::unlimited());
+      p.commit();
+      if (!o.zones->of[p.current()[0]].empty()) entered = t;
+    }
+    EXPECT_GE(entered, 0) << (east ? "east" : "west") << ": the asker never got into the zone";
+    EXPECT_LE(entered, 3) << (east ? "east" : "west");
+  }
+}
