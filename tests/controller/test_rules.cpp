@@ -262,7 +262,7 @@ TEST(Rules, ZonesInThePlannerEndTheRestartLivelockOfAdmission)
 
 TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
 {
-  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "rules_shipped_lifelong", 300, 50);
+  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "rules_shipped_lifelong", 1000, 50);
   Controller c(cfg);
   const Metrics m = c.run();
   EXPECT_EQ(m.error, "");
@@ -271,12 +271,13 @@ TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
   EXPECT_EQ(m.rules.checks, m.ticks * cfg.steps_per_tick());
   ctest_util::expect_no_sumo_collision(cfg.output.dir);
   EXPECT_EQ(m.rules.closure_changes, 4);  // 10, 40, 100, 160 s
-  EXPECT_GT(m.errands_finished, 30);
+  EXPECT_GT(m.errands_finished, 200);
   // K (lifelong.stallTicks.max, tasks/errand_stalls.hpp): no busy AGV's errand went longer
-  // than half the run without its AGV getting closer to it (open ones counted to the end).
-  // Measured 114 here (controller/README.md "Errand times and stalls").
-  EXPECT_GT(m.stalls.errands, 30);
-  EXPECT_LE(m.stalls.max_stall, 150);
+  // than a fifth of the run without its AGV getting closer to it (open ones counted to the
+  // end). Measured 164 with the shipped escalation, 240 without it (controller/README.md
+  // "Session 41").
+  EXPECT_GT(m.stalls.errands, 200);
+  EXPECT_LE(m.stalls.max_stall, 200);
 }
 
 TEST(Rules, AgvsOnCellsBeingClosedLeaveThemByTheEvacuationArcs)
