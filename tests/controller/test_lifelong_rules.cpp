@@ -7,6 +7,7 @@
 
 #include <libsumo/libsumo.h>
 
+#include <cstdio>
 #include <map>
 
 #include "controller/config.hpp"
@@ -403,4 +404,39 @@ TEST(LifelongRules, EscalationKeepsErrandStallsBoundedOverALongRun)
   const Metrics m = ctest_util::run_checked(cfg);
   EXPECT_LE(m.stalls.max_stall, 230);
   EXPECT_GE(m.errands_finished, 900);
+}
+
+// On a directed net the epoch does not wait for the escalated agent (escalation_focus): RT-LaCAM
+// takes only reversible moves until its search holds a goal node (rt_lacam.hpp), and a goal
+// test that only one agent can pass kept that search going for the rest of the run:
+// small_oneway_lifelong, fleet seed 1, no AGV moved after tick 644 (1500 ticks: K 1008, 360
+// errands). Hints and pocket clearing still apply: measured K 199, 779 errands (4000 ticks:
+// K 262 against 351 without escalation, 1.03x the errands).
+TEST(LifelongRules, EscalationOnAOneWayNetKeepsTheFleetMoving)
+{
+  Config cfg = ctest_util::shipped_config("small_oneway_lifelong.yaml", "escalation_oneway", 1500, 50);
+  cfg.fleet.seed = 1;
+  cfg.tasks.urgency_escalate_after = 150;
+  const Metrics m = ctest_util::run_checked(cfg);
+  std::printf("K %lld, errands %lld\n", static_cast<long long>(m.stalls.max_stall), static_cast<long long>(m.errands_finished));
+  EXPECT_LE(m.stalls.max_stall, 300);
+  EXPECT_GE(m.errands_finished, 600);
+}
+
+// Leaving an escalated errand's pocket outranks a low battery (kClearingUrgency above
+// kBatteryUrgency's 10000-20000): in a one-lane stub the way in is the way out. With the
+// leavers below it, small_charging_lifelong (fleet seed 2, 4000 ticks) jammed at drop3: the
+// AGV that had dropped there stood in the stub while low AGVs pushed in after it and 13 of
+// the 16 queued behind them (K 2018, 579 errands). Measured K 188, 1.17x the errands of the
+// run without escalation.
+TEST(LifelongRules, EscalationClearsAStubBeforeALowBatteryEntersIt)
+{
+  Config cfg = ctest_util::shipped_config("small_charging_lifelong.yaml", "escalation_charging", 4000, 50);
+  cfg.fleet.seed = 2;
+  cfg.tasks.urgency_escalate_after = 150;
+  const Metrics m = ctest_util::run_checked(cfg);
+  std::printf("K %lld, errands %lld\n", static_cast<long long>(m.stalls.max_stall), static_cast<long long>(m.errands_finished));
+  EXPECT_LE(m.stalls.max_stall, 300);
+  EXPECT_GE(m.errands_finished, 800);
+  EXPECT_EQ(m.battery.ran_empty, 0);
 }

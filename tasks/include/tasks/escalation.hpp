@@ -22,10 +22,12 @@
 //    whoever arrives first (for any escalated agent: three of them head-on at one junction
 //    jammed small_rules_lifelong, seed 3, 4000 ticks, K 904 against 450);
 //  - the dead-end pocket of its errand cell is cleared for it: every other agent standing in
-//    that pocket whose goal is outside it gets kClearingUrgency (above the escalated one: in a
-//    one-lane stub the way in is the way out, and an escalated AGV wedged in front of an
-//    occupant jammed small_rules_lifelong on 5 of 10 seeds, K 395-913), and an idle agent
-//    standing there gets a goal outside (evict_cell), kept until it arrives or gets a task.
+//    that pocket whose goal is outside it gets kClearingUrgency (above the escalated one and
+//    above a low battery: in a one-lane stub the way in is the way out. An escalated AGV
+//    wedged in front of an occupant jammed small_rules_lifelong on 5 of 10 seeds, K 395-913;
+//    low AGVs pushing in past the leaver jammed small_charging_lifelong, seed 2, K 2018), and
+//    an idle agent standing there gets a goal outside (evict_cell), kept until it arrives or
+//    gets a task.
 // Hints alone K 335, the goal test alone K 706, both K 175 (seed 1). An errand waiting on a
 // station's queue (not heading) gets none of this: admission is the queues' (clear_after,
 // leavers_first). Hints only order conflicts and the goal test stays one complete search, so
@@ -45,14 +47,15 @@ class TaskManager;
 
 inline constexpr float kEscalatedUrgency = 6000.0f;  // + min(stall, kEscalatedSpan - 1)
 inline constexpr float kEscalatedSpan = 3000.0f;
-inline constexpr float kClearingUrgency = 9500.0f;   // leaving an escalated errand's pocket
+inline constexpr float kClearingUrgency = 25000.0f;  // leaving an escalated errand's pocket: above battery urgency (<= 20000)
 
 // Per agent, 1 where it holds an escalated errand (above); empty when off or none.
 std::vector<char> escalated_agents(const TaskManager& tm);
 
 // The escalated agent an epoch waits for (lifelong_goal.hpp): the longest-stalled escalated
 // holder heading for its cell and off it at `positions` (ties to the lower agent); -1 when
-// none, or while an agent low on charge is pending (battery urgency comes first).
+// none, while an agent low on charge is pending (battery urgency comes first), and on a
+// directed graph (escalation.cpp: RT-LaCAM's one-way rule).
 int escalation_focus(const TaskManager& tm, const planner::Config& positions);
 
 // Raises h (one hint per agent) for the escalated errands whose holders head for their cells,
