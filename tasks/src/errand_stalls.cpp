@@ -55,6 +55,12 @@ long long ErrandStalls::longest(long t, long task) const
   return it == open_.end() ? 0 : std::max(static_cast<long long>(t - it->second.mark), it->second.max_gap);
 }
 
+long ErrandStalls::last_mark(long task) const
+{
+  const auto it = open_.find(task);
+  return it == open_.end() ? -1 : it->second.mark;
+}
+
 int32_t ErrandStalls::distance(planner::Vertex cell, planner::Vertex v) const
 {
   planner::DistCache::Table* tab = dist_.cache()->table(cell);

@@ -10,14 +10,12 @@ namespace tasks {
 
 std::vector<char> escalated_agents(const TaskManager& tm)
 {
-  const int after = tm.urgency().escalate_after;
-  if (after <= 0 || !tm.stalls()) return {};
+  if (tm.urgency().escalate_after <= 0 || !tm.stalls()) return {};
   std::unordered_map<planner::Vertex, std::pair<long long, int>> top;  // errand cell -> (stall, agent)
   for (int a = 0; a < tm.num_agents(); ++a) {
+    if (!tm.escalated(a)) continue;
     const Task* k = tm.task_of(a);
-    if (!k) continue;
     const long long s = tm.stalls()->longest(tm.now(), k->id);
-    if (s < after) continue;
     auto [it, fresh] = top.try_emplace(k->next_cell(), s, a);
     if (!fresh && s > it->second.first) it->second = {s, a};
   }

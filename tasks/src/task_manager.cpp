@@ -43,6 +43,38 @@ void TaskManager::observe_stalls(const planner::Config& positions)
   for (int a = 0; a < num_agents(); ++a)
     if (const Task* k = task_of(a)) held[a] = {k->id, k->next, k->next_cell()};
   stalls_->observe(now_, held, positions);
+  observe_escalation();
+}
+
+bool TaskManager::escalated(int agent) const
+{
+  const Task* k = task_of(agent);
+  if (!k) return false;
+  const auto it = escalation_.find(k->id);
+  return it != escalation_.end() && it->second.on && it->second.errand == k->next;
+}
+
+void TaskManager::observe_escalation()
+{
+  const int after = urgency_.escalate_after;
+  if (after <= 0) return;
+  std::unordered_map<long, Escalation> next;
+  next.reserve(escalation_.size() + 1);
+  for (int a = 0; a < num_agents(); ++a) {
+    const Task* k = task_of(a);
+    if (!k) continue;
+    Escalation e;
+    if (const auto it = escalation_.find(k->id); it != escalation_.end() && it->second.errand == k->next) e = it->second;
+    else e.errand = k->next, e.mark = stalls_->last_mark(k->id);
+    if (!e.on) {
+      const long mark = stalls_->last_mark(k->id);
+      if (mark != e.mark) e.mark = mark, e.heading_stall = 0;  // progress
+      if (mark < now_ && heading(a)) ++e.heading_stall;
+      e.on = e.heading_stall >= after;
+    }
+    next[k->id] = e;
+  }
+  escalation_ = std::move(next);
 }
 
 std::vector<Event> TaskManager::update(long t, const planner::Config& positions)

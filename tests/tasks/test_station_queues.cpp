@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <string>
 
+#include "tasks/escalation.hpp"
 #include "tasks/greedy_assigner.hpp"
 #include "tasks/lifelong_run.hpp"
 #include "planner/output_file.hpp"
@@ -489,4 +490,47 @@ TEST(QueueTrace, AFailedWriteNamesTheFileAndTheReason)
   } catch (const planner::OutputError& e) {
     EXPECT_EQ(std::string(e.what()), "cannot write '/nonexistent-dir/queue_trace.txt': No such file or directory");
   }
+}
+
+// Escalation (tasks/escalation.hpp) counts only the steps an errand's holder heads for the
+// errand cell: waiting on a queue cell is the station's admission. Before, an errand that
+// waited 150 steps in a queue was escalated the moment it was admitted, so at a busy station
+// every admitted AGV was (pibt-rot on large_warehouse_queues: 0.31-0.39x the errands at 2000
+// ticks; now 0.99x). Two agents, one errand each at S, capacity 1, nobody moves.
+TEST(StationQueues, EscalationDoesNotCountTheWaitOnAQueueCell)
+{
+  const auto& g = stub();
+  const Vertex s = g.at(3, 0);
+  // Two errands at S, then work at the bottom aisle's east end for whoever is free.
+  auto file = ttest::task_file(g, {{{3, 0}}, {{3, 0}}, {{5, 7}}, {{5, 7}}});
+  TaskPool pool(file, g, 2, std::make_unique<GreedyAssigner>());
+  pool.set_queues(g, {1, 3, 0});
+  pool.watch_stalls(g);
+  UrgencyOptions u;
+  u.escalate_after = 20;
+  pool.set_urgency(u);
+  Config pos{g.at(0, 2), g.at(1, 2)};
+  pool.start(pos);
+  const int first = pool.goals()[0] == s ? 0 : 1, second = 1 - first;
+  ASSERT_EQ(pool.goals()[first], s);
+  ASSERT_NE(pool.goals()[second], s);  // queued
+  // Both stand still: the heading one escalates after 20 steps, the queued one never.
+  pos[second] = pool.goals()[second];
+  for (long t = 1; t <= 30; ++t) pool.update(t, pos);
+  EXPECT_TRUE(pool.escalated(first));
+  EXPECT_FALSE(pool.escalated(second));
+  EXPECT_EQ(escalated_agents(pool), (std::vector<char>{first == 0, first == 1}));
+  // The first completes; the second is admitted with 30 steps of stall behind it and is not
+  // escalated until it has headed for S 20 steps without getting closer.
+  pos[first] = s;
+  pool.update(31, pos);
+  pos[first] = g.at(5, 7);  // out of the way (its next errand is there)
+  for (long t = 32; pool.goals()[second] != s && t < 40; ++t) pool.update(t, pos);
+  ASSERT_EQ(pool.goals()[second], s);
+  const long admitted = pool.now();
+  EXPECT_GT(pool.stalls()->longest(admitted, pool.task_of(second)->id), 20);
+  EXPECT_FALSE(pool.escalated(second));
+  long t = admitted;
+  while (!pool.escalated(second) && t < admitted + 40) pool.update(++t, pos);
+  EXPECT_EQ(t - admitted + 1, 20);  // heading steps, the one it was admitted in included
 }

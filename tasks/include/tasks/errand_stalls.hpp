@@ -53,6 +53,8 @@ class ErrandStalls {
   void set_sticky(bool on) { sticky_ = on; }
   // The longest stall of the open errand of `task` so far, whatever `sticky` (escalation.hpp).
   long long longest(long t, long task) const;
+  // The step of its last progress mark (its opening step before any); -1 when none is open.
+  long last_mark(long task) const;
   // The nearest the holder of `task`'s open errand has been to its cell (a new holder starts
   // from its own distance); -1 when none is open.
   int32_t best(long task) const;

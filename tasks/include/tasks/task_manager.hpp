@@ -22,6 +22,7 @@
 // waits in the pool for an agent that can, at the latest until the closure ends.
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "planner/config.hpp"
@@ -71,6 +72,13 @@ class TaskManager {
   // (and before share_dist_cache, whose cache it then uses too).
   void watch_stalls(const planner::Graph& g);
   const ErrandStalls* stalls() const { return stalls_.get(); }
+  // Escalation (UrgencyOptions::escalate_after, escalation.hpp): the errand agent a holds has
+  // gone escalate_after steps without progress while its holder headed for the errand cell
+  // (whoever held it: a handed-over errand keeps its count); it stays escalated until it
+  // completes. Steps on a queue cell (waiting to be admitted) do not count: the station's
+  // admission owns that wait.
+  // (Read between update()'s completions and its observation too: only while a holds that errand.)
+  bool escalated(int agent) const;
   // watch_stalls on: the errand cell whose dead-end pocket (the cell and the corridor that
   // joins it to the net, battery.hpp dead_end_corridor) holds v; -1 elsewhere.
   planner::Vertex pocket(planner::Vertex v) const { return v < static_cast<planner::Vertex>(pocket_.size()) ? pocket_[v] : -1; }
@@ -211,6 +219,14 @@ class TaskManager {
   std::unique_ptr<ErrandStalls> stalls_;  // watch_stalls
   std::vector<planner::Vertex> pocket_;   // watch_stalls: pocket()
   std::vector<planner::Vertex> evict_;    // escalation: an idle agent's way out of a pocket, -1
+  struct Escalation {  // per held task, its open errand's escalation (escalation.hpp)
+    int errand = -1;
+    long mark = -1;         // the errand's last progress mark seen
+    long heading_stall = 0; // steps since it in which its holder headed for the cell
+    bool on = false;
+  };
+  std::unordered_map<long, Escalation> escalation_;  // task id -> its errand's
+  void observe_escalation();
   void evict(const planner::Config& positions);  // escalation.hpp: idle agents out of escalated pockets
   std::vector<planner::Vertex> dead_end_pocket_;  // watch_stalls: dead_end_pockets()
   void observe_stalls(const planner::Config& positions);
