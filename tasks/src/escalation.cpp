@@ -31,7 +31,7 @@ int escalation_focus(const TaskManager& tm, const planner::Config& positions)
   // a goal node (rt_lacam.hpp), and a goal only one agent can pass took that search hundreds
   // of ticks there (small_oneway_lifelong, fleet seed 1: no AGV moved from tick 644 on, K 3999
   // of 4000 ticks; hints and pocket clearing still apply).
-  if (tm.stalls()->graph().directed()) return -1;
+  if (tm.urgency().escalate_after <= 0 || !tm.stalls() || tm.stalls()->graph().directed()) return -1;
   for (int a = 0; a < tm.num_agents(); ++a)
     if (tm.awaited(a) && battery_urgent(tm, a) && positions[a] != tm.goals()[a]) return -1;
   const std::vector<char> esc = escalated_agents(tm);
