@@ -9,9 +9,11 @@
 // PIBT's priorities reset at every epoch, and RT-LaCAM's epoch ends whenever anyone arrives,
 // so nobody plans the way out for that one errand.
 //
-// An errand escalates once its longest stall so far (ErrandStalls::longest) reaches
-// escalate_after ticks, and stays escalated until it completes (a step of progress must not
-// drop it behind the crowd again). Only one errand per errand cell, the longest-stalled (ties
+// An errand escalates once its holders have headed for its cell escalate_after steps since
+// its last progress (TaskManager::escalated; steps waiting on a station's queue cells do not
+// count: admission owns that wait, and counting it escalated every admitted AGV at a busy
+// station), and stays escalated until it completes (a step of progress must not drop it
+// behind the crowd again). Only one errand per errand cell, the longest-stalled (ties
 // to the lower agent): one AGV at a time gets into a one-lane stub, and escalating every
 // errand past 60 ticks on small_rules_lifelong jammed it (K 522-718, p99 516-569). While it
 // heads for its cell:
@@ -33,9 +35,10 @@
 // leavers_first). Hints only order conflicts and the goal test stays one complete search, so
 // the planners' guarantees hold as with battery urgency.
 //
-// Not bounded yet, hence off by default (controller/README.md "Session 38: escalation"): at
-// 4000 ticks small_rules_lifelong still stalls 762 ticks on one seed of 10 (off: 332), and
-// pibt-rot on large_warehouse_queues falls to 0.31-0.54x errands/tick.
+// Off by default; shipped in small_rules, small_oneway and small_charging_lifelong, where it
+// bounds K (small_rules: K max 226 over 20 seeds at 10000 ticks; controller/README.md
+// "Session 41"). Mixed on the large parking and queue examples (pibt-rot on
+// large_warehouse_queues: 0.91x errands at 4000 ticks), so not a default.
 #include <vector>
 
 #include "planner/config.hpp"
