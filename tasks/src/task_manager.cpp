@@ -58,23 +58,21 @@ void TaskManager::observe_escalation()
 {
   const int after = urgency_.escalate_after;
   if (after <= 0) return;
-  std::unordered_map<long, Escalation> next;
-  next.reserve(escalation_.size() + 1);
   for (int a = 0; a < num_agents(); ++a) {
     const Task* k = task_of(a);
     if (!k) continue;
-    Escalation e;
-    if (const auto it = escalation_.find(k->id); it != escalation_.end() && it->second.errand == k->next) e = it->second;
-    else e.errand = k->next, e.mark = stalls_->last_mark(k->id);
-    if (!e.on) {
-      const long mark = stalls_->last_mark(k->id);
-      if (mark != e.mark) e.mark = mark, e.heading_stall = 0;  // progress
-      if (mark < now_ && heading(a)) ++e.heading_stall;
-      e.on = e.heading_stall >= after;
-    }
-    next[k->id] = e;
+    const long mark = stalls_->last_mark(k->id);
+    Escalation& e = escalation_[k->id];
+    if (e.errand != k->next) e = {k->next, mark, 0, false, now_};  // a new errand (or task)
+    e.seen = now_;
+    if (e.on) continue;
+    if (mark != e.mark) e.mark = mark, e.heading_stall = 0;  // progress
+    if (mark < now_ && heading(a)) ++e.heading_stall;
+    e.on = e.heading_stall >= after;
   }
-  escalation_ = std::move(next);
+  // Tasks nobody holds any more (done, or handed back to the pool: a new holder starts anew).
+  for (auto it = escalation_.begin(); it != escalation_.end();)
+    it = it->second.seen == now_ ? std::next(it) : escalation_.erase(it);
 }
 
 std::vector<Event> TaskManager::update(long t, const planner::Config& positions)

@@ -74,8 +74,8 @@ class TaskManager {
   const ErrandStalls* stalls() const { return stalls_.get(); }
   // Escalation (UrgencyOptions::escalate_after, escalation.hpp): the errand agent a holds has
   // gone escalate_after steps without progress while its holder headed for the errand cell
-  // (whoever held it: a handed-over errand keeps its count); it stays escalated until it
-  // completes. Steps on a queue cell (waiting to be admitted) do not count: the station's
+  // (an errand swapped between agents keeps its count; one handed back to the pool starts
+  // anew with its next holder); it stays escalated until it completes. Steps on a queue cell (waiting to be admitted) do not count: the station's
   // admission owns that wait.
   // (Read between update()'s completions and its observation too: only while a holds that errand.)
   bool escalated(int agent) const;
@@ -224,6 +224,7 @@ class TaskManager {
     long mark = -1;         // the errand's last progress mark seen
     long heading_stall = 0; // steps since it in which its holder headed for the cell
     bool on = false;
+    long seen = -1;         // the last step an agent held it
   };
   std::unordered_map<long, Escalation> escalation_;  // task id -> its errand's
   void observe_escalation();
