@@ -62,6 +62,7 @@ and fleet seed, same ticks (--large-ticks) and expansions: errands per tick on /
 (the setting that keeps the large warehouse from collapsing: docs/twin_bench.md).
 """
 import argparse
+import copy
 import json
 import os
 import subprocess
@@ -103,8 +104,20 @@ def run_clean(m):
     return m["violations"] == 0 and m["teleports_or_jumps"] == 0 and m.get("collisions", 0) == 0 and not m["error"]
 
 
+_CONFIGS = {}
+
+
+def shipped(base):
+    """The config as it was when this invocation first read it (a copy): editing a config while
+    a long bench runs must not change its "as is" runs half way."""
+    if base not in _CONFIGS:
+        with open(os.path.join(ROOT, base)) as f:
+            _CONFIGS[base] = yaml.safe_load(f)
+    return copy.deepcopy(_CONFIGS[base])
+
+
 def run(build, base, out, ticks, expansions, rules, tasks_extra=None, sections=None):
-    cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+    cfg = shipped(base)
     here = os.path.dirname(os.path.join(ROOT, base))
     for k in ("net", "additional"):
         if k in cfg["sumo"]:
@@ -308,7 +321,7 @@ def pocket_clear(a, build, tmp):
     seeds = [int(x) for x in a.seeds.split(",") if x]
     for base in a.clear_configs:
         ticks = a.ticks if "small" in base else a.large_ticks
-        cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+        cfg = shipped(base)
         queues = dict(cfg["tasks"].get("queues") or {}, clear_after=a.pocket_clear)
         plain = {k: v for k, v in queues.items() if k != "clear_after"}  # off: 0 (and readable by older builds)
         for seed in seeds:
@@ -368,7 +381,7 @@ def variant_runs(a, build, tmp, overrides, summary):
     ticks_list = [int(x) for x in str(a.large_ticks_list).split(",") if x]
     jobs = []
     for base in a.clear_configs:
-        cfg = yaml.safe_load(open(os.path.join(ROOT, base)))
+        cfg = shipped(base)
         for ticks in ticks_list:
             for seed in seeds:
                 for k, (label, over) in enumerate(variants):
