@@ -294,7 +294,16 @@ def executed_path(path, speeds, dt, acc, dec, vmax, trace=None):
     x = max(end, key=lambda y: end[y])
     node = ("end", x)
     tol = dt + 1e-9
+    visited = set()
     while node:
+        # A rotation within one plan step (three or more AGVs each entering the cell the next
+        # leaves) makes the hand-over links a cycle of equal arrival times: cut the path there
+        # (on the huge warehouse the walk went round one for ever, until 20 GB).
+        if node in visited:
+            out["events"].append(f"{end[node[1]]:8.2f}   cycle of hand-overs (a rotation within one plan step): path cut")
+            out["cycles"] = out.get("cycles", 0) + 1
+            break
+        visited.add(node)
         kind, x = node
         h = hand.get(x)
         if kind == "end":
@@ -458,6 +467,11 @@ def main():
             print(f"| {r['run']} | {e['from_rest']:.1f} ({e['from_rest_least']:.1f}) | {e['n_from_rest']} | "
                   f"{e['chained']:.1f} ({e['chained_least']:.1f}) | {e['n_chained']} | {e.get('rest_reversal', 0):.1f} | "
                   f"{e['rest'] - e.get('rest_reversal', 0):.1f} | {e['links']} |")
+    for r in res:
+        e = r["exe"]
+        if e and e.get("cycles"):
+            print(f"\n{r['run']}: the path was cut at {e['events'][-1].split()[0]} s, at a cycle of hand-overs (a "
+                  f"rotation within one plan step); the table covers the path after that only")
     print("\nThe moves from rest on the executed critical path: how long each AGV stood before it started (since its"
           " previous move ended): short stands are stops a rolling approach could have saved\n")
     bins = [(0, 0.5), (0.5, 1), (1, 2), (2, 5), (5, math.inf)]
