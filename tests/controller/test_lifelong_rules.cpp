@@ -376,6 +376,22 @@ TEST(LifelongRules, LeaversFirstEndAClearingStationsStandoff)
   EXPECT_GE(m.errands_finished, 190);
 }
 
+namespace {
+
+// A shipped lifelong example with escalate_after 150 at fleet seed `seed` (-1: the config's),
+// `ticks` long at 50 expansions per step, checked every step; prints K and the errands.
+Metrics escalated_run(const std::string& file, const std::string& name, long ticks, int seed = -1)
+{
+  Config cfg = ctest_util::shipped_config(file, name, ticks, 50);
+  if (seed >= 0) cfg.fleet.seed = static_cast<uint64_t>(seed);
+  cfg.tasks.urgency_escalate_after = 150;
+  const Metrics m = ctest_util::run_checked(cfg);
+  std::printf("K %lld, errands %lld\n", static_cast<long long>(m.stalls.max_stall), static_cast<long long>(m.errands_finished));
+  return m;
+}
+
+}  // namespace
+
 // The starvation guard (tasks.urgency.escalate_after, tasks/escalation.hpp). small_rules_lifelong
 // (16 AGVs, no queues), 1000 ticks at 50 expansions per step: without it an errand stalls 240
 // ticks (254 errands; 505 before the zone-eviction fix of session 41, where a drop errand was
@@ -384,9 +400,7 @@ TEST(LifelongRules, LeaversFirstEndAClearingStationsStandoff)
 // stalls 200 ticks (measured K 164, 253 errands).
 TEST(LifelongRules, EscalationEndsALivelockedErrandsStall)
 {
-  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "escalation", 1000, 50);
-  cfg.tasks.urgency_escalate_after = 150;
-  const Metrics m = ctest_util::run_checked(cfg);
+  const Metrics m = escalated_run("small_rules_lifelong.yaml", "escalation", 1000);
   EXPECT_LE(m.stalls.max_stall, 200);
   EXPECT_GE(m.errands_finished, 240);
 }
@@ -398,10 +412,7 @@ TEST(LifelongRules, EscalationEndsALivelockedErrandsStall)
 // escalated errand waited at its mouth).
 TEST(LifelongRules, EscalationKeepsErrandStallsBoundedOverALongRun)
 {
-  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "escalation_long", 4000, 50);
-  cfg.fleet.seed = 4;
-  cfg.tasks.urgency_escalate_after = 150;
-  const Metrics m = ctest_util::run_checked(cfg);
+  const Metrics m = escalated_run("small_rules_lifelong.yaml", "escalation_long", 4000, 4);
   EXPECT_LE(m.stalls.max_stall, 230);
   EXPECT_GE(m.errands_finished, 900);
 }
@@ -414,11 +425,7 @@ TEST(LifelongRules, EscalationKeepsErrandStallsBoundedOverALongRun)
 // K 262 against 351 without escalation, 1.03x the errands).
 TEST(LifelongRules, EscalationOnAOneWayNetKeepsTheFleetMoving)
 {
-  Config cfg = ctest_util::shipped_config("small_oneway_lifelong.yaml", "escalation_oneway", 1500, 50);
-  cfg.fleet.seed = 1;
-  cfg.tasks.urgency_escalate_after = 150;
-  const Metrics m = ctest_util::run_checked(cfg);
-  std::printf("K %lld, errands %lld\n", static_cast<long long>(m.stalls.max_stall), static_cast<long long>(m.errands_finished));
+  const Metrics m = escalated_run("small_oneway_lifelong.yaml", "escalation_oneway", 1500, 1);
   EXPECT_LE(m.stalls.max_stall, 300);
   EXPECT_GE(m.errands_finished, 600);
 }
@@ -431,11 +438,7 @@ TEST(LifelongRules, EscalationOnAOneWayNetKeepsTheFleetMoving)
 // escalation K 335, 1040 errands).
 TEST(LifelongRules, EscalationClearsAStubBeforeALowBatteryEntersIt)
 {
-  Config cfg = ctest_util::shipped_config("small_charging_lifelong.yaml", "escalation_charging", 4000, 50);
-  cfg.fleet.seed = 2;
-  cfg.tasks.urgency_escalate_after = 150;
-  const Metrics m = ctest_util::run_checked(cfg);
-  std::printf("K %lld, errands %lld\n", static_cast<long long>(m.stalls.max_stall), static_cast<long long>(m.errands_finished));
+  const Metrics m = escalated_run("small_charging_lifelong.yaml", "escalation_charging", 4000, 2);
   EXPECT_LE(m.stalls.max_stall, 400);
   EXPECT_GE(m.errands_finished, 800);
   EXPECT_EQ(m.battery.ran_empty, 0);
