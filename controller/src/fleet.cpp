@@ -90,6 +90,43 @@ std::vector<planner::Vertex> random_cells(const Config& cfg, const gridify::Cell
 
 }  // namespace
 
+int keep_out_of_zones(const planner::Graph& g, const std::vector<std::vector<planner::Vertex>>& zones,
+                      planner::Config& cells)
+{
+  std::vector<uint8_t> zoned(g.size(), 0), taken(g.size(), 0);
+  for (const auto& z : zones)
+    for (planner::Vertex v : z) zoned[v] = 1;
+  for (planner::Vertex v : cells) taken[v] = 1;
+  int moved = 0;
+  std::vector<int> seen(g.size(), -1);
+  for (size_t zi = 0; zi < zones.size(); ++zi) {
+    std::vector<uint8_t> in(g.size(), 0);
+    for (planner::Vertex v : zones[zi]) in[v] = 1;
+    bool kept = false;
+    for (size_t i = 0; i < cells.size(); ++i) {
+      if (!in[cells[i]]) continue;
+      if (!kept) {
+        kept = true;
+        continue;
+      }
+      // Nearest free cell outside every zone, breadth-first along arcs (stamped marks).
+      const int stamp = static_cast<int>(zi * cells.size() + i);
+      std::vector<planner::Vertex> queue{cells[i]};
+      seen[cells[i]] = stamp;
+      for (size_t h = 0; h < queue.size(); ++h) {
+        const planner::Vertex u = queue[h];
+        if (!zoned[u] && !taken[u]) {
+          taken[cells[i]] = 0, taken[u] = 1, cells[i] = u, ++moved;
+          break;
+        }
+        for (planner::Vertex w : g.neighbors(u))
+          if (seen[w] != stamp) seen[w] = stamp, queue.push_back(w);
+      }
+    }
+  }
+  return moved;
+}
+
 planner::Instance make_instance(const Config& cfg, const gridify::CellMap& map)
 {
   planner::Instance ins;

@@ -60,7 +60,8 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["errandThroughputOverFreeFlow"] = free_flow_bound > 0 ? errand_throughput() / free_flow_bound : 0.0;
     j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}, {"clearings", clearings}, {"jamClearings", jam_clearings},
                                    {"clearingSteps", clearing_steps}, {"longestClearing", longest_clearing}};
-    j["lifelong"]["parking"] = {{"idleAtEnd", idle_at_end}, {"parkedAtEnd", parked_at_end}};
+    j["lifelong"]["parking"] = {{"idleAtEnd", idle_at_end}, {"parkedAtEnd", parked_at_end},
+                                  {"idleTicks", idle_ticks}, {"parkedTicks", parked_ticks}};
   }
   if (battery.active) {
     nlohmann::json samples = nlohmann::json::array();

@@ -50,8 +50,7 @@ std::string lane_of_edge(const gridify::CellMap& map, const std::string& edge)
 
 }  // namespace
 
-std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& map, const planner::Config& starts,
-                                   const planner::Config& goals, std::vector<std::string>& warnings)
+void Rules::read(const Config& cfg, const gridify::CellMap& map, std::vector<Closure>& closures, std::vector<Zone>& zones)
 {
   auto fail = [&](const std::string& key, const std::string& what) { throw ConfigError(cfg.path + ": " + key + ": " + what); };
   // Lanes and edges by id: a name gridify dropped (a one-way edge with drop_one_way, a
@@ -68,8 +67,6 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
     fail(key, "unknown edge '" + edge + "' (not an edge of the gridified net " + cfg.sumo.net + ")");
   };
 
-  std::vector<Closure> closures;
-  std::vector<Zone> zones;
   for (const RuleClosure& rc : cfg.rules.closures) {
     Closure c;
     c.what = rc.key;
@@ -125,6 +122,27 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
       zones.push_back(std::move(z));
     }
   }
+  for (Zone& z : zones) {
+    std::sort(z.cells.begin(), z.cells.end());
+    z.cells.erase(std::unique(z.cells.begin(), z.cells.end()), z.cells.end());
+  }
+}
+
+std::vector<Zone> Rules::zones_of(const Config& cfg, const gridify::CellMap& map)
+{
+  std::vector<Closure> closures;
+  std::vector<Zone> zones;
+  read(cfg, map, closures, zones);
+  return zones;
+}
+
+std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& map, const planner::Config& starts,
+                                   const planner::Config& goals, std::vector<std::string>& warnings)
+{
+  auto fail = [&](const std::string& key, const std::string& what) { throw ConfigError(cfg.path + ": " + key + ": " + what); };
+  std::vector<Closure> closures;
+  std::vector<Zone> zones;
+  read(cfg, map, closures, zones);
   // By default (-1) lockstep runs on libsumo watch; adg runs only when asked (a poll of every
   // lane per tick is not free on a large net). Every solver: a rotation solver restarts on
   // the rules' graph from the AGVs' cells and headings (Run::rules_restart, Run::replan).
@@ -136,8 +154,6 @@ std::unique_ptr<Rules> Rules::make(const Config& cfg, const gridify::CellMap& ma
   int pieces0 = 0;
   g.strong_components(&pieces0);
   for (Zone& z : zones) {
-    std::sort(z.cells.begin(), z.cells.end());
-    z.cells.erase(std::unique(z.cells.begin(), z.cells.end()), z.cells.end());
     if (z.cells.empty()) fail(z.what, "a zone with no cells (no cell of the gridified net lies in it)");
     std::vector<uint8_t> in(g.size(), 0);
     for (planner::Vertex v : z.cells) in[v] = 1;

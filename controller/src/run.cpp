@@ -84,6 +84,19 @@ void Run::prepare()
   }
   ins_ = make_instance(cfg_, c_.map_);
   const planner::Graph& g = c_.map_.graph;
+  // Random starts (and one-shot random goals) that a one-at-a-time zone would refuse: each
+  // zone keeps one, the rest move to the nearest free cell outside (fleet.hpp).
+  if (cfg_.fleet.random_starts || (!cfg_.tasks.lifelong() && cfg_.tasks.random_goals)) {
+    std::vector<std::vector<planner::Vertex>> zones;
+    for (Zone& z : Rules::zones_of(cfg_, c_.map_)) zones.push_back(std::move(z.cells));
+    int starts = 0, goals = 0;
+    if (!zones.empty() && cfg_.fleet.random_starts) starts = keep_out_of_zones(g, zones, ins_.starts);
+    if (cfg_.tasks.lifelong()) ins_.goals = ins_.starts;
+    else if (!zones.empty() && cfg_.tasks.random_goals) goals = keep_out_of_zones(g, zones, ins_.goals);
+    if (starts + goals > 0)
+      std::fprintf(stderr, "[rtlacam-sumo] %d random start(s) and %d random goal(s) moved out of one-at-a-time zones (one AGV per zone)\n",
+                   starts, goals);
+  }
   m_.agents = ins_.num_agents();
   m_.cells = g.size();
   if (!cfg_.tasks.lifelong()) m_.soc_lb = ins_.soc_lower_bound(g);  // in moves: before the lane costs
@@ -504,6 +517,7 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.longest_clearing = n.longest_clearing;
   m_.idle_at_end = n.idle;
   m_.parked_at_end = n.parked;
+  m_.idle_ticks = n.idle_ticks, m_.parked_ticks = n.parked_ticks;
   m_.errands_finished = tm_->errands_finished();
   m_.tasks_finished = tm_->tasks_finished();
   m_.reassigned_for_closure = tm_->reassigned_for_closure();

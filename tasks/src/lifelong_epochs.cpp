@@ -95,6 +95,7 @@ void LifelongEpochs::count(long t, const planner::Config& real)
     }
   }
   for (int a = 0; a < tasks_.num_agents(); ++a) heading_count_[goals[a]] = 0;
+  counts_.idle_ticks += counts_.idle, counts_.parked_ticks += counts_.parked;
 }
 
 }  // namespace tasks

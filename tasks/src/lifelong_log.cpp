@@ -55,7 +55,8 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   j["maxErrandTicks"] = r.counts.max_goal_ticks;
   j["queues"] = {{"maxHeading", r.counts.max_heading}, {"queuedTicks", r.counts.queued_ticks}, {"clearings", r.counts.clearings}, {"jamClearings", r.counts.jam_clearings},
                 {"clearingSteps", r.counts.clearing_steps}, {"longestClearing", r.counts.longest_clearing}};
-  j["parking"] = {{"idleAtEnd", r.counts.idle}, {"parkedAtEnd", r.counts.parked}};
+  j["parking"] = {{"idleAtEnd", r.counts.idle}, {"parkedAtEnd", r.counts.parked},
+                  {"idleTicks", r.counts.idle_ticks}, {"parkedTicks", r.counts.parked_ticks}};
   if (r.action_model == ActionModel::Rotation) j["windowFullSteps"] = r.window_full;
   j["expansions"] = r.expansions;
   j["numPlannerErrors"] = r.planner_errors;

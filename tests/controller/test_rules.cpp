@@ -13,6 +13,7 @@
 
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "controller/fleet.hpp"
 #include "controller/rules.hpp"
 #include "controller_test_util.hpp"
 #include "rules_test_util.hpp"
@@ -278,6 +279,77 @@ TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
   // "Session 41").
   EXPECT_GT(m.stalls.errands, 200);
   EXPECT_LE(m.stalls.max_stall, 200);
+}
+
+// Every rule in one lifelong run (config/small_all_rules_lifelong.yaml): a rerouter closure
+// over 200-400 s and a YAML one over 600-700 s, a one-at-a-time zone, parking (pool_size 12 <
+// 16 AGVs), batteries with four chargers, the stall rules and escalation. 1000 ticks at 50
+// expansions per step (deterministic), fleet seed 1: measured 182 errands, 16 charging
+// errands, nobody empty, 672 parked AGV-ticks, K 186 (fleet seeds 1-8: K 91-188).
+TEST(Rules, ShippedAllRulesExampleRunsCleanWithEveryRuleAtWork)
+{
+  Config cfg = ctest_util::shipped_config("small_all_rules_lifelong.yaml", "rules_all_shipped", 1000, 50);
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_EQ(m.violations, 0);  // RuleCheck: nobody in a closed cell, one AGV per zone at most
+  EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0);
+  EXPECT_EQ(m.rules.checks, m.ticks * cfg.steps_per_tick());
+  ctest_util::expect_no_sumo_collision(cfg.output.dir);
+  EXPECT_EQ(m.rules.closure_changes, 4);  // 200, 400, 600, 700 s
+  ASSERT_TRUE(m.battery.active);
+  EXPECT_GE(m.battery.errands, 10);
+  EXPECT_EQ(m.battery.ran_empty, 0);
+  EXPECT_GT(m.parked_ticks, 0);  // idle AGVs waited on the parkingAreas' cells
+  EXPECT_GT(m.errands_finished, 150);
+  EXPECT_GT(m.stalls.errands, 150);
+  EXPECT_LE(m.stalls.max_stall, 200);  // K
+}
+
+// Random starts that a one-at-a-time zone would refuse are drawn out of it instead
+// (fleet.hpp, keep_out_of_zones): small_rules_lifelong's fleet seed 7 puts two AGVs in the top
+// cross aisle's zone, a config the rules refused before ("holds the starts of ..."). Now the
+// second one starts on the nearest free cell outside, and the run goes on clean.
+TEST(Rules, RandomStartsAreDrawnOutOfOneAtATimeZones)
+{
+  Config cfg = ctest_util::shipped_config("small_rules_lifelong.yaml", "rules_zone_starts", 200, 50);
+  cfg.fleet.seed = 7;
+  Controller c(cfg);
+  const Metrics m = c.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_EQ(m.violations, 0);
+  EXPECT_GT(m.errands_finished, 20);
+  std::vector<std::vector<planner::Vertex>> zones;
+  for (Zone& z : Rules::zones_of(cfg, c.map())) zones.push_back(z.cells);
+  ASSERT_EQ(zones.size(), 1u);
+  auto inside = [&](const planner::Config& q) {
+    return std::count_if(q.begin(), q.end(), [&](planner::Vertex v) { return in(zones[0], v); });
+  };
+  // The seed's own draw: two in the zone; one moves.
+  planner::Instance raw = make_instance(cfg, c.map());
+  EXPECT_EQ(inside(raw.starts), 2);
+  EXPECT_EQ(keep_out_of_zones(c.map().graph, zones, raw.starts), 1);
+  ASSERT_FALSE(c.plan().empty());
+  EXPECT_EQ(c.plan()[0], raw.starts);
+  EXPECT_EQ(inside(c.plan()[0]), 1);
+}
+
+// keep_out_of_zones on a path 0-1-2-3-4-5 with the zone {1, 2}: the first start inside stays,
+// the next goes to the nearest free cell outside every zone (3, not the taken 4), and a
+// draw with one start per zone is left alone.
+TEST(Rules, KeepOutOfZonesMovesEveryStartButOnePerZoneToTheNearestFreeCell)
+{
+  const planner::Graph g = planner::Graph::from_edges(6, {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}});
+  const std::vector<std::vector<planner::Vertex>> zones{{1, 2}};
+  planner::Config cells{1, 4, 2};
+  EXPECT_EQ(keep_out_of_zones(g, zones, cells), 1);
+  EXPECT_EQ(cells, (planner::Config{1, 4, 3}));
+  planner::Config one{0, 2, 5};
+  EXPECT_EQ(keep_out_of_zones(g, zones, one), 0);
+  EXPECT_EQ(one, (planner::Config{0, 2, 5}));
+  planner::Config three{2, 1, 3, 4};  // 1 goes to its free neighbour 0 (3 and 4 are taken)
+  EXPECT_EQ(keep_out_of_zones(g, zones, three), 1);
+  EXPECT_EQ(three, (planner::Config{2, 0, 3, 4}));
 }
 
 TEST(Rules, AgvsOnCellsBeingClosedLeaveThemByTheEvacuationArcs)

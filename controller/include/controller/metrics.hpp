@@ -126,6 +126,7 @@ struct Metrics {
   long clearing_steps = 0;   // steps stations spent clearing, summed over stations
   int longest_clearing = 0;  // the longest clearing in steps
   int idle_at_end = 0, parked_at_end = 0;
+  long long idle_ticks = 0, parked_ticks = 0;  // AGV-ticks without a task, and of those on a parking cell
   // fleet.battery (tasks/battery.hpp), metrics.json "battery": charging errands begun,
   // AGVs whose charge reached 0 (must be 0), the share of AGV-ticks spent charging on a
   // charger, the lowest charge any AGV had (fraction), and every sample_ticks ticks the

@@ -106,8 +106,17 @@ class Rules {
   // `starts`: no zone may hold two of them either.
   static std::unique_ptr<Rules> make(const Config& cfg, const gridify::CellMap& map, const planner::Config& starts,
                                      const planner::Config& goals, std::vector<std::string>& warnings);
+  // The zones alone (their cells sorted), read as make() reads them, unchecked: random starts
+  // and goals are drawn out of them before the run (fleet.hpp, keep_out_of_zones).
+  static std::vector<Zone> zones_of(const Config& cfg, const gridify::CellMap& map);
 
   Rules(const gridify::CellMap& map, std::vector<Closure> closures, std::vector<Zone> zones);
+
+ private:
+  // The closures and zones of the YAML and (rules.sumo) sumo.additional; unknown names throw.
+  static void read(const Config& cfg, const gridify::CellMap& map, std::vector<Closure>& closures, std::vector<Zone>& zones);
+
+ public:
 
   // Closures or zones configured (else only lanes are watched: the planner stays as it is
   // until a watched lane closes).

@@ -125,6 +125,7 @@ struct EpochCounts {
   long clearing_steps = 0;       // steps stations spent clearing, summed over stations
   int longest_clearing = 0;      // the longest clearing in steps (an open one to now)
   int idle = 0, parked = 0;      // at the last count: agents without a task, those of them on a parking cell
+  long long idle_ticks = 0, parked_ticks = 0;  // the same summed over the counts (agent-steps)
 };
 
 struct LifelongResult {
