@@ -44,7 +44,7 @@ int main(int argc, char** argv)
   int scatter_margin = LacamOptions{}.scatter_margin, scatter_lead = LacamOptions{}.scatter_lead,
       scatter_max_passes = 0, scatter_dive_passes = LacamOptions{}.scatter_dive_passes;
   double cold_factor = LacamOptions{}.cold_factor;
-  bool scatter_dive_guard = LacamOptions{}.scatter_dive_guard, reprice = LacamOptions{}.reprice,
+  bool scatter_dive_guard = LacamOptions{}.scatter_dive_guard, reprice = LacamOptions{}.reprice, lookahead = LacamOptions{}.lookahead,
        scatter_lead_dive = LacamOptions{}.scatter_lead_dive, scatter_prepare = LacamOptions{}.scatter_prepare,
        guided_cost = LacamOptions{}.guided_cost, dive_pause = LacamOptions{}.dive_pause,
        cold_end = LacamOptions{}.cold_end, scatter_lead_guided = LacamOptions{}.scatter_lead_guided;
@@ -178,6 +178,9 @@ int main(int argc, char** argv)
       ->capture_default_str();
   app.add_flag("--dive,!--no-dive", dive, "with --refine: PIBT rollouts from the root, inserted and rewired")
       ->capture_default_str();
+  app.add_flag("--lookahead,!--no-lookahead", lookahead,
+               "with --refine on a directed graph: a lookahead search from k steps on while refinement is over (rt_lacam.hpp)")
+      ->capture_default_str();
   app.add_flag("--scatter-dive-guard,!--no-scatter-dive-guard", scatter_dive_guard,
                "a guided dive goes on by distances once as long as the rest of the best path (lacam.hpp)");
   app.add_flag("--scatter-lead-dive,!--no-scatter-lead-dive", scatter_lead_dive,
@@ -264,6 +267,7 @@ int main(int argc, char** argv)
     lopt.scatter_live_keep = scatter_live_keep;
     lopt.scatter_dive_guard = scatter_dive_guard;
     lopt.reprice = reprice;
+    lopt.lookahead = lookahead;
     lopt.scatter_lead_dive = scatter_lead_dive;
     lopt.scatter_prepare = scatter_prepare;
     lopt.guided_cost = guided_cost;
@@ -360,6 +364,8 @@ int main(int argc, char** argv)
         threads_json["dive_wins"] = rt->lacam().dive_wins();
         threads_json["dive_stalls"] = rt->lacam().dive_stalls();
         threads_json["reprices"] = rt->lacam().reprices();
+        threads_json["lookaheads"] = rt->lookaheads();  // directed graphs (rt_lacam.hpp)
+        threads_json["lookahead_switches"] = rt->switches();
         threads_json["rewire_cuts"] = rt->lacam().rewire_cuts();
         threads_json["late_dives"] = rt->lacam().late_dives();
         threads_json["dive_pauses"] = rt->lacam().dive_pauses();
@@ -435,6 +441,7 @@ int main(int argc, char** argv)
     j["scatter_live_keep"] = scatter_live_keep;
     j["scatter_dive_guard"] = scatter_dive_guard;
     j["reprice"] = reprice;
+    j["lookahead"] = lookahead;
     j["scatter_lead_dive"] = scatter_lead_dive;
     j["scatter_prepare"] = scatter_prepare;
     j["guided_cost"] = guided_cost;

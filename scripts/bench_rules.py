@@ -21,6 +21,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
                          [--station-closure] [--executor lockstep|adg|adg-follow]
                          [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
+                         [--long-k CONFIG... [--seeds 1,2,3,4] [--large-ticks-list 4000,16000] [--jobs 2]]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
                          [--pocket-clear N [--clear-configs CONFIG...] [--seeds 1,2] [--off-build BUILD]]
                          [--task-variants JSON... [--clear-configs CONFIG...] [--seeds 1,2]
@@ -39,6 +40,9 @@ pibt-rot and epibt) and restarts on the rules' graph from the AGVs' cells and he
 --urgency: instead, the task layer's priority hints (tasks/urgency.hpp) on and off, rules
 off, on each of --urgency-configs (default: the large two-way and one-way warehouses and the
 small one), same ticks, expansions and seeds: errands per tick on / off and K both ways.
+--long-k CONFIG... [--seeds 1,2,3,4] [--large-ticks-list 4000,16000] [--jobs 2]: instead, each config
+as shipped, with its own planner budget (not --expansions) and endless tasks, per fleet seed and
+tick count: errands per tick and K per seed (does the longest stall grow with the run?).
 --shipped-k CONFIG...: instead, each config as shipped (its rules, queues, hints), with the
 fixed expansions and --ticks (small configs) / --large-ticks: K of the shipped examples.
 --admission [--admission-configs CONFIG...] [--seeds 1,2]: instead, station admission
@@ -123,8 +127,9 @@ def run(build, base, out, ticks, expansions, rules, tasks_extra=None, sections=N
         if k in cfg["sumo"]:
             cfg["sumo"][k] = os.path.normpath(os.path.join(here, cfg["sumo"][k]))
     cfg["sumo"]["outputs"] = {"fcd": False, "tripinfo": False, "summary": False, "collision": True}
-    cfg["planner"]["budget_ms"] = 0
-    cfg["planner"]["expansions"] = expansions
+    if expansions is not None:  # None: the config's own budget (budget_ms or expansions)
+        cfg["planner"]["budget_ms"] = 0
+        cfg["planner"]["expansions"] = expansions
     cfg["run"]["max_ticks"] = ticks
     cfg["run"]["progress_s"] = 0
     if EXECUTOR:
@@ -264,6 +269,48 @@ def shipped_k(a, build, tmp):
         l = m["lifelong"]
         print(f"| {base} | {m['ticks']} | {l['errandThroughput']:.3f} | {k_cols(m)} | {l['numErrandFinished']} | "
               f"{m['violations']} | {m['teleports_or_jumps']} |", flush=True)
+    print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
+    return 0 if clean else 1
+
+
+def long_k(a, build, tmp):
+    """K over long runs: each config as shipped (its own planner budget, rules, queues, hints)
+    with endless tasks (tasks.random.count 10^6), per fleet seed and tick count: does the longest
+    stall grow with the run?"""
+    from concurrent.futures import ThreadPoolExecutor
+    ticks_list = [int(t) for t in a.large_ticks_list.split(",")]
+    seeds = [int(s) for s in a.seeds.split(",")]
+    jobs = [(base, t, seed) for base in a.long_k for t in ticks_list for seed in seeds]
+
+    def one(job):
+        base, t, seed = job
+        out = os.path.join(tmp, f"{os.path.basename(base).split('.')[0]}_{t}_s{seed}")
+        cfg = shipped(base)
+        endless = {"random": dict(cfg["tasks"]["random"], count=10 ** 6)} if "random" in cfg["tasks"] else {}
+        return job, run(build, base, out, t, None, None, endless, {"fleet": {"seed": seed}})
+
+    with ThreadPoolExecutor(max_workers=max(1, a.jobs)) as ex:
+        results = dict(ex.map(one, jobs))
+    clean = True
+    print(f"# fleet seeds {a.seeds}; each config's own planner budget; tasks.random.count 10^6")
+    print("| config | ticks | errands/tick (mean) | K per seed (stall max) | stall p99 max | errand ticks max |")
+    print("|---|---|---|---|---|---|")
+    for base in a.long_k:
+        for t in ticks_list:
+            ms = []
+            for seed in seeds:
+                m, err = results[(base, t, seed)]
+                if m is None:
+                    print(f"# {base} seed {seed}: {err}", file=sys.stderr)
+                    continue
+                clean = clean and run_clean(m)
+                ms.append(m)
+            if not ms:
+                continue
+            ls = [m["lifelong"] for m in ms]
+            print(f"| {base} | {t} | {sum(l['errandThroughput'] for l in ls) / len(ls):.3f} | "
+                  f"{' / '.join(str(l['stallTicks']['max']) for l in ls)} | {max(l['stallTicks']['p99'] for l in ls)} | "
+                  f"{max(l['errandTicks']['max'] for l in ls)} |", flush=True)
     print("all runs clean (0 collisions, 0 violations, 0 jumps/re-syncs, no error)" if clean else "NOT ALL RUNS CLEAN")
     return 0 if clean else 1
 
@@ -453,6 +500,9 @@ def main():
     ap.add_argument("--solver")
     ap.add_argument("--urgency", action="store_true")
     ap.add_argument("--shipped-k", nargs="+", metavar="CONFIG")
+    ap.add_argument("--long-k", nargs="+", metavar="CONFIG",
+                    help="K over long runs: each config with its own planner budget and endless tasks, per fleet seed "
+                         "(--seeds) and tick count (--large-ticks-list), --jobs at once")
     ap.add_argument("--admission", action="store_true")
     ap.add_argument("--admission-configs", nargs="+",
                     default=["config/large_warehouse_lifelong.yaml", "config/large_oneway_lifelong.yaml",
@@ -498,7 +548,8 @@ def main():
     global QUEUES, EXECUTOR, SOLVER
     QUEUES, EXECUTOR, SOLVER = a.queues, a.executor, a.solver
     dflt = "the config's"
-    print(f"# solver: {SOLVER or dflt}, executor: {EXECUTOR or dflt}, expansions per step: {a.expansions}"
+    print(f"# solver: {SOLVER or dflt}, executor: {EXECUTOR or dflt}, "
+          f"expansions per step: {dflt + ' budget' if a.long_k else a.expansions}"
           + (", queues" if QUEUES else ""), flush=True)
     build = os.path.abspath(a.build)
     tmp = tempfile.mkdtemp(prefix="bench_rules_")
@@ -509,6 +560,8 @@ def main():
         return urgency(a, build, tmp)
     if a.shipped_k:
         return shipped_k(a, build, tmp)
+    if a.long_k:
+        return long_k(a, build, tmp)
     if a.admission:
         return admission(a, build, tmp)
     if a.stall_rules:

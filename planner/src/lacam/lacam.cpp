@@ -519,6 +519,11 @@ void Lacam::reroot(const HNode* child)
   }
 }
 
+void Lacam::waited()
+{
+  if (soc_on() && best_.nodes().size() >= 2 && best_.nodes()[1] == root_) best_.advance(root_, root_, false);
+}
+
 bool Lacam::check_tree(std::string* why) const
 {
   auto fail = [&](const std::string& w) {

@@ -505,6 +505,27 @@ std::vector<Config> Lacam::best_path() const
   return out;
 }
 
+int Lacam::best_steps() const
+{
+  if (soc_on() && !best_.empty()) return static_cast<int>(best_.nodes().size()) - 1;
+  if (!goal_) return -1;
+  int steps = 0;
+  for (const HNode* h = goal_; h->parent; h = h->parent) ++steps;
+  return steps;
+}
+
+Config Lacam::best_at(int k) const
+{
+  const HNode* h = nullptr;
+  if (soc_on() && !best_.empty()) {
+    h = best_.nodes().at(static_cast<size_t>(k));
+  } else {
+    h = goal_;
+    for (int back = best_steps() - k; back > 0; --back) h = h->parent;
+  }
+  return Config(h->C, h->C + n_);
+}
+
 const HNode* Lacam::best_next() const
 {
   if (!soc_on() || best_.empty()) return nullptr;

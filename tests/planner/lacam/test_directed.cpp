@@ -15,6 +15,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/lacam/lacam.hpp"
 #include "planner/lacam/rt_lacam.hpp"
+#include "planner/movingai.hpp"
 #include "planner/one_way_aisles.hpp"
 #include "planner/error.hpp"
 #include "planner/validator.hpp"
@@ -262,4 +263,61 @@ TEST(DirectedGraph, CrowdedOneWayWarehouseRunsValid)
     }
   }
   EXPECT_GT(expansions, 24u);  // searched, not solved by the first PIBT step everywhere
+}
+
+namespace {
+
+struct OneWayRun {
+  long long makespan = 0, soc = 0;
+  uint64_t lookaheads = 0, switches = 0;
+};
+
+// RT-LaCAM* (refine) at `expansions` per iteration to the goal, every move checked.
+OneWayRun one_way_run(const Graph& g, const Instance& ins, uint64_t expansions, bool lookahead)
+{
+  LacamOptions o;
+  o.refine = true;
+  o.lookahead = lookahead;
+  RtLacam rt(g, ins.starts, ins.goals, o);
+  Validator val(g, ins.starts, ins.goals);
+  OneWayRun r;
+  for (long long step = 0; !rt.at_goal(); ++step) {
+    if (step >= 20000) {
+      ADD_FAILURE() << "no goal in 20000 steps";
+      return r;
+    }
+    rt.step(Budget::expansion_count(expansions));
+    rt.commit();
+    if (!val.step(rt.current())) {
+      ADD_FAILURE() << val.error();
+      return r;
+    }
+    r.makespan = step + 1;
+  }
+  r.soc = val.sum_of_costs();
+  r.lookaheads = rt.lookaheads(), r.switches = rt.switches();
+  return r;
+}
+
+}  // namespace
+
+// RT-LaCAM*'s lookahead (rt_lacam.hpp): on one-way aisles the first one-way move along the
+// goal's path ends refinement, and LaCAM's first solution can be long. warehouse-10-20-10-2-1
+// with one-way aisles, scen 2, N = 200, 50 expansions per iteration: measured makespan 253
+// and standard SOC 30325 with the lookahead, 466 and 34444 without (at 1 ms per iteration
+// 249 / 29062 against 463 / 33844). Both runs valid and solved: the lookahead only ever
+// takes over a strictly shorter path. Off, it never starts.
+TEST(DirectedGraph, LookaheadShortensALongFirstPathOnOneWayAisles)
+{
+  const Graph g = one_way_aisles(load_map(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1.map"));
+  ASSERT_TRUE(g.directed());
+  const Instance ins = load_scen(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1-random-2-first200.scen", g, 200);
+  const OneWayRun on = one_way_run(g, ins, 50, true);
+  const OneWayRun off = one_way_run(g, ins, 50, false);
+  std::printf("makespan %lld / %lld, SOC %lld / %lld, lookaheads %llu, switches %llu\n", on.makespan, off.makespan,
+              on.soc, off.soc, static_cast<unsigned long long>(on.lookaheads), static_cast<unsigned long long>(on.switches));
+  EXPECT_GT(on.switches, 0u);
+  EXPECT_EQ(off.lookaheads, 0u);
+  EXPECT_LT(on.makespan * 10, off.makespan * 7);  // under 0.7x
+  EXPECT_LT(on.soc, off.soc);
 }

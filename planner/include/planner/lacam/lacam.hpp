@@ -102,6 +102,9 @@ struct LacamOptions {
   // LaCAM* refinement after the first solution (see above). Off here, so that the library
   // default stays the paper's RT-LaCAM; the apps switch it on by default.
   bool refine = false;
+  // With refine, on a directed graph: RT-LaCAM*'s lookahead search while refinement is over
+  // (rt_lacam.hpp, "Lookahead"). Off: the followed path is kept to its end.
+  bool lookahead = true;
   // Tests: a rewiring after a known-node hit relaxes at most this many nodes per refinement
   // step (0: no cap), a deterministic stand-in for the deadline that cuts it in timed runs.
   int rewire_slice = 0;
@@ -353,6 +356,10 @@ class Lacam {
   // The path the agents follow once solved: under Objective::soc the followed path
   // (best_path.hpp) once priced, else the goal's tree path.
   std::vector<Config> best_path() const;
+  // Its steps (best_path().size() - 1; -1 with no goal node) and its configuration after k
+  // steps (k within them), without copying the path: O(steps).
+  int best_steps() const;
+  Config best_at(int k) const;
   // The root's next node on the followed path (the root at its end); null when the goal's
   // tree path is followed (objective loss, a goal test, or none priced yet).
   const HNode* best_next() const;
@@ -369,6 +376,11 @@ class Lacam {
   // (throws std::logic_error otherwise) and stops refinement, so that nothing walks that
   // link again (the goal's tree path runs from `child` downwards, never through it).
   void reroot(const HNode* child);
+  // The agents waited at the root (RT-LaCAM's next() was the root). A followed path whose
+  // next node is the root itself (a step in which every agent waits, which an LNS window can
+  // leave in it) is trimmed by that step; else nothing changes. Without it the agents waited
+  // there for ever (RT-LaCAM's commit() does not reroot onto the root).
+  void waited();
   // Whether the transition a -> b can be undone in one step (b -> a is legal): always on an
   // undirected graph; on a directed one, iff every agent that moved has the reverse arc.
   bool reversible(const HNode* a, const HNode* b) const;
