@@ -17,7 +17,7 @@ Also writes `small_oneway`: `small` with one-way picking aisles in alternate dir
 Also writes one member of a warehouse family (aisles x shelf rows as parameters) anywhere:
 scripts/bench_scale.py uses it for its robots-vs-latency table.
 
-Usage: make_warehouse.py  (writes small.*, small_charging.*, small_oneway.*, large.*, large_oneway.*, huge.*, bottleneck.* here; then run ./build.sh)
+Usage: make_warehouse.py  (writes small.*, small_charging.*, small_oneway.*, large.*, large_oneway.*, large_charging.*, huge.*, bottleneck.* here; then run ./build.sh)
        make_warehouse.py --family AISLES ROWS --name NAME --out DIR  (writes DIR/NAME.{nod,edg,add}.xml)
 """
 import argparse
@@ -170,6 +170,13 @@ def shipped():
     warehouse("large_oneway", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
               pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
               park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)], one_way=True)
+    # Large with chargers (issue 24, config/large_charging_lifelong.yaml): `large` plus 16
+    # dead-end charger stubs, below the odd picking aisles (no pick-up stub there) and above
+    # the even ones (no drop stub there): 30 Wh per tick for 200 AGVs.
+    warehouse("large_charging", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
+              pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
+              park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)],
+              charge_below=list(range(1, 16, 2)), charge_above=list(range(0, 16, 2)))
     # Large with a parking lane (issue 24, config/large_warehouse_parking.yaml): the same net and
     # stations, and parking spots on every other cell of both outer picking aisles (20 spots:
     # a spot between two parked AGVs stays free, so one can leave or pass).
