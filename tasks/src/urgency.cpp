@@ -53,7 +53,7 @@ std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* 
     if (st && tm.heading(a)) h[a] = static_cast<float>(st->stalled(tm.now(), tm.task_of(a)->id));
     if (b && battery_urgent(tm, a)) {
       const double f = std::clamp(b->charge(a) / b->options().capacity_wh, 0.0, 1.0);
-      h[a] = kBatteryUrgency + static_cast<float>(kBatteryUrgency * (1.0 - f));
+      h[a] = std::max(h[a], kBatteryUrgency + static_cast<float>(kBatteryUrgency * (1.0 - f)));
     }
   }
   if (positions) escalation_hints(tm, *positions, h);  // the starvation guard (escalation.hpp): above the rest but battery

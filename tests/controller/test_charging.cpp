@@ -151,3 +151,23 @@ TEST(Charging, BadBatteryInputIsOneLineErrors)
   cfg.run.max_ticks = 2;
   EXPECT_EQ(run_error(cfg), "(no error)");
 }
+
+// Chargers sized against the fleet's drain (Run::prepare): with every AGV driving a move and
+// a turn per tick, the fleet may drive away at most half of what the chargers give, else one
+// warning line at the start. small_charging as shipped (16 AGVs, 0.1 Wh/m + 0.05 per turn:
+// 2.4 Wh per tick against 7.6) runs without it; at 1 Wh/m (16.8 against 7.6) it warns. Large
+// warehouse, 200 AGVs on 16 chargers at 0.1 Wh/m: 192 ran empty in 2000 ticks (s42).
+TEST(Charging, ChargersShortOfTheFleetsDrainGetAStartUpWarning)
+{
+  for (double per_m : {0.1, 1.0}) {
+    Config cfg = ctest_util::shipped_config("small_charging_lifelong.yaml", "charging_supply", 1, 50);
+    cfg.fleet.battery.per_m_wh = per_m;
+    testing::internal::CaptureStderr();
+    Controller c(cfg);
+    const Metrics m = c.run();
+    const std::string err = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(m.error, "");
+    const bool warned = err.find("AGVs may run empty (size the chargers") != std::string::npos;
+    EXPECT_EQ(warned, per_m > 0.5) << err;
+  }
+}

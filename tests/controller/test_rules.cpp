@@ -284,8 +284,8 @@ TEST(Rules, ShippedLifelongExampleRunsCleanAndNoErrandStalls)
 // Every rule in one lifelong run (config/small_all_rules_lifelong.yaml): a rerouter closure
 // over 200-400 s and a YAML one over 600-700 s, a one-at-a-time zone, parking (pool_size 12 <
 // 16 AGVs), batteries with four chargers, the stall rules and escalation. 1000 ticks at 50
-// expansions per step (deterministic), fleet seed 1: measured 182 errands, 16 charging
-// errands, nobody empty, 672 parked AGV-ticks, K 186 (fleet seeds 1-8: K 91-188).
+// expansions per step (deterministic), fleet seed 1: measured 227 errands, 20 charging
+// errands, nobody empty, 689 parked AGV-ticks, K 146 (fleet seeds 1-8: K 88-169).
 TEST(Rules, ShippedAllRulesExampleRunsCleanWithEveryRuleAtWork)
 {
   Config cfg = ctest_util::shipped_config("small_all_rules_lifelong.yaml", "rules_all_shipped", 1000, 50);

@@ -168,6 +168,45 @@ TEST(ErrandStalls, HeadHintsGoToTheMostStalledAgentPerCellAndToAgentsLeavingAPoc
   }
 }
 
+// Leaving a pocket outranks battery urgency, also for a low agent (session 42). The head-hint
+// map with batteries: every agent starts at 31 of 100 Wh (threshold 30), and a move drains 2
+// Wh. Agent 0 steps from the junction (1, 1) into the pick-up pocket at step 1 (29 Wh: low),
+// picks up and must leave; agent 1 steps toward the station (low, heading). Agent 0's hint is
+// kLeavingUrgency, above agent 1's battery hint. Before, the battery hint overwrote the leaving
+// one and leavers (5000) ranked below low agents: on the large warehouse with 16 charger stubs
+// low AGVs pushed into the stubs past the ones that had to leave, and the fleet jammed.
+TEST(ErrandStalls, LeavingAPocketOutranksBatteryUrgency)
+{
+  const planner::Graph g = ttest::grid({".....", "..#..", "#.###"});
+  auto file = ttest::task_file(g, {{{1, 2}, {0, 1}}, {{1, 2}, {0, 1}}, {{1, 2}, {0, 1}}});
+  TaskPool tm(file, g, 3, std::make_unique<GreedyAssigner>());
+  UrgencyOptions u;
+  u.head_after = 100;  // head hints on (leavers), no agent stalls that long here
+  u.battery = true;
+  tm.set_urgency(u);
+  BatteryOptions b;
+  b.initial = 0.31;
+  b.per_m_wh = 2;
+  b.threshold = 0.3;
+  b.critical = 0;
+  b.reserve_margin = 0;
+  tm.set_grid_battery(g, b, {g.at(0, 0)}, 7200);
+  tm.watch_stalls(g);
+  Config at{g.at(1, 1), g.at(4, 0), g.at(4, 1)};
+  tm.start(at);
+  ASSERT_TRUE(tm.busy(0) && tm.busy(1));
+  ASSERT_EQ(tm.goals()[0], g.at(1, 2));
+  at[0] = g.at(1, 2), at[1] = g.at(3, 0);
+  tm.update(1, at);
+  ASSERT_EQ(tm.goals()[0], g.at(0, 1));  // picked up: on its way out of the pocket
+  ASSERT_TRUE(tm.battery()->low(0) && tm.battery()->low(1));
+  const std::vector<float> h = priority_hints(tm, &at);
+  ASSERT_EQ(h.size(), 3u);
+  EXPECT_EQ(h[0], kLeavingUrgency);
+  EXPECT_GE(h[1], kBatteryUrgency);  // low and heading for its station
+  EXPECT_GT(h[0], h[1]);
+}
+
 // Drop hints (UrgencyOptions::drop_hints): agents 0-2 pick up where they stand at step 1
 // and then, one cell on, stall on their way to the same drop cell (4, 1); agents 3 and 4 stall on their way
 // to the same pick-up cell (4, 0). An open 3 x 5 grid: no pocket. Off, each cell's crowd has

@@ -18,7 +18,8 @@
 // errand past 60 ticks on small_rules_lifelong jammed it (K 522-718, p99 516-569). While it
 // heads for its cell:
 //  - its holder gets kEscalatedUrgency + its stall (capped) as priority hint: above every
-//    stall and leaving hint, below battery urgency; the longest-stalled first;
+//    stall hint, below battery urgency and agents leaving a pocket (kLeavingUrgency, since
+//    session 42); the longest-stalled first;
 //  - the epoch's goal test waits for the longest-stalled escalated agent off its goal
 //    (lifelong_goal.hpp), as for a low battery, so RT-LaCAM plans a way for it, not for
 //    whoever arrives first (for any escalated agent: three of them head-on at one junction

@@ -100,8 +100,14 @@ bool battery_urgent(const TaskManager& tm, int a);
 // (where the agents stand; head hints need them) may be omitted by callers without head hints.
 std::vector<float> priority_hints(const TaskManager& tm, const planner::Config* positions = nullptr);
 
-// Agents leaving a dead-end pocket (head hints): above every stall, below battery urgency.
-inline constexpr float kLeavingUrgency = 5000.0f;
+// Agents leaving a dead-end pocket (head hints): above every stall and above battery urgency
+// (<= 20000); a battery hint never lowers it. In a one-lane stub the way in is the way out: a
+// low AGV pushing in ahead of one that must leave wedges both. With leavers below battery
+// urgency (5000, overwritten by a low leaver's battery hint) the large warehouse with 16
+// charger stubs (config/large_charging_lifelong.yaml at 0.025 Wh/m) jammed once its AGVs
+// turned low: every charger stub packed with three AGVs, 0.739 errands/tick against 1.025
+// without batteries; now 1.020 (controller/README.md "Session 42").
+inline constexpr float kLeavingUrgency = 21000.0f;
 
 // Hands p the dead-end pocket labels and pocket_cost (RealtimePlanner::set_pockets), also at
 // cost 0: epibt's pocket exit rule needs the labels alone (every cost rule is off at 0).
