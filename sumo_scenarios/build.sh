@@ -1,5 +1,5 @@
 #!/bin/sh
-# Rebuilds the scenarios (small, small_charging, small_oneway, large, large_oneway, large_charging, huge warehouses; bottleneck corridor): plain XML -> .net.xml with SUMO 1.15 netconvert, then
+# Rebuilds the scenarios (small, small_charging, small_oneway, large, large_oneway, large_charging, large_slow, huge warehouses; bottleneck corridor): plain XML -> .net.xml with SUMO 1.15 netconvert, then
 # gridifies them (summary, SVG) if rtlacam-gridify is given as $1.
 # The netconvert options make lane length == distance between node centres (no internal
 # lanes, zero junction radius) and add turnarounds at every node, corners included.
@@ -11,7 +11,7 @@ if [ -n "$2" ]; then case "$2" in /*) svg_dir="$2" ;; *) svg_dir="$PWD/$2" ;; es
 cd "$(dirname "$0")"
 export SUMO_HOME="${SUMO_HOME:-/usr/share/sumo}"
 python3 make_warehouse.py
-for s in small small_charging small_oneway large large_oneway large_charging huge bottleneck tree; do  # tree.nod/edg.xml: hand-written (issue 21: dead-end aisles only)
+for s in small small_charging small_oneway large large_oneway large_charging large_slow huge bottleneck tree; do  # tree.nod/edg.xml: hand-written (issue 21: dead-end aisles only)
   netconvert -n $s.nod.xml -e $s.edg.xml -o $s.net.xml \
     --no-internal-links --no-turnarounds.geometry false \
     --default.junctions.radius 0 --junctions.corner-detail 0 --offset.disable-normalization

@@ -17,7 +17,7 @@ Also writes `small_oneway`: `small` with one-way picking aisles in alternate dir
 Also writes one member of a warehouse family (aisles x shelf rows as parameters) anywhere:
 scripts/bench_scale.py uses it for its robots-vs-latency table.
 
-Usage: make_warehouse.py  (writes small.*, small_charging.*, small_oneway.*, large.*, large_oneway.*, large_charging.*, huge.*, bottleneck.* here; then run ./build.sh)
+Usage: make_warehouse.py  (writes small.*, small_charging.*, small_oneway.*, large.*, large_oneway.*, large_charging.*, large_slow.*, huge.*, bottleneck.* here; then run ./build.sh)
        make_warehouse.py --family AISLES ROWS --name NAME --out DIR  (writes DIR/NAME.{nod,edg,add}.xml)
 """
 import argparse
@@ -28,12 +28,13 @@ OUT = HERE  # where write() puts the files (--out)
 
 
 def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, one_way=False,
-              charge_below=(), charge_above=()):
+              charge_below=(), charge_above=(), slow_cols=(), slow_speed=0.25):
     """one_way: the picking aisles are single one-way edges, alternately up (even columns)
     and down (odd columns); cross aisles and station stubs stay two-way (a stub is a dead
     end, which a one-way edge could not leave). charge_below / charge_above: columns with a
     dead-end charger stub below the bottom / above the top cross aisle, a chargingStation
-    at its end (a charging AGV there blocks no aisle)."""
+    at its end (a charging AGV there blocks no aisle). slow_cols: picking aisles whose lanes
+    have speed slow_speed (m/s) instead of 1.0."""
     nodes, edges = {}, []
     top = cross_ys[-1]
     for c in range(columns):
@@ -79,11 +80,14 @@ def warehouse(name, columns, pitch, cross_ys, stub, pick_cols, drop_cols, park, 
     # A lone one-way edge is drawn on the centreline and netconvert 1.15 then computes lane
     # lengths from the junction shapes (7.94 m for an 8 m aisle, 3.47 m for a 4 m one):
     # fixing every length to the node distance keeps lane position == cell offset.
-    write(name, nodes, edges, stations, fixed_lengths=one_way)
+    slow = {f"c{c}r{r}_c{c}r{r + 1}" for c in slow_cols for r in range(len(cross_ys) - 1)}
+    slow |= {f"c{c}r{r + 1}_c{c}r{r}" for c in slow_cols for r in range(len(cross_ys) - 1)}
+    speeds = {e: slow_speed for e, _, _ in edges if e in slow}
+    write(name, nodes, edges, stations, fixed_lengths=one_way, speeds=speeds)
     return stations
 
 
-def write(name, nodes, edges, stations, fixed_lengths=False):
+def write(name, nodes, edges, stations, fixed_lengths=False, speeds=None):
     with open(os.path.join(OUT, f"{name}.nod.xml"), "w") as f:
         f.write("<nodes>\n")
         for n, (x, y) in nodes.items():
@@ -94,7 +98,8 @@ def write(name, nodes, edges, stations, fixed_lengths=False):
         for e, a, b in edges:
             (xa, ya), (xb, yb) = nodes[a], nodes[b]
             length = f' length="{((xb - xa) ** 2 + (yb - ya) ** 2) ** 0.5:.2f}"' if fixed_lengths else ""
-            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="1.0" width="1.0"{length}/>\n')
+            speed = (speeds or {}).get(e, 1.0)
+            f.write(f'    <edge id="{e}" from="{a}" to="{b}" numLanes="1" speed="{speed}" width="1.0"{length}/>\n')
         f.write("</edges>\n")
     write_additional(name, stations)
 
@@ -177,6 +182,11 @@ def shipped():
               pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
               park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)],
               charge_below=list(range(1, 16, 2)), charge_above=list(range(0, 16, 2)))
+    # Large with slow picking aisles (issue 24, lane speeds; config/large_slow_lifelong.yaml):
+    # `large` with every fourth picking aisle at 0.25 m/s.
+    warehouse("large_slow", columns=16, pitch=4, cross_ys=[0, 12, 24], stub=3,
+              pick_cols=list(range(0, 16, 2)), drop_cols=list(range(1, 16, 2)),
+              park=[(0, 0, 4), (0, 1, 4), (15, 0, 8), (15, 1, 8)], slow_cols=[1, 5, 9, 13])
     # Large with a parking lane (issue 24, config/large_warehouse_parking.yaml): the same net and
     # stations, and parking spots on every other cell of both outer picking aisles (20 spots:
     # a spot between two parked AGVs stays free, so one can leave or pass).
