@@ -13,7 +13,6 @@ RtLacam::RtLacam(const Graph& g, const Config& starts, const Config& goals, Laca
     : dist_(g, std::move(cache)),
       lacam_(std::make_unique<Lacam>(g, dist_, opt, pref)),
       current_(starts),
-      keep_priorities_(opt.keep_priorities),
       g_(g),
       opt_(opt),
       pref_(pref)
@@ -67,7 +66,7 @@ void RtLacam::restart(const Config& goals)
   // A new epoch may keep the agents' PIBT priorities (LacamOptions::keep_priorities).
   const HNode* root = lacam_->root();
   const int n = static_cast<int>(current_.size());
-  const bool keep = keep_priorities_ && root && goals.size() == current_.size();
+  const bool keep = opt_.keep_priorities && root && goals.size() == current_.size();
   if (static_cast<int>(hint_.size()) == n && goals.size() == current_.size()) {
     // The task layer's hints raise the root's priorities (priority.hpp, raise_to_hint).
     dist_.set_goals(goals);

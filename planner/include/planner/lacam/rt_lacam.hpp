@@ -146,11 +146,10 @@ class RtLacam : public RealtimePlanner {
   std::vector<float> carried_;           // priorities carried into a new epoch
   std::vector<int32_t> carried_order_;   // the agents' order under them
   std::vector<float> hint_, tie_;        // the task layer's priority hints; dist/N at the epoch start
-  bool keep_priorities_;
   const Graph& g_;
   std::vector<uint8_t> immobile_;        // agent -> 1 while immobile
   uint64_t restarts_ = 0;
-  LacamOptions opt_;
+  LacamOptions opt_;                     // also for a lookahead's search; keep_priorities for restart()
   ActionPreference* pref_;
   std::vector<Vertex> pockets_;          // set_pockets', for a lookahead's search too
   float pocket_cost_ = 0;
