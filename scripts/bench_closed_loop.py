@@ -10,7 +10,9 @@ The bound is fixed by the instance, the same for every executor and plan:
   kinematics (physical_bound_ticks). The plan's bound (plan_bound_ticks: every AGV alone on
   its planned path, which moves with the execution) is printed beside it;
 - lifelong: lifelong.freeFlowBound (tasks/free_flow.hpp), every AGV alone on shortest paths
-  along its errand sequence (errands per tick over it: errandThroughputOverFreeFlow).
+  along its errand sequence (errands per tick over it: errandThroughputOverFreeFlow), priced
+  over every errand handed out (the open ones at the end too); the bound over the finished
+  errands alone, biased to the short ones, is printed beside it.
 A config without a fleet.vtype (the lifelong ones) gets the *_agv configs' kinematics.
 
 Then, per row, the ratio over lockstep's at the same p and over the same executor's at p = 0.
@@ -102,9 +104,11 @@ def main():
         if life:
             val, bound, ratio = life["errandThroughput"], life["freeFlowBound"], life["errandThroughputOverFreeFlow"]
             plan = life["throughputBound"]
+            fin = life.get("freeFlowBoundFinishedOnly")
         else:
             val, bound, ratio = m["makespan"], m["bound_ticks"], m["makespan_over_bound"]
             plan = m["plan_bound_ticks"]
+            fin = None
         # Ticks per committed plan step (one-shot): what executing the plan costs, apart from
         # how long the plan is. Plan lengths of one instance vary by up to 1.4x between runs
         # (the real-time search's timing differs per executor and p), lockstep's is 1 by
@@ -123,7 +127,7 @@ def main():
                 acc[2] += m["executor"]["starts_from_rest"]
                 acc[3] += m["executor"]["starved"]["starts"]
                 acc[4] += m["executor"]["starved"]["steps"] * m["step_length"]
-        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g} | {ratio:.3f} | {plan:.4g} | "
+        print(f"| {c} | {seed if seed is not None else '-'} | {p} | {ex} | {val:.4g} | {bound:.4g}{f' ({fin:.4g} finished only)' if fin else ''} | {ratio:.3f} | {plan:.4g} | "
               f"{m['solved']} | {m['error'][:60]} | {m['collisions']} | {m['executor'].get('overshoot_m', 0):.2g} | "
               f"{m['executor'].get('replans', 0)} | {per_step} | {m['_wall']:.1f} |", flush=True)
     # The targets (issue 21), against baselines of this run: at p = 0 the executor's ratio over

@@ -55,8 +55,10 @@ nlohmann::json Metrics::to_json() const
     j["lifelong"]["epochDistEstimates"] = epoch_estimates;
     j["lifelong"]["precomputePops"] = precompute_pops;
     j["lifelong"]["throughputOverBound"] = throughput_bound() > 0 ? throughput() / throughput_bound() : 0.0;
-    // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp).
+    // Every AGV alone on its errand sequence, along shortest paths (tasks/free_flow.hpp): over
+    // the finished errands and those open at the end; the finished ones alone beside it.
     j["lifelong"]["freeFlowBound"] = free_flow_bound;
+    j["lifelong"]["freeFlowBoundFinishedOnly"] = free_flow_bound_finished;
     j["lifelong"]["errandThroughputOverFreeFlow"] = free_flow_bound > 0 ? errand_throughput() / free_flow_bound : 0.0;
     j["lifelong"]["queues"] = {{"maxHeading", max_heading}, {"queuedTicks", queued_ticks}, {"clearings", clearings}, {"jamClearings", jam_clearings},
                                    {"clearingSteps", clearing_steps}, {"longestClearing", longest_clearing}};

@@ -379,7 +379,10 @@ void Run::finish()
     life_.expansions = m_.expansions;
     life_.wall_ms = m_.wall_s * 1000;
     life_.planner_errors = m_.violations;
-    if (const tasks::FreeFlowBound* ff = tm_->free_flow()) m_.free_flow_bound = ff->errands_per_step();
+    if (const tasks::FreeFlowBound* ff = tm_->free_flow()) {
+      m_.free_flow_bound = tm_->free_flow_bound();  // finished and open errands (free_flow.hpp)
+      m_.free_flow_bound_finished = ff->errands_per_step();
+    }
     m_.stalls = tm_->stall_summary();
     if (m_.violations > 0) life_.first_error = m_.error;
     life_.counts = epochs_->counts();

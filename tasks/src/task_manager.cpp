@@ -153,6 +153,14 @@ const Task* TaskManager::task_of(int agent) const
   return holding_[agent] >= 0 ? &slots_[holding_[agent]] : nullptr;
 }
 
+planner::Config TaskManager::open_errands() const
+{
+  planner::Config open(num_agents(), -1);
+  for (int a = 0; a < num_agents(); ++a)
+    if (const Task* k = task_of(a)) open[a] = k->next_cell();
+  return open;
+}
+
 std::vector<TaskManager::Upcoming> TaskManager::upcoming() const
 {
   std::vector<Upcoming> out;

@@ -246,6 +246,40 @@ TEST(FreeFlowBound, ACostPricesMovesAsTheExecutorDrivesThem)
   EXPECT_DOUBLE_EQ(rr.free_flow()->errands_per_step(), 2.0 * 2 / 26.0);
 }
 
+// Finished errands alone are biased to the short ones (free_flow.hpp): agent 0 finishes two
+// 1-move errands while agent 1 is still on its 5-move one. Finished only: 2 agents x 2
+// errands / 2 steps = 2.0 errands per step, though the fleet cannot keep up 1.2 (agent 0: 1
+// per step, agent 1: 1 per 5). With the open errands priced whole (agent 0: 0 -> 1, 1 move;
+// agent 1: 5 -> 0, 5 moves): 2 x 4 / 8 = 1.0.
+TEST(FreeFlowBound, OpenErrandsArePricedWholeSoShortFinishesDoNotBiasIt)
+{
+  const auto& g = corridor();
+  // Round robin over 2 agents: agent 0 gets tasks 0, 2, 4; agent 1 gets 1, 3.
+  auto file = ttest::task_file(g, {{{1, 0}}, {{0, 0}}, {{0, 0}}, {{5, 0}}, {{1, 0}}});
+  RoundRobin rr(file);
+  rr.set_free_flow(std::make_unique<FreeFlowBound>(std::make_shared<planner::DistCache>(g)));
+  rr.start({0, 5});  // agent 0 -> 1, agent 1 -> 0
+  EXPECT_EQ(rr.open_errands(), (planner::Config{1, 0}));
+  EXPECT_DOUBLE_EQ(rr.free_flow_bound(), 2.0 * 2 / 6.0);  // nothing finished: the open ones alone
+  rr.update(1, {1, 4});  // agent 0: 0 -> 1; next 0
+  rr.update(2, {0, 3});  // agent 0: 1 -> 0; next 1
+  EXPECT_EQ(rr.free_flow()->errands(), 2);
+  EXPECT_DOUBLE_EQ(rr.free_flow()->errands_per_step(), 2.0);  // finished only
+  const planner::Config open = rr.open_errands();
+  EXPECT_EQ(open, (planner::Config{1, 0}));
+  EXPECT_DOUBLE_EQ(rr.free_flow()->open_steps(open), 1.0 + 5.0);
+  EXPECT_DOUBLE_EQ(rr.free_flow_bound(), 2.0 * 4 / 8.0);
+  // Agent 1 arrives: its 5 moves move from open to finished; agent 1 -> 5 (task 3) is open.
+  rr.update(3, {1, 0});  // agent 0: 0 -> 1 (next: task 1, cell 0); agent 1: 5 -> 0
+  EXPECT_EQ(rr.free_flow()->errands(), 4);
+  EXPECT_DOUBLE_EQ(rr.free_flow()->steps(), 1.0 + 1.0 + 1.0 + 5.0);
+  EXPECT_EQ(rr.open_errands()[1], 5);
+  EXPECT_DOUBLE_EQ(rr.free_flow_bound(), 2.0 * 6 / (8.0 + rr.free_flow()->open_steps(rr.open_errands())));
+  // An agent without a task is open on nothing.
+  planner::Config none{-1, -1};
+  EXPECT_DOUBLE_EQ(rr.free_flow()->errands_per_step(none), rr.free_flow()->errands_per_step());
+}
+
 // make_task_layer: the one factory of the controller's YAML, rtlacam-lifelong and Python.
 // Each part of TaskLayerOptions reaches the manager with its option struct whole; bad
 // fields are one "key: what" naming the YAML key.

@@ -99,7 +99,8 @@ struct Metrics {
   double plan_bound_ticks = 0;
   double makespan_over_plan_bound() const { return plan_bound_ticks > 0 ? makespan / plan_bound_ticks : 0.0; }
   double throughput_bound() const { return plan_bound_ticks > 0 ? tasks_finished / plan_bound_ticks : 0.0; }
-  double free_flow_bound = 0;  // lifelong: errands per tick with every AGV alone (tasks/free_flow.hpp)
+  double free_flow_bound = 0;  // lifelong: errands per tick with every AGV alone (tasks/free_flow.hpp), every errand handed out
+  double free_flow_bound_finished = 0;  // the same over the finished errands only (biased to the short ones)
 
   // Lifelong runs (tasks.mode: lifelong); the full log is tasks.log beside metrics.json.
   std::string mode = "one_shot", assignment;

@@ -111,6 +111,10 @@ class TaskManager {
   // The free-flow bound of the errands this manager sees finished (free_flow.hpp). Before start().
   void set_free_flow(std::unique_ptr<FreeFlowBound> b) { free_flow_ = std::move(b); }
   const FreeFlowBound* free_flow() const { return free_flow_.get(); }
+  // Per agent, the cell of the errand it holds now, -1 if it holds no task.
+  planner::Config open_errands() const;
+  // The free-flow bound over the finished errands and the open ones (free_flow.hpp); 0 without one.
+  double free_flow_bound() const { return free_flow_ ? free_flow_->errands_per_step(open_errands()) : 0.0; }
   // Batteries and charging errands (battery.hpp). Idle agents then keep off the chargers
   // (parking's reserved-cell rule). Before start().
   void set_battery(const planner::Graph& g, BatteryOptions options, std::vector<Charger> chargers,
