@@ -548,7 +548,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "order", "progress_s", "executor",
                     "window", "drain", "replan_on_stuck", "stuck_after_s", "stuck_learn", "relative_braking", "same_step_starts", "switch_passages",
                     "chain_to_end", "gap_handover", "lane_speeds", "epoch_in_budget", "out_and_back",
-                    "cut_loops", "out_and_back_rules"});
+                    "cut_loops", "out_and_back_rules", "plan_completions"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
   r.get(u, "run", "max_ticks", c.run.max_ticks, "an integer");
   if (c.run.max_ticks < 1) r.fail("run.max_ticks", "must be >= 1");
@@ -573,6 +573,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.integer(u, "run", "switch_passages", c.run.switch_passages, 0, 1000);
   r.flag(u, "run", "chain_to_end", c.run.chain_to_end);
   r.flag(u, "run", "gap_handover", c.run.gap_handover);
+  r.flag(u, "run", "plan_completions", c.run.plan_completions);
   r.integer(u, "run", "out_and_back", c.run.out_and_back, 0, 1000);
   r.flag(u, "run", "cut_loops", c.run.cut_loops);
   r.flag(u, "run", "out_and_back_rules", c.run.out_and_back_rules);

@@ -136,6 +136,8 @@ nlohmann::json Metrics::to_json() const
                    {"chained", chained},
                    {"switches", switches},
                    {"out_and_backs", out_and_backs},
+                   {"plan_completions", plan_completions},
+                   {"plan_debts", plan_debts},
                    {"followed", followed},
                    {"time", {{"cruise", time_cruise}, {"accel", time_accel}, {"follow", time_follow},
                              {"lane", time_lane}, {"end", time_end}, {"start_wait", time_start_wait},

@@ -524,7 +524,7 @@ void Run::start_sumo()
 void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
 {
   life_.planner_ms.push_back(tick_planner_ms);
-  if (!epoch_early()) epoch_start(executed, m_.ticks);
+  if (!epoch_early() && !plan_mode()) epoch_start(executed, m_.ticks);  // plan mode: loop_adg
   epochs_->count(m_.ticks, executed);  // goal ticks, queue and parking counts (tasks/lifelong_epochs.hpp)
   const tasks::EpochCounts& n = epochs_->counts();
   m_.max_errand_ticks = n.max_goal_ticks;
@@ -537,8 +537,8 @@ void Run::lifelong_tick(const planner::Config& executed, double tick_planner_ms)
   m_.idle_at_end = n.idle;
   m_.parked_at_end = n.parked;
   m_.idle_ticks = n.idle_ticks, m_.parked_ticks = n.parked_ticks;
-  m_.errands_finished = tm_->errands_finished();
-  m_.tasks_finished = tm_->tasks_finished();
+  m_.errands_finished = plan_mode() ? plan_errands_ : tm_->errands_finished();
+  m_.tasks_finished = plan_mode() ? plan_tasks_ : tm_->tasks_finished();
   m_.reassigned_for_closure = tm_->reassigned_for_closure();
   if (const tasks::Battery* b = tm_->battery()) count_battery(*b), m_.battery.dropped_mid_task = tm_->dropped_for_charge();
 }
@@ -585,6 +585,112 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   show_goals();  // the view's work, not the planner's
   epochs_->record(true);
   epoch_ms_ += ms_since(t0);
+}
+
+bool Run::plan_mode() const
+{
+  return tm_ && cfg_.run.plan_completions && cfg_.run.executor != "lockstep" && !rules_ && !tm_->battery() && !p_->rotation();
+}
+
+planner::Config Run::plan_goals() const
+{
+  planner::Config g = tm_->goals();
+  for (size_t a = 0; a < debts_.size(); ++a)
+    if (!debts_[a].empty()) g[a] = debts_[a].front().cell;
+  return g;
+}
+
+void Run::plan_update(const planner::Config& c, long long step)
+{
+  const auto t0 = Clock::now();
+  const double c0 = planner::thread_cpu_ms();
+  plan_moved_ = true;
+  // Debts first (a replan cut their visit): a commit on the debt's cell pays it.
+  bool paid = false;
+  planner::Config seen = c;
+  for (size_t a = 0; a < debts_.size(); ++a) {
+    if (debts_[a].empty()) continue;
+    if (c[a] == debts_[a].front().cell) {
+      PlanCompletion d = debts_[a].front();
+      debts_[a].erase(debts_[a].begin());
+      d.step = step;
+      pending_.push_back(d);
+      paid = true;
+    }
+    if (!debts_[a].empty()) seen[a] = debts_[a].front().cell;  // its later errands wait for the visit
+  }
+  const bool changed = epochs_->complete(++task_clock_, seen) || paid;
+  if (queue_trace_) queue_trace_->step(task_clock_, *tm_, seen, epochs_->completed());
+  const tasks::TaskFile& f = tm_->file();
+  for (const tasks::Event& e : epochs_->completed()) {
+    const auto& errands = f.tasks[static_cast<size_t>(e.task % static_cast<long>(f.size()))];
+    pending_.push_back({e, step, e.errand + 1 >= static_cast<int>(errands.size()), c[e.agent]});
+    ++m_.plan_completions;
+  }
+  if (changed) {
+    // No search slice here: the next SUMO step's search starts on the new tree. Its
+    // set_goals reads distances within this step's budget, as epoch_start's.
+    const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && cfg_.run.epoch_in_budget;
+    if (bounded)
+      dist_cache_->set_deadline(
+          planner::Budget::time_ms(std::max(0.0, sb_.left(budget_).ms - sb_.reserve(budget_.ms))).deadline_from(t0));
+    const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
+    const planner::Config goals = plan_goals();
+    epochs_->start_epoch(*p_, goals);
+    if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
+    if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+    if (!epochs_->completed().empty()) prefetch_goals(false);
+    val_->set_goals(goals);
+    show_goals();
+  }
+  epochs_->record_epoch(changed);  // the events are recorded when executed
+  sb_.charge(0, planner::thread_cpu_ms() - c0);
+  epoch_ms_ += ms_since(t0);
+}
+
+void Run::release_completions(const executor::Adg& adg)
+{
+  std::vector<tasks::Event> done;
+  size_t w = 0;
+  for (PlanCompletion& q : pending_) {
+    if (adg.progress(q.ev.agent) >= q.step) {
+      q.ev.t = m_.ticks;
+      done.push_back(q.ev);
+      ++plan_errands_;
+      plan_tasks_ += q.task_done;
+    } else {
+      pending_[w++] = q;
+    }
+  }
+  pending_.resize(w);
+  epochs_->record_events(done);
+}
+
+void Run::plan_debts(const std::vector<long long>& prog, const std::vector<planner::Config>& steps)
+{
+  // prog: each AGV's progress in the ADG being replaced; steps: the new ADG's first
+  // configurations after its start (the moves in progress).
+  if (debts_.empty()) debts_.resize(ins_.num_agents());
+  size_t w = 0;
+  for (PlanCompletion& q : pending_) {
+    const int a = q.ev.agent;
+    if (prog[a] >= q.step) {  // executed already: counted at this tick's end
+      q.step = 0;
+      pending_[w++] = q;
+      continue;
+    }
+    long long at = -1;  // the target of a move in progress: the new ADG executes it
+    for (size_t t = 0; t < steps.size() && at < 0; ++t)
+      if (steps[t][a] == q.cell) at = static_cast<long long>(t) + 1;
+    if (at >= 0) {
+      q.step = at;
+      pending_[w++] = q;
+    } else {
+      debts_[a].push_back(q);
+      ++m_.plan_debts;
+    }
+  }
+  pending_.resize(w);
 }
 
 void Run::count_battery(const tasks::Battery& b)

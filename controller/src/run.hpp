@@ -82,6 +82,39 @@ class Run {
   // calls it at the tick's end, lockstep at its start (epoch_early).
   void epoch_start(const planner::Config& executed, long tick);
   bool epoch_early() const;
+  // Plan completions (run.plan_completions; adg, lifelong): the task layer runs on the
+  // committed plan. Without them an errand was completed only once its AGV had driven
+  // there, and until then the epoch's goal test ("some awaited agent on its goal") held
+  // every commit: the whole fleet's plan waited for the one AGV, up to run.window steps
+  // behind the frontier (huge warehouse, 1000 AGVs: one plan step per 1.7 ticks). Now each
+  // committed configuration goes to the task layer (one task step each): an errand is done
+  // for planning when a commit puts its AGV on the errand's cell, the next goal is planned
+  // at once, as in lockstep, and the errand is counted (events, throughput) at the tick
+  // the AGV has executed that configuration (Adg::progress). Its cell stays an
+  // out-and-back keep until then, so the visit is never cut. A stuck replan cuts the
+  // committed window: an errand it cuts off before the AGV got there becomes a debt, the
+  // AGV's planner goal until a commit puts it there again (the task layer then sees the AGV
+  // on the debt's cell, so its later errands wait). Off (the executed cells, as before)
+  // with batteries, rules and rotation solvers.
+  struct PlanCompletion {
+    tasks::Event ev;
+    long long step = 0;  // ADG configuration that puts the AGV on the errand's cell
+    bool task_done = false;
+    planner::Vertex cell = -1;
+  };
+  bool plan_mode() const;
+  // After a commit: configuration `c` is the ADG's configuration `step` (after the lookahead).
+  void plan_update(const planner::Config& c, long long step);
+  void release_completions(const executor::Adg& adg);  // tick end: what the AGVs executed
+  // A replan: `prog` each AGV's progress in the old ADG, `steps` the new ADG's first
+  // configurations; completions it cuts off become debts.
+  void plan_debts(const std::vector<long long>& prog, const std::vector<planner::Config>& steps);
+  planner::Config plan_goals() const;                 // the task layer's goals, debts first
+  std::vector<PlanCompletion> pending_;
+  std::vector<std::vector<PlanCompletion>> debts_;
+  long task_clock_ = 0;
+  bool plan_moved_ = false;  // a commit since the last tick end
+  long long plan_errands_ = 0, plan_tasks_ = 0;  // executed
   // Lifelong, planner.prefetch: the goals to come into the planner's distance tables
   // (tasks::LifelongEpochs::prefetch), grown at once when `now` (before the run, as the
   // grid's preprocessing), else in the SUMO steps' spare budget (step(), and the rotation

@@ -174,7 +174,15 @@ void Run::loop_adg()
   // zone meanwhile either. Not rotation solvers: they commit one step per tick, and with the
   // cut small_warehouse_lifelong_agv under pibt-rot did fewer errands (session 34).
   executor::OutAndBackLimits limits;
-  if (tm_) limits.keep = [this](int i, planner::Vertex v) { return p_->goals()[i] == v; };
+  const bool plan = plan_mode();  // plan completions (run.hpp)
+  // Plan completions: an errand done for planning stays a visit until it is executed.
+  if (tm_)
+    limits.keep = [this](int i, planner::Vertex v) {
+      if (p_->goals()[i] == v) return true;
+      for (const PlanCompletion& q : pending_)
+        if (q.ev.agent == i && q.cell == v) return true;
+      return false;
+    };
   if (rules_ && cfg_.rules.enforce_zones && !rules_->zones().empty()) {
     const std::vector<std::vector<int>>* zone_of = &rules_->zones_of();
     limits.exclusive = [zone_of](planner::Vertex u, planner::Vertex w) {
@@ -247,6 +255,7 @@ void Run::loop_adg()
         ++m_.commits;
         oab_->push(next);
         hand_on(false);
+        if (plan) plan_update(next, adg.steps() + static_cast<long long>(oab_->size()));
       }
       // All committed (the goals), or the ADG ran dry while the planner found nothing new:
       // what the lookahead holds goes on.
@@ -291,6 +300,11 @@ void Run::loop_adg()
     const planner::Config now = executed();
     if (rules_ && drv.zone_gated()) m_.rules.zone_holds += rules_->count_held(drv.gated(), now);
     count_tick(now);
+    if (plan) {  // what the AGVs executed counts; a plan that stood still gets its task step too
+      release_completions(adg);
+      if (!plan_moved_) plan_update(p_->current(), adg.steps() + static_cast<long long>(oab_->size()));
+      plan_moved_ = false;
+    }
     if (tm_) {  // this tick's planner time: its steps and the last epoch start; the new one counts next tick
       const double tick_planner_ms = plan_in_tick_ + epoch_ms_;
       epoch_ms_ = 0;

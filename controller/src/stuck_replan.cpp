@@ -148,7 +148,8 @@ void Run::replan(executor::Adg& adg, Driver& drv, const std::vector<uint8_t>& im
     c_.plan_.push_back(from);
   }
 
-  const planner::Config goals = tm_ ? tm_->goals() : ins_.goals;
+  if (plan_mode()) plan_debts(prog, steps);
+  const planner::Config goals = !tm_ ? ins_.goals : plan_mode() ? plan_goals() : tm_->goals();
   // The cut plan from the last final configuration on (settle(): everything before it was
   // checked and stays): the validator there, then the rewritten steps.
   val_ = std::make_unique<planner::Validator>(*val_final_);

@@ -13,6 +13,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <map>
+#include <regex>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -24,6 +27,7 @@
 #include "closed_loop_util.hpp"
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
+#include "controller/lifelong.hpp"
 #include "controller/bound.hpp"
 #include "temp_path.hpp"
 
@@ -492,6 +496,110 @@ TEST(FollowFlow, CuttingOutAndBacksInLifelongRunsFinishesMoreErrands)
   EXPECT_GT(cuts, 0);
   EXPECT_EQ(none, 0);
   EXPECT_GT(on, off);
+}
+
+// Plan completions (run.plan_completions, run.hpp): the task layer on the committed plan
+// gives each AGV its next goal when the plan reaches the errand, not once the AGV has driven
+// there, so the plan no longer waits for the slowest errand in flight. More errands in the
+// same ticks; fails with the mechanism off (equal or fewer).
+TEST(PlanCompletions, TheTaskLayerOnThePlanFinishesMoreErrands)
+{
+  long long cuts = 0;
+  const long long on = lifelong_errands("pc_on", "small_warehouse_lifelong_agv.yaml", 200, nullptr, &cuts);
+  const long long off = lifelong_errands("pc_off", "small_warehouse_lifelong_agv.yaml", 200,
+                                         [](Config& c) { c.run.plan_completions = false; }, &cuts);
+  std::printf("errands with plan completions %lld, without %lld\n", on, off);
+  EXPECT_GT(on, off);
+}
+
+namespace {
+
+// Per vehicle, from fcd.xml: (time, lane, front position on the lane).
+struct FcdPose {
+  double t = 0;
+  std::string lane;
+  double pos = 0;
+};
+std::map<std::string, std::vector<FcdPose>> fcd_poses(const std::string& fcd)
+{
+  std::map<std::string, std::vector<FcdPose>> out;
+  const std::string s = ctest_util::slurp(fcd);
+  const std::regex step_re(R"re(<timestep time="([-0-9.e]+)")re");
+  const std::regex veh_re(R"re(<vehicle id="([^"]+)"[^>]* pos="([-0-9.e]+)" lane="([^"]+)")re");
+  size_t pos = 0;
+  double t = 0;
+  while (pos < s.size()) {
+    const size_t a = s.find("<timestep", pos);
+    if (a == std::string::npos) break;
+    size_t b = s.find("<timestep", a + 1);
+    if (b == std::string::npos) b = s.size();
+    const std::string block = s.substr(a, b - a);
+    std::smatch m;
+    if (std::regex_search(block, m, step_re)) t = std::stod(m[1]);
+    for (auto it = std::sregex_iterator(block.begin(), block.end(), veh_re); it != std::sregex_iterator(); ++it)
+      out[(*it)[1]].push_back({t, (*it)[3], std::stod((*it)[2])});
+    pos = b;
+  }
+  return out;
+}
+
+}  // namespace
+
+// An errand counts when its AGV got there, not when the plan did: every logged completion
+// [t, agent, task, errand] has the AGV's front where the cell has it (a lane and position
+// of the cell's poses, within 0.25 m; cells are 1 m) at some SUMO step up to the end of tick t, after the AGV's previous counted
+// errand. Stops at p = 0.2 make stuck replans cut the committed window, and the completions
+// they cut off become debts (run.hpp) that are driven to again before they count; the
+// seeds are chosen so that some do. Fails if the debts are dropped or counted at the replan.
+TEST(PlanCompletions, EveryCountedErrandWasDrivenToAlsoAfterReplans)
+{
+  long long debts = 0, replans = 0, errands = 0;
+  for (int seed = 1; seed <= 3; ++seed) {
+    const std::string tag = "pc_visit_s" + std::to_string(seed);
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse_lifelong_agv.yaml");
+    cfg.output.dir = test::temp_dir("closed_" + tag);
+    cfg.run.progress_s = 0;
+    cfg.run.max_ticks = 300;
+    cfg.planner.budget_ms = 0;
+    cfg.planner.expansions = 20;
+    cfg.fleet.seed = seed;
+    cfg.delays.spec.p = 0.2;
+    cfg.sumo.outputs = {true, false, false, true};
+    cfg.sumo.extra_args = {"--precision", "6"};
+    Controller c(cfg);
+    const Metrics m = c.run();
+    ASSERT_EQ(m.error, "") << tag;
+    ctest_util::expect_no_sumo_collision(cfg.output.dir);
+    debts += m.plan_debts, replans += m.replans, errands += m.errands_finished;
+    EXPECT_LE(m.errands_finished, m.plan_completions) << tag;
+    const auto file = make_task_file(cfg, c.map());
+    const auto poses = fcd_poses(cfg.output.dir + "/fcd.xml");
+    std::ifstream in(cfg.output.dir + "/" + cfg.tasks.log);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_EQ(static_cast<long long>(j["events"].size()), m.errands_finished) << tag;
+    std::map<int, double> last;  // agent -> time of its previous counted visit
+    for (const auto& e : j["events"]) {
+      const long t = e[0], task = e[2];
+      const int agent = e[1], errand = e[3].get<int>() - 1;
+      const planner::Vertex cell = file->tasks[static_cast<size_t>(task % file->size())][errand];
+      const double until = t * cfg.run.tick_s + 1e-9;
+      auto on_cell = [&](const FcdPose& p) {
+        for (const gridify::SumoPose& q : c.map().cells[cell].poses)
+          if (q.lane == p.lane && std::abs(q.pos - p.pos) <= 0.25) return true;
+        return false;
+      };
+      double seen = -1;
+      for (const FcdPose& p : poses.at("agv" + std::to_string(agent)))
+        if (p.t > until) break;
+        else if (p.t >= last[agent] && on_cell(p)) { seen = p.t; break; }
+      EXPECT_GE(seen, 0) << tag << ": agv" << agent << " counted task " << task << " errand " << errand << " at tick " << t
+                         << " but was not on its cell by then";
+      if (seen >= 0) last[agent] = seen;
+    }
+  }
+  std::printf("errands %lld, replans %lld, debts %lld\n", errands, replans, debts);
+  EXPECT_GT(replans, 0);
+  EXPECT_GT(debts, 0);
 }
 
 // With rules (run.out_and_back_rules; off by default): the cut keeps the closures and the

@@ -568,7 +568,7 @@ TEST(ControllerLifelong, EpochStartsReadLowerBoundsPastTheStepDeadline)
   // deadline at the epoch start itself: every read that would grow a table is then a lower
   // bound, deterministically, however loaded the box (no timing threshold). Off: the epoch
   // start has no deadline and every read is exact. Both loops: lockstep starts its epochs
-  // at the tick's start, adg-follow after the tick.
+  // at the tick's start, adg-follow in its commits (run.plan_completions, run.hpp).
   for (const char* ex : {"lockstep", "adg-follow"}) {
     long long estimates[2] = {0, 0}, epochs[2] = {0, 0};
     for (const bool on : {false, true}) {

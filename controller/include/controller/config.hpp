@@ -218,6 +218,11 @@ struct RunSection {
   std::string executor = "lockstep"; // lockstep (all AGVs one cell per tick) | adg | adg-follow (executor/)
   int window = 4;                    // adg: committed configurations ahead of the slowest AGV (at most)
   int drain = 0;                     // adg: commit again once fewer than this are left (1..window; 0: window)
+  // adg, lifelong: the task layer runs on the committed plan, not on the executed cells: an
+  // errand is done for planning when the plan reaches it, and counted when the AGV executes
+  // it (run.hpp "Plan completions"). Not with batteries, rules or rotation solvers (their
+  // goals need the AGV there in time): those keep the executed cells.
+  bool plan_completions = true;
   bool replan_on_stuck = true;       // adg: reroute the others around a stuck AGV (stuck_replan.hpp)
   double stuck_after_s = 5.0;        // adg: no progress for this long while it may go = stuck
   // adg: ... or twice the longest stall so far that ended by itself, if longer (StuckWatch learn)

@@ -46,6 +46,8 @@ struct Metrics {
   long long chained = 0;            // adg: moves started without stopping in between
   long long switches = 0;           // adg: passages reordered (run.switch_passages)
   long long out_and_backs = 0;      // adg: out-and-backs cut from the plan (run.out_and_back)
+  long long plan_completions = 0;   // adg lifelong, run.plan_completions: errands the plan reached (executed or not)
+  long long plan_debts = 0;         // of them, cut off by a stuck replan before the AGV got there (run.hpp)
   long long followed = 0;           // adg-follow: moves started while the cell's previous occupant was still leaving it
   long long safety_checks = 0;      // SUMO steps checked by Safety (overlap / on path)
   long long commits = 0;            // configurations the planner committed

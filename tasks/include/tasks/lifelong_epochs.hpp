@@ -67,6 +67,10 @@ class LifelongEpochs {
   void prefetch(planner::RotationPlanner& rot) const;
   // The last complete()'s events into the result; `epoch`: a new epoch started.
   void record(bool epoch);
+  // The same in two parts, for a back end that counts an errand later than the task layer
+  // completes it (the controller's plan completions: when the AGV has executed it).
+  void record_epoch(bool epoch) { r_.epochs += epoch ? 1 : 0; }
+  void record_events(const std::vector<Event>& events) { r_.events.insert(r_.events.end(), events.begin(), events.end()); }
   long long max_gap() const { return max_gap_; }  // longest run of steps without a completion
   // After step t's epoch phases, the agents on `real`.
   void count(long t, const planner::Config& real);
