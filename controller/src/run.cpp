@@ -565,16 +565,8 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   if (queue_trace_) queue_trace_->step(tick, *tm_, executed, epochs_->completed());
   if (!changed) return;
   const double c0 = planner::thread_cpu_ms();
-  const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
-  // Its tables stop one expansion's reserve before the step's end, the reserve capped at a
-  // share of the whole step (not of what the carry left: the epoch start is not the search).
-  if (bounded)
-    dist_cache_->set_deadline(
-        planner::Budget::time_ms(std::max(0.0, sb_.left(budget_).ms - sb_.reserve(budget_.ms))).deadline_from(t0));
-  const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
   // Rules: goals a closure cuts off wait (rules.hpp).
-  epochs_->start_epoch(*p_, rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals());
-  if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
+  const bool bounded = epoch_goals(rules_graph_ ? rule_goals(*rules_graph_, p_->current()) : tm_->goals(), t0);
   if (!epochs_->completed().empty()) prefetch_goals(false);  // queued: later steps grow them
   val_->set_goals(tm_->goals());
   planner::Budget b = plan_budget();
@@ -585,6 +577,20 @@ void Run::epoch_start(const planner::Config& executed, long tick)
   show_goals();  // the view's work, not the planner's
   epochs_->record(true);
   epoch_ms_ += ms_since(t0);
+}
+
+bool Run::epoch_goals(const planner::Config& goals, Clock::time_point t0)
+{
+  const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && !p_->rotation() && cfg_.run.epoch_in_budget;
+  // Its tables stop one expansion's reserve before the step's end, the reserve capped at a
+  // share of the whole step (not of what the carry left: the epoch start is not the search).
+  if (bounded)
+    dist_cache_->set_deadline(
+        planner::Budget::time_ms(std::max(0.0, sb_.left(budget_).ms - sb_.reserve(budget_.ms))).deadline_from(t0));
+  const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
+  epochs_->start_epoch(*p_, goals);
+  if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
+  return bounded;
 }
 
 bool Run::plan_mode() const
@@ -630,15 +636,8 @@ void Run::plan_update(const planner::Config& c, long long step)
   if (changed) {
     // No search slice here: the next SUMO step's search starts on the new tree. Its
     // set_goals reads distances within this step's budget, as epoch_start's.
-    const bool bounded = dist_cache_ && cfg_.planner.budget_ms > 0 && cfg_.run.epoch_in_budget;
-    if (bounded)
-      dist_cache_->set_deadline(
-          planner::Budget::time_ms(std::max(0.0, sb_.left(budget_).ms - sb_.reserve(budget_.ms))).deadline_from(t0));
-    const uint64_t est0 = dist_cache_ ? dist_cache_->counters().estimates : 0;
     const planner::Config goals = plan_goals();
-    epochs_->start_epoch(*p_, goals);
-    if (dist_cache_) m_.epoch_estimates += static_cast<long long>(dist_cache_->counters().estimates - est0);
-    if (bounded) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
+    if (epoch_goals(goals, t0)) dist_cache_->set_deadline(planner::DistCache::Deadline::max());
     if (!epochs_->completed().empty()) prefetch_goals(false);
     val_->set_goals(goals);
     show_goals();

@@ -82,6 +82,10 @@ class Run {
   // calls it at the tick's end, lockstep at its start (epoch_early).
   void epoch_start(const planner::Config& executed, long tick);
   bool epoch_early() const;
+  // An epoch's new goals (set_goals with the lifelong goal test) at `t0`, their distance reads
+  // within the step's budget when bounded (run.epoch_in_budget and a time budget): returns
+  // whether it was, and then the cache's deadline stays set for the caller to lift.
+  bool epoch_goals(const planner::Config& goals, planner::Clock::time_point t0);
   // Plan completions (run.plan_completions; adg, lifelong): the task layer runs on the
   // committed plan. Without them an errand was completed only once its AGV had driven
   // there, and until then the epoch's goal test ("some awaited agent on its goal") held

@@ -18,11 +18,11 @@ double FreeFlowBound::open_steps(const planner::Config& open) const
   return steps;
 }
 
-double FreeFlowBound::errands_per_step(const planner::Config& open) const
+std::pair<long, double> FreeFlowBound::totals(const planner::Config& open) const
 {
   long n = errands_;
   for (planner::Vertex v : open) n += v >= 0;
-  return per_step(n, steps_ + open_steps(open));
+  return {n, steps_ + open_steps(open)};
 }
 
 double FreeFlowBound::price(planner::Vertex from, planner::Vertex to) const

@@ -67,8 +67,8 @@ void LifelongEpochs::prefetch(planner::RotationPlanner& rot) const
 
 void LifelongEpochs::record(bool epoch)
 {
-  if (epoch) ++r_.epochs;
-  r_.events.insert(r_.events.end(), ev_.begin(), ev_.end());
+  record_epoch(epoch);
+  record_events(ev_);
 }
 
 void LifelongEpochs::count(long t, const planner::Config& real)

@@ -1,7 +1,5 @@
 #include "tasks/lifelong_log.hpp"
 
-#include <algorithm>
-
 #include "tasks/task_pool.hpp"
 
 namespace tasks {
@@ -75,12 +73,11 @@ void add_task_fields(nlohmann::json& j, const TaskManager& tasks)
   // Over every errand handed out: the finished ones and those open at the end (free_flow.hpp:
   // finished ones alone are biased to the short); the finished-only figure beside it.
   if (const FreeFlowBound* ff = tasks.free_flow()) {
-    const double bound = tasks.free_flow_bound();
+    const planner::Config open = tasks.open_errands();
+    const double bound = ff->errands_per_step(open);
     j["freeFlowBound"] = bound;
     j["freeFlowBoundFinishedOnly"] = ff->errands_per_step();
-    const planner::Config open = tasks.open_errands();
-    const long n = ff->errands() + static_cast<long>(std::count_if(open.begin(), open.end(), [](planner::Vertex v) { return v >= 0; }));
-    j["freeFlowStepsPerErrand"] = n > 0 ? (ff->steps() + ff->open_steps(open)) / static_cast<double>(n) : 0.0;
+    j["freeFlowStepsPerErrand"] = ff->steps_per_errand(open);
     if (j.contains("errandThroughput") && bound > 0)
       j["errandThroughputOverFreeFlow"] = j["errandThroughput"].get<double>() / bound;
   }

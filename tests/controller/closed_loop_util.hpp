@@ -3,6 +3,7 @@
 // client acting on SUMO in the same step, as a person or a pallet in the aisle would), and
 // the AGVs' kinematics read back from SUMO's own fcd output.
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 #include <regex>
@@ -58,13 +59,12 @@ struct Kinematics {
   double last_time = 0;
 };
 
-inline Kinematics fcd_kinematics(const std::string& fcd, double dt)
+// Calls f(time, block) for every <timestep> of an fcd.xml, `block` its text (vehicles).
+template <class F>
+void for_each_fcd_step(const std::string& fcd, F f)
 {
-  Kinematics k;
   const std::string s = slurp(fcd);
   const std::regex step_re(R"re(<timestep time="([-0-9.e]+)")re");
-  const std::regex veh_re(R"re(<vehicle id="([^"]+)"[^>]* speed="([-0-9.e]+)")re");
-  std::map<std::string, std::pair<double, double>> prev;  // id -> (time, speed)
   double t = 0;
   size_t pos = 0;
   while (pos < s.size()) {
@@ -75,6 +75,17 @@ inline Kinematics fcd_kinematics(const std::string& fcd, double dt)
     const std::string block = s.substr(a, b - a);
     std::smatch m;
     if (std::regex_search(block, m, step_re)) t = std::stod(m[1]);
+    f(t, block);
+    pos = b;
+  }
+}
+
+inline Kinematics fcd_kinematics(const std::string& fcd, double dt)
+{
+  Kinematics k;
+  const std::regex veh_re(R"re(<vehicle id="([^"]+)"[^>]* speed="([-0-9.e]+)")re");
+  std::map<std::string, std::pair<double, double>> prev;  // id -> (time, speed)
+  for_each_fcd_step(fcd, [&](double t, const std::string& block) {
     k.last_time = t;
     k.last_speed.clear();
     for (auto it = std::sregex_iterator(block.begin(), block.end(), veh_re); it != std::sregex_iterator(); ++it) {
@@ -89,9 +100,25 @@ inline Kinematics fcd_kinematics(const std::string& fcd, double dt)
       prev[id] = {t, v};
       k.last_speed[id] = v;
     }
-    pos = b;
-  }
+  });
   return k;
+}
+
+// Per vehicle, from fcd.xml: (time, lane, front position on the lane).
+struct FcdPose {
+  double t = 0;
+  std::string lane;
+  double pos = 0;
+};
+inline std::map<std::string, std::vector<FcdPose>> fcd_poses(const std::string& fcd)
+{
+  std::map<std::string, std::vector<FcdPose>> out;
+  const std::regex veh_re(R"re(<vehicle id="([^"]+)"[^>]* pos="([-0-9.e]+)" lane="([^"]+)")re");
+  for_each_fcd_step(fcd, [&](double t, const std::string& block) {
+    for (auto it = std::sregex_iterator(block.begin(), block.end(), veh_re); it != std::sregex_iterator(); ++it)
+      out[(*it)[1]].push_back({t, (*it)[3], std::stod((*it)[2])});
+  });
+  return out;
 }
 
 }  // namespace ctest_util

@@ -13,14 +13,13 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <cmath>
-#include <map>
-#include <regex>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <thread>
 
@@ -512,39 +511,6 @@ TEST(PlanCompletions, TheTaskLayerOnThePlanFinishesMoreErrands)
   EXPECT_GT(on, off);
 }
 
-namespace {
-
-// Per vehicle, from fcd.xml: (time, lane, front position on the lane).
-struct FcdPose {
-  double t = 0;
-  std::string lane;
-  double pos = 0;
-};
-std::map<std::string, std::vector<FcdPose>> fcd_poses(const std::string& fcd)
-{
-  std::map<std::string, std::vector<FcdPose>> out;
-  const std::string s = ctest_util::slurp(fcd);
-  const std::regex step_re(R"re(<timestep time="([-0-9.e]+)")re");
-  const std::regex veh_re(R"re(<vehicle id="([^"]+)"[^>]* pos="([-0-9.e]+)" lane="([^"]+)")re");
-  size_t pos = 0;
-  double t = 0;
-  while (pos < s.size()) {
-    const size_t a = s.find("<timestep", pos);
-    if (a == std::string::npos) break;
-    size_t b = s.find("<timestep", a + 1);
-    if (b == std::string::npos) b = s.size();
-    const std::string block = s.substr(a, b - a);
-    std::smatch m;
-    if (std::regex_search(block, m, step_re)) t = std::stod(m[1]);
-    for (auto it = std::sregex_iterator(block.begin(), block.end(), veh_re); it != std::sregex_iterator(); ++it)
-      out[(*it)[1]].push_back({t, (*it)[3], std::stod((*it)[2])});
-    pos = b;
-  }
-  return out;
-}
-
-}  // namespace
-
 // An errand counts when its AGV got there, not when the plan did: every logged completion
 // [t, agent, task, errand] has the AGV's front where the cell has it (a lane and position
 // of the cell's poses, within 0.25 m; cells are 1 m) at some SUMO step up to the end of tick t, after the AGV's previous counted
@@ -576,7 +542,7 @@ TEST(PlanCompletions, EveryCountedErrandWasDrivenToAlsoAfterReplans)
     debts += m.plan_debts, replans += m.replans, errands += m.errands_finished;
     EXPECT_LE(m.errands_finished, m.plan_completions) << tag;
     const auto file = make_task_file(cfg, c.map());
-    const auto poses = fcd_poses(cfg.output.dir + "/fcd.xml");
+    const auto poses = ctest_util::fcd_poses(cfg.output.dir + "/fcd.xml");
     std::ifstream in(cfg.output.dir + "/" + cfg.tasks.log);
     const nlohmann::json j = nlohmann::json::parse(in);
     ASSERT_EQ(static_cast<long long>(j["events"].size()), m.errands_finished) << tag;
@@ -586,13 +552,13 @@ TEST(PlanCompletions, EveryCountedErrandWasDrivenToAlsoAfterReplans)
       const int agent = e[1], errand = e[3].get<int>() - 1;
       const planner::Vertex cell = file->tasks[static_cast<size_t>(task % file->size())][errand];
       const double until = t * cfg.run.tick_s + 1e-9;
-      auto on_cell = [&](const FcdPose& p) {
+      auto on_cell = [&](const ctest_util::FcdPose& p) {
         for (const gridify::SumoPose& q : c.map().cells[cell].poses)
           if (q.lane == p.lane && std::abs(q.pos - p.pos) <= 0.25) return true;
         return false;
       };
       double seen = -1;
-      for (const FcdPose& p : poses.at("agv" + std::to_string(agent)))
+      for (const ctest_util::FcdPose& p : poses.at("agv" + std::to_string(agent)))
         if (p.t > until) break;
         else if (p.t >= last[agent] && on_cell(p)) { seen = p.t; break; }
       EXPECT_GE(seen, 0) << tag << ": agv" << agent << " counted task " << task << " errand " << errand << " at tick " << t

@@ -25,6 +25,7 @@
 // cells (stations: few tables); an errand cell the agent cannot reach costs nothing.
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "planner/config.hpp"
@@ -48,10 +49,21 @@ class FreeFlowBound {
   // for an agent that holds none.
   double open_steps(const planner::Config& open) const;
   // The bound over the finished errands and the open ones; 0 before any errand.
-  double errands_per_step(const planner::Config& open) const;
+  double errands_per_step(const planner::Config& open) const
+  {
+    const auto [n, steps] = totals(open);
+    return per_step(n, steps);
+  }
   double errands_per_step() const { return per_step(errands_, steps_); }  // finished only
+  // Free-flow steps per errand over the same errands; 0 without any.
+  double steps_per_errand(const planner::Config& open) const
+  {
+    const auto [n, steps] = totals(open);
+    return n > 0 ? steps / static_cast<double>(n) : 0.0;
+  }
 
  private:
+  std::pair<long, double> totals(const planner::Config& open) const;  // errands, steps: finished + open
   double per_step(long errands, double steps) const
   {
     return steps > 0 ? static_cast<double>(last_.size()) * static_cast<double>(errands) / steps : 0.0;
