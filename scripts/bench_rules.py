@@ -19,7 +19,7 @@ tasks/errand_stalls.hpp), the longest errand from assignment to completion, and 
   scripts/bench_rules.py [--build build] [--ticks 1000] [--large-ticks 500] [--expansions 50]
                          [--skip-large] [--skip-one-way] [--skip-small] [--queues]
                          [--station-closure] [--executor lockstep|adg|adg-follow]
-                         [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...]
+                         [--solver rtlacam|pibt|pibt-rot|epibt|wppl|...] [--planner KEY=VALUE ...]
                          [--urgency [--urgency-configs CONFIG...]] [--shipped-k CONFIG...]
                          [--long-k CONFIG... [--seeds 1,2,3,4] [--large-ticks-list 4000,16000] [--jobs 2]]
                          [--admission [--admission-configs CONFIG...] [--seeds 1,2]]
@@ -95,6 +95,7 @@ WAREHOUSES = [
 QUEUES = False
 EXECUTOR = None  # --executor: every run under it (None: the config's)
 SOLVER = None  # --solver: every run with it (None: the config's)
+PLANNER = {}  # --planner KEY=VALUE: planner keys set in every run
 
 
 def k_cols(m):
@@ -136,6 +137,7 @@ def run(build, base, out, ticks, expansions, rules, tasks_extra=None, sections=N
         cfg["run"]["executor"] = EXECUTOR
     if SOLVER:
         cfg["planner"]["solver"] = SOLVER
+    cfg["planner"].update(PLANNER)
     cfg["output"] = {"dir": out, "congestion": False}
     if rules is not None:
         cfg["rules"] = rules
@@ -541,12 +543,17 @@ def main():
                     help="tasks overrides merged key by key, e.g. '{\"urgency\": {\"escalate_after\": 150}}', each "
                          "against the config as is (--clear-configs, --seeds, --large-ticks-list, --jobs)")
     ap.add_argument("--large-ticks-list", default=None, help="--queue-variants: tick counts, e.g. 1000,2000 (default --large-ticks)")
+    ap.add_argument("--planner", action="append", default=[], metavar="KEY=VALUE",
+                    help="a planner key set in every run (YAML value), e.g. free_first=true; repeatable")
     ap.add_argument("--jobs", type=int, default=1, help="--queue-variants: runs at once")
     a = ap.parse_args()
     if a.large_ticks_list is None:
         a.large_ticks_list = str(a.large_ticks)
     global QUEUES, EXECUTOR, SOLVER
     QUEUES, EXECUTOR, SOLVER = a.queues, a.executor, a.solver
+    for kv in a.planner:
+        k, _, v = kv.partition("=")
+        PLANNER[k] = yaml.safe_load(v)
     dflt = "the config's"
     print(f"# solver: {SOLVER or dflt}, executor: {EXECUTOR or dflt}, "
           f"expansions per step: {dflt + ' budget' if a.long_k else a.expansions}"

@@ -107,6 +107,7 @@ nlohmann::json Metrics::to_json() const
   j["planner_ms_per_step"] = latency_json(planner_ms_per_step);
   j["planner_cpu_ms_per_step"] = latency_json(planner_cpu_ms_per_step);
   j["planner_ms_per_tick"] = latency_json(planner_ms_per_tick);
+  j["planner_startup"] = {{"wall_ms", planner_startup_ms}, {"cpu_ms", planner_startup_cpu_ms}, {"expansions", planner_startup_expansions}};
   j["sumo_ms_per_step"] = latency_json(sumo_ms_per_step);
   j["control_ms_per_tick"] = latency_json(control_ms_per_tick);
   j["commands"] = {{"total", commands.total()},

@@ -391,6 +391,19 @@ void Run::rules_tick_adg(executor::Adg& adg, Driver& drv)
   for (uint8_t w : waiting_) m_.rules.waits += w;
 }
 
+planner::Budget Run::startup_budget() const
+{
+  planner::Budget b = plan_budget();
+  // A tick's budget (a rotation solver's plan_budget() is one already), startup_ticks times;
+  // 0: the insertion step's own.
+  const int ticks = cfg_.planner.startup_ticks;
+  if (ticks == 0) return b;
+  const double f = static_cast<double>(ticks) * (p_->rotation() ? 1 : k_);
+  b.ms *= f;  // infinity stays infinity
+  if (b.expansions != planner::Budget{}.expansions) b.expansions = static_cast<uint64_t>(static_cast<double>(b.expansions) * f);
+  return b;
+}
+
 planner::Budget Run::plan_budget() const
 {
   planner::Budget b = budget_;
@@ -509,7 +522,16 @@ void Run::start_sumo()
   sumo_->start(sumo_args(cfg_, dir_, write_vtype_file(cfg_, dir_, max_spacing_), cmd_->needs_ignore_route_errors()));
   cmd_->insert(ins_.starts);
   // Insertion step (the AGVs are pending until it): no safety check before they exist.
-  p_->search(plan_budget());
+  // The first command waits for a tick's planning (planner.startup_ticks), as every later one
+  // does; before the clock starts, so no SUMO step holds it (metrics.json planner_startup).
+  {
+    const auto t0 = Clock::now();
+    const double c0 = planner::thread_cpu_ms();
+    p_->search(startup_budget());
+    m_.planner_startup_ms = ms_since(t0);
+    m_.planner_startup_cpu_ms = planner::thread_cpu_ms() - c0;
+    m_.planner_startup_expansions = p_->expansions();
+  }
   sumo_->step();
   check_events(*sumo_, sumo_->time());
   const std::vector<std::string> waiting = sumo_->pending();

@@ -64,6 +64,7 @@ class Run {
   std::vector<VehiclePose> poses();
   // The budget of a search that plans a step: budget_, a tick's worth for a rotation solver.
   planner::Budget plan_budget() const;
+  planner::Budget startup_budget() const;  // the search before the first command (planner.startup_ticks)
   // Lifelong: thousands of goal cells over a run; p_ keeps the distance tables in use plus a
   // few hundred recent ones.
   void cap_dist_tables()

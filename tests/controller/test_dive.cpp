@@ -5,6 +5,8 @@
 // improves it; PIBT rollouts from the root give a far cheaper path early.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "controller/config.hpp"
 #include "controller/controller.hpp"
 #include "controller_test_util.hpp"
@@ -19,14 +21,16 @@ const std::string kNet = "sumo:\n  net: ../sumo_scenarios/small.net.xml\n";
 
 // libsumo holds one simulation per process: the runs after the first go through TraCI.
 Metrics run_demo(bool dive, uint64_t seed, const std::string& backend, bool free_first = false,
-                 std::vector<planner::Config>* plan_out = nullptr)
+                 std::vector<planner::Config>* plan_out = nullptr, int startup_ticks = 1, uint64_t expansions = 100)
 {
   Config c = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse.yaml");
-  c.output.dir = test::temp_dir("ctl_dive_" + std::to_string(dive) + "_" + std::to_string(seed) + (free_first ? "_ff" : ""));
+  c.output.dir = test::temp_dir("ctl_dive_" + std::to_string(dive) + "_" + std::to_string(seed) + (free_first ? "_ff" : "") +
+                                "_s" + std::to_string(startup_ticks) + "_e" + std::to_string(expansions));
   c.run.progress_s = 0;
   c.planner.budget_ms = 0;  // deterministic: expansions per SUMO step
-  c.planner.expansions = 100;
+  c.planner.expansions = expansions;
   c.planner.seed = seed;
+  c.planner.startup_ticks = startup_ticks;
   c.planner.dive = dive;
   c.planner.free_first = free_first;
   c.run.backend = backend;
@@ -88,13 +92,13 @@ TEST(ControllerDive, DemoExecutesACheaperStandardSocWithDives)
   EXPECT_LT(on_sum, 0.8 * off_sum);
 }
 
-// planner.free_first (issue 22's PIBT tie-break, on in the CLI's RT-LaCAM*): off by default in
-// SUMO (no gain measured there), parsed, and it reaches the planner: the same deterministic
-// demo run plans differently with it.
-TEST(ControllerDive, FreeFirstKeyDefaultsOffAndReachesThePlanner)
+// planner.free_first (issue 22's PIBT tie-break, on in the CLI's RT-LaCAM*): on by default in
+// SUMO too since session 44 (lifelong gains, controller/README.md), parsed, and it reaches the
+// planner: the same deterministic demo run plans differently with it.
+TEST(ControllerDive, FreeFirstKeyDefaultsOnAndReachesThePlanner)
 {
-  EXPECT_FALSE(parse_config(kNet + "fleet: {count: 3}\n", "t.yaml", RTLACAM_CONFIGS).planner.free_first);
-  EXPECT_TRUE(parse_config(kNet + "fleet: {count: 3}\nplanner: {free_first: true}\n", "t.yaml", RTLACAM_CONFIGS).planner.free_first);
+  EXPECT_TRUE(parse_config(kNet + "fleet: {count: 3}\n", "t.yaml", RTLACAM_CONFIGS).planner.free_first);
+  EXPECT_FALSE(parse_config(kNet + "fleet: {count: 3}\nplanner: {free_first: false}\n", "t.yaml", RTLACAM_CONFIGS).planner.free_first);
   EXPECT_THROW(parse_config(kNet + "fleet: {count: 3}\nplanner: {free_first: maybe}\n", "t.yaml", RTLACAM_CONFIGS),
                std::exception);
   std::vector<planner::Config> off, on, off_again;
@@ -103,4 +107,34 @@ TEST(ControllerDive, FreeFirstKeyDefaultsOffAndReachesThePlanner)
   run_demo(true, 0, "traci", false, &off_again);
   EXPECT_TRUE(off == off_again) << "the demo run is not deterministic";  // so a difference below is the key's
   EXPECT_FALSE(off == on) << "planner.free_first did not reach the planner";
+}
+
+// planner.startup_ticks (default 1): the first command waits for a tick's planning, as every
+// later one does, instead of the insertion step's one SUMO step. On the default demo the first
+// moves decide the cost (a long search at the start finds 243-249, from the fourth move on it
+// cannot get below 277-283): deterministic, 1000 expansions per SUMO step, planner seeds 0-5,
+// free_first on, measured 256.8 with against 274.8 without.
+TEST(ControllerDive, StartupPlanningGivesTheFirstMoveATicksBudget)
+{
+  const Config d = parse_config(kNet + "fleet: {count: 3}\n", "t.yaml", RTLACAM_CONFIGS);
+  EXPECT_EQ(d.planner.startup_ticks, 1);
+  try {
+    parse_config(kNet + "fleet: {count: 3}\nplanner: {startup_ticks: -1}\n", "t.yaml", RTLACAM_CONFIGS);
+    ADD_FAILURE() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("planner.startup_ticks"), std::string::npos) << e.what();
+  }
+  double with = 0, without = 0;
+  for (uint64_t seed = 0; seed < 6; ++seed) {
+    SCOPED_TRACE("planner.seed " + std::to_string(seed));
+    const Metrics on = run_demo(true, seed, "traci", true, nullptr, 1, 1000);
+    const Metrics off = run_demo(true, seed, "traci", true, nullptr, 0, 1000);
+    // Without it the search before the first command had one SUMO step's budget.
+    EXPECT_LE(off.planner_startup_expansions, 1000u);
+    EXPECT_GT(on.planner_startup_expansions, 0u);
+    with += static_cast<double>(on.soc);
+    without += static_cast<double>(off.soc);
+  }
+  std::printf("executed SOC, mean of 6: %.1f with startup planning, %.1f without\n", with / 6, without / 6);
+  EXPECT_LT(with, 0.97 * without);
 }

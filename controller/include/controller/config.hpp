@@ -108,6 +108,12 @@ struct PlannerSection {
   double budget_ms = 1.0;          // per SUMO step; 0 = no time limit
   uint64_t expansions = 0;         // per SUMO step; 0 = no limit (set it for deterministic runs)
   uint64_t seed = 0;
+  // Planning before the first command, in ticks' budgets (steps_per_tick x budget_ms, or x
+  // expansions), so the first move is planned as long as every later one (the paper's loop:
+  // plan, then move). 0: the insertion step's one SUMO step. The default demo (16 AGVs,
+  // one-cell aisles) locks in its cost with the first moves: executed SOC mean 265.4 with 0,
+  // 251.8 with 1 (planner.free_first on, 40 runs; controller/README.md "Startup planning").
+  int startup_ticks = 1;
   bool swap = true;
   bool keep_priorities = true;  // lifelong epochs keep PIBT priorities (planner::LacamOptions)
   bool refine = true;           // RT-LaCAM*: LaCAM* refinement after the first solution (false: the paper)
@@ -122,13 +128,14 @@ struct PlannerSection {
   int stop_cost = 0;
   bool lns_moves = false;  // LacamOptions::lns_count_moves: LNS's tie-break counts moves, not the loss
   // PIBT's tie-break among equally short moves toward the goal (LacamOptions::free_first): a
-  // free cell first, one whose AGV comes head-on or is parked on its goal last. On by default
-  // in the CLI's and Python's RT-LaCAM* (grid first solutions gm 0.956). Off here until its
-  // K is checked: in SUMO (50 expansions/step, seeds 1-4) lifelong errands/tick on/off gm
-  // 1.134 (small_warehouse_lifelong) and 1.062 (large), but one small run's longest stall went
-  // 206 -> 392; one-shot large_warehouse_agv (adg-follow, seeds 1-8) makespan gm 1.023 (p = 0)
-  // and 0.965 (p = 0.01). controller/README.md "planner.free_first".
-  bool free_first = false;
+  // free cell first, one whose AGV comes head-on or is parked on its goal last. On, as in the
+  // CLI's and Python's RT-LaCAM* (session 44): shipped lifelong examples +2-16 % errands/tick
+  // at 50 expansions per step, K lower on 6 of 9 (higher on large_warehouse_lifelong 123 ->
+  // 171 and large_oneway_lifelong 199 -> 275); one-shot large_warehouse_agv makespan flat (gm
+  // seeds 1-8: lockstep 1.03x, adg-follow 0.98x); the default demo's executed SOC with
+  // startup planning 263.6 -> 251.8 (means of 20 / 40 runs). controller/README.md
+  // "planner.free_first".
+  bool free_first = true;
   // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
   // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top
   // speed, v_fast the fastest cell's (controller/lane_costs.hpp; planner Graph::set_move_costs).

@@ -31,6 +31,8 @@ struct Metrics {
   Latency planner_ms_per_step;  // one search(budget) call per SUMO step
   Latency planner_cpu_ms_per_step;  // thread CPU of all planner work per SUMO step (commits, epochs, replans too)
   Latency planner_ms_per_tick;  // sum over the steps of a tick
+  double planner_startup_ms = 0, planner_startup_cpu_ms = 0;  // the search before the first command (wall, thread CPU)
+  uint64_t planner_startup_expansions = 0;                      // and its expansions
   Latency sumo_ms_per_step;     // SUMO's own step (inside the back end)
   Latency control_ms_per_tick;  // commands + verification
   CommandStats commands;
