@@ -133,7 +133,7 @@ struct PlannerSection {
   // at 50 expansions per step, K lower on 6 of 9 (higher on large_warehouse_lifelong 123 ->
   // 171 and large_oneway_lifelong 199 -> 275); one-shot large_warehouse_agv makespan flat (gm
   // seeds 1-8: lockstep 1.03x, adg-follow 0.98x); the default demo's executed SOC with
-  // startup planning 263.6 -> 251.8 (means of 20 / 40 runs). controller/README.md
+  // startup planning 264.8 -> 251.8 (means of 40 runs). controller/README.md
   // "planner.free_first".
   bool free_first = true;
   // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
