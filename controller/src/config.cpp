@@ -432,9 +432,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(p, "planner", "budget_ms", c.planner.budget_ms, 0);
   r.get(p, "planner", "expansions", c.planner.expansions, "a non-negative integer");
   r.get(p, "planner", "seed", c.planner.seed, "a non-negative integer");
-  r.get(p, "planner", "startup_ticks", c.planner.startup_ticks, "an integer in 0..1000");
-  if (c.planner.startup_ticks < 0 || c.planner.startup_ticks > 1000)
-    r.fail("planner.startup_ticks", "expected an integer in 0..1000, got " + p["startup_ticks"].Scalar());
+  r.integer(p, "planner", "startup_ticks", c.planner.startup_ticks, 0, 1000);
   r.flag(p, "planner", "swap", c.planner.swap);
   r.flag(p, "planner", "keep_priorities", c.planner.keep_priorities);
   r.flag(p, "planner", "refine", c.planner.refine);
