@@ -166,6 +166,10 @@ int main(int argc, char** argv)
                  "(refine_thread.hpp); 0 = none, the search makes its own LNS steps")
       ->capture_default_str()
       ->check(CLI::Range(0, 64));
+  bool iter_refine = false;
+  app.add_flag("--iter-refine,!--no-iter-refine", iter_refine,
+               "with --refine and --objective soc: iterative refinement (lacam3's refiner: groups of agents replanned "
+               "by SIPP over the rest of the horizon, iter_refiner.hpp) in place of the search's LNS steps");
   app.add_flag("--scatter,!--no-scatter", scatter,
                "with --refine: space-utilisation optimisation guiding PIBT after the first solution (scatter.hpp)")
       ->capture_default_str();
@@ -254,6 +258,7 @@ int main(int argc, char** argv)
     lopt.lns_agents = lns_agents;
     lopt.lns_neighbourhood = parse_lns_neighbourhood(lns_nbh);
     lopt.refine_threads = refine_threads;
+    lopt.iter_refine = iter_refine;
     lopt.objective = parse_objective(objective);
     lopt.scatter = scatter;
     lopt.scatter_margin = scatter_margin;
@@ -374,6 +379,13 @@ int main(int argc, char** argv)
         threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
         threads_json["lg_nodes"] = rt->lacam().lg_nodes();
         threads_json["lg_kept"] = rt->lacam().lg_kept();
+        if (iter_refine) {
+          threads_json["iter_groups"] = rt->lacam().iter_groups();
+          threads_json["iter_kept"] = rt->lacam().iter_kept();
+          threads_json["iter_resets"] = rt->lacam().iter_resets();
+          threads_json["iter_windows"] = rt->lacam().iter_windows();
+          threads_json["iter_refused"] = rt->lacam().iter_refused();
+        }
       }
       if (const auto* rt = dynamic_cast<const RtLacam*>(p.get()); rt && refine_threads > 0) {
         threads_json["refine_threads"] = refine_threads;

@@ -146,7 +146,9 @@ Status Lacam::refine_expand()
     last_step_ = Step::thread;
     return status_;
   }
-  const bool lns = opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
+  // iter_refine takes LNS's turns (lacam_iter.cpp)
+  const bool iter = opt_.iter_refine && soc_on() && all_goals && !best_.empty();
+  const bool lns = !iter && opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
   const bool guide = all_goals && !goal_test_ &&
                      (dive_ ||
@@ -156,7 +158,7 @@ Status Lacam::refine_expand()
   // the guide gets a third of them (half without LNS); the rest as before.
   const bool urgent = opt_.scatter && !first_dive_done_;
   // A paused dive step keeps the turn: pibt_ holds its generation (dive_pause).
-  const bool guide_turn = guide && (dive_paused_ || urgent || (guide_iterations_++ % (lns ? 3 : 2)) == 0 || (open_.empty() && !lns));
+  const bool guide_turn = guide && (dive_paused_ || urgent || (guide_iterations_++ % (lns || iter ? 3 : 2)) == 0 || (open_.empty() && !lns && !iter));
   // A guide step is at least one SUO slice or one dive step (dive_cost_, a PIBT call's prior).
   dive_cost_.set_prior(expand_cost_.rate());
   const double unit = std::max(expand_cost_.predict_ms(1), dive_cost_.predict_ms(1));
@@ -185,6 +187,16 @@ Status Lacam::refine_expand()
     guide_spent_ += timed_ ? thread_cpu_ms() - c0 : static_cast<double>(units_);
     last_step_ = Step::guide;
     return status_;
+  }
+  if (iter && (open_.empty() || (refine_iterations_++ & 3) != 0)) {
+    if (iter_step()) {
+      last_step_ = Step::thread;
+      return status_;
+    }
+    if (open_.empty()) {  // nothing fits now: later
+      stalled_ = true;
+      return status_;
+    }
   }
   if (lns && (open_.empty() || (refine_iterations_++ & 1) == 0)) {
     // The window is cut to what fits: a step costs about (N + 16 k) per time step (copying
@@ -381,6 +393,7 @@ bool Lacam::insert_step()
   if (soc_on()) {
     const bool ok = best_.splice(splice_from_, spliced_, splice_set_);
     if (threads_) thread_spliced(ok);  // a worker's window (lacam_threads.cpp), if it was one
+    if (iter_adopting_) iter_spliced(ok);  // iter_'s window (lacam_iter.cpp)
   }
   pending_.clear();
   pending_next_ = 0;

@@ -115,51 +115,15 @@ bool Lacam::thread_step()
   Threads& T = *threads_;
   const auto& p = best_.nodes();
   while (T.next < T.taken.size()) {
-    RefineWindow& w = T.taken[T.next];
     const int j = T.source[T.next];
-    const int64_t k = w.t0 - root_step_;
-    const int64_t W = static_cast<int64_t>(w.configs.size()) - 1;
-    if (k < 1 || W < 2 || k + W >= static_cast<int64_t>(p.size()) ||
-        !config_equal(p[k]->C, w.configs.front().data(), n_) || !config_equal(p[k + W]->C, w.configs.back().data(), n_)) {
-      ++T.refused;  // the agents are past it, or the followed path changed there
-      ++T.next;
+    const int r = place_window(T.taken[T.next], T.check_cost);
+    if (r == 0) return false;  // later, when an iteration has room
+    ++T.next;
+    if (r < 0) {
+      ++T.refused;
+      if (r == -2) return true;  // its check took the turn
       continue;
     }
-    const double units = static_cast<double>(W) * n_;
-    T.check_cost.set_prior(kCheckPrior);
-    if (timed_ && !fits(T.check_cost.predict_ms(units))) {
-      T.check_cost.forget();
-      return false;  // later, when an iteration has room
-    }
-    const double c0 = timed_ ? thread_cpu_ms() : 0.0;
-    ++T.next;
-    // The agents whose moves differ from the followed path's, and the steps [a, b] where
-    // any does: only those are inserted (the worker's copy may be older than the path).
-    std::vector<uint8_t> moved(n_, 0);
-    int64_t a = W, b = 0;
-    for (int64_t t = 1; t < W; ++t) {
-      const Vertex* C = p[k + t]->C;
-      bool differs = false;
-      for (int i = 0; i < n_; ++i)
-        if (C[i] != w.configs[t][i]) moved[i] = 1, differs = true;
-      if (differs) a = std::min(a, t), b = std::max(b, t);
-    }
-    bool valid = a <= b;  // else nothing new
-    if (valid) {
-      Validator v(g_, w.configs[a - 1], goals_);
-      for (int64_t t = a; t <= b + 1 && valid; ++t) valid = v.step(w.configs[t]);
-      if (!valid) ++T.refused;
-    }
-    if (timed_) T.check_cost.record(units, thread_cpu_ms() - c0);
-    if (!valid) return true;
-    pending_.assign(std::make_move_iterator(w.configs.begin() + (a - 1)),
-                    std::make_move_iterator(w.configs.begin() + (b + 2)));
-    pending_next_ = 1;
-    pending_prev_ = splice_from_ = p[k + a - 1];
-    spliced_.clear();
-    splice_set_.clear();
-    for (int i = 0; i < n_; ++i)
-      if (moved[i]) splice_set_.push_back(i);
     T.adopting = j;
     T.cost0 = best_.cost();
     if (!timed_) insert_step();  // no deadline: at once (deterministic runs)
@@ -188,6 +152,50 @@ bool Lacam::thread_step()
     return true;
   }
   return false;
+}
+
+int Lacam::place_window(RefineWindow& w, StepCost& check_cost)
+{
+  const auto& p = best_.nodes();
+  const int64_t k = w.t0 - root_step_;
+  const int64_t W = static_cast<int64_t>(w.configs.size()) - 1;
+  if (k < 1 || W < 2 || k + W >= static_cast<int64_t>(p.size()) ||
+      !config_equal(p[k]->C, w.configs.front().data(), n_) || !config_equal(p[k + W]->C, w.configs.back().data(), n_))
+    return -1;  // the agents are past it, or the followed path changed there
+  const double units = static_cast<double>(W) * n_;
+  check_cost.set_prior(kCheckPrior);
+  if (timed_ && !fits(check_cost.predict_ms(units))) {
+    check_cost.forget();
+    return 0;
+  }
+  const double c0 = timed_ ? thread_cpu_ms() : 0.0;
+  // The agents whose moves differ from the followed path's, and the steps [a, b] where
+  // any does: only those are inserted (the refiner's copy may be older than the path).
+  std::vector<uint8_t> moved(n_, 0);
+  int64_t a = W, b = 0;
+  for (int64_t t = 1; t < W; ++t) {
+    const Vertex* C = p[k + t]->C;
+    bool differs = false;
+    for (int i = 0; i < n_; ++i)
+      if (C[i] != w.configs[t][i]) moved[i] = 1, differs = true;
+    if (differs) a = std::min(a, t), b = std::max(b, t);
+  }
+  bool valid = a <= b;  // else nothing new
+  if (valid) {
+    Validator v(g_, w.configs[a - 1], goals_);
+    for (int64_t t = a; t <= b + 1 && valid; ++t) valid = v.step(w.configs[t]);
+  }
+  if (timed_) check_cost.record(units, thread_cpu_ms() - c0);
+  if (!valid) return -2;
+  pending_.assign(std::make_move_iterator(w.configs.begin() + (a - 1)),
+                  std::make_move_iterator(w.configs.begin() + (b + 2)));
+  pending_next_ = 1;
+  pending_prev_ = splice_from_ = p[k + a - 1];
+  spliced_.clear();
+  splice_set_.clear();
+  for (int i = 0; i < n_; ++i)
+    if (moved[i]) splice_set_.push_back(i);
+  return 1;
 }
 
 void Lacam::thread_spliced(bool ok)

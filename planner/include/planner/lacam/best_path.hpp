@@ -31,6 +31,8 @@ class BestPath {
   // The last index of nodes() where agent i is off its goal (-1: never): it stays on its
   // goal from every later index on.
   int32_t last_off(int i) const { return last_[i]; }
+  // Steps agent i has stood on its goal at the root since it arrived (charged if it leaves).
+  const int32_t* waits() const { return wait_.data(); }
   // Counts the changes of the path other than advance()'s trimming of its first node (a new
   // path adopted, a window spliced, the path dropped): a refiner thread's copy (refine_thread.hpp)
   // is still the same path while this has not changed.

@@ -72,6 +72,7 @@
 #include "planner/dist_table.hpp"
 #include "planner/lacam/explored_table.hpp"
 #include "planner/lacam/hnode.hpp"
+#include "planner/lacam/iter_refiner.hpp"
 #include "planner/lacam/lns_refiner.hpp"
 #include "planner/lacam/local_guidance.hpp"
 #include "planner/lacam/objective.hpp"
@@ -280,6 +281,11 @@ struct LacamOptions {
   // One-at-a-time zones (zones.hpp; null = none): a rule of PIBT's configurations, so the
   // search stays complete over the configurations that keep them. LNS and the refiner
   // threads are off with them (their paths are not PIBT's).
+  // With refine and objective soc: iterative refinement (iter_refiner.hpp, lacam3's refiner)
+  // in the search thread instead of LnsRefiner steps: groups of agents replanned over the
+  // rest of the horizon by SIPP on a copy of the followed path, whose improved steps are
+  // inserted and spliced as one window (the refiner threads' way, lacam_iter.cpp).
+  bool iter_refine = false;
   std::shared_ptr<const Zones> zones;
 };
 
@@ -417,6 +423,12 @@ class Lacam {
   uint64_t thread_posts() const;         // copies of the followed path posted to the workers
   uint64_t refiner_improvements() const;  // improving LNS steps the workers made (all jobs)
   std::vector<std::pair<int64_t, int64_t>> thread_adoptions() const;
+  // iter_refine: groups replanned / kept, copies made, windows spliced / refused
+  uint64_t iter_groups() const { return iter_ ? iter_->groups() : 0; }
+  uint64_t iter_kept() const { return iter_ ? iter_->kept() : 0; }
+  uint64_t iter_resets() const { return iter_resets_; }
+  uint64_t iter_windows() const { return iter_windows_; }
+  uint64_t iter_refused() const { return iter_refused_; }
   // Tests: blocks until every worker has published a window or is idle, at most `ms` each.
   void wait_refiners(double ms) const;
   // expansions() and explored() when the current search found its first solution
@@ -479,6 +491,12 @@ class Lacam {
   bool thread_step();                       // adopt a window, or post the path; false: nothing to do
   void thread_spliced(bool ok);             // insert_step() ended a worker's window
   void threads_park();                      // reset(): the workers drop their jobs
+  // A window of a refiner (a worker's or iter_'s) placed for insertion (pending_): 1 placed,
+  // 0 not now (its check does not fit), -1 refused (the agents passed it, or the path
+  // changed there), -2 refused after its check (a transition is invalid).
+  int place_window(RefineWindow& w, StepCost& check_cost);
+  bool iter_step();                         // iter_refine: a copy, a window, or a group
+  void iter_spliced(bool ok);               // insert_step() ended iter_'s window
 
   static constexpr int kMinLnsWindow = 4;  // shorter windows rarely leave room to improve
   static constexpr int kLnsLead = 2;       // soc: an LNS window starts this far ahead of the root
@@ -632,6 +650,13 @@ class Lacam {
   };
   std::unique_ptr<Threads, ThreadsDeleter> threads_;  // null without refine_threads
   int64_t root_step_ = 0;           // moves executed since reset() (the workers' clock)
+  std::unique_ptr<IterRefiner> iter_;  // iter_refine
+  StepCost iter_cost_, iter_copy_cost_, iter_check_cost_;  // per agent replanned / cell copied / checked
+  RefineWindow iter_win_;           // taken from iter_, waiting for its check to fit
+  bool iter_win_ready_ = false, iter_adopting_ = false;
+  uint64_t iter_resets_ = 0, iter_windows_ = 0, iter_refused_ = 0, iter_since_ = 0;
+  static constexpr int kIterLead = 8;      // iter_'s groups start this far ahead of the root
+  static constexpr int kIterEmitGroups = 4;  // a window after this many groups at most (its splice prices each agent moved: O(T) each)
 };
 
 }  // namespace planner
