@@ -15,7 +15,10 @@ void IterRefiner::reset(const std::vector<const Vertex*>& path, int n, int64_t s
 {
   // Clear the old copy's cells (the table keeps its size: zeroing |V| x T would cost more)
   for (int i = 0; i < n_; ++i)
-    for (int t = 0; t <= T_; ++t) occ(t, at(i, t)) = 0;
+    for (int t = 0; t <= T_; ++t) {
+      occ(t, at(i, t)) = 0;
+      times_[at(i, t)].clear();
+    }
   n_ = n;
   T_ = static_cast<int>(path.size()) - 1;
   V_ = g_.size();
@@ -26,6 +29,7 @@ void IterRefiner::reset(const std::vector<const Vertex*>& path, int n, int64_t s
   const size_t cells = S_ * V_;
   if (occ_.size() < cells) occ_.assign(cells, 0);
   if (stamp_.size() != V_) {
+    times_.assign(V_, {});
     stamp_.assign(V_, 0);
     first_.assign(V_, 0);
     count_.assign(V_, 0);
@@ -39,6 +43,7 @@ void IterRefiner::reset(const std::vector<const Vertex*>& path, int n, int64_t s
     for (int i = 0; i < n_; ++i) {
       at(i, t) = path[t][i];
       occ(t, path[t][i]) = i + 1;
+      times_[path[t][i]].push_back(t);  // t ascends: each list stays sorted
     }
   wait_.assign(n_, 0);
   if (wait) std::copy(wait, wait + n_, wait_.begin());
@@ -72,19 +77,32 @@ void IterRefiner::intervals(int i, Vertex v, int tf)
 {
   stamp_[v] = epoch_;
   first_[v] = static_cast<int32_t>(ivl_.size());
-  const int32_t* o = &occ_[static_cast<size_t>(v) * S_];
-  int lo = -1;
-  for (int t = tf; t <= T_; ++t) {
-    const bool free = o[t] == 0 || o[t] == i + 1;
-    if (free && lo < 0) lo = t;
-    if (!free && lo >= 0) {
-      ivl_.push_back({lo, t - 1, INT32_MAX});
-      lo = -1;
-    }
+  const std::vector<int32_t>& ts = times_[v];
+  int lo = tf;  // the running interval's first free step
+  for (auto it = std::lower_bound(ts.begin(), ts.end(), tf); it != ts.end(); ++it) {
+    const int t = *it;
+    if (occ(t, v) == i + 1) continue;  // its own cell (where it starts) counts as free
+    if (t > lo) ivl_.push_back({lo, t - 1, INT32_MAX});
+    lo = t + 1;
   }
-  if (lo >= 0) ivl_.push_back({lo, T_, INT32_MAX});
+  if (lo <= T_) ivl_.push_back({lo, T_, INT32_MAX});
   count_[v] = static_cast<int32_t>(ivl_.size()) - first_[v];
-  work_ += static_cast<uint64_t>(T_ - tf + 1);
+  work_ += ts.size() / 8 + 1;
+}
+
+void IterRefiner::put(int t, Vertex v, int i)
+{
+  occ(t, v) = i + 1;
+  std::vector<int32_t>& ts = times_[v];
+  ts.insert(std::upper_bound(ts.begin(), ts.end(), t), t);
+}
+
+void IterRefiner::take(int t, Vertex v)
+{
+  occ(t, v) = 0;
+  std::vector<int32_t>& ts = times_[v];
+  const auto it = std::lower_bound(ts.begin(), ts.end(), t);
+  if (it != ts.end() && *it == t) ts.erase(it);
 }
 
 bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out, Clock::time_point deadline)
@@ -102,6 +120,28 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
       }
     return p == 0 || p <= bound;
   }
+  // It arrives at free_from at the earliest: f = max(t + d, free_from) is admissible, and a
+  // search that cannot beat its bound ends here instead of sweeping every state below it.
+  if (free_from > bound) return false;
+  // Its old path already arrives at free_from: the least arrival there is. Kept if the
+  // group's earlier members left it free (a search would sweep every state below free_from).
+  if (arrival_[i] > tf && arrival_[i] <= free_from && arrival_[i] <= bound) {
+    bool free = true;
+    for (int t = tf; t < T_ && free; ++t) {
+      const Vertex v = at(i, t), u = at(i, t + 1);
+      const int32_t o = occ(t + 1, u);
+      free = o == 0 || o == i + 1;
+      if (free && u != v) {
+        const int32_t j = occ(t, u);
+        free = j == 0 || j == i + 1 || occ(t + 1, v) != j;
+      }
+    }
+    work_ += static_cast<uint64_t>(T_ - tf);
+    if (free) {
+      for (int t = tf; t <= T_; ++t) out[t - tf] = at(i, t);
+      return true;
+    }
+  }
   if (++epoch_ == 0) {
     std::fill(stamp_.begin(), stamp_.end(), 0);
     epoch_ = 1;
@@ -109,12 +149,16 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
   ivl_.clear();
   nodes_.clear();
   open_ = {};
-  auto key = [&](int64_t f, int t) { return (f << 20) | static_cast<int64_t>(0xFFFFF - t); };
+  // Ties in f (every state below free_from has f = free_from) go to the state nearest the
+  // goal, then the latest: the search heads for the goal's neighbourhood to wait there.
+  auto key = [&](int64_t f, int d, int t) {
+    return (f << 40) | (static_cast<int64_t>(d) << 20) | static_cast<int64_t>(0xFFFFF - t);
+  };
   intervals(i, v0, tf);
   if (count_[v0] == 0 || ivl_[first_[v0]].lo != tf) return false;  // cannot happen: its own cell
   ivl_[first_[v0]].best = tf;
   nodes_.push_back({v0, tf, first_[v0], -1});
-  open_.push({key(tf + dist_.get(i, v0), tf), 0});
+  open_.push({key(std::max(tf + dist_.get(i, v0), free_from), dist_.get(i, v0), tf), 0});
   size_t pops = 0;
   while (!open_.empty() && nodes_.size() < kMaxNodes) {
     if ((++clock_ & 63) == 0 && Clock::now() >= deadline) break;
@@ -155,11 +199,11 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
           break;
         }
         if (t < 0 || t >= I.best) continue;
-        const int64_t f = t + du;
-        if (f > bound || f > T_) continue;
+        const int64_t f = std::max(t + du, free_from);
+        if (f > bound || t + du > T_) continue;
         I.best = t;
         nodes_.push_back({u, t, s, idx});
-        open_.push({key(f, t), static_cast<int32_t>(nodes_.size() - 1)});
+        open_.push({key(f, du, t), static_cast<int32_t>(nodes_.size() - 1)});
       }
     }
   }
@@ -183,7 +227,7 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
   int64_t before = 0;
   for (int i : set) before += cost_of(i, arrival_[i]);
   for (int i : set)
-    for (int t = tf + 1; t <= T_; ++t) occ(t, at(i, t)) = 0;
+    for (int t = tf + 1; t <= T_; ++t) take(t, at(i, t));
   work_ += set.size() * static_cast<size_t>(T_ - tf);
   // Lower bounds of the agents not yet replanned: their arrivals cannot be below them.
   std::vector<int64_t> lb(set.size());
@@ -219,7 +263,7 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
     }
     arr[m] = a;
     after += cost_of(i, a);
-    for (int t = tf + 1; t <= T_; ++t) occ(t, fresh_[m][t - tf]) = i + 1;
+    for (int t = tf + 1; t <= T_; ++t) put(t, fresh_[m][t - tf], i);
     ++done;
   }
   if (ok && after > before) ok = false;
@@ -236,9 +280,9 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
   }
   if (!ok) {  // restore the group's old paths
     for (size_t m = 0; m < done; ++m)
-      for (int t = tf + 1; t <= T_; ++t) occ(t, fresh_[m][t - tf]) = 0;
+      for (int t = tf + 1; t <= T_; ++t) take(t, fresh_[m][t - tf]);
     for (int i : set)
-      for (int t = tf + 1; t <= T_; ++t) occ(t, at(i, t)) = i + 1;
+      for (int t = tf + 1; t <= T_; ++t) put(t, at(i, t), i);
     return false;
   }
   for (size_t m = 0; m < set.size(); ++m) {

@@ -146,9 +146,10 @@ Status Lacam::refine_expand()
     last_step_ = Step::thread;
     return status_;
   }
-  // iter_refine takes LNS's turns (lacam_iter.cpp)
-  const bool iter = opt_.iter_refine && soc_on() && all_goals && !best_.empty();
-  const bool lns = !iter && opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
+  // iter_refine takes LNS's turns (lacam_iter.cpp); with refiner threads it is theirs
+  // (refine_thread.hpp), and the search makes no refinement steps of that kind itself.
+  const bool iter = opt_.iter_refine && !threads_ && soc_on() && all_goals && !best_.empty();
+  const bool lns = !opt_.iter_refine && opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
   const bool guide = all_goals && !goal_test_ &&
                      (dive_ ||

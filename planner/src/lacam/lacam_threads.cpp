@@ -53,7 +53,7 @@ void Lacam::start_threads()
   threads_.reset(new Threads);
   for (int j = 0; j < opt_.refine_threads; ++j)
     threads_->workers.push_back(std::make_unique<RefineThread>(g_, opt_.lns_agents, opt_.lns_window,
-                                                               opt_.lns_neighbourhood, opt_.seed + 101 + j));
+                                                               opt_.lns_neighbourhood, opt_.seed + 101 + j, opt_.iter_refine));
   threads_->synced.assign(opt_.refine_threads, Threads::kNone);
   threads_->posted_at.assign(opt_.refine_threads, 0);
 }
@@ -68,6 +68,14 @@ uint64_t Lacam::refiner_improvements() const
   uint64_t k = 0;
   if (threads_)
     for (const auto& w : threads_->workers) k += w->improvements();
+  return k;
+}
+
+uint64_t Lacam::refiner_iter_groups() const
+{
+  uint64_t k = 0;
+  if (threads_)
+    for (const auto& w : threads_->workers) k += w->iter_groups();
   return k;
 }
 

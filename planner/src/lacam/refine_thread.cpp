@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <chrono>
 
+#include "planner/lacam/iter_refiner.hpp"
+
 namespace planner {
 
-RefineThread::RefineThread(const Graph& g, int k, int window, LnsNeighbourhood nbh, uint64_t seed)
-    : g_(g), k_(k), window_(window), dist_(g), lns_(g, dist_, window, nbh, Objective::soc), rng_(seed),
-      worker_([this] { run(); })
+RefineThread::RefineThread(const Graph& g, int k, int window, LnsNeighbourhood nbh, uint64_t seed, bool iter)
+    : g_(g), k_(k), window_(window), dist_(g), lns_(g, dist_, window, nbh, Objective::soc),
+      iter_(iter ? std::make_unique<IterRefiner>(g, dist_, seed) : nullptr), rng_(seed), worker_([this] { run(); })
 {
 }
 
@@ -67,6 +69,12 @@ uint64_t RefineThread::steps() const
   return steps_;
 }
 
+uint64_t RefineThread::iter_groups() const
+{
+  std::lock_guard<std::mutex> lk(mu_);
+  return iter_groups_;
+}
+
 void RefineThread::run()
 {
   // Failures in a row before the worker waits for a new job (LaCAM*'s LNS gives up alike).
@@ -91,6 +99,13 @@ void RefineThread::run()
       goals_ = goals;
       dist_.set_goals(goals_);
     }
+    if (iter_) {
+      run_iter();
+      std::lock_guard<std::mutex> lk(mu_);
+      idle_ = true;
+      published_.notify_all();
+      continue;
+    }
     const int n = static_cast<int>(goals_.size());
     last_.assign(n, -1);
     for (size_t t = 0; t < path_.size(); ++t)
@@ -111,6 +126,49 @@ void RefineThread::run()
     std::lock_guard<std::mutex> lk(mu_);
     idle_ = true;
     published_.notify_all();
+  }
+}
+
+void RefineThread::run_iter()
+{
+  // A window every kEmit groups that lowered the cost, sooner when the change is near the
+  // executed step; the worker gives up on a job after two passes' worth of groups in a row
+  // that lowered nothing.
+  constexpr uint64_t kEmit = 4;
+  IterRefiner& R = *iter_;
+  const int n = static_cast<int>(goals_.size());
+  if (path_.empty() || n == 0) return;
+  std::vector<const Vertex*> ptrs(path_.size());
+  for (size_t t = 0; t < path_.size(); ++t) ptrs[t] = path_[t].data();
+  R.reset(ptrs, n, step0_, goals_, job_);
+  uint64_t since = 0, idle_groups = 0;
+  for (;;) {
+    int64_t executed;
+    {
+      std::lock_guard<std::mutex> lk(mu_);
+      if (stop_ || fresh_) return;
+      executed = executed_;
+    }
+    const int64_t before = R.cost();
+    R.step(executed + lead_, Clock::time_point::max());
+    if (R.last_group() == 0) return;  // nothing left ahead of the agents
+    idle_groups = R.cost() < before ? 0 : idle_groups + static_cast<uint64_t>(R.last_group());
+    ++since;
+    RefineWindow w;
+    const bool emit = R.cost() < R.emitted_cost() &&
+                      (since >= kEmit || R.dirty_from() - executed < 2 * static_cast<int64_t>(lead_)) && R.window(w);
+    std::lock_guard<std::mutex> lk(mu_);
+    ++steps_;
+    ++iter_groups_;
+    if (emit) {
+      since = 0;
+      ++improvements_;
+      if (!fresh_) {
+        out_.push_back(std::move(w));
+        published_.notify_all();
+      }
+    }
+    if (idle_groups > 2 * static_cast<uint64_t>(n)) return;
   }
 }
 

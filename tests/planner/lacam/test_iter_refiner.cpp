@@ -161,3 +161,42 @@ TEST(IterRefiner, InTheSearchItsWindowsAreAdoptedAndTheExecutedPlanIsValid)
   std::printf("executed standard SOC: LNS %lld, iter_refine %lld\n", static_cast<long long>(soc[0]),
               static_cast<long long>(soc[1]));
 }
+
+TEST(IterRefiner, ARefinerThreadRunsItAndItsWindowsAreAdopted)
+{
+  // refine_threads = 1 with iter_refine: the worker runs the iterative refinement on its copy
+  // and publishes windows; the search adopts them (as in
+  // RtLacamStar.RefinerThreadWindowsAreAdoptedValidAndNeverCostlier, it waits for the worker
+  // before each of the first iterations, so this does not depend on timing). Every adoption
+  // keeps or lowers the followed path's standard SOC, some lower it, and the executed plan is
+  // valid. Without iter_refine the worker runs LNS (refiner_iter_groups() is 0: this fails).
+  Graph g = load_map(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1.map");
+  Instance r = load_scen(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1-random-2-first200.scen", g, 150);
+  LacamOptions o;
+  o.refine = true;
+  o.iter_refine = true;
+  o.refine_threads = 1;
+  RtLacam rt(g, r.starts, r.goals, o);
+  Validator v(g, r.starts, r.goals);
+  int steps = 0;
+  for (; steps < 3000 && !rt.at_goal(); ++steps) {
+    if (steps < 60) rt.lacam().wait_refiners(2000);
+    rt.step(Budget::expansion_count(100));
+    rt.commit();
+    ASSERT_TRUE(v.step(rt.current())) << v.error();
+  }
+  ASSERT_TRUE(rt.at_goal());
+  const auto adopted = rt.lacam().thread_adoptions();
+  std::printf("steps %d, windows adopted %zu (cheaper %llu), refused %llu, executed SOC %lld\n", steps, adopted.size(),
+              static_cast<unsigned long long>(rt.lacam().thread_wins()),
+              static_cast<unsigned long long>(rt.lacam().thread_refused()), v.sum_of_costs());
+  int64_t drop = 0;
+  for (const auto& [before, after] : adopted) {
+    EXPECT_LE(after, before);
+    drop += before - after;
+  }
+  std::printf("adopted windows lowered the followed path by %lld\n", static_cast<long long>(drop));
+  EXPECT_GT(rt.lacam().thread_wins(), 0u);
+  EXPECT_GT(rt.lacam().refiner_iter_groups(), 0u);
+  EXPECT_EQ(rt.lacam().iter_groups(), 0u);  // the search made none itself
+}

@@ -107,6 +107,9 @@ class IterRefiner {
   std::vector<int32_t> wait_;      // per agent: reset()'s wait
   int last_group_ = 0;
   std::vector<int32_t> occ_;       // |V| x (T + 1) -> 1 + agent, 0 free
+  std::vector<std::vector<int32_t>> times_;  // per vertex: its occupied steps, ascending
+  void put(int t, Vertex v, int i);  // agent i on v at t (occ_ and times_)
+  void take(int t, Vertex v);
   size_t S_ = 0;                   // occ_'s stride: T_ + 1
   int64_t cost_ = 0, emitted_cost_ = 0;
   int dirty_a_ = -1, dirty_b_ = -1;  // relative steps changed since the last window()

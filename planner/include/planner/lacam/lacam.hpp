@@ -424,7 +424,8 @@ class Lacam {
   uint64_t refiner_improvements() const;  // improving LNS steps the workers made (all jobs)
   std::vector<std::pair<int64_t, int64_t>> thread_adoptions() const;
   // iter_refine: groups replanned / kept, copies made, windows spliced / refused
-  uint64_t iter_groups() const { return iter_ ? iter_->groups() : 0; }
+  uint64_t iter_groups() const { return iter_ ? iter_->groups() : 0; }  // the search's own
+  uint64_t refiner_iter_groups() const;  // the refiner threads' (iter_refine with refine_threads)
   uint64_t iter_kept() const { return iter_ ? iter_->kept() : 0; }
   uint64_t iter_resets() const { return iter_resets_; }
   uint64_t iter_windows() const { return iter_windows_; }

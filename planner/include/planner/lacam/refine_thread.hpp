@@ -30,9 +30,12 @@
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
 #include "planner/lacam/lns_refiner.hpp"
+#include <memory>
 #include "planner/rng.hpp"
 
 namespace planner {
+
+class IterRefiner;
 
 struct RefineWindow {
   uint64_t version = 0;            // the job it improves
@@ -45,8 +48,10 @@ class RefineThread {
  public:
   static constexpr int kLead = 8;  // a window starts at least this far ahead of the executed step
 
-  // k agents per LNS step, windows of up to `window` steps; the worker starts idle.
-  RefineThread(const Graph& g, int k, int window, LnsNeighbourhood nbh, uint64_t seed);
+  // k agents per LNS step, windows of up to `window` steps; the worker starts idle. `iter`:
+  // the worker runs iterative refinement (iter_refiner.hpp) on its copy instead of LNS, and
+  // publishes the steps it changed as one window every few groups (LacamOptions::iter_refine).
+  RefineThread(const Graph& g, int k, int window, LnsNeighbourhood nbh, uint64_t seed, bool iter = false);
   ~RefineThread();  // stops the worker (after its running step) and joins it
   RefineThread(const RefineThread&) = delete;
   RefineThread& operator=(const RefineThread&) = delete;
@@ -67,11 +72,14 @@ class RefineThread {
   // Improving steps, and steps, the worker made (all jobs).
   uint64_t improvements() const;
   uint64_t steps() const;
+  uint64_t iter_groups() const;  // iter mode: groups replanned (all jobs); 0 in LNS mode
 
  private:
   void run();
   // One LNS step on path_ (returns false when no window fits ahead of `executed`).
   bool step(int64_t executed, bool* improved);
+  // iter: refines the job with iter_ until a new job or stop (or nothing is left ahead).
+  void run_iter();
 
   const Graph& g_;
   const int k_;
@@ -79,6 +87,7 @@ class RefineThread {
   // Worker-only state
   DistTable dist_;
   LnsRefiner lns_;
+  std::unique_ptr<IterRefiner> iter_;  // iter mode
   Rng rng_;
   std::vector<Config> path_;
   Config goals_;
@@ -100,7 +109,7 @@ class RefineThread {
   uint64_t posted_version_ = 0;
   int64_t executed_ = 0;
   std::vector<RefineWindow> out_;
-  uint64_t improvements_ = 0, steps_ = 0;
+  uint64_t improvements_ = 0, steps_ = 0, iter_groups_ = 0;
   // Search thread only
   uint64_t version_ = 0;
   std::thread worker_;  // last: starts once everything above is built
