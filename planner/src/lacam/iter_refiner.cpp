@@ -10,15 +10,23 @@ constexpr int kMaxGroup = 30;        // lacam3's largest group
 constexpr size_t kMaxNodes = 200000; // a failing A* gives up here (its bound prunes most)
 }  // namespace
 
-void IterRefiner::reset(const std::vector<const Vertex*>& path, int n, int64_t step0, const Config& goals,
+void IterRefiner::begin(const std::vector<const Vertex*>& path, int n, int64_t step0, const Config& goals,
                         uint64_t version, const int32_t* wait)
 {
-  // Clear the old copy's cells (the table keeps its size: zeroing |V| x T would cost more)
-  for (int i = 0; i < n_; ++i)
-    for (int t = 0; t <= T_; ++t) {
-      occ(t, at(i, t)) = 0;
-      times_[at(i, t)].clear();
-    }
+  // The rows of the copy before that are in the table get cleared first (by build()); an
+  // older copy still being cleared is finished here (a copy begun before the last was built).
+  const int entered = ready_ ? T_ + 1 : (src_.empty() && n_ == 0 ? 0 : row_);
+  if (entered > 0) {
+    clear_old(Clock::time_point::max());
+    old_.swap(paths_);
+    old_n_ = n_;
+    old_T_ = entered - 1;
+    old_S_ = S_;
+    old_row_ = 0;
+  }
+  src_ = path;
+  row_ = 0;
+  ready_ = false;
   n_ = n;
   T_ = static_cast<int>(path.size()) - 1;
   V_ = g_.size();
@@ -26,8 +34,8 @@ void IterRefiner::reset(const std::vector<const Vertex*>& path, int n, int64_t s
   step0_ = step0;
   version_ = version;
   goals_ = goals;
-  const size_t cells = S_ * V_;
-  if (occ_.size() < cells) occ_.assign(cells, 0);
+  wait_.assign(n_, 0);
+  if (wait) std::copy(wait, wait + n_, wait_.begin());
   if (stamp_.size() != V_) {
     times_.assign(V_, {});
     stamp_.assign(V_, 0);
@@ -35,23 +43,60 @@ void IterRefiner::reset(const std::vector<const Vertex*>& path, int n, int64_t s
     count_.assign(V_, 0);
     epoch_ = 0;
   }
-  paths_.resize(static_cast<size_t>(n_) * S_);
   arrival_.assign(n_, 0);
   moved_.assign(n_, 0);
-  cost_ = 0;
-  for (int t = 0; t <= T_; ++t)
-    for (int i = 0; i < n_; ++i) {
-      at(i, t) = path[t][i];
-      occ(t, path[t][i]) = i + 1;
-      times_[path[t][i]].push_back(t);  // t ascends: each list stays sorted
+  work_ = static_cast<uint64_t>(T_ + 1);
+}
+
+// Clears the old copy's cells (the table keeps its size: zeroing |V| x T would cost more).
+bool IterRefiner::clear_old(Clock::time_point deadline)
+{
+  for (; old_row_ <= old_T_; ++old_row_) {
+    if (old_row_ > 0 && (old_row_ & 3) == 0 && Clock::now() >= deadline) return false;
+    for (int i = 0; i < old_n_; ++i) {
+      const Vertex v = old_[static_cast<size_t>(old_row_) * old_n_ + i];
+      occ_[static_cast<size_t>(v) * old_S_ + static_cast<size_t>(old_row_)] = 0;
+      times_[v].clear();
     }
-  wait_.assign(n_, 0);
-  if (wait) std::copy(wait, wait + n_, wait_.begin());
-  for (int i = 0; i < n_; ++i) cost_ += cost_of(i, arrival_[i] = arrival_of(i));
+    work_ += static_cast<uint64_t>(old_n_);
+  }
+  return true;
+}
+
+bool IterRefiner::build(Clock::time_point deadline)
+{
+  if (ready_) return true;
+  if (!clear_old(deadline)) return false;
+  // With headroom: a longer path later does not reallocate (a new table's pages fault in
+  // as they are written, lazy_table.hpp).
+  if (occ_.size() < S_ * V_) occ_.ensure(2 * S_ * V_);
+  // Its pages are mapped ahead, in pieces: entered by rows, the writes scatter over the whole
+  // table, and faulting its pages in one by one took a 1 ms step to 1.5 ms (N = 600).
+  constexpr size_t kPiece = 16 * LazyTable<int32_t>::kPage / sizeof(int32_t);
+  while (occ_.touched() < S_ * V_) {
+    occ_.touch(std::min(S_ * V_, occ_.touched() + kPiece));
+    if (occ_.touched() < S_ * V_ && Clock::now() >= deadline) return false;
+  }
+  paths_.resize(static_cast<size_t>(n_) * S_);
+  for (; row_ <= T_; ++row_) {
+    if (row_ > 0 && (row_ & 3) == 0 && Clock::now() >= deadline) return false;
+    const Vertex* C = src_[row_];
+    std::copy(C, C + n_, &paths_[static_cast<size_t>(row_) * n_]);
+    for (int i = 0; i < n_; ++i) {
+      occ(row_, C[i]) = i + 1;
+      times_[C[i]].push_back(row_);  // rows ascend: each list stays sorted
+      if (C[i] != goals_[i]) arrival_[i] = row_ + 1;
+    }
+    work_ += static_cast<uint64_t>(n_);
+  }
+  cost_ = 0;
+  for (int i = 0; i < n_; ++i) cost_ += cost_of(i, arrival_[i]);
   emitted_cost_ = cost_;
   dirty_a_ = dirty_b_ = -1;
-  work_ = static_cast<uint64_t>(T_ + 1) * static_cast<uint64_t>(n_);
   if (static_cast<int>(order_.size()) != n_ || next_ >= order_.size()) new_pass();
+  src_.clear();
+  ready_ = true;
+  return true;
 }
 
 int IterRefiner::arrival_of(int i) const
@@ -215,7 +260,7 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
 {
   work_ = 0;
   last_group_ = 0;
-  if (n_ == 0) return false;
+  if (!ready_) return false;
   const int tf = static_cast<int>(std::max<int64_t>(0, from - step0_));
   if (tf >= T_ - 1) return false;
   if (next_ >= order_.size()) new_pass();
@@ -305,7 +350,7 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
 
 bool IterRefiner::window(RefineWindow& out)
 {
-  if (dirty_a_ < 0) return false;
+  if (!ready_ || dirty_a_ < 0) return false;
   const int a = dirty_a_, b = dirty_b_;
   out.version = version_;
   out.t0 = step0_ + a - 1;

@@ -17,7 +17,7 @@ namespace planner {
 
 namespace {
 constexpr int kIterAgentUnits = 4;  // expansions charged per agent replanned (untimed budgets)
-constexpr double kCopyPrior = 1e-5;  // ms per configuration x agent copied (the old copy cleared, a table write)
+constexpr double kCopyPrior = 1e-5;  // ms per configuration x agent handed out in a window
 }
 
 bool Lacam::iter_step()
@@ -27,20 +27,17 @@ bool Lacam::iter_step()
   if (iter_adopting_) return false;  // its window is still being inserted
   const auto& p = best_.nodes();
   if (!R.ready() || R.version() != best_.version()) {
-    const double units = static_cast<double>(p.size()) * n_;
-    iter_copy_cost_.set_prior(kCopyPrior);
-    if (timed_ && !fits(iter_copy_cost_.predict_ms(units))) {
-      iter_copy_cost_.forget();
-      return false;
+    // A new copy (O(T) pointers), entered into the refiner's tables in slices to the deadline
+    // (O(N) per step of the path): at N = 600 a whole copy took 2-5 ms.
+    if (!R.building() || R.version() != best_.version()) {
+      std::vector<const Vertex*> path(p.size());
+      for (size_t t = 0; t < p.size(); ++t) path[t] = p[t]->C;
+      R.begin(path, n_, root_step_, goals_, best_.version(), best_.waits());
+      iter_win_ready_ = false;
+      iter_since_ = 0;
+      ++iter_resets_;
     }
-    const double c0 = timed_ ? thread_cpu_ms() : 0.0;
-    std::vector<const Vertex*> path(p.size());
-    for (size_t t = 0; t < p.size(); ++t) path[t] = p[t]->C;
-    R.reset(path, n_, root_step_, goals_, best_.version(), best_.waits());
-    iter_win_ready_ = false;
-    iter_since_ = 0;
-    ++iter_resets_;
-    if (timed_) iter_copy_cost_.record(units, thread_cpu_ms() - c0);
+    R.build(deadline_);
     units_ = std::max<uint64_t>(1, R.work() / static_cast<uint64_t>(std::max(n_, 1)));
     return true;
   }
@@ -61,7 +58,7 @@ bool Lacam::iter_step()
     }
   }
   if (iter_win_ready_) {
-    const int r = place_window(iter_win_, iter_check_cost_);
+    const int r = place_window(iter_win_, iter_check_cost_, true);
     if (r == 0) return false;  // its check does not fit now
     iter_win_ready_ = false;
     if (r < 0) {  // the copy no longer matches what the agents follow

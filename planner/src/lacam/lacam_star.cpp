@@ -119,7 +119,7 @@ Status Lacam::refine_expand()
     last_step_ = Step::prepare;
     return status_;
   }
-  if (pending_next_ < pending_.size()) {  // an improved LNS window, inserted node by node
+  if (!pending_.empty()) {  // an improved LNS window, inserted node by node, then spliced
     if (!insert_step()) stalled_ = true;
     last_step_ = Step::insert;
     return status_;
@@ -390,9 +390,18 @@ bool Lacam::insert_step()
       c0 = c;
     }
   }
-  // soc: the window is followed if it lowers the standard SOC, whatever the tree's loss says
+  // soc: the window is followed if it lowers the standard SOC, whatever the tree's loss says.
+  // Pricing it scans the path for each agent that moved (a refiner's window may move
+  // hundreds): a step of its own, when it fits.
   if (soc_on()) {
+    const double units = static_cast<double>(splice_set_.size() + 1) * static_cast<double>(best_.nodes().size());
+    splice_cost_.set_prior(kSplicePrior);
+    if (timed_ && !fits(splice_cost_.predict_ms(units))) {
+      splice_cost_.forget();
+      return false;
+    }
     const bool ok = best_.splice(splice_from_, spliced_, splice_set_);
+    if (timed_) splice_cost_.record(units, thread_cpu_ms() - c0);
     if (threads_) thread_spliced(ok);  // a worker's window (lacam_threads.cpp), if it was one
     if (iter_adopting_) iter_spliced(ok);  // iter_'s window (lacam_iter.cpp)
   }

@@ -32,6 +32,7 @@
 #include "planner/config.hpp"
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
+#include "planner/lacam/lazy_table.hpp"
 #include "planner/lacam/refine_thread.hpp"
 #include "planner/rng.hpp"
 
@@ -47,12 +48,30 @@ class IterRefiner {
   // leaves it (BestPath's pricing): an agent's cost is 0 if it stays on its goal throughout,
   // else wait + its last arrival.
   void reset(const std::vector<const Vertex*>& path, int n, int64_t step0, const Config& goals, uint64_t version,
+             const int32_t* wait = nullptr)
+  {
+    begin(path, n, step0, goals, version, wait);
+    build(Clock::time_point::max());
+  }
+  // The same in slices (a real-time caller): begin() takes the path's configuration pointers
+  // (O(T); they must stay valid until the copy is built), build() clears the old copy's cells
+  // and enters the new one's, a time step at a time (O(N) each), until `deadline`; true once
+  // the copy is ready.
+  void begin(const std::vector<const Vertex*>& path, int n, int64_t step0, const Config& goals, uint64_t version,
              const int32_t* wait = nullptr);
-  bool ready() const { return n_ > 0; }
+  bool build(Clock::time_point deadline);
+  bool ready() const { return ready_; }
+  bool building() const { return !ready_ && !src_.empty(); }
   uint64_t version() const { return version_; }
   void set_version(uint64_t v) { version_ = v; }
-  // Forget the copy (the caller's path changed in a way the copy does not follow).
-  void clear() { n_ = 0; }
+  // Forget the copy (the caller's path changed in a way the copy does not follow); its cells
+  // are cleared by the next begin().
+  void clear()
+  {
+    ready_ = false;
+    src_.clear();
+    version_ = UINT64_MAX;
+  }
 
   // One group, replanned from absolute step `from` on (positions at `from` fixed). Returns
   // true when the group's new paths were kept; false when they were not, when no step is
@@ -81,10 +100,11 @@ class IterRefiner {
   uint64_t kept() const { return kept_; }
 
  private:
-  // vertex-major: a vertex's steps are contiguous (its safe intervals are one scan)
+  // vertex-major: a vertex's steps are contiguous
   int32_t& occ(int t, Vertex v) { return occ_[static_cast<size_t>(v) * S_ + static_cast<size_t>(t)]; }
-  Vertex at(int i, int t) const { return paths_[static_cast<size_t>(i) * (T_ + 1) + t]; }
-  Vertex& at(int i, int t) { return paths_[static_cast<size_t>(i) * (T_ + 1) + t]; }
+  // time-major, as the configurations come
+  Vertex at(int i, int t) const { return paths_[static_cast<size_t>(t) * n_ + i]; }
+  Vertex& at(int i, int t) { return paths_[static_cast<size_t>(t) * n_ + i]; }
   int arrival_of(int i) const;  // 1 + the last step (relative) off its goal; 0: always on it
   int64_t cost_of(int i, int arrival) const { return arrival > 0 ? arrival + wait_[i] : 0; }
   // SIPP (safe-interval path planning, Phillips & Likhachev ICRA-11, as lacam3's refiner) for
@@ -92,6 +112,7 @@ class IterRefiner {
   // <= bound. Writes the path over [tf, T_] into out.
   bool replan(int i, int tf, int64_t bound, std::vector<Vertex>& out, Clock::time_point deadline);
   void new_pass();
+  bool clear_old(Clock::time_point deadline);
 
   const Graph& g_;
   DistTable& dist_;
@@ -102,11 +123,17 @@ class IterRefiner {
   int64_t step0_ = 0;
   uint64_t version_ = 0;
   Config goals_;
-  std::vector<Vertex> paths_;      // agent-major: paths_[i * (T + 1) + t]
+  std::vector<Vertex> paths_;      // time-major: paths_[t * N + i]
+  bool ready_ = false;
+  std::vector<const Vertex*> src_; // begin()'s configurations, entered by build()
+  int row_ = 0;                    // the next of them
+  std::vector<Vertex> old_;        // the copy before, time-major, while its cells are cleared
+  int old_n_ = 0, old_T_ = -1, old_row_ = 0;
+  size_t old_S_ = 0;
   std::vector<int32_t> arrival_;   // per agent, relative to step0
   std::vector<int32_t> wait_;      // per agent: reset()'s wait
   int last_group_ = 0;
-  std::vector<int32_t> occ_;       // |V| x (T + 1) -> 1 + agent, 0 free
+  LazyTable<int32_t> occ_;         // |V| x (T + 1) -> 1 + agent, 0 free
   std::vector<std::vector<int32_t>> times_;  // per vertex: its occupied steps, ascending
   void put(int t, Vertex v, int i);  // agent i on v at t (occ_ and times_)
   void take(int t, Vertex v);
@@ -136,10 +163,9 @@ class IterRefiner {
     int32_t parent;
   };
   std::vector<Node> nodes_;
-  using Item = std::pair<int64_t, int32_t>;  // (f << 20) | (T - t) packed, node
+  using Item = std::pair<int64_t, int32_t>;  // (f, d, -t) packed (replan), node
   std::priority_queue<Item, std::vector<Item>, std::greater<Item>> open_;
   std::vector<std::vector<Vertex>> fresh_;
-  std::vector<Vertex> old_;
   uint64_t work_ = 0, groups_ = 0, kept_ = 0, clock_ = 0;
 };
 

@@ -494,8 +494,11 @@ class Lacam {
   void threads_park();                      // reset(): the workers drop their jobs
   // A window of a refiner (a worker's or iter_'s) placed for insertion (pending_): 1 placed,
   // 0 not now (its check does not fit), -1 refused (the agents passed it, or the path
-  // changed there), -2 refused after its check (a transition is invalid).
-  int place_window(RefineWindow& w, StepCost& check_cost);
+  // changed there), -2 refused after its check (a transition is invalid). `trusted` (iter_'s
+  // own windows: its copy is this path, version for version, and it knows what it changed):
+  // not diffed nor validated in release builds (O(W x N), past a 1 ms budget at N = 600);
+  // debug builds check it like any other.
+  int place_window(RefineWindow& w, StepCost& check_cost, bool trusted = false);
   bool iter_step();                         // iter_refine: a copy, a window, or a group
   void iter_spliced(bool ok);               // insert_step() ended iter_'s window
 
@@ -565,6 +568,8 @@ class Lacam {
   double last_units_ = 0;         // its size in the model's units
   StepCost expand_cost_, lns_cost_, prepare_cost_, rebase_cost_;
   StepCost insert_cost_;          // one node of an improved LNS window
+  StepCost splice_cost_;          // its splice: per (agent moved + 1) x path node
+  static constexpr double kSplicePrior = 5e-6;
   // A refinement expansion with local guidance (lg_refine): learnt apart from expand_cost_,
   // which gates every refinement step, so that a guided expansion that does not fit makes
   // that expansion unguided instead of keeping LNS and the rest out of the iteration.
