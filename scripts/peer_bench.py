@@ -55,9 +55,12 @@ def check(args, m, scen, n, plan):
 
 def run_ours(args, m, scen, n, plan, extra):
     own = args.ours_args.split() + extra.split()
-    # A variant may set its own budget (e.g. --variant c001="--cutoff-ms 0.01"): then it replaces --cutoff-ms.
+    # A variant may set its own budget (e.g. --variant c001="--cutoff-ms 0.01"): then it replaces --cutoff-ms;
+    # and its own solver (e.g. --variant star="--solver lacam --refine --anytime-ms 10000", LaCAM* planned
+    # before moving, against a peer's time): then it replaces --solver rtlacam.
     cutoff = [] if "--cutoff-ms" in own else ["--cutoff-ms", str(args.cutoff_ms)]
-    cmd = [args.bench, "--map", m, "--scen", scen, "-N", str(n), "--solver", "rtlacam", *cutoff,
+    solver = [] if "--solver" in own else ["--solver", "rtlacam"]
+    cmd = [args.bench, "--map", m, "--scen", scen, "-N", str(n), *solver, *cutoff,
            "--timeout-s", str(args.ours_timeout_s), "--json", "--progress-s", "0", "--out", plan, *own]
     out = subprocess.run(cmd, capture_output=True, text=True)
     if out.returncode not in (0, 4):

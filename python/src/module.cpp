@@ -388,7 +388,8 @@ PYBIND11_MODULE(_rtlacam, m)
 
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
-           policy::PolicyPreference* pref, bool refine, const std::string& objective, const py::object& rotation) {
+           policy::PolicyPreference* pref, bool refine, const std::string& objective, const py::object& rotation,
+           bool iter_refine) {
           const Solver kind = parse_solver(solver);
           RotationSettings rs;  // the planners' own defaults, as before rotation= (no guidance, no traffic flow)
           read_rotation(rotation, kind, rs);
@@ -405,12 +406,14 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.lacam.free_first = refine && parse_solver(solver) == Solver::RtLacam;  // as rtlacam-bench
           opt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
+          opt.lacam.iter_refine = iter_refine;               // rtlacam-bench --iter-refine
           apply_rotation(kind, rs, g, opt);
           return make_planner(kind, g, starts, goals, opt);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
         py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
-        py::arg("rotation") = py::none(), py::keep_alive<0, 2>(), py::keep_alive<0, 6>(),
+        py::arg("rotation") = py::none(), py::arg("iter_refine") = false, py::keep_alive<0, 2>(),
+        py::keep_alive<0, 6>(),
         "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan "
         "rotation actions on a grid, every robot facing east at the start); refine=False: the paper's RT-LaCAM "
         "(rtlacam-bench --no-refine --no-resumable), else RT-LaCAM* as the CLI; objective: what refinement lowers, 'soc' "
@@ -418,12 +421,13 @@ PYBIND11_MODULE(_rtlacam, m)
         "only, a dict of the SUMO YAML's planner.rotation keys (back_last, guidance: 'none' | 'arrows', guidance_costs: "
         "[along, against, turn], traffic_flow, depth, lns_rounds, revisit, priority: 'distance' | 'age', pocket_exit, "
         "leavers_first, window, neighbourhood; each only with the solver that reads it); unset keys keep the planners' "
-        "own defaults (no guidance, no traffic flow; lifelong() uses rtlacam-lifelong's)");
+        "own defaults (no guidance, no traffic flow; lifelong() uses rtlacam-lifelong's); iter_refine: RT-LaCAM* "
+        "refines by iterative refinement instead of LNS (rtlacam-bench --iter-refine)");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
            double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine,
-           const std::string& objective) {
+           const std::string& objective, bool iter_refine) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
@@ -436,6 +440,7 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.lacam.free_first = refine && s == Solver::RtLacam;  // as rtlacam-bench (RT-LaCAM* only)
           sopt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
+          sopt.lacam.iter_refine = iter_refine;               // rtlacam-bench --iter-refine
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;
@@ -454,7 +459,9 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
         py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
         py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
-        "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict");
+        py::arg("iter_refine") = false,
+        "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict; "
+        "iter_refine: RT-LaCAM* refines by iterative refinement instead of LNS (rtlacam-bench --iter-refine)");
 
   py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
       .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),

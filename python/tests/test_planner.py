@@ -211,3 +211,16 @@ def test_rtlacam_is_rt_lacam_star_as_on_the_cli_and_refine_false_is_the_papers_p
         rtlacam.run("rtlacam", grid, ins, time_ms=None, expansions=20, objective="makespan")
     with pytest.raises(ValueError, match="objective"):
         rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals, objective="makespan")
+
+
+def test_iter_refine_is_the_clis_iter_refine(grid, scen):
+    # rtlacam-bench --iter-refine: RT-LaCAM* refines by iterative refinement (lacam3's refiner)
+    # instead of LNS; deterministic under an expansion budget, so the executed plan differs.
+    ins = rtlacam.load_scen(scen, grid, 60)
+    lns = rtlacam.run("rtlacam", grid, ins, time_ms=None, expansions=20)
+    it = rtlacam.run("rtlacam", grid, ins, time_ms=None, expansions=20, iter_refine=True)
+    assert lns["solved"] and it["solved"] and lns["valid"] and it["valid"]
+    assert it["soc"] != lns["soc"] or it["expansions"] != lns["expansions"]
+    p = rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals, iter_refine=True)
+    p.search(expansions=1000)
+    assert p.at_goal or p.next() is not None

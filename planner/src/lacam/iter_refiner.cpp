@@ -45,6 +45,7 @@ void IterRefiner::begin(const std::vector<const Vertex*>& path, int n, int64_t s
   }
   arrival_.assign(n_, 0);
   moved_.assign(n_, 0);
+  idle_ = 0;
   work_ = static_cast<uint64_t>(T_ + 1);
 }
 
@@ -269,6 +270,8 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
   next_ = end;
   ++groups_;
   last_group_ = static_cast<int>(set.size());
+  const int64_t cost_before = cost_;
+  idle_ += static_cast<int>(set.size());  // until the group lowers the cost
   int64_t before = 0;
   for (int i : set) before += cost_of(i, arrival_[i]);
   for (int i : set)
@@ -345,6 +348,7 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
   }
   work_ += set.size() * static_cast<size_t>(T_ - tf);
   ++kept_;
+  if (cost_ < cost_before) idle_ = 0;
   return true;
 }
 

@@ -148,8 +148,12 @@ Status Lacam::refine_expand()
   }
   // iter_refine takes LNS's turns (lacam_iter.cpp); with refiner threads it is theirs
   // (refine_thread.hpp), and the search makes no refinement steps of that kind itself.
-  const bool iter = opt_.iter_refine && !threads_ && soc_on() && all_goals && !best_.empty();
-  const bool lns = !opt_.iter_refine && opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
+  // Once a whole pass found nothing (IterRefiner::stale), LNS steps take its turns until one
+  // changes the path: the copy is then made anew and the passes go on. On light instances
+  // LNS's targeted windows still find what the passes do not (docs/rt_lacam_star.md, s45).
+  const bool iter = opt_.iter_refine && !threads_ && soc_on() && all_goals && !best_.empty() &&
+                    !(iter_ && iter_->stale() && iter_->version() == best_.version() && opt_.lns && lns_failures_ < 1000);
+  const bool lns = !iter && (!opt_.iter_refine || !threads_) && opt_.lns && lns_failures_ < 1000 && all_goals && (!soc_on() || !best_.empty());
   // Engineering LaCAM* guidance (lacam_guide.cpp): SUO until done, then dives.
   const bool guide = all_goals && !goal_test_ &&
                      (dive_ ||

@@ -79,6 +79,9 @@ class IterRefiner {
   // At most `max_agents` of the pass's group size.
   bool step(int64_t from, Clock::time_point deadline, int max_agents = 1 << 30);
   int last_group() const { return last_group_; }  // agents the last step() tried (0: none)
+  // Every agent was replanned since the cost last dropped (or since the copy): a pass found
+  // nothing, and the caller may refine otherwise for a while.
+  bool stale() const { return ready_ && idle_ >= n_; }
   // The first absolute step changed since the last window() (-1: none).
   int64_t dirty_from() const { return dirty_a_ < 0 ? -1 : step0_ + dirty_a_; }
   int dirty_steps() const { return dirty_a_ < 0 ? 0 : dirty_b_ - dirty_a_ + 3; }  // a window's configurations
@@ -133,6 +136,7 @@ class IterRefiner {
   std::vector<int32_t> arrival_;   // per agent, relative to step0
   std::vector<int32_t> wait_;      // per agent: reset()'s wait
   int last_group_ = 0;
+  int idle_ = 0;                   // agents replanned since the cost last dropped
   LazyTable<int32_t> occ_;         // |V| x (T + 1) -> 1 + agent, 0 free
   std::vector<std::vector<int32_t>> times_;  // per vertex: its occupied steps, ascending
   void put(int t, Vertex v, int i);  // agent i on v at t (occ_ and times_)
