@@ -148,7 +148,7 @@ Status Lacam::refine_expand()
   }
   // iter_refine takes LNS's turns (lacam_iter.cpp); with refiner threads it is theirs
   // (refine_thread.hpp), and the search makes no refinement steps of that kind itself.
-  // Once a whole pass found nothing (IterRefiner::stale), LNS steps take its turns until one
+  // Once the passes find nothing (IterRefiner::stale), LNS steps take their turns until one
   // changes the path: the copy is then made anew and the passes go on. On light instances
   // LNS's targeted windows still find what the passes do not (docs/rt_lacam_star.md, s45).
   const bool iter = opt_.iter_refine && !threads_ && soc_on() && all_goals && !best_.empty() &&
