@@ -427,10 +427,12 @@ PYBIND11_MODULE(_rtlacam, m)
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
            double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine,
-           const std::string& objective, bool iter_refine) {
+           const std::string& objective, const py::object& iter_refine, double anytime_ms) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
+          if (anytime_ms < 0) throw std::invalid_argument("anytime_ms must be >= 0");
+          ropt.anytime_ms = anytime_ms;
           ropt.max_steps = max_steps;
           const Solver s = parse_solver(solver);
           SolverOptions sopt;
@@ -440,7 +442,9 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.lacam.free_first = refine && s == Solver::RtLacam;  // as rtlacam-bench (RT-LaCAM* only)
           sopt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
-          sopt.lacam.iter_refine = iter_refine;               // rtlacam-bench --iter-refine
+          // rtlacam-bench --iter-refine; None: its default (on for lacam with anytime_ms, else off)
+          sopt.lacam.iter_refine = iter_refine.is_none() ? refine && s == Solver::Lacam && anytime_ms > 0
+                                                         : iter_refine.cast<bool>();
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;
@@ -459,9 +463,11 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
         py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
         py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
-        py::arg("iter_refine") = false,
+        py::arg("iter_refine") = py::none(), py::arg("anytime_ms") = 0.0,
         "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict; "
-        "iter_refine: RT-LaCAM* refines by iterative refinement instead of LNS (rtlacam-bench --iter-refine)");
+        "iter_refine: refinement by iterative refinement instead of LNS (rtlacam-bench --iter-refine; None: on for "
+        "lacam with anytime_ms, else off); anytime_ms: lacam with refine keeps refining (LaCAM*) until this much "
+        "planning time, then executes (rtlacam-bench --anytime-ms)");
 
   py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
       .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),

@@ -224,3 +224,19 @@ def test_iter_refine_is_the_clis_iter_refine(grid, scen):
     p = rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals, iter_refine=True)
     p.search(expansions=1000)
     assert p.at_goal or p.next() is not None
+
+
+def test_lacam_anytime_ms_refines_before_executing_as_on_the_cli(grid, scen):
+    # rtlacam-bench --solver lacam --refine --anytime-ms T: LaCAM* refines until T ms, then
+    # executes, by iterative refinement unless iter_refine=False. Never costlier than the first
+    # solution (executed with anytime_ms=0).
+    ins = rtlacam.load_scen(scen, grid, 60)
+    first = rtlacam.run("lacam", grid, ins, time_ms=None)
+    star = rtlacam.run("lacam", grid, ins, time_ms=None, anytime_ms=300)
+    lns = rtlacam.run("lacam", grid, ins, time_ms=None, anytime_ms=300, iter_refine=False)
+    for r in (first, star, lns):
+        assert r["solved"] and r["valid"]
+    assert star["total_planning_ms"] >= 250 and first["total_planning_ms"] < 250
+    assert star["soc"] <= first["soc"] and lns["soc"] <= first["soc"]
+    with pytest.raises(ValueError, match="anytime_ms"):
+        rtlacam.run("lacam", grid, ins, anytime_ms=-1)
