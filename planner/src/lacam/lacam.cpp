@@ -34,9 +34,11 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
   lns_.set_stop_cost(opt.lns_stop_cost);
   lns_.set_count_moves(opt.lns_count_moves);
   lns_wanted_ = opt.lns;
-  if (opt.zones) {  // LNS and the refiner threads plan without PIBT's zone rule
+  iter_wanted_ = opt.iter_refine;
+  if (opt.zones) {  // LNS, iterative refinement and the refiner threads plan without PIBT's zone rule
     pibt_.set_zones(opt.zones.get());
     lns_wanted_ = opt_.lns = false;
+    iter_wanted_ = opt_.iter_refine = false;
     opt_.refine_threads = 0;
   }
   start_threads();
@@ -47,6 +49,12 @@ void Lacam::set_immobile(const std::vector<uint8_t>& immobile)
   immobile_ = immobile;
   pibt_.set_immobile(immobile);
   opt_.lns = lns_wanted_ && !any_immobile(immobile);  // LNS's A* would move them
+  opt_.iter_refine = iter_wanted_ && !any_immobile(immobile);  // and so would iterative refinement's SIPP
+  if (iter_wanted_ && !opt_.iter_refine && (iter_win_ready_ || iter_adopting_)) {  // its window may move them
+    if (iter_adopting_) pending_.clear(), pending_next_ = 0, pending_prev_ = nullptr;
+    iter_win_ready_ = iter_adopting_ = false;
+    if (iter_) iter_->clear();
+  }
 }
 
 void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const float* priorities,
@@ -68,6 +76,8 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   pending_.clear();
   pending_next_ = 0;
   pending_prev_ = nullptr;
+  if (iter_) iter_->clear();  // its copy was of the old tree's path
+  iter_win_ready_ = iter_adopting_ = false;
   root_step_ = 0;
   threads_park();
   // A paused expansion belonged to the old tree. If none of that tree's expansions had ended,

@@ -189,10 +189,12 @@ TEST(Immobile, AnImmobileAgentOnItsGoalIsNotMovedByRefinement)
   // it: LaCAM* refinement (LNS would replan X to step aside) must leave it in place.
   Corridor c;
   c.goals[0] = c.starts[0];
-  for (uint64_t seed = 0; seed < 5; ++seed) {
+  // The same with iterative refinement instead of LNS (its SIPP would move X too).
+  for (uint64_t seed = 0; seed < 10; ++seed) {
     LacamOptions o;
-    o.seed = seed;
+    o.seed = seed % 5;
     o.refine = true;
+    o.iter_refine = seed >= 5;
     RtLacam rt(c.g, c.starts, c.goals, o);
     rt.set_immobile(0, true);
     for (int k = 0; k < 50; ++k) rt.search(Budget::expansion_count(200));  // refine a lot first

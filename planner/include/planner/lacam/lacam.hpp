@@ -624,6 +624,7 @@ class Lacam {
   Config scratch_;
   std::vector<uint8_t> immobile_;  // set_immobile()
   bool lns_wanted_ = true;         // opt_.lns as constructed (off while agents are immobile)
+  bool iter_wanted_ = false;       // opt_.iter_refine as constructed (likewise)
   std::vector<Vertex> moves_;  // scratch: children of a constraint
   // A resumable expansion (LacamOptions::resumable): the node and constraint it expands,
   // and its step: PIBT placing agents, then the successor's lookup, its new node's
