@@ -167,7 +167,8 @@ def main():
         except ValueError:
             fail(f"bad cell '{c}' (MAP:N,N,...)")
 
-    print(f"# ours: rtlacam-bench --solver rtlacam --cutoff-ms {args.cutoff_ms} {args.ours_args}".rstrip())
+    print(f"# ours: rtlacam-bench --solver rtlacam --cutoff-ms {args.cutoff_ms} {args.ours_args}".rstrip() +
+          ("  (a variant's own --solver or --cutoff-ms replaces it)" if args.variant else ""))
     for name, extra in variants:
         if extra or len(variants) > 1:
             print(f"# variant {name}: {extra}")
