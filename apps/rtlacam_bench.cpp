@@ -260,10 +260,7 @@ int main(int argc, char** argv)
     lopt.lns_agents = lns_agents;
     lopt.lns_neighbourhood = parse_lns_neighbourhood(lns_nbh);
     lopt.refine_threads = refine_threads;
-    // Full-horizon LaCAM* refines for seconds: there iterative refinement is the stronger
-    // (warehouse-10-20-10-2-1 N = 500, 3 s: standard SOC 0.86x LNS's); in real time the two are
-    // even at 1 ms (docs/rt_lacam_star.md, session 45), and LNS stays the default.
-    if (iter_refine_opt->count() == 0) iter_refine = refine && parse_solver(solver) == Solver::Lacam && anytime_ms > 0;
+    if (iter_refine_opt->count() == 0) iter_refine = default_iter_refine(parse_solver(solver), refine, anytime_ms);
     lopt.iter_refine = iter_refine;
     lopt.objective = parse_objective(objective);
     lopt.scatter = scatter;

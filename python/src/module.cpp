@@ -443,8 +443,7 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           // rtlacam-bench --iter-refine; None: its default (on for lacam with anytime_ms, else off)
-          sopt.lacam.iter_refine = iter_refine.is_none() ? refine && s == Solver::Lacam && anytime_ms > 0
-                                                         : iter_refine.cast<bool>();
+          sopt.lacam.iter_refine = iter_refine.is_none() ? default_iter_refine(s, refine, anytime_ms) : iter_refine.cast<bool>();
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;

@@ -62,6 +62,13 @@ Solver parse_solver(const std::string& name);
 const char* to_string(Solver s);
 inline bool needs_policy(Solver s) { return s == Solver::CsPibt; }
 inline bool is_realtime(Solver s) { return s != Solver::Lacam; }
+// LacamOptions::iter_refine unless set: on for full-horizon LaCAM* that refines before it
+// executes (lacam, refine, anytime_ms > 0), where it is the stronger; off in real time, where
+// it is even with LNS (docs/rt_lacam_star.md, session 45). rtlacam-bench and Python share it.
+inline bool default_iter_refine(Solver s, bool refine, double anytime_ms)
+{
+  return refine && s == Solver::Lacam && anytime_ms > 0;
+}
 // Plans rotation actions itself (a RotationPlanner): needs the rotation action model.
 inline bool plans_rotation(Solver s) { return s == Solver::PibtRot || s == Solver::Epibt || s == Solver::Wppl; }
 

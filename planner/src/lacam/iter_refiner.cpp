@@ -100,9 +100,9 @@ bool IterRefiner::build(Clock::time_point deadline)
   return true;
 }
 
-int IterRefiner::arrival_of(int i) const
+int IterRefiner::arrival_by(int i, int t) const
 {
-  for (int t = T_; t >= 0; --t)
+  for (; t >= 0; --t)
     if (at(i, t) != goals_[i]) return t + 1;
   return 0;
 }
@@ -133,7 +133,6 @@ void IterRefiner::intervals(int i, Vertex v, int tf)
   }
   if (lo <= T_) ivl_.push_back({lo, T_, INT32_MAX});
   count_[v] = static_cast<int32_t>(ivl_.size()) - first_[v];
-  work_ += ts.size() / 8 + 1;
 }
 
 void IterRefiner::put(int t, Vertex v, int i)
@@ -158,12 +157,7 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
   int free_from = T_;  // the goal is free of others from here to T_
   while (free_from > tf && occ(free_from - 1, goal) == 0) --free_from;
   if (v0 == goal && free_from <= tf) {  // stays: its arrival is its prefix's
-    int p = 0;
-    for (int t = tf - 1; t >= 0; --t)
-      if (at(i, t) != goal) {
-        p = t + 1;
-        break;
-      }
+    const int p = arrival_by(i, tf);
     return p == 0 || p <= bound;
   }
   // It arrives at free_from at the earliest: f = max(t + d, free_from) is admissible, and a
@@ -182,7 +176,6 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
         free = j == 0 || j == i + 1 || occ(t + 1, v) != j;
       }
     }
-    work_ += static_cast<uint64_t>(T_ - tf);
     if (free) {
       for (int t = tf; t <= T_; ++t) out[t - tf] = at(i, t);
       return true;
@@ -205,10 +198,8 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
   ivl_[first_[v0]].best = tf;
   nodes_.push_back({v0, tf, first_[v0], -1});
   open_.push({key(std::max(tf + dist_.get(i, v0), free_from), dist_.get(i, v0), tf), 0});
-  size_t pops = 0;
   while (!open_.empty() && nodes_.size() < kMaxNodes) {
     if ((++clock_ & 63) == 0 && Clock::now() >= deadline) break;
-    ++pops;
     const int32_t idx = open_.top().second;
     open_.pop();
     const Node n = nodes_[idx];
@@ -223,7 +214,6 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
         upto = m.t - 1;
         k = m.parent;
       }
-      work_ += nodes_.size() + pops;
       return true;
     }
     const auto nb = g_.neighbors(n.v);
@@ -253,13 +243,11 @@ bool IterRefiner::replan(int i, int tf, int64_t bound, std::vector<Vertex>& out,
       }
     }
   }
-  work_ += nodes_.size() + pops;
   return false;
 }
 
 bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
 {
-  work_ = 0;
   last_group_ = 0;
   if (!ready_) return false;
   const int tf = static_cast<int>(std::max<int64_t>(0, from - step0_));
@@ -276,7 +264,6 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
   for (int i : set) before += cost_of(i, arrival_[i]);
   for (int i : set)
     for (int t = tf + 1; t <= T_; ++t) take(t, at(i, t));
-  work_ += set.size() * static_cast<size_t>(T_ - tf);
   // Lower bounds of the agents not yet replanned: their arrivals cannot be below them.
   std::vector<int64_t> lb(set.size());
   int64_t rest = 0;
@@ -302,13 +289,7 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
         a = t + 1;
         break;
       }
-    if (a == 0) {  // on its goal from tf: the prefix decides
-      for (int t = tf; t >= 0; --t)
-        if ((t == tf ? fresh_[m][0] : at(i, t)) != goals_[i]) {
-          a = t + 1;
-          break;
-        }
-    }
+    if (a == 0) a = arrival_by(i, tf);  // on its goal after tf: the prefix decides (tf is fixed)
     arr[m] = a;
     after += cost_of(i, a);
     for (int t = tf + 1; t <= T_; ++t) put(t, fresh_[m][t - tf], i);
@@ -346,7 +327,6 @@ bool IterRefiner::step(int64_t from, Clock::time_point deadline, int max_agents)
     cost_ += cost_of(i, arr[m]) - cost_of(i, arrival_[i]);
     arrival_[i] = arr[m];
   }
-  work_ += set.size() * static_cast<size_t>(T_ - tf);
   ++kept_;
   if (cost_ < cost_before) idle_ = 0;
   return true;

@@ -1,11 +1,12 @@
 // The search's side of iterative refinement (LacamOptions::iter_refine, iter_refiner.hpp).
 // In its refinement turns the search, in this order:
 //  - copies the followed path into the refiner when the path changed other than by the
-//    refiner's own windows (BestPath::version) -- O(T x N), gated by its learnt cost;
+//    refiner's own windows (BestPath::version) -- O(T) pointers, then entered into its tables
+//    in slices to each call's deadline (IterRefiner::begin / build);
 //  - hands an improvement to the tree: once the copy is cheaper than what was last handed
 //    out, after kIterEmitGroups groups or sooner when the change is near the root, the
-//    changed steps go in as one window, checked, inserted and spliced like a refiner
-//    thread's (place_window, insert_step, BestPath::splice);
+//    changed steps go in as one window, inserted and spliced like a refiner thread's
+//    (place_window, insert_step, BestPath::splice);
 //  - else replans one group of agents, as many as fit the call's room at their learnt cost,
 //    from kIterLead steps ahead of the root (the agents move on while a window is inserted).
 #include <algorithm>

@@ -132,8 +132,8 @@ void RefineThread::run()
 void RefineThread::run_iter()
 {
   // A window every kEmit groups that lowered the cost, sooner when the change is near the
-  // executed step; the worker gives up on a job after two passes' worth of groups in a row
-  // that lowered nothing.
+  // executed step; the worker gives up on a job once more than two passes' worth of agents
+  // lowered nothing (IterRefiner::idle).
   constexpr uint64_t kEmit = 4;
   IterRefiner& R = *iter_;
   const int n = static_cast<int>(goals_.size());
@@ -141,7 +141,7 @@ void RefineThread::run_iter()
   std::vector<const Vertex*> ptrs(path_.size());
   for (size_t t = 0; t < path_.size(); ++t) ptrs[t] = path_[t].data();
   R.reset(ptrs, n, step0_, goals_, job_);
-  uint64_t since = 0, idle_groups = 0;
+  uint64_t since = 0;
   for (;;) {
     int64_t executed;
     {
@@ -149,10 +149,8 @@ void RefineThread::run_iter()
       if (stop_ || fresh_) return;
       executed = executed_;
     }
-    const int64_t before = R.cost();
     R.step(executed + lead_, Clock::time_point::max());
     if (R.last_group() == 0) return;  // nothing left ahead of the agents
-    idle_groups = R.cost() < before ? 0 : idle_groups + static_cast<uint64_t>(R.last_group());
     ++since;
     RefineWindow w;
     const bool emit = R.cost() < R.emitted_cost() &&
@@ -168,7 +166,7 @@ void RefineThread::run_iter()
         published_.notify_all();
       }
     }
-    if (idle_groups > 2 * static_cast<uint64_t>(n)) return;
+    if (R.idle() > 2 * n) return;
   }
 }
 

@@ -11,6 +11,7 @@
 #include "planner/lacam/rt_lacam.hpp"
 #include "planner/movingai.hpp"
 #include "planner/validator.hpp"
+#include "drive_refined.hpp"
 #include "test_util.hpp"
 
 using namespace planner;
@@ -141,12 +142,7 @@ TEST(IterRefiner, InTheSearchItsWindowsAreAdoptedAndTheExecutedPlanIsValid)
     o.iter_refine = iter == 1;
     RtLacam rt(g, r.starts, r.goals, o);
     Validator v(g, r.starts, r.goals);
-    int steps = 0;
-    for (; steps < 3000 && !rt.at_goal(); ++steps) {
-      rt.step(Budget::expansion_count(100));
-      rt.commit();
-      ASSERT_TRUE(v.step(rt.current())) << v.error();
-    }
+    test::drive_refined(rt, v, 3000);
     ASSERT_TRUE(rt.at_goal());
     soc[iter] = v.sum_of_costs();
     if (iter == 1) {
@@ -178,13 +174,7 @@ TEST(IterRefiner, ARefinerThreadRunsItAndItsWindowsAreAdopted)
   o.refine_threads = 1;
   RtLacam rt(g, r.starts, r.goals, o);
   Validator v(g, r.starts, r.goals);
-  int steps = 0;
-  for (; steps < 3000 && !rt.at_goal(); ++steps) {
-    if (steps < 60) rt.lacam().wait_refiners(2000);
-    rt.step(Budget::expansion_count(100));
-    rt.commit();
-    ASSERT_TRUE(v.step(rt.current())) << v.error();
-  }
+  const int steps = test::drive_refined(rt, v, 3000, 60);
   ASSERT_TRUE(rt.at_goal());
   const auto adopted = rt.lacam().thread_adoptions();
   std::printf("steps %d, windows adopted %zu (cheaper %llu), refused %llu, executed SOC %lld\n", steps, adopted.size(),

@@ -14,6 +14,7 @@
 #include "planner/lacam/rt_lacam.hpp"
 #include "planner/lacam/runner.hpp"
 #include "planner/validator.hpp"
+#include "drive_refined.hpp"
 #include "test_util.hpp"
 
 using namespace planner;
@@ -409,13 +410,7 @@ TEST(RtLacamStar, RefinerThreadWindowsAreAdoptedValidAndNeverCostlier)
   o.refine_threads = 1;
   RtLacam rt(g, r.starts, r.goals, o);
   Validator v(g, r.starts, r.goals);
-  int steps = 0;
-  for (; steps < 2000 && !rt.at_goal(); ++steps) {
-    if (steps < 60) rt.lacam().wait_refiners(2000);
-    rt.step(Budget::expansion_count(100));
-    rt.commit();
-    ASSERT_TRUE(v.step(rt.current())) << v.error();
-  }
+  const int steps = test::drive_refined(rt, v, 2000, 60);
   ASSERT_TRUE(rt.at_goal());
   const auto adopted = rt.lacam().thread_adoptions();
   std::printf("steps %d, posts %llu, worker improvements %llu, windows adopted %zu (cheaper %llu), refused %llu, "

@@ -2,9 +2,9 @@
 // IterRefiner: iterative refinement of a whole plan (Okumura's iterative refinement, the
 // refiner of lacam3: Okumura, AAMAS-24), in the search thread and resumable. It keeps its own
 // copy of the followed path as one path per agent over the whole horizon, with a collision
-// table (time x |V| -> agent) that lives across steps: a step replans one group of agents
-// from a frozen step tf to the end -- each by space-time A* around everybody else, to its goal
-// as early as the table allows and free from then on -- and keeps the group's new paths when
+// table (|V| x time -> agent) that lives across steps: a step replans one group of agents
+// from a frozen step tf to the end -- each by SIPP around everybody else, to its goal as
+// early as the table allows and free from then on -- and keeps the group's new paths when
 // their standard SOC (each agent's last arrival) is not higher. Ties are kept too, as lacam3
 // does: they move the plan across plateaus. Groups go through the agents in a shuffled
 // order, a pass at a time, the group size drawn anew per pass (1..min(30, N/4), lacam3's).
@@ -79,6 +79,8 @@ class IterRefiner {
   // At most `max_agents` of the pass's group size.
   bool step(int64_t from, Clock::time_point deadline, int max_agents = 1 << 30);
   int last_group() const { return last_group_; }  // agents the last step() tried (0: none)
+  // Agents replanned since the cost last dropped (or since the copy).
+  int idle() const { return idle_; }
   // Every agent was replanned four times since the cost last dropped (or since the copy):
   // the passes found nothing, and the caller may refine otherwise for a while. (One pass
   // was too soon: on random-32-32-20 N = 400 LNS then took turns the passes would have used,
@@ -94,12 +96,9 @@ class IterRefiner {
   // window() (or reset), the agents whose moves changed there, and the copy's version. False
   // when nothing changed. The copy counts as emitted from then on.
   bool window(RefineWindow& out);
-  // Moves of the agents since the copy was made: the first step that may still change.
-  int64_t step0() const { return step0_; }
-  int64_t horizon() const { return step0_ + T_; }  // the absolute step of the goal configuration
 
-  // Work of the last step() in A* states and table cells: a caller with a budget in
-  // expansions charges it.
+  // Work of the copy since begin() in table cells: a caller with a budget in expansions
+  // charges it.
   uint64_t work() const { return work_; }
   uint64_t groups() const { return groups_; }
   uint64_t kept() const { return kept_; }
@@ -110,7 +109,7 @@ class IterRefiner {
   // time-major, as the configurations come
   Vertex at(int i, int t) const { return paths_[static_cast<size_t>(t) * n_ + i]; }
   Vertex& at(int i, int t) { return paths_[static_cast<size_t>(t) * n_ + i]; }
-  int arrival_of(int i) const;  // 1 + the last step (relative) off its goal; 0: always on it
+  int arrival_by(int i, int t) const;  // 1 + agent i's last step <= t off its goal; 0: none
   int64_t cost_of(int i, int arrival) const { return arrival > 0 ? arrival + wait_[i] : 0; }
   // SIPP (safe-interval path planning, Phillips & Likhachev ICRA-11, as lacam3's refiner) for
   // agent i from (at(i, tf), tf) to its goal, free from its arrival to T_; the least arrival

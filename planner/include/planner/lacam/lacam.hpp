@@ -278,14 +278,15 @@ struct LacamOptions {
   // lock per worker per search() call, and validating, inserting and posting each only when
   // its learnt cost fits. 0: no worker, the same runs as without the option.
   int refine_threads = 0;
-  // One-at-a-time zones (zones.hpp; null = none): a rule of PIBT's configurations, so the
-  // search stays complete over the configurations that keep them. LNS and the refiner
-  // threads are off with them (their paths are not PIBT's).
   // With refine and objective soc: iterative refinement (iter_refiner.hpp, lacam3's refiner)
-  // in the search thread instead of LnsRefiner steps: groups of agents replanned over the
-  // rest of the horizon by SIPP on a copy of the followed path, whose improved steps are
-  // inserted and spliced as one window (the refiner threads' way, lacam_iter.cpp).
+  // in the search thread instead of LnsRefiner steps (or in the refiner threads instead of
+  // theirs): groups of agents replanned over the rest of the horizon by SIPP on a copy of the
+  // followed path, whose improved steps are inserted and spliced as one window (the refiner
+  // threads' way, lacam_iter.cpp).
   bool iter_refine = false;
+  // One-at-a-time zones (zones.hpp; null = none): a rule of PIBT's configurations, so the
+  // search stays complete over the configurations that keep them. LNS, iterative refinement
+  // and the refiner threads are off with them (their paths are not PIBT's).
   std::shared_ptr<const Zones> zones;
 };
 
@@ -658,7 +659,7 @@ class Lacam {
   std::unique_ptr<Threads, ThreadsDeleter> threads_;  // null without refine_threads
   int64_t root_step_ = 0;           // moves executed since reset() (the workers' clock)
   std::unique_ptr<IterRefiner> iter_;  // iter_refine
-  StepCost iter_cost_, iter_copy_cost_, iter_check_cost_;  // per agent replanned / cell copied / checked
+  StepCost iter_cost_, iter_copy_cost_, iter_check_cost_;  // per agent replanned / window cell / cell checked
   RefineWindow iter_win_;           // taken from iter_, waiting for its check to fit
   bool iter_win_ready_ = false, iter_adopting_ = false;
   uint64_t iter_resets_ = 0, iter_windows_ = 0, iter_refused_ = 0, iter_since_ = 0;

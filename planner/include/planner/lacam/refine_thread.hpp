@@ -22,6 +22,7 @@
 // knows, so that the search can insert them before the agents get there.
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -30,7 +31,6 @@
 #include "planner/dist_table.hpp"
 #include "planner/graph.hpp"
 #include "planner/lacam/lns_refiner.hpp"
-#include <memory>
 #include "planner/rng.hpp"
 
 namespace planner {
