@@ -72,6 +72,15 @@ int main(int argc, char** argv)
   auto* free_first_opt = app.add_flag("--free-first,!--no-free-first", free_first,
                                       "PIBT ties between equally short moves toward the goal: free vertices first "
                                       "(pibt.hpp); default: on for --solver rtlacam with --refine (RT-LaCAM*), else off");
+  int highways = 0, highway_min_run = LacamOptions{}.highway_min_run;
+  auto* highways_opt = app.add_option("--highways", highways,
+                                      "PIBT ranks moves by distances where a move against a 1-wide corridor's grain costs "
+                                      "this much more (highways.hpp); 0 = off; default: 1 for --solver rtlacam with "
+                                      "--refine (RT-LaCAM*), else 0")
+                           ->check(CLI::Range(0, 200));
+  app.add_option("--highway-min-run", highway_min_run, "highways: least corridor run (cells) that gets a grain")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   bool reserve = true;
   app.add_flag("--reserve,!--no-reserve", reserve,
                "keep the cutoff before the first solution too: an expansion after the first of an iteration starts "
@@ -252,6 +261,9 @@ int main(int argc, char** argv)
     // paper's RT-LaCAM keep LaCAM's PIBT, so that they build the same tree (bench_planner.py).
     if (free_first_opt->count() == 0) free_first = refine && parse_solver(solver) == Solver::RtLacam;
     lopt.free_first = free_first;
+    if (highways_opt->count() == 0) highways = default_highways(parse_solver(solver), refine);
+    lopt.highways = highways;
+    lopt.highway_min_run = highway_min_run;
     lopt.seed = seed;
     lopt.refine = refine;
     lopt.restart_rate = restart_rate;
@@ -378,6 +390,7 @@ int main(int argc, char** argv)
         threads_json["late_dives"] = rt->lacam().late_dives();
         threads_json["dive_pauses"] = rt->lacam().dive_pauses();
         threads_json["cold_steps"] = rt->lacam().cold_steps();
+        threads_json["highway_arcs"] = rt->lacam().highway_arcs();
         threads_json["guided_expansions_timed"] = rt->lacam().guided_expansion_cost().samples();
         threads_json["scatter_lead_used"] = rt->lacam().scatter_lead();
         threads_json["lg_nodes"] = rt->lacam().lg_nodes();
@@ -436,6 +449,8 @@ int main(int argc, char** argv)
     j["lg_gate"] = lg_gate;
     j["swap"] = !no_swap;
     j["free_first"] = free_first;
+    j["highways"] = highways;
+    j["highway_min_run"] = highway_min_run;
     j["iter_refine"] = iter_refine;
     j["refine"] = refine;
     j["anytime_ms"] = anytime_ms;

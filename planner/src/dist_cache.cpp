@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "planner/budget.hpp"
 
@@ -13,14 +14,15 @@ constexpr size_t kSpare = 16;   // dropped tables kept for reuse
 }
 
 DistCache::Table::Table(const Graph& g, Vertex goal_vertex, DistCache* cache)
-    : dist(g.size(), kInf), goal(goal_vertex), owner(cache), weighted(g.weighted())
+    : dist(g.size(), kInf), goal(goal_vertex), owner(cache), weighted(g.weighted() || (cache && cache->arc_costs()))
 {
+  if (cache && cache->arc_costs()) extra = cache->extra_.data();
   if (!weighted) {
     dist[goal] = 0;
     queue.push_back(goal);
     return;
   }
-  buckets.resize(static_cast<size_t>(g.max_move_cost()) + 1);
+  buckets.resize(static_cast<size_t>(g.max_move_cost() + (cache ? cache->max_extra() : 0)) + 1);
   restart(goal_vertex);
 }
 
@@ -71,9 +73,13 @@ void DistCache::Table::pop_weighted(const Graph& g)
   // no longer u's is stale (u went into a nearer bucket and was settled from there).
   if (tent[u] != cur) return;
   dist[u] = cur;
-  // Distances *to* the goal: a move w -> u costs u's cost.
-  const int32_t d = cur + g.move_cost(u);
-  for (Vertex w : g.in_neighbors(u)) {
+  // Distances *to* the goal: a move w -> u costs u's cost (+ the arc's extra cost).
+  const int32_t d0 = cur + g.move_cost(u);
+  const auto in = g.in_neighbors(u);
+  const uint8_t* x = extra ? extra + (in.b - g.in_neighbors(0).b) : nullptr;
+  for (size_t k = 0; k < in.size(); ++k) {
+    const Vertex w = in[k];
+    const int32_t d = x ? d0 + x[k] : d0;
     if (dist[w] != kInf || tent[w] <= d) continue;
     tent[w] = d;
     buckets[static_cast<size_t>(d) % nb].push_back(w);
@@ -173,6 +179,15 @@ void DistCache::note_miss(Table& t, Vertex v)
   if (t.missed) return;
   t.missed = true;
   missed_.push_back({t.goal, v});
+}
+
+void DistCache::set_arc_costs(std::vector<uint8_t> extra)
+{
+  if (!tables_.empty() || !spare_.empty()) throw std::logic_error("DistCache::set_arc_costs after a table was made");
+  extra_ = std::move(extra);
+  max_extra_ = 0;
+  for (uint8_t c : extra_) max_extra_ = std::max<int>(max_extra_, c);
+  if (max_extra_ == 0) extra_.clear();
 }
 
 DistCache::Table* DistCache::table(Vertex goal)

@@ -41,6 +41,15 @@ Budget make_budget(py::object time_ms, py::object expansions)
   return b;
 }
 
+// highways= : None is the CLI's default (default_highways), else a penalty in [0, 200].
+int read_highways(const py::object& h, Solver s, bool refine)
+{
+  if (h.is_none()) return default_highways(s, refine);
+  const int p = h.cast<int>();
+  if (p < 0 || p > 200) throw std::invalid_argument("highways must be in [0, 200]");
+  return p;
+}
+
 // JSON -> Python objects through the json module (the log is small; one copy is fine).
 py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
@@ -389,7 +398,7 @@ PYBIND11_MODULE(_rtlacam, m)
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
            policy::PolicyPreference* pref, bool refine, const std::string& objective, const py::object& rotation,
-           bool iter_refine) {
+           bool iter_refine, const py::object& highways) {
           const Solver kind = parse_solver(solver);
           RotationSettings rs;  // the planners' own defaults, as before rotation= (no guidance, no traffic flow)
           read_rotation(rotation, kind, rs);
@@ -407,12 +416,14 @@ PYBIND11_MODULE(_rtlacam, m)
           opt.lacam.resumable = refine;  // the paper's: one whole expansion at least per iteration
           opt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           opt.lacam.iter_refine = iter_refine;               // rtlacam-bench --iter-refine
+          opt.lacam.highways = read_highways(highways, kind, refine);  // rtlacam-bench --highways
           apply_rotation(kind, rs, g, opt);
           return make_planner(kind, g, starts, goals, opt);
         },
         py::arg("solver"), py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("seed") = 0,
         py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
-        py::arg("rotation") = py::none(), py::arg("iter_refine") = false, py::keep_alive<0, 2>(),
+        py::arg("rotation") = py::none(), py::arg("iter_refine") = false, py::arg("highways") = py::none(),
+        py::keep_alive<0, 2>(),
         py::keep_alive<0, 6>(),
         "solver: a name in SOLVERS but lacam (cspibt needs policy=PolicyPreference; pibt-rot, epibt, wppl plan "
         "rotation actions on a grid, every robot facing east at the start); refine=False: the paper's RT-LaCAM "
@@ -422,12 +433,13 @@ PYBIND11_MODULE(_rtlacam, m)
         "[along, against, turn], traffic_flow, depth, lns_rounds, revisit, priority: 'distance' | 'age', pocket_exit, "
         "leavers_first, window, neighbourhood; each only with the solver that reads it); unset keys keep the planners' "
         "own defaults (no guidance, no traffic flow; lifelong() uses rtlacam-lifelong's); iter_refine: RT-LaCAM* "
-        "refines by iterative refinement instead of LNS (rtlacam-bench --iter-refine)");
+        "refines by iterative refinement instead of LNS (rtlacam-bench --iter-refine); highways: PIBT's penalty for a move "
+        "against a 1-wide corridor's grain (rtlacam-bench --highways; None: 1 for RT-LaCAM*, else 0)");
 
   m.def("run",
         [](const std::string& solver, const Graph& g, const Instance& ins, py::object time_ms, py::object expansions,
            double timeout_ms, long long max_steps, uint64_t seed, policy::PolicyPreference* pref, bool refine,
-           const std::string& objective, const py::object& iter_refine, double anytime_ms) {
+           const std::string& objective, const py::object& iter_refine, double anytime_ms, const py::object& highways) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
           ropt.timeout_ms = timeout_ms;
@@ -444,6 +456,7 @@ PYBIND11_MODULE(_rtlacam, m)
           sopt.lacam.objective = parse_objective(objective);  // rtlacam-bench --objective
           // rtlacam-bench --iter-refine; None: its default (on for lacam with anytime_ms, else off)
           sopt.lacam.iter_refine = iter_refine.is_none() ? default_iter_refine(s, refine, anytime_ms) : iter_refine.cast<bool>();
+          sopt.lacam.highways = read_highways(highways, s, refine);  // rtlacam-bench --highways
           sopt.pref = pref;
           const LacamOptions& lopt = sopt.lacam;
           std::unique_ptr<RealtimePlanner> p;
@@ -462,11 +475,12 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("solver"), py::arg("graph"), py::arg("instance"), py::arg("time_ms") = 1.0,
         py::arg("expansions") = py::none(), py::arg("timeout_ms") = 60000.0, py::arg("max_steps") = 100000,
         py::arg("seed") = 0, py::arg("policy") = nullptr, py::arg("refine") = true, py::arg("objective") = "soc",
-        py::arg("iter_refine") = py::none(), py::arg("anytime_ms") = 0.0,
+        py::arg("iter_refine") = py::none(), py::arg("anytime_ms") = 0.0, py::arg("highways") = py::none(),
         "the paper's interleaved plan/execute loop (lacam: full horizon), every step validated; returns a dict; "
         "iter_refine: refinement by iterative refinement instead of LNS (rtlacam-bench --iter-refine; None: on for "
         "lacam with anytime_ms, else off); anytime_ms: lacam with refine keeps refining (LaCAM*) until this much "
-        "planning time, then executes (rtlacam-bench --anytime-ms)");
+        "planning time, then executes (rtlacam-bench --anytime-ms); highways: PIBT's penalty for a move against a "
+        "1-wide corridor's grain (rtlacam-bench --highways; None: 1 for RT-LaCAM*, else 0)");
 
   py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
       .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),

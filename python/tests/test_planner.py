@@ -1,9 +1,12 @@
 """The planner from Python: maps, scenarios, every solver's search/next/commit, validator."""
+import os
 import subprocess
 import sys
 
 import pytest
 import rtlacam
+
+DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "data")
 
 
 def test_version_matches_the_apps():
@@ -240,3 +243,26 @@ def test_lacam_anytime_ms_refines_before_executing_as_on_the_cli(grid, scen):
     assert star["soc"] <= first["soc"] and lns["soc"] <= first["soc"]
     with pytest.raises(ValueError, match="anytime_ms"):
         rtlacam.run("lacam", grid, ins, anytime_ms=-1)
+
+
+def test_highways_are_the_clis_highways():
+    # rtlacam-bench --highways P: RT-LaCAM*'s PIBT ranks a move against a 1-wide aisle's grain as
+    # 1 + P (default 1 for RT-LaCAM*, 0 for the paper's RT-LaCAM and LaCAM). On a warehouse the
+    # executed plan is cheaper with them; deterministic under an expansion budget.
+    import rtlacam
+    g = rtlacam.load_map(os.path.join(DATA, "planner", "warehouse-10-20-10-2-1.map"))
+    ins = rtlacam.load_scen(os.path.join(DATA, "planner", "warehouse-10-20-10-2-1-random-2-first200.scen"), g, 200)
+    on = rtlacam.run("rtlacam", g, ins, time_ms=None, expansions=4)
+    off = rtlacam.run("rtlacam", g, ins, time_ms=None, expansions=4, highways=0)
+    one = rtlacam.run("rtlacam", g, ins, time_ms=None, expansions=4, highways=1)
+    for r in (on, off, one):
+        assert r["solved"] and r["valid"]
+    assert on["soc"] == one["soc"] and on["soc"] < off["soc"]
+    paper = rtlacam.run("rtlacam", g, ins, time_ms=None, expansions=4, refine=False)
+    paper_off = rtlacam.run("rtlacam", g, ins, time_ms=None, expansions=4, refine=False, highways=0)
+    assert paper["soc"] == paper_off["soc"]
+    with pytest.raises(ValueError, match="highways"):
+        rtlacam.run("rtlacam", g, ins, highways=-1)
+    p = rtlacam.make_planner("rtlacam", g, ins.starts, ins.goals, highways=2)
+    p.search(expansions=100)
+    assert p.at_goal or p.next() is not None

@@ -36,6 +36,10 @@
 // least the popped bucket's distance away (and, costs being >= 1, at least Manhattan on a
 // grid). The tentative distances take 4 more bytes per vertex until the search finishes.
 // Unweighted graphs keep the BFS, unchanged (same distances, same speed).
+//
+// Arc costs (set_arc_costs; highways.hpp): a cache of its own may add a small cost to some
+// arcs (a move against a corridor's grain). Its tables are then Dijkstra tables as above, with
+// a move w -> u costing move_cost(u) + its arc's extra cost.
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -69,6 +73,7 @@ class DistCache {
     std::vector<std::vector<Vertex>> buckets;
     int32_t cur = 0;
     size_t open = 0;
+    const uint8_t* extra = nullptr;  // per in-arc extra costs (the owner's set_arc_costs), or null
     Table(const Graph& g, Vertex goal, DistCache* owner = nullptr);
     void restart(Vertex goal);  // a fresh BFS from `goal` in this table's memory
     bool done() const { return weighted ? open == 0 : head >= queue.size(); }
@@ -92,6 +97,11 @@ class DistCache {
   DistCache(const DistCache&) = delete;  // tables point to their cache
   DistCache& operator=(const DistCache&) = delete;
   const Graph& graph() const { return g_; }
+  // Extra cost per in-arc (indexed as highway_costs() says); before any table is made
+  // (throws std::logic_error after). Empty: none.
+  void set_arc_costs(std::vector<uint8_t> extra);
+  bool arc_costs() const { return !extra_.empty(); }
+  int max_extra() const { return max_extra_; }
   void set_max_tables(size_t n) { max_tables_ = n; }
   size_t max_tables() const { return max_tables_; }
 
@@ -148,6 +158,8 @@ class DistCache {
   std::vector<std::unique_ptr<Table>> tables_;
   std::vector<std::unique_ptr<Table>> spare_;  // dropped tables, reused by table()
   std::unordered_map<Vertex, Table*> by_goal_;
+  std::vector<uint8_t> extra_;  // set_arc_costs
+  int max_extra_ = 0;
   bool met(const Table& t, Vertex from) const;
   Vertex unmet(const Table& t, Vertex from) const;  // first of from + neighbours undiscovered, or -1
   bool grow_chunk(Table& t, Vertex from);  // one chunk towards from; false: met

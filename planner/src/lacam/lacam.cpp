@@ -24,6 +24,17 @@ Lacam::Lacam(const Graph& g, DistTable& dist, LacamOptions opt, ActionPreference
 {
   pibt_.set_preference(pref);
   pibt_.set_free_first(opt.free_first);
+  if (opt.highways > 0) {
+    auto costs = highway_costs(g, HighwayOptions{opt.highways, opt.highway_min_run});
+    if (!costs.empty()) {
+      for (uint8_t c : costs) highway_arcs_ += c > 0;
+      // As many tables as the plain distances keep (lifelong runs visit thousands of goals).
+      auto cache = std::make_shared<DistCache>(g, dist.cache()->max_tables());
+      cache->set_arc_costs(std::move(costs));
+      guide_ = std::make_unique<DistTable>(g, std::move(cache));
+      pibt_.set_guide(guide_.get());
+    }
+  }
   lg_.set_window(opt.lg_window > 0 ? opt.lg_window : opt.lg_window_unpaused);
   lg_.set_collision_weight(opt.lg_collision_weight);
   lg_.set_rest_on_goal(opt.lg_rest);
@@ -64,6 +75,7 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   goals_ = goals;
   goal_test_ = std::move(test);
   dist_.set_goals(goals);
+  if (guide_) guide_->set_goals(goals);
   pibt_.set_goals(goals);
   nodes_.reset();
   constraints_.reset();
@@ -134,6 +146,9 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   // N = 1000). Here it is part of the reset (setup), not of an iteration's budget.
   for (int i = 0; i < n_; ++i)
     for (Vertex u : g_.neighbors(start[i])) dist_.get(i, u);
+  if (guide_)  // the same for PIBT's ranking distances (highways)
+    for (int i = 0; i < n_; ++i)
+      for (Vertex u : g_.neighbors(start[i])) guide_->get(i, u);
   // On a directed graph a goal may be unreachable from its start although both lie in one
   // connected piece: refuse it here, since the search would only stop after exhausting
   // every reachable configuration.
@@ -357,6 +372,9 @@ Status Lacam::search(const Budget& b, bool until_solved)
   max_unit_ms_ = 0;
   uint64_t done = 0;
   stalled_ = cold_ = false;
+  // PIBT's ranking distances (highways) keep to the same deadline as the plain ones: past
+  // it they answer lower bounds too (dist_cache.hpp), so no table grows past a step's budget.
+  if (guide_) guide_->cache()->set_deadline(dist_.cache()->deadline());
   if (threads_ && refining_ && !until_solved) threads_exchange();  // the iteration boundary
   // An LNS step larger than an expansions budget is paid off by the next calls (refinement
   // only: debt_ is 0 until the first solution, so LaCAM's search is never skipped).

@@ -80,6 +80,8 @@ Pibt::Gen Pibt::resume(Rng& rng, Clock::time_point deadline)
       // The candidates' distances, ahead of plan() (DistTable::prefetch).
       d_.prefetch(i, from[i]);
       for (Vertex u : g_.neighbors(from[i])) d_.prefetch(i, u);
+      if (guide_)
+        for (Vertex u : g_.neighbors(from[i])) guide_->prefetch(i, u);
     }
     // O(N) in one piece, but only with a preference or immobile agents.
     if (pref_) pref_->prepare(from, n_);
@@ -277,7 +279,7 @@ void Pibt::evict(int32_t i, Vertex v, Vertex u, Rng& rng)
 
 float Pibt::distance(int32_t i, Vertex u)
 {
-  if (!detour_.active()) return static_cast<float>(d_.get(i, u));
+  if (!detour_.active()) return static_cast<float>(guide_ ? guide_->get(i, u) : d_.get(i, u));
   DistCache::Table* t = d_.table(i);
   // Cut off from its goal by the immobile agents: plain distances (once per agent and call).
   if (cut_off_stamp_[i] != generation_) {

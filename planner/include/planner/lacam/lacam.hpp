@@ -70,6 +70,7 @@
 #include "planner/budget.hpp"
 #include "planner/config.hpp"
 #include "planner/dist_table.hpp"
+#include "planner/highways.hpp"
 #include "planner/lacam/explored_table.hpp"
 #include "planner/lacam/hnode.hpp"
 #include "planner/lacam/iter_refiner.hpp"
@@ -94,6 +95,11 @@ struct LacamOptions {
   // Off here (random ties, lacam3's and the paper's PIBT), so that every planner built on
   // LacamOptions keeps its runs; rtlacam-bench turns it on with --refine (RT-LaCAM*).
   bool free_first = false;
+  // Highways (highways.hpp): PIBT ranks its moves by distances in which a move against a
+  // 1-wide corridor's grain costs `highways` more (0: off, plain distances). Grid graphs only;
+  // the search's heuristic, pricing and refinement keep the plain distances.
+  int highways = 0;
+  int highway_min_run = 3;
   uint64_t seed = 0;   // tie-breaks in PIBT and the shuffle of constraint children
   // Lifelong goal changes (set_goals) keep the agents' PIBT priorities instead of starting
   // again from distance / N. Measured: +10-30 % throughput on the LoRR random-32-32-20
@@ -345,6 +351,8 @@ class Lacam {
   uint64_t cold_steps() const { return cold_steps_; }  // steps priced cold (cold_end)
   int scatter_lead() const { return scatter_lead_; }
   size_t bytes_reserved() const;
+  // Arcs against a 1-wide corridor's grain in PIBT's ranking distances (LacamOptions::highways); 0: off or no corridor qualifies.
+  size_t highway_arcs() const { return highway_arcs_; }
 
   // LaCAM*'s edge cost: agents that move or leave/are off their goal (symmetric).
   int32_t edge_cost(const Vertex* a, const Vertex* b) const;
@@ -508,6 +516,8 @@ class Lacam {
 
   const Graph& g_;
   DistTable& dist_;
+  std::unique_ptr<DistTable> guide_;  // highways: PIBT's ranking distances (null: dist_)
+  size_t highway_arcs_ = 0;           // arcs against a corridor's grain (highways)
   LacamOptions opt_;
   Pibt pibt_;
   Rng rng_;

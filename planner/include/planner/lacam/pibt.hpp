@@ -79,6 +79,10 @@ class Pibt {
   // (docs/rt_lacam_star.md, session 36). Off: random ties everywhere (lacam3's PIBT). The
   // same random draws either way.
   void set_free_first(bool on) { free_first_ = on; }
+  // Highways (highways.hpp; null: off): candidates are ranked by `guide`'s distances (the
+  // goals set on it by the owner) instead of the plain ones; swaps, free_first's levels and
+  // everything else keep the plain distances.
+  void set_guide(DistTable* guide) { guide_ = guide; }
   bool free_first() const { return free_first_; }
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
@@ -151,6 +155,7 @@ class Pibt {
 
   const Graph& g_;
   DistTable& d_;
+  DistTable* guide_ = nullptr;
   bool swap_;
   bool free_first_ = false;
   ActionPreference* pref_ = nullptr;
