@@ -1,7 +1,6 @@
 // LaCAM* refinement of Lacam (the "LaCAM* refinement" section of lacam.hpp): neighbour
 // links, costs, the Dijkstra-style rewrite, the search after the first solution, and the
 // re-basing of g when RT-LaCAM reroots.
-#include <cstdlib>
 #include <algorithm>
 #include <string>
 
@@ -58,7 +57,6 @@ void Lacam::start_refining()
   refining_ = preparing_ = true;
   prepare_next_ = 0;
   pibt_.set_local_guidance(nullptr);  // refine_expand() guides its expansions one by one
-  if (getenv("HWY_FIRST")) pibt_.set_guide(nullptr);
   if (live_) {  // scatter_live: SUO from the start no longer shares the calls
     live_ = false;
     if (opt_.scatter_live_keep) {
