@@ -405,7 +405,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node p = root["planner"];
   r.keys(p, "planner", {"solver", "budget_ms", "expansions", "seed", "startup_ticks", "swap", "policy", "keep_priorities", "refine",
-                        "dive", "lane_costs", "prefetch", "rotation", "stop_cost", "lns_moves", "free_first"});
+                        "dive", "lane_costs", "prefetch", "rotation", "stop_cost", "lns_moves", "free_first", "highways"});
   // Every real-time solver; lacam plans once, offline, and cannot follow SUMO.
   const std::vector<std::string> solvers = planner::solver_list(/*realtime_only=*/true);
   r.choice(p, "planner", "solver", c.planner.solver, {solvers.begin(), solvers.end()});
@@ -440,6 +440,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.get(p, "planner", "stop_cost", c.planner.stop_cost, "a non-negative integer");
   r.flag(p, "planner", "lns_moves", c.planner.lns_moves);
   r.flag(p, "planner", "free_first", c.planner.free_first);
+  r.integer(p, "planner", "highways", c.planner.highways, 0, 200);
   if (c.planner.stop_cost < 0) r.fail("planner.stop_cost", "must be >= 0, got " + std::to_string(c.planner.stop_cost));
   r.flag(p, "planner", "lane_costs", c.planner.lane_costs);
   r.flag(p, "planner", "prefetch", c.planner.prefetch);

@@ -27,6 +27,7 @@ std::unique_ptr<planner::RealtimePlanner> make_planner(const PlannerSection& p, 
   opt.lacam.lns_stop_cost = p.stop_cost;
   opt.lacam.lns_count_moves = p.lns_moves;
   opt.lacam.free_first = p.free_first;
+  opt.lacam.highways = p.highways;
   opt.pref = pref;
   const planner::Solver kind = planner::parse_solver(p.solver);
   if (planner::plans_rotation(kind)) {

@@ -136,6 +136,9 @@ struct PlannerSection {
   // startup planning 264.8 -> 251.8 (means of 40 runs). controller/README.md
   // "planner.free_first".
   bool free_first = true;
+  // Highways (LacamOptions::highways, planner/highways.hpp): PIBT ranks a move against a
+  // one-cell aisle's grain (aisles numbered across the grid, alternating) as 1 + this. 0: off.
+  int highways = 0;
   // Slow lanes cost more in the distance tables PIBT and LaCAM rank moves by: a cell costs
   // ceil(v_fast / v_cell), v_cell its slowest lane's speed limit capped at the AGVs' top
   // speed, v_fast the fastest cell's (controller/lane_costs.hpp; planner Graph::set_move_costs).
