@@ -80,8 +80,9 @@ class Pibt {
   // same random draws either way.
   void set_free_first(bool on) { free_first_ = on; }
   // Highways (highways.hpp; null: off): candidates are ranked by `guide`'s distances (the
-  // goals set on it by the owner) instead of the plain ones; swaps, free_first's levels and
-  // everything else keep the plain distances.
+  // goals set on it by the owner) instead of the plain ones, and the swap operation decides
+  // on them too (it simulates the pusher walking its ranked way); free_first's levels keep
+  // the plain distances.
   void set_guide(DistTable* guide) { guide_ = guide; }
   bool free_first() const { return free_first_; }
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
