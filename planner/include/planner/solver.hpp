@@ -72,9 +72,9 @@ inline bool default_iter_refine(Solver s, bool refine, double anytime_ms)
 // LacamOptions::highways unless set: 1 (a move against a 1-wide corridor's grain ranks as
 // two) for RT-LaCAM* (rtlacam, refine), where it lowers the executed standard SOC on
 // warehouse-10-20-10-2-1 by 6 % (gm, 1 ms) to 15 % (0.01 ms) and changes nothing on maps
-// without corridors; 0 for LaCAM and the
-// paper's RT-LaCAM, which keep LaCAM's tree (bench_planner.py), and for full-horizon LaCAM*,
-// where it was even (docs/rt_lacam_star.md, session 46). rtlacam-bench and Python share it.
+// without corridors; 0 for LaCAM and the paper's RT-LaCAM, which keep LaCAM's tree
+// (bench_planner.py), and for full-horizon LaCAM*, where it was even (docs/rt_lacam_star.md,
+// session 46). rtlacam-bench and Python share it.
 inline int default_highways(Solver s, bool refine) { return refine && s == Solver::RtLacam ? 1 : 0; }
 // Plans rotation actions itself (a RotationPlanner): needs the rotation action model.
 inline bool plans_rotation(Solver s) { return s == Solver::PibtRot || s == Solver::Epibt || s == Solver::Wppl; }

@@ -79,12 +79,12 @@ class Pibt {
   // (docs/rt_lacam_star.md, session 36). Off: random ties everywhere (lacam3's PIBT). The
   // same random draws either way.
   void set_free_first(bool on) { free_first_ = on; }
+  bool free_first() const { return free_first_; }
   // Highways (highways.hpp; null: off): candidates are ranked by `guide`'s distances (the
   // goals set on it by the owner) instead of the plain ones, and the swap operation decides
   // on them too (it simulates the pusher walking its ranked way); free_first's levels keep
   // the plain distances.
   void set_guide(DistTable* guide) { guide_ = guide; }
-  bool free_first() const { return free_first_; }
   // SUO guidance (scatter.hpp; null = none): an agent's scatter successor of its current
   // vertex comes first among its candidates (lacam3's pibt.cpp).
   void set_scatter(const Scatter* s) { scatter_ = s; }
