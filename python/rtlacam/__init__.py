@@ -23,6 +23,7 @@ from ._rtlacam import (  # noqa: F401
     Policy,
     PolicyPreference,
     Validator,
+    highway_arcs,
     lifelong,
     load_map,
     load_policy,

@@ -11,8 +11,10 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <tuple>
 
 #include "planner/error.hpp"
+#include "planner/highways.hpp"
 #include "planner/movingai.hpp"
 #include "planner/plan_io.hpp"
 #include "planner/lacam/runner.hpp"
@@ -355,6 +357,25 @@ PYBIND11_MODULE(_rtlacam, m)
       .def("soc_lower_bound", &Instance::soc_lower_bound);
 
   m.def("load_map", &load_map, py::arg("path"), "MovingAI .map -> Graph");
+  m.def(
+      "highway_arcs",
+      [](const Graph& g, int penalty, int min_run) {
+        if (penalty < 0 || penalty > 200) throw std::invalid_argument("penalty must be in [0, 200]");
+        if (min_run < 1) throw std::invalid_argument("min_run must be >= 1");
+        const auto costs = highway_costs(g, HighwayOptions{penalty, min_run});
+        std::vector<std::tuple<Vertex, Vertex, int>> out;
+        if (costs.empty()) return out;
+        const Vertex* base = g.in_neighbors(0).b;
+        for (Vertex u = 0; u < g.size(); ++u) {
+          const auto in = g.in_neighbors(u);
+          for (size_t k = 0; k < in.size(); ++k)
+            if (const int c = costs[static_cast<size_t>(in.b - base) + k]) out.emplace_back(in[k], u, c);
+        }
+        return out;
+      },
+      py::arg("graph"), py::arg("penalty") = 1, py::arg("min_run") = 3,
+      "highways (rtlacam-bench --highways): the moves (w, u, extra) that go against a 1-wide corridor's grain "
+      "and cost 1 + extra in RT-LaCAM*'s PIBT ranking; empty where no corridor run of min_run cells exists");
   m.def("load_scen", &load_scen, py::arg("path"), py::arg("graph"), py::arg("agents"),
         "first `agents` rows of a MovingAI .scen on `graph` -> Instance");
 

@@ -266,3 +266,21 @@ def test_highways_are_the_clis_highways():
     p = rtlacam.make_planner("rtlacam", g, ins.starts, ins.goals, highways=2)
     p.search(expansions=100)
     assert p.at_goal or p.next() is not None
+
+
+def test_highway_arcs_are_moves_against_an_aisles_grain(grid):
+    # rtlacam.highway_arcs: what scripts/highways_map.py draws. Each is a move w -> u along a row
+    # or a column, charged the penalty; a random map without 1-wide runs of 3 cells has none.
+    g = rtlacam.load_map(os.path.join(DATA, "planner", "warehouse-10-20-10-2-1.map"))
+    arcs = rtlacam.highway_arcs(g, 2)
+    assert len(arcs) > 1000
+    for w, u, c in arcs:
+        assert c == 2 and g.adjacent(w, u)
+        (xw, yw), (xu, yu) = g.xy(w), g.xy(u)
+        assert abs(xw - xu) + abs(yw - yu) == 1
+    against = {(w, u) for w, u, _ in arcs}
+    assert all((u, w) not in against for w, u in against)  # one way of each aisle move is cheap
+    assert rtlacam.highway_arcs(grid) == []
+    assert rtlacam.highway_arcs(g, 0) == []
+    with pytest.raises(ValueError, match="min_run"):
+        rtlacam.highway_arcs(g, 1, 0)
