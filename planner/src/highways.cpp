@@ -61,7 +61,9 @@ std::vector<uint8_t> highway_costs(const Graph& g, const HighwayOptions& opt)
       int step = 0;
       if (dy == 0 && gx[w] != 0 && gx[u] == gx[w]) grain = gx[u], step = dx;
       else if (dx == 0 && gy[w] != 0 && gy[u] == gy[w]) grain = gy[u], step = dy;
-      if (grain != 0 && step != grain) {
+      // Only a move whose reverse exists has a choice to steer: a one-way arc (a directed
+      // graph) is the only way through and keeps its cost.
+      if (grain != 0 && step != grain && g.adjacent(u, w)) {
         cost[static_cast<size_t>(in.b - base) + k] = p;
         any = true;
       }

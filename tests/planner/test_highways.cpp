@@ -101,6 +101,29 @@ TEST(Highways, NothingWithoutLongEnoughCorridorsOrOnAGraphThatIsNotAGrid)
   EXPECT_EQ(move(cols, c, 1, 3, 1, 2), 1);
 }
 
+TEST(Highways, AOneWayArcKeepsItsCost)
+{
+  // shelves() with row 2 (grain west) one-way east: its only moves go against the grain, and
+  // there is nothing to steer; row 4 (grain east) stays two-way and keeps its grain.
+  const Graph g = shelves();
+  std::vector<std::pair<Vertex, Vertex>> arcs;
+  std::vector<int32_t> cells;
+  for (Vertex v = 0; v < g.size(); ++v) {
+    cells.push_back(g.cell_y(v) * g.width() + g.cell_x(v));
+    for (Vertex u : g.neighbors(v))
+      if (!(g.cell_y(v) == 2 && g.cell_y(u) == 2 && g.cell_x(u) < g.cell_x(v))) arcs.push_back({v, u});
+  }
+  Graph d = Graph::from_arcs(g.size(), arcs);
+  d.attach_grid(g.width(), g.height(), cells);
+  ASSERT_TRUE(d.directed());
+  const auto c = highway_costs(d, HighwayOptions{1, 3});
+  ASSERT_FALSE(c.empty());
+  EXPECT_EQ(move(d, c, 3, 2, 4, 2), 0) << "one-way: no penalty";
+  EXPECT_EQ(move(d, c, 4, 2, 3, 2), -1) << "no such arc";
+  EXPECT_EQ(move(d, c, 3, 4, 4, 4), 0);
+  EXPECT_EQ(move(d, c, 4, 4, 3, 4), 1);
+}
+
 TEST(Highways, DistancesUnderArcCostsAreExactShortestPaths)
 {
   const Graph g = load_map(RTLACAM_TEST_DATA "/planner/warehouse-10-20-10-2-1.map");

@@ -13,7 +13,8 @@
 // of at least `min_run` cells get a grain; the rows (columns) holding such runs are numbered
 // in order, and the grain alternates with that number (even: east / south, odd: west /
 // north), whatever the spacing of the aisles. A move between two cells of one run against its
-// grain costs 1 + penalty; every other move costs 1. Distances stay exact shortest paths
+// grain costs 1 + penalty, if its reverse is a move too (on a directed graph a one-way arc is
+// the only way through: nothing to steer); every other move costs 1. Distances stay exact shortest paths
 // under these costs, so every vertex keeps its way to every goal (the graph is unchanged).
 #include <cstdint>
 #include <vector>
