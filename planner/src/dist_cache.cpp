@@ -76,7 +76,7 @@ void DistCache::Table::pop_weighted(const Graph& g)
   // Distances *to* the goal: a move w -> u costs u's cost (+ the arc's extra cost).
   const int32_t d0 = cur + g.move_cost(u);
   const auto in = g.in_neighbors(u);
-  const uint8_t* x = extra ? extra + (in.b - g.in_neighbors(0).b) : nullptr;
+  const uint8_t* x = extra ? extra + g.in_arc(u) : nullptr;
   for (size_t k = 0; k < in.size(); ++k) {
     const Vertex w = in[k];
     const int32_t d = x ? d0 + x[k] : d0;

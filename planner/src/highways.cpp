@@ -46,10 +46,7 @@ std::vector<uint8_t> highway_costs(const Graph& g, const HighwayOptions& opt)
 {
   if (!g.is_grid() || opt.penalty <= 0 || g.size() == 0) return {};
   const auto gx = grains(g, 0, std::max(opt.min_run, 1)), gy = grains(g, 1, std::max(opt.min_run, 1));
-  const Vertex* base = g.in_neighbors(0).b;
-  size_t arcs = 0;
-  for (Vertex u = 0; u < g.size(); ++u) arcs = std::max(arcs, static_cast<size_t>(g.in_neighbors(u).b - base) + g.in_neighbors(u).size());
-  std::vector<uint8_t> cost(arcs, 0);
+  std::vector<uint8_t> cost(g.num_arcs(), 0);
   const uint8_t p = static_cast<uint8_t>(std::min(opt.penalty, 200));
   bool any = false;
   for (Vertex u = 0; u < g.size(); ++u) {
@@ -64,7 +61,7 @@ std::vector<uint8_t> highway_costs(const Graph& g, const HighwayOptions& opt)
       // Only a move whose reverse exists has a choice to steer: a one-way arc (a directed
       // graph) is the only way through and keeps its cost.
       if (grain != 0 && step != grain && g.adjacent(u, w)) {
-        cost[static_cast<size_t>(in.b - base) + k] = p;
+        cost[g.in_arc(u) + k] = p;
         any = true;
       }
     }

@@ -365,11 +365,10 @@ PYBIND11_MODULE(_rtlacam, m)
         const auto costs = highway_costs(g, HighwayOptions{penalty, min_run});
         std::vector<std::tuple<Vertex, Vertex, int>> out;
         if (costs.empty()) return out;
-        const Vertex* base = g.in_neighbors(0).b;
         for (Vertex u = 0; u < g.size(); ++u) {
           const auto in = g.in_neighbors(u);
           for (size_t k = 0; k < in.size(); ++k)
-            if (const int c = costs[static_cast<size_t>(in.b - base) + k]) out.emplace_back(in[k], u, c);
+            if (const int c = costs[g.in_arc(u) + k]) out.emplace_back(in[k], u, c);
         }
         return out;
       },

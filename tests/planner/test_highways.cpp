@@ -26,7 +26,7 @@ int extra(const Graph& g, const std::vector<uint8_t>& costs, Vertex w, Vertex u)
 {
   const auto in = g.in_neighbors(u);
   for (size_t k = 0; k < in.size(); ++k)
-    if (in[k] == w) return costs.at(static_cast<size_t>(in.b - g.in_neighbors(0).b) + k);
+    if (in[k] == w) return costs.at(g.in_arc(u) + k);
   return -1;
 }
 
@@ -151,7 +151,7 @@ TEST(Highways, DistancesUnderArcCostsAreExactShortestPaths)
       if (du != ref[u]) continue;
       const auto in = g.in_neighbors(u);
       for (size_t k = 0; k < in.size(); ++k) {
-        const int32_t dw = du + 1 + costs[static_cast<size_t>(in.b - g.in_neighbors(0).b) + k];
+        const int32_t dw = du + 1 + costs[g.in_arc(u) + k];
         if (dw < ref[in[k]]) ref[in[k]] = dw, open.push({dw, in[k]});
       }
     }

@@ -64,6 +64,10 @@ class Graph {
   {
     return directed_ ? Span<Vertex>{in_nbrs_.data() + in_offsets_[v], in_nbrs_.data() + in_offsets_[v + 1]} : neighbors(v);
   }
+  // Index of v's first in-arc among all num_arcs() in-arcs, numbered in in-neighbour order:
+  // in-arc k of v (from in_neighbors(v)[k]) is in_arc(v) + k. Per-arc data (DistCache's arc
+  // costs) is indexed so.
+  size_t in_arc(Vertex v) const { return static_cast<size_t>(directed_ ? in_offsets_[v] : offsets_[v]); }
   int degree(Vertex v) const { return offsets_[v + 1] - offsets_[v]; }  // out-degree
   int max_degree() const { return max_degree_; }
   bool adjacent(Vertex u, Vertex v) const;  // is there an arc u -> v (a legal move)?

@@ -28,8 +28,8 @@ struct HighwayOptions {
   int min_run = 3;  // least corridor run that gets a grain, cells
 };
 
-// Per in-arc extra costs for DistCache::set_arc_costs (indexed like the graph's in-neighbour
-// lists: arc k into u is at in_neighbors(u).b - in_neighbors(0).b + k). Empty when
+// Per in-arc extra costs for DistCache::set_arc_costs (num_arcs() entries; arc k into u is
+// at Graph::in_arc(u) + k). Empty when
 // the graph is not a grid, the penalty is 0, or no run qualifies.
 std::vector<uint8_t> highway_costs(const Graph& g, const HighwayOptions& opt);
 

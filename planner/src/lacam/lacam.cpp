@@ -144,11 +144,12 @@ void Lacam::reset(const Config& start, const Config& goals, GoalTest test, const
   // PIBT's first call reads every agent's distance one BFS level past its start: a lazy BFS
   // of that level for N tables (11 ms in the first iteration of warehouse-20-40-10-2-2,
   // N = 1000). Here it is part of the reset (setup), not of an iteration's budget.
+  // The same for PIBT's ranking distances (highways).
   for (int i = 0; i < n_; ++i)
-    for (Vertex u : g_.neighbors(start[i])) dist_.get(i, u);
-  if (guide_)  // the same for PIBT's ranking distances (highways)
-    for (int i = 0; i < n_; ++i)
-      for (Vertex u : g_.neighbors(start[i])) guide_->get(i, u);
+    for (Vertex u : g_.neighbors(start[i])) {
+      dist_.get(i, u);
+      if (guide_) guide_->get(i, u);
+    }
   // On a directed graph a goal may be unreachable from its start although both lie in one
   // connected piece: refuse it here, since the search would only stop after exhausting
   // every reachable configuration.
