@@ -36,6 +36,10 @@ struct SolverCli {
   std::string solver = "rtlacam", policy_file;
   uint64_t seed = 0;
   bool refine = true, reset_priorities = false, rot_back_last = true, rot_pocket_exit = true;
+  // Off by default in lifelong runs: on MR23-I-10 (warehouse_large, 600 / 1500 agents, 5 ms) it
+  // gave +1.8 / +2.1 % errands but 2.1-2.3x the peak memory (a second table per goal) and a first
+  // expansion of each epoch 7-13x slower (new goals' guide tables are not prefetched).
+  int highways = 0;
   // Default arrows (pibt-rot, epibt): +8 to +20 % errands/step for pibt-rot on all five
   // MR23 instances (5 seeds) and on RANDOM-01..05 (docs/rotation_lorr.md "Guidance graph").
   std::string guidance = "arrows", guidance_costs = "1,3,1";
@@ -55,6 +59,11 @@ struct SolverCli {
     app.add_flag("--refine,!--no-refine", refine,
                  "rtlacam: LaCAM* refinement after each epoch's first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
         ->capture_default_str();
+    app.add_option("--highways", highways,
+                   "rtlacam (grid4): PIBT's soft one-way aisles, a move against a corridor's grain ranks as "
+                   "1 + P (planner/highways.hpp); 0 = off")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1000));
     app.add_flag("--reset-priorities", reset_priorities,
                  "start PIBT priorities again from distance/N at every goal change (default: keep them)");
     app.add_option("--policy", policy_file, "learned policy weights: PIBT tries moves in its order (CS-PIBT)");
@@ -146,6 +155,9 @@ struct SolverCli {
     so.pref = pref.get();
     so.lacam.keep_priorities = !reset_priorities;
     so.lacam.refine = refine;
+    if (highways > 0 && kind != planner::Solver::RtLacam && kind != planner::Solver::Naive)
+      throw planner::InputError("--highways needs --solver rtlacam or naive (a LaCAM planner)");
+    so.lacam.highways = highways;
     so.back_last = rot_back_last;
     so.pocket_exit = rot_pocket_exit;
     if (!planner::plans_rotation(kind) && app.count("--guidance") && guidance != "none")
@@ -198,6 +210,7 @@ struct SolverCli {
       j["trafficFlow"] = {{"active", tf_active}, {"contraflow", ep.tf.contraflow}, {"vertex", ep.tf.vertex}, {"refresh", ep.tf.refresh}};
     if (pref) j["policy"] = policy_file;
     j["keepPriorities"] = !reset_priorities;
+    if (highways > 0) j["highways"] = highways;
   }
 };
 

@@ -89,9 +89,14 @@ LorrProblem load_lorr_problem(const std::string& path)
   p.path = path;
   p.name = stem_of(path);
   const std::string dir = dir_of(path);
-  p.map_file = dir + string_field(j, path, "mapFile");
-  p.agent_file = dir + string_field(j, path, "agentFile");
-  p.task_file = dir + string_field(j, path, "taskFile");
+  // Relative to the problem file, as the LoRR start kit reads them; an absolute path as is.
+  auto file = [&](const char* key) {
+    const std::string f = string_field(j, path, key);
+    return !f.empty() && f[0] == '/' ? f : dir + f;
+  };
+  p.map_file = file("mapFile");
+  p.agent_file = file("agentFile");
+  p.task_file = file("taskFile");
   if (!j.contains("teamSize") || !j["teamSize"].is_number_integer() || j["teamSize"].get<long long>() <= 0 ||
       j["teamSize"].get<long long>() > 1000000)
     throw input_error(path, 0, "field 'teamSize' must be a positive integer");

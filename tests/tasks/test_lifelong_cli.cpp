@@ -217,3 +217,45 @@ TEST(LifelongCli, LogHasTheControllersLifelongCounts)
   EXPECT_EQ(j["queues"]["queuedTicks"], 0);
   EXPECT_GE(j["parking"]["idleAtEnd"].get<int>(), 15);
 }
+
+// --highways reaches the lifelong LaCAM planners (it was bench/Python/SUMO only): on a map
+// with 1-wide aisles (warehouse-10-20-10-2-1) the executed paths change and stay valid
+// (the run validates every step: numPlannerErrors 0); the problem file names its map, agents
+// and tasks by absolute paths, which the reader takes as they are; a planner without PIBT ranking by
+// distances refuses it with one line and exit 2.
+TEST(LifelongCli, HighwaysReachTheLifelongPlanner)
+{
+  const std::string map = std::string(RTLACAM_TEST_DATA) + "/planner/warehouse-10-20-10-2-1.map";
+  const planner::Graph g = planner::load_map(map);
+  // 60 agents on the first 60 free cells of every 90th, tasks on every 37th free cell.
+  std::string agents = "60\n", tasks;
+  int n_tasks = 0;
+  std::vector<int> cells;
+  for (int y = 0; y < g.height(); ++y)
+    for (int x = 0; x < g.width(); ++x)
+      if (g.at(x, y) >= 0) cells.push_back(y * g.width() + x);
+  for (int i = 0; i < 60; ++i) agents += std::to_string(cells[(i * 90) % cells.size()]) + "\n";
+  for (size_t i = 5; i < cells.size(); i += 37, ++n_tasks) tasks += std::to_string(cells[i]) + "\n";
+  const std::string af = test::temp_file("hw.agents", agents), tf = test::temp_file("hw.tasks", std::to_string(n_tasks) + "\n" + tasks);
+  const std::string problem = test::temp_file(
+      "hw.json", "{\"mapFile\": \"" + map + "\", \"agentFile\": \"" + af + "\", \"taskFile\": \"" + tf +
+                     "\", \"teamSize\": 60, \"numTasksReveal\": 1, \"taskAssignmentStrategy\": \"roundrobin\"}");
+  const std::string base = "--problem " + problem + " --steps 120 --budget-ms 1000 --budget-expansions 30 --seed 2 ";
+  const std::string off = test::temp_path("hw0.json"), on = test::temp_path("hw1.json");
+  CliRun r = run_cli(base + "--solver rtlacam --quiet --out " + off);
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_cli(base + "--solver rtlacam --quiet --highways 1 --out " + on);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream a(off), b(on);
+  const auto j0 = nlohmann::json::parse(a), j1 = nlohmann::json::parse(b);
+  EXPECT_FALSE(j0.contains("highways"));
+  EXPECT_EQ(j1["highways"], 1);
+  EXPECT_EQ(j0["numPlannerErrors"], 0);
+  EXPECT_EQ(j1["numPlannerErrors"], 0);
+  EXPECT_GT(j1["numErrandFinished"].get<int>(), 0);
+  EXPECT_NE(j0["actualPaths"], j1["actualPaths"]);
+  r = run_cli(base + "--quiet --solver pibt --highways 1");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--highways needs"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
