@@ -328,7 +328,9 @@ bool Pibt::swap_required(int32_t pusher, int32_t puller, Vertex v_pusher, Vertex
   // The ranking distances (highways): a swap decided on other distances than the ranking
   // that picked the pusher's move disagreed with it, and PIBT then pushed agents back and
   // forth (large SUMO warehouse, 200 AGVs: one AGV short of its goal for 6000 ticks).
-  DistTable& d = guide_ ? *guide_ : d_;
+  // Around immobile agents the ranking is the detour distance, which is built on the plain
+  // ones: the swap reads those there, as it did before highways.
+  DistTable& d = guide_ && !detour_.active() ? *guide_ : d_;
   Vertex tmp = -1;
   while (d.get(pusher, v_puller) < d.get(pusher, v_pusher)) {
     int n = g_.degree(v_puller);
