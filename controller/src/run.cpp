@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <sstream>
 
 #include "controller/fleet.hpp"
 #include "controller/instance_bound.hpp"
@@ -82,6 +84,34 @@ void Run::prepare()
   } catch (const planner::InputError& e) {
     throw ConfigError(cfg_.path + ": sumo.net: " + e.what());
   }
+  // What gridify left out, one line per kind (rtlacam-gridify lists every item): a run on a
+  // net with closed aisles or dropped links says so instead of routing around them silently.
+  {
+    std::map<std::string, std::pair<int, const gridify::Dropped*>> kinds;
+    for (const gridify::Dropped& d : c_.map_.dropped) {
+      auto& k = kinds[d.kind];
+      if (k.first++ == 0) k.second = &d;
+    }
+    for (const auto& [kind, k] : kinds)
+      std::fprintf(stderr, "[rtlacam-sumo] gridify left out %d %s(s), e.g. %s: %s\n", k.first, kind.c_str(), k.second->id.c_str(),
+                   k.second->reason.c_str());
+  }
+  // Two AGVs on neighbouring cells of an aisle stand one step apart: SUMO inserts them, and
+  // they stand still, only if the step holds a body and its min_gap. config.cpp checks that
+  // against grid.cell_length; a snapped aisle's step (a 2.55 m aisle of 1 m cells: 0.85 m)
+  // or one fitted within grid.tolerance may be shorter.
+  const VType& vt = cfg_.fleet.vtype;
+  auto fmt = [](double d) {
+    std::ostringstream o;
+    o << d;
+    return o.str();
+  };
+  for (const gridify::Aisle& a : c_.map_.aisles)
+    if (a.steps > 1 && a.spacing + 1e-9 < vt.length + vt.min_gap)
+      throw ConfigError(cfg_.path + ": fleet.vtype: length + min_gap (" + fmt(vt.length + vt.min_gap) +
+                        ") exceeds the " + fmt(a.spacing) + " m step of aisle '" + a.ab + "' (" +
+                        std::to_string(a.steps) + " steps over " + fmt(a.length_ab) +
+                        " m): shorten the AGV or its min_gap, or use a smaller grid.cell_length");
   ins_ = make_instance(cfg_, c_.map_);
   const planner::Graph& g = c_.map_.graph;
   // Random starts (and one-shot random goals) that a one-at-a-time zone would refuse: each

@@ -14,12 +14,33 @@ static planner::Point centre(const NetFile& net, const std::string& j)
 
 std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vector<Dropped>& dropped)
 {
+  // Lane index 0 (rightmost): warehouse aisles have one lane per direction.
+  auto lane0 = [&](const NetEdge& edge) -> const NetLane& {
+    for (const NetLane& l : edge.lanes)
+      if (l.index == 0) return l;
+    throw planner::input_error(net.path, edge.line, "edge '" + edge.id + "' has no lane with index 0");
+  };
+  // Edges whose lane 0 the AGVs may not drive (allow / disallow without passenger) are left
+  // out, said so: an aisle closed to vehicles, or a sidewalk. Kept, the AGVs were routed onto
+  // them and SUMO refused the route or the insertion mid-run.
+  std::vector<char> closed(net.edges.size(), 0);
   // (from, to) -> edge index. std::map keeps the pairing independent of hash order.
   std::map<std::pair<std::string, std::string>, int> directed;
   for (int i = 0; i < static_cast<int>(net.edges.size()); ++i) {
     const NetEdge& e = net.edges[i];
     if (e.from == e.to)
       throw planner::input_error(net.path, e.line, "edge '" + e.id + "' starts and ends at junction '" + e.from + "'");
+    if (!lane0(e).agvs_allowed) {
+      closed[i] = 1;
+      std::string why = "lane '" + lane0(e).id + "' does not allow vehicle class passenger (the AGVs')";
+      for (const NetLane& l : e.lanes)
+        if (l.index != 0 && l.agvs_allowed) {
+          why += "; AGVs drive lane 0 only, and lane '" + l.id + "' allows them (a sidewalk? build the net without one)";
+          break;
+        }
+      dropped.push_back({"closed edge", e.id, why, {{centre(net, e.from), centre(net, e.to)}}, {}});
+      continue;
+    }
     auto [it, fresh] = directed.emplace(std::make_pair(e.from, e.to), i);
     if (!fresh)
       throw planner::input_error(net.path, e.line,
@@ -29,13 +50,9 @@ std::vector<Aisle> pair_aisles(const NetFile& net, bool drop_one_way, std::vecto
 
   std::vector<Aisle> aisles;
   // File order: the first edge of a pair seen becomes the aisle's A->B direction.
-  for (const NetEdge& e : net.edges) {
-    // Lane index 0 (rightmost): warehouse aisles have one lane per direction.
-    auto lane0 = [&](const NetEdge& edge) -> const NetLane& {
-      for (const NetLane& l : edge.lanes)
-        if (l.index == 0) return l;
-      throw planner::input_error(net.path, edge.line, "edge '" + edge.id + "' has no lane with index 0");
-    };
+  for (size_t i = 0; i < net.edges.size(); ++i) {
+    const NetEdge& e = net.edges[i];
+    if (closed[i]) continue;
     Aisle a;
     a.ab = e.id;
     a.a = e.from;

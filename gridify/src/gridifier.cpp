@@ -48,8 +48,12 @@ void cut_aisles(const NetFile& net, std::vector<Aisle>& aisles, const GridifyOpt
     long n = std::lround(q);
     bool fits = n >= 1 && std::fabs(a.length_ab - n * opt.cell_length) <= opt.tolerance;
     if (fits) {
+      // Cells split the lane exactly: an 8.99 m aisle of 1 m cells (netconvert's rounding on
+      // random or diagonal nets) has steps of 0.99889 m, so its last cell is the junction.
+      // With steps of cell_length the junction sat 10 mm past the last step, where Safety
+      // saw an AGV at the junction as between two cells (exit 3).
       a.steps = static_cast<int>(n);
-      a.spacing = opt.cell_length;
+      a.spacing = a.length_ab / a.steps;
     } else if (opt.snap) {
       a.steps = static_cast<int>(std::max(1L, n));
       a.spacing = a.length_ab / a.steps;
@@ -155,7 +159,12 @@ CellMap gridify(const NetFile& net, const GridifyOptions& opt)
 
   // Step 2 and 3.
   std::vector<Aisle> aisles = pair_aisles(net, opt.drop_one_way, m.dropped);
-  if (aisles.empty()) throw planner::input_error(net.path, 0, "no aisles (pairs of opposite edges) in the net");
+  if (aisles.empty()) {
+    for (const Dropped& d : m.dropped)
+      if (d.kind == "closed edge")
+        throw planner::input_error(net.path, 0, "no aisles the AGVs may drive: edge '" + d.id + "': " + d.reason);
+    throw planner::input_error(net.path, 0, "no aisles (pairs of opposite edges) in the net");
+  }
   cut_aisles(net, aisles, opt, m.warnings);
 
   // Step 4: provisional cells (junctions first, in file order), then aisle interiors.

@@ -8,6 +8,34 @@ namespace gridify {
 
 static bool is_internal_id(const std::string& id) { return !id.empty() && id[0] == ':'; }
 
+// Does the space-separated vClass list name `cls`?
+static bool names(const std::string& list, const char* cls)
+{
+  size_t i = 0;
+  while (i < list.size()) {
+    while (i < list.size() && list[i] == ' ') ++i;
+    size_t j = i;
+    while (j < list.size() && list[j] != ' ') ++j;
+    if (list.compare(i, j - i, cls) == 0) return true;
+    i = j;
+  }
+  return false;
+}
+
+// SUMO's lane permissions for vClass passenger (the AGVs'): allow, else disallow, else all.
+static bool allows_agvs(const XmlSource& src, const pugi::xml_node& l)
+{
+  if (l.attribute("allow")) {
+    const std::string a = src.str(l, "allow");
+    return names(a, "all") || names(a, "passenger");
+  }
+  if (l.attribute("disallow")) {
+    const std::string d = src.str(l, "disallow");
+    return !names(d, "all") && !names(d, "passenger");
+  }
+  return true;
+}
+
 NetFile NetFile::read(const std::string& path)
 {
   XmlSource src(path);
@@ -38,6 +66,7 @@ NetFile NetFile::read(const std::string& path)
         lane.length = src.num(l, "length");
         lane.width = src.num_or(l, "width", 3.2);  // SUMO's default lane width
         lane.speed = src.num_or(l, "speed", 13.89);  // SUMO's default speed limit
+        lane.agvs_allowed = allows_agvs(src, l);
         if (!(lane.speed > 0)) throw src.error(l, "lane '" + lane.id + "': speed must be positive");
         if (!(lane.length > 0)) throw src.error(l, "lane '" + lane.id + "': length must be positive");
         e.lanes.push_back(std::move(lane));

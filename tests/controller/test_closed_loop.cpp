@@ -131,6 +131,46 @@ TEST(ClosedLoop, TwoMetreCellsLongAgvsAbsorbOutsideStopsAdg)
   for (unsigned seed : seeds(1)) run_with_outside_stops(long_agv_config("long_adg" + std::to_string(seed), "adg", 10), 3, seed + 2);
 }
 
+// Aisles of 8.99 m in 1 m cells (within grid.tolerance): an AGV standing at their junction
+// stands exactly on its cell. Before gridify cut them into equal steps, every executor
+// ended here with "AGV ... is at cell ... (pos 8.990000), not on its committed path".
+Config tolgrid_config(const std::string& name, const std::string& executor)
+{
+  Config c = agv_config(name, executor);
+  c.sumo.net = std::string(RTLACAM_CONTROLLER_DATA) + "/tolgrid.net.xml";
+  c.sumo.additional.clear();
+  c.fleet.count = 12;
+  return c;
+}
+
+TEST(ClosedLoop, AislesShortOfWholeCellsAbsorbOutsideStopsFollow)
+{
+  for (unsigned s : seeds(1)) run_with_outside_stops(tolgrid_config("tolgrid_follow", "adg-follow"), 4, s);
+}
+
+TEST(ClosedLoop, AislesShortOfWholeCellsAbsorbOutsideStopsAdg)
+{
+  for (unsigned s : seeds(1)) run_with_outside_stops(tolgrid_config("tolgrid_adg", "adg"), 4, s);
+}
+
+// An aisle's step must hold a body and its min_gap, where SUMO inserts and stops AGVs on
+// neighbouring cells: config.cpp checks grid.cell_length, the run checks each aisle's own
+// step (0.99889 m here; snapped aisles' may be far shorter). Unchecked, SUMO refused to insert
+// AGVs or reported collisions mid-run.
+TEST(ClosedLoop, AnAisleStepShorterThanBodyAndGapIsAConfigError)
+{
+  Config c = tolgrid_config("tolgrid_long", "adg-follow");
+  c.fleet.vtype.length = 0.9;  // + min_gap 0.1 = cell_length: accepted by the config
+  std::string what;
+  try {
+    Controller(c).run();
+  } catch (const ConfigError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("fleet.vtype: length + min_gap (1) exceeds the 0.998889 m step of aisle 'n00_n10'"), std::string::npos)
+      << what;
+}
+
 TEST(ClosedLoop, ShippedSmallWarehouseAbsorbsOutsideStops)
 {
   for (const char* ex : {"adg", "adg-follow"}) {

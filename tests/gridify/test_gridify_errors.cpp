@@ -332,3 +332,69 @@ TEST(GridifyErrors, FarApartJunctionsHaveNoGridView)
   EXPECT_EQ(grid_layout(m, &why).width, 0);
   EXPECT_EQ(why, "the lattice is too large");
 }
+
+// A lane whose allow / disallow shut out vehicle class passenger (the AGVs') is left out and
+// said so ("closed edge"); kept, the AGVs were routed onto it and SUMO refused the route or
+// the insertion mid-run. A net whose aisles are all closed to them (lane 0 a sidewalk) is
+// refused naming the lane that does allow them.
+TEST(GridifyErrors, LanesClosedToTheAgvsAreLeftOut)
+{
+  std::string t = line_net({"0", "2", "4"}, "2");
+  auto close = [&](const std::string& lane, const std::string& attr) {
+    const std::string from = "<lane id=\"" + lane + "\" ";
+    const size_t at = t.find(from);
+    ASSERT_NE(at, std::string::npos) << lane;
+    t.insert(at + from.size(), attr + " ");
+  };
+  close("j1_j2_0", "allow=\"pedestrian bicycle\"");
+  close("j2_j1_0", "disallow=\"passenger\"");
+  CellMap m = gridify::gridify(test::temp_file("closed.net.xml", t));
+  ASSERT_EQ(m.aisles.size(), 1u);
+  EXPECT_EQ(m.aisles[0].ab, "j0_j1");
+  int closed = 0;
+  for (const Dropped& d : m.dropped)
+    if (d.kind == "closed edge") {
+      ++closed;
+      EXPECT_TRUE(has(d.reason, "does not allow vehicle class passenger")) << d.reason;
+    }
+  EXPECT_EQ(closed, 2);
+  EXPECT_EQ(m.junction_cell("j2"), -1);
+  // disallow without passenger, or allow naming it: open.
+  std::string open = line_net({"0", "2"}, "2");
+  open.insert(open.find("<lane id=\"j0_j1_0\" ") + 19, "disallow=\"pedestrian\" ");
+  open.insert(open.find("<lane id=\"j1_j0_0\" ") + 19, "allow=\"passenger truck\" ");
+  EXPECT_EQ(gridify::gridify(test::temp_file("open.net.xml", open)).aisles.size(), 1u);
+  // Every lane 0 a sidewalk, lane 1 the road: refused, naming lane 1.
+  std::string walk = line_net({"0", "2"}, "2");
+  for (const std::string e : {"j0_j1", "j1_j0"}) {
+    const std::string lane = "<lane id=\"" + e + "_0\" index=\"0\" length=\"2\"/>";
+    const size_t at = walk.find(lane);
+    ASSERT_NE(at, std::string::npos);
+    walk.replace(at, lane.size(), "<lane id=\"" + e + "_0\" index=\"0\" length=\"2\" allow=\"pedestrian\"/><lane id=\"" + e +
+                                      "_1\" index=\"1\" length=\"2\"/>");
+  }
+  const std::string e = error_of(test::temp_file("walk.net.xml", walk));
+  EXPECT_TRUE(has(e, "no aisles the AGVs may drive")) << e;
+  EXPECT_TRUE(has(e, "lane 'j0_j1_1' allows them")) << e;
+}
+
+// An aisle within grid.tolerance of a whole number of cells is cut into equal steps that end
+// exactly at its junctions (8.99 m of 1 m cells: steps of 0.99889 m). With steps of
+// cell_length the junction sat 10 mm past the last step, and the controller's Safety saw an
+// AGV standing at that junction as between two cells (exit 3, "not on its committed path").
+TEST(GridifyErrors, AislesWithinTheToleranceEndAtTheirJunctions)
+{
+  GridifyOptions opt;
+  opt.tolerance = 0.05;
+  CellMap m = gridify::gridify(test::temp_file("tol.net.xml", line_net({"0", "8.99"}, "8.99")), opt);
+  ASSERT_EQ(m.aisles.size(), 1u);
+  const Aisle& a = m.aisles[0];
+  EXPECT_EQ(a.steps, 9);
+  EXPECT_FALSE(a.snapped);
+  EXPECT_NEAR(a.spacing, 8.99 / 9, 1e-12);
+  EXPECT_NEAR(a.steps * a.spacing, a.length_ab, 1e-9);
+  ASSERT_EQ(a.cells.size(), 10u);  // j0, interior cells 1..8, j1
+  const Cell& last = m.cells[a.cells[8]];  // k = 8, one step before junction j1
+  EXPECT_NEAR(last.poses[0].pos, 8 * 8.99 / 9, 1e-12);
+  EXPECT_NEAR(last.poses[1].pos, 8.99 / 9, 1e-12);
+}

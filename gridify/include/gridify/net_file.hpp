@@ -23,6 +23,9 @@ struct NetLane {
   double length = 0;
   double width = 0;
   double speed = 0;  // m/s, the lane's speed limit (SUMO's default 13.89 when absent)
+  // The lane's allow / disallow let the AGVs' vehicle class (passenger, the default of the
+  // controller's vType) drive it: false for a sidewalk or an aisle closed to vehicles.
+  bool agvs_allowed = true;
 };
 
 struct NetEdge {
