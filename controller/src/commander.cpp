@@ -168,6 +168,7 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
     // end, a re-sync. Aim a hair (1e-12 relative) short: far inside the tolerance.
     const double tick_ = this->tick_ * ticks * (1 + 1e-12);
     Agv& a = agv_[i];
+    a.move_d = 0;
     if (u == v) {
       set_speed(a, 0);
       return;
@@ -210,7 +211,42 @@ void Commander::command(int i, planner::Vertex u, planner::Vertex v, int ticks)
       throw ControlError("agent " + std::to_string(i) + ": no scheme-S command for the move " + std::to_string(u) +
                          " -> " + std::to_string(v) + " from lane " + a.pose.lane);
     }
+    a.move_d = a.speed * tick_;
     a.pose = target;
+  }
+}
+
+double Commander::travel_left(const Agv& a, const VehiclePose& p) const
+{
+  if (p.lane == a.pose.lane) return std::max(0.0, a.pose.pos - p.pos);
+  auto it = lanes_.find(p.lane);
+  if (it == lanes_.end()) return a.move_d;  // not on a lane of the move: no progress counted
+  return std::max(0.0, it->second.length - p.pos) + a.pose.pos;
+}
+
+double Commander::progress(const std::vector<VehiclePose>& now) const
+{
+  double least = 1;
+  for (size_t i = 0; i < agv_.size(); ++i)
+    if (agv_[i].move_d > 0) least = std::min(least, 1 - travel_left(agv_[i], now[i]) / agv_[i].move_d);
+  return std::max(0.0, least);
+}
+
+void Commander::pace(const std::vector<VehiclePose>& now, double target, double dt)
+{
+  for (size_t i = 0; i < agv_.size(); ++i) {
+    Agv& a = agv_[i];
+    if (a.move_d <= 0) continue;
+    const double left = travel_left(a, now[i]);
+    const double v = std::max(0.0, std::min(left, left - (1 - target) * a.move_d)) / dt;
+    try {
+      // Sent even if it equals the last command: another client may have set another.
+      sumo_.set_speed(a.id, v);
+    } catch (const SumoError& e) {
+      failed(static_cast<int>(i), e);
+    }
+    a.speed = v;
+    ++stats_.speed;
   }
 }
 

@@ -368,6 +368,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(v, "fleet.vtype", "accel", c.fleet.vtype.accel, 0, true);
   r.number(v, "fleet.vtype", "decel", c.fleet.vtype.decel, 0, true);
   r.number(v, "fleet.vtype", "max_speed", c.fleet.vtype.max_speed, 0, true);
+  c.fleet.vtype.physics_given = v && v.IsMap() && (v["accel"] || v["decel"] || v["max_speed"]);
   r.number(f, "fleet", "turn_s", c.fleet.turn_s, 0, true);
   if (const YAML::Node b = f["battery"]) {
     FleetSection::Battery& x = c.fleet.battery;

@@ -132,6 +132,8 @@ nlohmann::json Metrics::to_json() const
                    {"searches_skipped", searches_skipped},
                    {"dependency_waits", dependency_waits},
                    {"lockstep_waits", lockstep_waits},
+                   {"lockstep_paced", lockstep_paced},
+                   {"lockstep_paced_ticks", lockstep_paced_ticks},
                    {"delay_agent_ticks", delay_agent_ticks},
                    {"delay_stops", delay_stops},
                    {"chained", chained},

@@ -96,6 +96,10 @@ void Run::prepare()
       std::fprintf(stderr, "[rtlacam-sumo] gridify left out %d %s(s), e.g. %s: %s\n", k.first, kind.c_str(), k.second->id.c_str(),
                    k.second->reason.c_str());
   }
+  if (cfg_.run.executor == "lockstep" && cfg_.fleet.vtype.physics_given)
+    std::fprintf(stderr,
+                 "[rtlacam-sumo] run.executor lockstep drives each AGV a cell per tick at any acceleration: fleet.vtype "
+                 "accel / decel / max_speed are not used (adg and adg-follow keep to them)\n");
   // Two AGVs on neighbouring cells of an aisle stand one step apart: SUMO inserts them, and
   // they stand still, only if the step holds a body and its min_gap. config.cpp checks that
   // against grid.cell_length; a snapped aisle's step (a 2.55 m aisle of 1 m cells: 0.85 m)

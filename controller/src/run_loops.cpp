@@ -108,10 +108,39 @@ void Run::loop_lockstep()
     std::vector<std::vector<planner::Vertex>> allowed(ins_.num_agents());
     for (int i = 0; i < ins_.num_agents(); ++i) allowed[i] = {cur[i], to[i]};
     plan_in_tick_ = 0;
-    for (int s = 0; s < k_ * ticks; ++s) {
+    // The closed loop of cell moves (not turns; not while the fleet waits for a known stop):
+    // a mover behind its schedule in SUMO -- braked or held by something the controller is
+    // not told about -- paces the whole fleet to its progress (Commander::pace) until it
+    // arrives, whole ticks more if need be, up to the tick limit. Without it the others drove
+    // on into the cell it still held, and at the tick's end it was moved onto its cell
+    // (session 47: 3 of 4 runs with outside stops ended in collisions). No deviation: the
+    // commands of command() alone, as before.
+    const bool watch = !rot && !held;
+    const int nominal = k_ * ticks;
+    bool paced = false;
+    int s = 0;
+    for (;; ++s) {
+      if (s >= nominal) {
+        if (!paced) break;
+        if (s % k_ == 0 && (cmd_->progress(last_poses_) >= 1 - 1e-9 || m_.ticks + s / k_ >= cfg_.run.max_ticks ||
+                            planner::stop_signal() != 0))
+          break;
+      }
       slice_ = s;
       if (rot) cmd_->orient();
       step(allowed, false);
+      if (watch) {
+        const double f = cmd_->progress(last_poses_);
+        if (paced || f < std::min(1.0, (s + 1.0) / nominal) - 1e-6) {
+          paced = true;
+          cmd_->pace(last_poses_, std::min(1.0, f + 1.0 / nominal), cfg_.sumo.step_length);
+        }
+      }
+    }
+    if (paced) {
+      ++m_.lockstep_paced;
+      m_.lockstep_paced_ticks += s / k_ - ticks;
+      ticks = s / k_;
     }
     plan_tick_.push_back(plan_in_tick_);
     const double tick_planner_ms = plan_in_tick_ + epoch_ms_;

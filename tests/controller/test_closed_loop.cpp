@@ -171,6 +171,40 @@ TEST(ClosedLoop, AnAisleStepShorterThanBodyAndGapIsAConfigError)
       << what;
 }
 
+// Lock-step under stops it is not told about: a mover held short of its cell paces the whole
+// fleet (Commander::pace) until it arrives, so nobody runs into the cell it still holds and
+// nobody is moved onto a cell. The outside brake stops an AGV within one SUMO step (8 m/s^2
+// from lock-step's 1 m/s): a gentler one overshoots cells that lock-step's own stops, which
+// are instant, never do (controller/README.md "Outside stops under lock-step"). Without the
+// pacing: held AGVs were re-synced at every tick's end (the resyncs below) and followers ran
+// into them.
+TEST(ClosedLoop, LockstepPacesTheFleetToAnAgvHeldFromOutside)
+{
+  long long paced = 0;
+  for (unsigned seed : {1u, 2u, 3u}) {
+    Config cfg = load_config(std::string(RTLACAM_CONFIGS) + "/small_warehouse.yaml");
+    cfg.output.dir = test::temp_dir("closed_lockstep_" + std::to_string(seed));
+    cfg.run.progress_s = 0;
+    cfg.planner.budget_ms = 0;  // deterministic
+    cfg.planner.expansions = 20;
+    cfg.sumo.outputs = {false, false, false, true};
+    Controller c(cfg);
+    ctest_util::OutsideStops stops(cfg.fleet.count, 3, 1, 5, 8.0, cfg.sumo.step_length, seed);
+    stops.attach(c);
+    const Metrics m = c.run();
+    EXPECT_EQ(m.error, "") << "seed " << seed;
+    EXPECT_TRUE(m.solved) << "seed " << seed;
+    EXPECT_EQ(m.commands.jumps + m.commands.resyncs, 0) << "seed " << seed;
+    EXPECT_EQ(m.violations, 0);
+    EXPECT_GT(stops.steps_held, 8);
+    ctest_util::expect_no_sumo_collision(cfg.output.dir);
+    paced += m.lockstep_paced;
+    std::printf("lockstep seed %u: makespan %lld ticks %lld paced %lld (+%lld ticks) held %lld\n", seed, m.makespan, m.ticks,
+                m.lockstep_paced, m.lockstep_paced_ticks, stops.steps_held);
+  }
+  EXPECT_GT(paced, 0);
+}
+
 TEST(ClosedLoop, ShippedSmallWarehouseAbsorbsOutsideStops)
 {
   for (const char* ex : {"adg", "adg-follow"}) {

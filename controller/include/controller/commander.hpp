@@ -120,6 +120,16 @@ class Commander {
   // The same with poses already read after the tick's last step (no second read).
   void verify(const std::vector<VehiclePose>& now, double tol);
 
+  // Lock-step pacing: the closed loop of `command()` against stops the controller is not
+  // told about (a person, a pallet, another TraCI client braking an AGV). progress(): the
+  // least fraction of its commanded move that a mover has driven, from SUMO's poses (1 when
+  // none moves). pace(): every mover's speed for the next SUMO step of `dt` s, so that it
+  // reaches fraction `target` of its move (one ahead of it stands): the fleet keeps to its
+  // slowest mover, as lock-step means, so a follower never runs into a leader held in the
+  // cell it is leaving, and a held AGV drives on from where it stands once released.
+  double progress(const std::vector<VehiclePose>& now) const;
+  void pace(const std::vector<VehiclePose>& now, double target, double dt);
+
   // The commanded pose of an agent (where its front must be after the tick).
   const gridify::SumoPose& pose(int agent) const { return agv_[agent].pose; }
   const CommandStats& stats() const { return stats_; }
@@ -136,6 +146,7 @@ class Commander {
     std::string id;
     gridify::SumoPose pose;  // commanded front position
     double speed = 0;        // last commanded speed
+    double move_d = 0;       // command(): the front's travel of the move (0: it stands)
     bool held = false;       // set_angle before the last step: SUMO moved a lane-end front back
                              // 1 mm and cut the route to the current edge
     bool held_mm = false;    // held since its last move: its front may stand 1 mm back
@@ -152,6 +163,9 @@ class Commander {
   };
 
   void command(int agent, planner::Vertex u, planner::Vertex v, int ticks);
+  // Metres its front still has to go to its commanded pose (on that lane, or on the lane
+  // before it).
+  double travel_left(const Agv& a, const VehiclePose& p) const;
   // A SUMO call on an AGV failed: a ControlError if the AGV is gone, else rethrows.
   [[noreturn]] void failed(int agent, const SumoError& e);
   const Lane& lane(const std::string& id) const;

@@ -52,6 +52,7 @@ struct GridSection {
 struct VType {
   double length = 0.8, width = 0.6, min_gap = 0.1, accel = 2.0, decel = 2.0;
   double max_speed = 1.0;
+  bool physics_given = false;  // the YAML set accel, decel or max_speed (lock-step does not use them)
 };
 
 struct FleetSection {

@@ -43,6 +43,8 @@ struct Metrics {
   int window = 1;
   long long dependency_waits = 0;   // adg: agent-steps a committed move waited for its dependencies
   long long lockstep_waits = 0;     // lockstep: ticks all AGVs waited for a stopped one
+  long long lockstep_paced = 0;     // lockstep: ticks in which a mover fell behind in SUMO (an outside stop)
+  long long lockstep_paced_ticks = 0;  // lockstep: ticks added to them until it arrived
   long long delay_agent_ticks = 0;  // agent-ticks stopped by the delay model
   long long delay_stops = 0;        // stops injected
   long long chained = 0;            // adg: moves started without stopping in between
