@@ -43,9 +43,10 @@ Commander::Commander(const gridify::CellMap& map, SumoBackend& sumo, double tick
         missing_turns_ = true;
         // Back into the aisle it came from is a turn in place; any other turn a jump.
         if (out_lane != here.opposite && jump_turn_.empty())
-          jump_turn_ = "junction '" + c.junction + "': no SUMO connection from edge '" + here.edge + "' to edge '" +
-                       out.edge + "' (an AGV would have to jump: rebuild the net with every turn connected, " +
-                       "gridify/README.md)";
+          jump_turn_ = "junction '" + c.junction + "': no SUMO connection from lane 0 of edge '" + here.edge +
+                       "' to lane 0 of edge '" + out.edge +
+                       "' (AGVs drive lane 0 only; an AGV would have to jump: rebuild the net with every turn "
+                       "connected between lanes 0, gridify/README.md)";
       }
   }
   for (const gridify::Aisle& a : map.aisles)

@@ -560,6 +560,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "gui_delay_ms", c.run.gui_delay_ms, 0);
   r.get(u, "run", "port", c.run.port, "an integer");
   if (c.run.port < 0 || c.run.port > 65535) r.fail("run.port", "must be in 0..65535");
+  if (c.run.port > 0 && !(u && u["backend"])) c.run.backend = "traci";  // the port is a TraCI one
   if (u && u["order"]) {
     r.integer(u, "run", "order", c.run.order, 1, 1000000);
     if (c.run.port == 0) r.fail("run.order", "only with run.port (a SUMO started with --num-clients, which this client joins)");

@@ -44,6 +44,10 @@ std::unique_ptr<SumoBackend> make_backend(const RunSection& r)
     const std::string why = display_problem();
     if (!why.empty()) throw SumoError("sumo-gui: " + why);
   }
+  // A SUMO to join is reached over TraCI: an embedded one would ignore the port unseen.
+  if (r.port > 0 && !r.gui && r.backend != "traci")
+    throw ConfigError("run.port " + std::to_string(r.port) + ": joining a SUMO needs run.backend traci (--backend traci), not " +
+                      r.backend);
   if (r.gui) return make_traci_backend("sumo-gui", r.port, r.order);
   if (r.backend == "traci") return make_traci_backend("sumo", r.port, r.order);
   return make_libsumo_backend();

@@ -82,7 +82,10 @@ void Run::prepare()
   try {
     c_.map_ = gridify::gridify(cfg_.sumo.net, go);
   } catch (const planner::InputError& e) {
-    throw ConfigError(cfg_.path + ": sumo.net: " + e.what());
+    // The message names its file: the additional file's errors are that key's.
+    const std::string what = e.what();
+    const bool additional = !cfg_.sumo.additional.empty() && what.rfind(cfg_.sumo.additional, 0) == 0;
+    throw ConfigError(cfg_.path + (additional ? ": sumo.additional: " : ": sumo.net: ") + what);
   }
   // What gridify left out, one line per kind (rtlacam-gridify lists every item): a run on a
   // net with closed aisles or dropped links says so instead of routing around them silently.

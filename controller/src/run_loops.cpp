@@ -84,16 +84,20 @@ void Run::loop_lockstep()
           ticks = std::max(ticks, static_cast<int>(std::ceil(turn_ticks / delays_->factor(i) - 1e-9)));
     }
     const planner::Config& to = held ? cur : next;
-    if (held) ++m_.lockstep_waits;
-    if (!val_->step(to)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
+    int lane = ticks;
     if (!held && cfg_.run.lane_speeds) {
       // Lane speeds: the step lasts as many ticks as its slowest move needs on its lane.
-      int lane = ticks;
       for (int i = 0; i < ins_.num_agents(); ++i)
         if (next[i] != cur[i]) lane = std::max(lane, cmd_->lane_ticks(i, cur[i], next[i]));
-      m_.lane_ticks += lane - ticks;
-      ticks = lane;
     }
+    // A step stretched over several ticks that would end past run.max_ticks is not started:
+    // the limit is the run's last tick (a 5-tick run took 6).
+    if (ticks > 1 || lane > ticks)
+      if (m_.ticks + lane > cfg_.run.max_ticks) break;
+    m_.lane_ticks += lane - ticks;
+    ticks = lane;
+    if (held) ++m_.lockstep_waits;
+    if (!val_->step(to)) throw ControlError("tick " + std::to_string(m_.ticks) + ": invalid MAPF step: " + val_->error());
     cmd_->command(cur, to, ticks);
     if (rot && !held) {
       std::vector<double> factors(static_cast<size_t>(ins_.num_agents()));

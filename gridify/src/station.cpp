@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <set>
 
 #include "gridify/cell_map.hpp"
 #include "gridify/net_file.hpp"
@@ -34,6 +35,8 @@ void tag_stations(CellMap& map, const NetFile& net, const std::string& path)
   XmlSource src(path);
   pugi::xml_node root = src.doc().document_element();
   if (!root) throw planner::input_error(path, 0, "empty additional file");
+  // SUMO refuses a second element of one kind with the same id ("Process Error" at load).
+  std::set<std::pair<std::string, std::string>> seen;
   for (pugi::xml_node n : root.children()) {
     std::string element = n.name();
     bool on_lane_range = element == "parkingArea" || element == "busStop" || element == "containerStop" ||
@@ -43,6 +46,7 @@ void tag_stations(CellMap& map, const NetFile& net, const std::string& path)
 
     Station st;
     st.id = src.str(n, "id");
+    if (!seen.insert({element, st.id}).second) throw src.error(n, "<" + element + " id='" + st.id + "'>: duplicate id");
     st.element = element;
     st.kind = default_kind(element);
     if (poi && n.attribute("type")) st.kind = src.str(n, "type");

@@ -205,6 +205,25 @@ TEST(ClosedLoop, LockstepPacesTheFleetToAnAgvHeldFromOutside)
   EXPECT_GT(paced, 0);
 }
 
+// An error in sumo.additional names that key (it said sumo.net), and a duplicate station id
+// stops before SUMO (SUMO's own load error was "Process Error", exit 1).
+TEST(ClosedLoop, AdditionalFileErrorsNameTheirKey)
+{
+  Config c = tolgrid_config("tolgrid_add", "adg-follow");
+  c.sumo.additional = test::temp_file("dup.add.xml", "<additional>\n"
+                                                      "  <busStop id=\"p\" lane=\"n00_n10_0\" startPos=\"1.5\" endPos=\"2\"/>\n"
+                                                      "  <busStop id=\"p\" lane=\"n10_n00_0\" startPos=\"1.5\" endPos=\"2\"/>\n"
+                                                      "</additional>\n");
+  std::string what;
+  try {
+    Controller(c).run();
+  } catch (const ConfigError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find(": sumo.additional: " + c.sumo.additional + ":3: <busStop id='p'>: duplicate id"), std::string::npos)
+      << what;
+}
+
 TEST(ClosedLoop, ShippedSmallWarehouseAbsorbsOutsideStops)
 {
   for (const char* ex : {"adg", "adg-follow"}) {
@@ -427,6 +446,19 @@ TEST(FailSafe, RunOrderConfigErrors)
             "t.yaml: run.order: only with run.port (a SUMO started with --num-clients, which this client joins)");
   EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 0}\n").rfind("t.yaml: run.order: ", 0), 0u);
   EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 2}\n"), "(no error)");
+  // A port is a TraCI one: without run.backend the run joins over TraCI; an embedded SUMO
+  // (run.backend libsumo) cannot join it, and ignored it unseen.
+  EXPECT_EQ(controller::parse_config(net + "run: {port: 8813}\n", "t.yaml", RTLACAM_CONFIGS).run.backend, "traci");
+  Config c = agv_config("port_libsumo", "adg");
+  c.run.port = 8813;
+  c.run.backend = "libsumo";
+  std::string what;
+  try {
+    Controller(c).run();
+  } catch (const ConfigError& e) {
+    what = e.what();
+  }
+  EXPECT_EQ(what, "run.port 8813: joining a SUMO needs run.backend traci (--backend traci), not libsumo");
 }
 
 namespace {

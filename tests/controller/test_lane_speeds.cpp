@@ -248,3 +248,18 @@ TEST(LaneSpeeds, AdgCapsEachAgvAtItsOwnLaneWhileOthersDriveFullSpeed)
   run_clean(lock, l);
   EXPECT_LE(top_speed_on(lock.output.dir, "c2", "agv1").first, kSlow + 1e-6) << "lockstep: the fleet waits for the slowest move";
 }
+
+// run.max_ticks is the run's last tick even when a step is stretched over several: the
+// 4-tick moves through the slow aisle are not started past it (a limit of 30 ended at 32).
+TEST(LaneSpeeds, AStretchedStepNeverRunsPastTheTickLimit)
+{
+  Config c = slow_aisle_config("lockstep_limit");
+  c.planner.lane_costs = false;  // through the slow aisle: 4 ticks per move
+  c.run.max_ticks = 30;
+  Controller a(c);
+  const Metrics m = a.run();
+  EXPECT_EQ(m.error, "");
+  EXPECT_FALSE(m.solved);  // it needs 32
+  EXPECT_LE(m.ticks, 30);
+  EXPECT_GE(m.ticks, 27);
+}

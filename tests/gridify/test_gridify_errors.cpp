@@ -218,6 +218,13 @@ TEST(GridifyErrors, BadStationFiles)
   EXPECT_TRUE(has(e, "'startPos' is not a number")) << e;
   opt.additional = data("no_such.add.xml");
   EXPECT_TRUE(has(error_of(data("tiny.net.xml"), opt), "no_such.add.xml: cannot open file"));
+  // Two stations of one kind with one id: SUMO would stop at load with "Process Error".
+  opt.additional = test::temp_file("dup.add.xml", "<additional>\n"
+                                                  "    <busStop id=\"s\" lane=\"b_a_0\" startPos=\"0.5\" endPos=\"1\"/>\n"
+                                                  "    <busStop id=\"s\" lane=\"a_b_0\" startPos=\"0.5\" endPos=\"1\"/>\n"
+                                                  "</additional>\n");
+  e = error_of(data("tiny.net.xml"), opt);
+  EXPECT_TRUE(has(e, "dup.add.xml:3: <busStop id='s'>: duplicate id")) << e;
 }
 
 TEST(GridifyErrors, BadCellLength)
