@@ -120,6 +120,12 @@ void Run::prepare()
                         std::to_string(a.steps) + " steps over " + fmt(a.length_ab) +
                         " m): shorten the AGV or its min_gap, or use a smaller grid.cell_length");
   ins_ = make_instance(cfg_, c_.map_);
+  // Random starts and random goals drawn with one seed are the same cells: a run with
+  // nothing to do, which looked like an instant success.
+  if (!cfg_.tasks.lifelong() && cfg_.fleet.random_starts && cfg_.tasks.random_goals && ins_.goals == ins_.starts)
+    std::fprintf(stderr, "[rtlacam-sumo] every random goal is its AGV's start (tasks.seed %llu draws the cells fleet.seed %llu "
+                         "does): give tasks.seed another value\n",
+                 static_cast<unsigned long long>(cfg_.tasks.seed), static_cast<unsigned long long>(cfg_.fleet.seed));
   const planner::Graph& g = c_.map_.graph;
   // Random starts (and one-shot random goals) that a one-at-a-time zone would refuse: each
   // zone keeps one, the rest move to the nearest free cell outside (fleet.hpp).
