@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <tuple>
+#include <unordered_map>
 
 #include "planner/error.hpp"
 #include "planner/highways.hpp"
@@ -34,13 +35,61 @@ using namespace planner;
 
 namespace {
 
+// A number argument: TypeError unless int or float (a str cast would raise RuntimeError),
+// ValueError unless finite and in [lo, hi] (NaN passes every comparison, and a negative or
+// infinite budget or limit would run unbounded).
+double finite_arg(const py::handle& x, const char* name, double lo, double hi)
+{
+  if (!(py::isinstance<py::float_>(x) || py::isinstance<py::int_>(x)) || py::isinstance<py::bool_>(x))
+    throw py::type_error(std::string(name) + ": expected a number, not " + std::string(py::str(py::type::of(x))));
+  const double v = x.cast<double>();
+  if (!(v >= lo && v <= hi))
+    throw py::value_error(std::string(name) + ": " + std::string(py::repr(x)) + " is out of range [" +
+                          std::string(py::repr(py::float_(lo))) + ", " + std::string(py::repr(py::float_(hi))) + "]");
+  return v;
+}
+
 // A budget from keyword arguments: wall clock and/or expansions (both none: unlimited).
-Budget make_budget(py::object time_ms, py::object expansions)
+// Called with the GIL held: casting (and raising for) a bad argument needs it; search()
+// used to convert after releasing it and segfaulted on expansions=-1 or time_ms="x".
+Budget make_budget(const py::object& time_ms, const py::object& expansions)
 {
   Budget b = Budget::unlimited();
-  if (!time_ms.is_none()) b.ms = time_ms.cast<double>();
-  if (!expansions.is_none()) b.expansions = expansions.cast<uint64_t>();
+  if (!time_ms.is_none()) b.ms = finite_arg(time_ms, "time_ms", 0, 1e10);
+  if (!expansions.is_none()) {
+    if (!py::isinstance<py::int_>(expansions) || py::isinstance<py::bool_>(expansions))
+      throw py::type_error("expansions: expected an integer, not " + std::string(py::str(py::type::of(expansions))));
+    try {
+      b.expansions = expansions.cast<uint64_t>();
+    } catch (const py::cast_error&) {
+      throw py::value_error("expansions: " + std::string(py::repr(expansions)) + " is out of range [0, 2**64 - 1]");
+    }
+  }
   return b;
+}
+
+// A configuration for `g` and `n` agents (n < 0: any length): ValueError naming `what`
+// and the agent, as make_planner and the scen loader check; planners, the validator and
+// the policy index tables with these vertices unchecked.
+void check_config(const Graph& g, const Config& c, int n, const std::string& what)
+{
+  if (n >= 0 && static_cast<int>(c.size()) != n)
+    throw std::invalid_argument(what + ": " + std::to_string(c.size()) + " vertices for " + std::to_string(n) + " agents");
+  for (size_t i = 0; i < c.size(); ++i)
+    if (c[i] < 0 || c[i] >= g.size())
+      throw std::invalid_argument(what + ": agent " + std::to_string(i) + "'s vertex " + std::to_string(c[i]) +
+                                  " is out of range (the graph has " + std::to_string(g.size()) + " vertices)");
+}
+
+// Two agents on one vertex: ValueError naming both (load_scen's check; the planners assume
+// distinct starts and silently planned from a vertex conflict).
+void check_distinct(const Config& c, const std::string& what)
+{
+  std::unordered_map<Vertex, size_t> seen;
+  for (size_t i = 0; i < c.size(); ++i)
+    if (auto [it, fresh] = seen.emplace(c[i], i); !fresh)
+      throw std::invalid_argument(what + ": agents " + std::to_string(it->second) + " and " + std::to_string(i) +
+                                  " share vertex " + std::to_string(c[i]));
 }
 
 // highways= : None is the CLI's default (default_highways), else a penalty in [0, 200].
@@ -255,6 +304,14 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
                     const py::object& rotation)
 {
   using namespace tasks;
+  // As rtlacam-lifelong's option checks: NaN, a negative count or a negative step count was
+  // taken silently (agents=-1: the whole team; steps=-5: "no simulation_time.json entry").
+  if (!(budget_ms >= 0 && budget_ms <= 3.6e6))
+    throw py::value_error("budget_ms: " + std::string(py::repr(py::float_(budget_ms))) + " is out of range [0, 3600000]");
+  if (agents < 0) throw py::value_error("agents: must be >= 0 (0: the problem's teamSize), not " + std::to_string(agents));
+  if (steps < -1)
+    throw py::value_error("steps: must be >= 0 (-1: the problem's simulation_time.json entry), not " + std::to_string(steps));
+  if (pool_size < 0) throw py::value_error("pool_size: must be >= 0 (0: the problem's), not " + std::to_string(pool_size));
   // Naming a rotation solver is enough: the action model follows from it (issue 20).
   const Solver kind = parse_solver(solver);
   const std::string actions = action_model ? *action_model : plans_rotation(kind) ? "rotation" : "grid4";
@@ -317,6 +374,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
                         {"vertex", tf.vertex},
                         {"refresh", tf.refresh}};
   add_task_fields(j, *tm);
+  add_stuck_fields(j, r);  // rtlacam-lifelong warns on stderr; here the fields say it
   return to_python(j);
 }
 
@@ -380,10 +438,11 @@ PYBIND11_MODULE(_rtlacam, m)
 
   py::class_<RealtimePlanner>(m, "Planner", "search(budget) / next() / commit() / set_goals(): see RealtimePlanner")
       .def("search", [](RealtimePlanner& p, py::object time_ms, py::object expansions) {
+             const Budget b = make_budget(time_ms, expansions);  // with the GIL: it may raise
              Status s;
              {
                py::gil_scoped_release unlocked;
-               s = p.search(make_budget(time_ms, expansions));
+               s = p.search(b);
              }
              return std::string(to_string(s));
            },
@@ -395,7 +454,13 @@ PYBIND11_MODULE(_rtlacam, m)
              return p.step(make_budget(time_ms, expansions));
            },
            py::arg("time_ms") = py::none(), py::arg("expansions") = py::none(), "search + next")
-      .def("set_goals", [](RealtimePlanner& p, const Config& goals) { p.set_goals(goals); }, py::arg("goals"),
+      .def("set_goals",
+           [](RealtimePlanner& p, const Config& goals) {
+             // The planners index their distance tables with these unchecked (segfault).
+             if (const Graph* g = p.graph()) check_config(*g, goals, static_cast<int>(p.current().size()), "goals");
+             p.set_goals(goals);
+           },
+           py::arg("goals"),
            "new goals: a new search rooted at the current configuration")
       .def("set_immobile", static_cast<void (RealtimePlanner::*)(int, bool)>(&RealtimePlanner::set_immobile), py::arg("agent"), py::arg("immobile") = true,
            "mark an agent immobile (never moved; the others route around it) or mobile again")
@@ -412,8 +477,11 @@ PYBIND11_MODULE(_rtlacam, m)
 
   // The preference must outlive the planner and keep its Graph and Model alive.
   py::class_<policy::PolicyPreference>(m, "PolicyPreference")
-      .def(py::init<const Graph&, const policy::Model&, const Config&>(), py::arg("graph"), py::arg("policy"),
-           py::arg("goals"), py::keep_alive<1, 2>(), py::keep_alive<1, 3>());
+      .def(py::init([](const Graph& g, const policy::Model& m, const Config& goals) {
+             check_config(g, goals, -1, "goals");  // its distance table runs a BFS from each (segfault)
+             return std::make_unique<policy::PolicyPreference>(g, m, goals);
+           }),
+           py::arg("graph"), py::arg("policy"), py::arg("goals"), py::keep_alive<1, 2>(), py::keep_alive<1, 3>());
 
   m.def("make_planner",
         [](const std::string& solver, const Graph& g, const Config& starts, const Config& goals, uint64_t seed,
@@ -424,10 +492,11 @@ PYBIND11_MODULE(_rtlacam, m)
           read_rotation(rotation, kind, rs);
           if (static_cast<int>(starts.size()) != static_cast<int>(goals.size()))
             throw std::invalid_argument("starts and goals differ in length");
-          for (Vertex v : starts)
-            if (v < 0 || v >= g.size()) throw std::invalid_argument("start vertex out of range");
-          for (Vertex v : goals)
-            if (v < 0 || v >= g.size()) throw std::invalid_argument("goal vertex out of range");
+          check_config(g, starts, -1, "starts");
+          check_config(g, goals, -1, "goals");
+          // As load_scen (Instance::check): one-shot MAPF needs distinct starts and goals.
+          check_distinct(starts, "starts");
+          check_distinct(goals, "goals");
           SolverOptions opt;
           opt.seed = seed;
           opt.pref = pref;
@@ -462,8 +531,13 @@ PYBIND11_MODULE(_rtlacam, m)
            const std::string& objective, const py::object& iter_refine, double anytime_ms, const py::object& highways) {
           RunOptions ropt;
           ropt.per_iteration = make_budget(time_ms, expansions);
+          // NaN or a negative limit was taken silently (rtlacam-bench checks its options).
+          if (!(timeout_ms >= 0 && timeout_ms <= 1e10))
+            throw py::value_error("timeout_ms: " + std::string(py::repr(py::float_(timeout_ms))) +
+                                  " is out of range [0, 1e10]");
+          if (max_steps < 0) throw py::value_error("max_steps: must be >= 0, not " + std::to_string(max_steps));
           ropt.timeout_ms = timeout_ms;
-          if (anytime_ms < 0) throw std::invalid_argument("anytime_ms must be >= 0");
+          if (!(anytime_ms >= 0 && anytime_ms <= 1e10)) throw std::invalid_argument("anytime_ms must be in [0, 1e10]");
           ropt.anytime_ms = anytime_ms;
           ropt.max_steps = max_steps;
           const Solver s = parse_solver(solver);
@@ -503,17 +577,33 @@ PYBIND11_MODULE(_rtlacam, m)
         "1-wide corridor's grain (rtlacam-bench --highways; None: 1 for RT-LaCAM*, else 0)");
 
   py::class_<Validator>(m, "Validator", "vertex/swap conflicts, adjacency; standard sum of costs and sum of loss")
-      .def(py::init<const Graph&, const Config&, const Config&>(), py::arg("graph"), py::arg("starts"),
-           py::arg("goals"), py::keep_alive<1, 2>())
+      .def(py::init([](const Graph& g, const Config& starts, const Config& goals) {
+             // step() indexes its vertex tables with the current configuration unchecked.
+             check_config(g, starts, -1, "starts");
+             check_config(g, goals, static_cast<int>(starts.size()), "goals");
+             return std::make_unique<Validator>(g, starts, goals);
+           }),
+           py::arg("graph"), py::arg("starts"), py::arg("goals"), py::keep_alive<1, 2>())
       .def("step", &Validator::step, py::arg("next"), "checks current -> next and advances; False on a violation")
-      .def("set_goals", &Validator::set_goals)
+      .def("set_goals",
+           [](Validator& v, const Config& goals) {
+             check_config(v.graph(), goals, static_cast<int>(v.current().size()), "goals");
+             v.set_goals(goals);
+           },
+           py::arg("goals"))
       .def_property_readonly("ok", &Validator::ok)
       .def_property_readonly("error", &Validator::error)
       .def_property_readonly("current", &Validator::current)
       .def_property_readonly("steps", &Validator::steps)
       .def_property_readonly("sum_of_costs", &Validator::sum_of_costs)
       .def_property_readonly("sum_of_loss", &Validator::sum_of_loss);
-  m.def("validate_plan", &validate_plan, py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("plan"),
+  m.def("validate_plan",
+        [](const Graph& g, const Config& starts, const Config& goals, const std::vector<Config>& plan, bool require_goals) {
+          check_config(g, starts, -1, "starts");  // a plan starting off the graph passed as valid
+          check_config(g, goals, static_cast<int>(starts.size()), "goals");
+          return validate_plan(g, starts, goals, plan, require_goals);
+        },
+        py::arg("graph"), py::arg("starts"), py::arg("goals"), py::arg("plan"),
         py::arg("require_goals") = true, "'' if the plan is valid, else the first violation");
 
   m.def("lifelong", &lifelong, py::arg("problem"), py::arg("solver") = "rtlacam", py::arg("steps") = -1,

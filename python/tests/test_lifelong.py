@@ -249,3 +249,22 @@ def test_lifelong_rotation_bad_input_is_one_line_naming_the_key():
         with pytest.raises(rtlacam.InputError, match=msg) as e:
             rtlacam.lifelong(PROBLEM, steps=5, agents=5, **kw)
         assert isinstance(e.value, ValueError) and "\n" not in str(e.value), kw
+
+
+# Values the app's options refuse: parking=[-3] corrupted the heap (double free), the
+# others ran silently (agents=-1 as the whole team, NaN as the budget).
+def test_lifelong_bad_values_raise():
+    for kw, what in ((dict(parking=[-3]), "parking: cell -3 is not a vertex"),
+                     (dict(parking=[10 ** 6]), "parking: cell 1000000 is not a vertex"),
+                     (dict(budget_ms=float("nan")), "budget_ms"), (dict(budget_ms=-1), "budget_ms"),
+                     (dict(agents=-1), "agents"), (dict(steps=-5), "steps"), (dict(pool_size=-1), "pool_size"),
+                     (dict(pool_size=2 ** 31 - 1), "pool_size: must be at most 10000000")):
+        args = dict(steps=5, budget_ms=1, agents=5)
+        args.update(kw)
+        with pytest.raises(ValueError, match=what):
+            rtlacam.lifelong(PROBLEM, **args)
+
+
+def test_lifelong_log_says_whether_the_agents_could_progress():
+    log = rtlacam.lifelong(PROBLEM, steps=10, budget_ms=1, agents=5)
+    assert log["unreachableGoals"] == 0 and log["unsolvableEpoch"] is False

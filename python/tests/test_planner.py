@@ -284,3 +284,64 @@ def test_highway_arcs_are_moves_against_an_aisles_grain(grid):
     assert rtlacam.highway_arcs(g, 0) == []
     with pytest.raises(ValueError, match="min_run"):
         rtlacam.highway_arcs(g, 1, 0)
+
+
+# Bad arguments raise, never crash: search() converted its budget after releasing the GIL
+# (segfault on expansions=-1 or time_ms="x"), and the vertices handed to set_goals, the
+# Validator and PolicyPreference index tables unchecked.
+def test_bad_budgets_raise_instead_of_crashing(grid, scen):
+    ins = rtlacam.load_scen(scen, grid, 5)
+    for solver in ("rtlacam", "pibt"):
+        p = rtlacam.make_planner(solver, grid, ins.starts, ins.goals)
+        for bad in (-1, float("nan"), float("inf")):
+            with pytest.raises(ValueError, match="time_ms"):
+                p.search(time_ms=bad)
+        with pytest.raises(TypeError, match="time_ms"):
+            p.search(time_ms="x")
+        for bad in (-1, 2 ** 64):
+            with pytest.raises(ValueError, match="expansions"):
+                p.search(expansions=bad)
+        with pytest.raises(TypeError, match="expansions"):
+            p.search(expansions=1.5)
+        with pytest.raises(ValueError, match="expansions"):
+            p.step(expansions=-1)
+        assert p.search(time_ms=0, expansions=0) in ("searching", "solved")
+    for kw, what in ((dict(time_ms=-1), "time_ms"), (dict(time_ms=float("nan")), "time_ms"),
+                     (dict(timeout_ms=-1), "timeout_ms"), (dict(timeout_ms=float("nan")), "timeout_ms"),
+                     (dict(max_steps=-1), "max_steps"), (dict(anytime_ms=float("nan")), "anytime_ms")):
+        with pytest.raises(ValueError, match=what):
+            rtlacam.run("rtlacam", grid, ins, **kw)
+
+
+def test_goals_and_starts_off_the_graph_raise(grid, scen, weights):
+    ins = rtlacam.load_scen(scen, grid, 2)
+    p = rtlacam.make_planner("rtlacam", grid, ins.starts, ins.goals)
+    with pytest.raises(ValueError, match="vertex 100000000 is out of range"):
+        p.set_goals([100000000, ins.goals[1]])
+    with pytest.raises(ValueError, match="1 vertices for 2 agents"):
+        p.set_goals([ins.goals[0]])
+    assert p.goals == ins.goals  # unchanged
+    p.set_goals(ins.starts)
+    assert p.goals == ins.starts
+    for bad in ([-5, ins.starts[1]], [ins.starts[0], 100000000]):
+        with pytest.raises(ValueError, match="starts: agent .* is out of range"):
+            rtlacam.Validator(grid, bad, ins.goals)
+        with pytest.raises(ValueError, match="starts: agent .* is out of range"):
+            rtlacam.validate_plan(grid, bad, ins.goals, [bad, ins.goals])
+    with pytest.raises(ValueError, match="goals: 1 vertices for 2 agents"):
+        rtlacam.Validator(grid, ins.starts, ins.goals[:1])
+    v = rtlacam.Validator(grid, ins.starts, ins.goals)
+    with pytest.raises(ValueError, match="goals: agent 0's vertex -1"):
+        v.set_goals([-1, 0])
+    with pytest.raises(ValueError, match="goals: agent 0's vertex 99999 is out of range"):
+        rtlacam.PolicyPreference(grid, rtlacam.load_policy(weights), [99999])
+
+
+# load_scen refuses two agents on one start (or goal); make_planner planned from the conflict.
+def test_make_planner_refuses_shared_starts_and_goals(grid, scen):
+    a, b, c = rtlacam.load_scen(scen, grid, 3).starts
+    for solver in ("rtlacam", "pibt", "naive"):
+        with pytest.raises(ValueError, match="starts: agents 0 and 1 share vertex"):
+            rtlacam.make_planner(solver, grid, [a, a], [b, c])
+        with pytest.raises(ValueError, match="goals: agents 0 and 1 share vertex"):
+            rtlacam.make_planner(solver, grid, [a, b], [c, c])

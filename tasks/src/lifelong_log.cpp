@@ -67,6 +67,22 @@ nlohmann::json lifelong_log(const RunInfo& info, const LifelongResult& r)
   return j;
 }
 
+void add_stuck_fields(nlohmann::json& j, const LifelongResult& r)
+{
+  j["unreachableGoals"] = r.unreachable_goals;
+  j["unsolvableEpoch"] = r.unsolvable_epoch;
+}
+
+std::string stuck_warning(const LifelongResult& r)
+{
+  std::string w;
+  if (r.unreachable_goals > 0)
+    w = std::to_string(r.unreachable_goals) + " agent(s) at the end cannot reach their goal (errand in another component)";
+  if (r.unsolvable_epoch)
+    w += std::string(w.empty() ? "" : "; ") + "the planner proved the last epoch's goals unsolvable (the agents cannot all reach them)";
+  return w.empty() ? w : "warning: " + w + " (" + std::to_string(r.tasks_finished) + " tasks finished)";
+}
+
 void add_task_fields(nlohmann::json& j, const TaskManager& tasks)
 {
   // The free-flow bound (free_flow.hpp) and the share of it the run reached.

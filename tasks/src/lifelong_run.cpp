@@ -355,6 +355,14 @@ LifelongResult LifelongRun::finish()
   r_.errands_finished = tasks_.errands_finished();
   r_.tasks_finished = tasks_.tasks_finished();
   r_.expansions = p_->expansions();
+  // A run that could not progress said nothing (0 tasks, rc 0): an errand its agent cannot
+  // reach (another component) or an epoch the planner proved unsolvable (a corridor swap).
+  // Exact queries now (deadline cleared above); one table per distinct goal at most.
+  const planner::Config& at = p_->current();
+  const planner::Config& goals = p_->goals();
+  for (size_t i = 0; i < at.size() && i < goals.size(); ++i)
+    if (at[i] != goals[i] && cache_->table(goals[i])->at(at[i], g_) >= planner::DistCache::kInf) ++r_.unreachable_goals;
+  r_.unsolvable_epoch = p_->exhausted();
   r_.wall_ms = ms_since(wall0_);
   return std::move(r_);
 }

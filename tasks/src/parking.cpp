@@ -1,12 +1,20 @@
 #include "tasks/parking.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace tasks {
 
 Parking::Parking(const planner::Graph& g, std::vector<planner::Vertex> cells)
     : g_(g), parking_(g.size(), 0), claimed_by_(g.size(), -1), seen_(g.size(), 0)
 {
+  // As Battery's chargers: a cell off the graph indexed the tables below out of bounds (heap
+  // corruption from Python's lifelong(parking=[-3])).
+  for (planner::Vertex v : cells)
+    if (v < 0 || v >= g.size())
+      throw std::invalid_argument("parking: cell " + std::to_string(v) + " is not a vertex of the graph (0.." +
+                                  std::to_string(g.size() - 1) + ")");
   std::sort(cells.begin(), cells.end());
   cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
   cells_ = std::move(cells);

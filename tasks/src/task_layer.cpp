@@ -15,6 +15,8 @@ std::string task_layer_problem(const TaskLayerOptions& o)
     if (o.assigner != "greedy" && o.assigner != "hungarian")
       return "assigner: must be greedy or hungarian, not '" + o.assigner + "'";
     if (o.pool_size < 1) return "pool_size: must be >= 1, got " + std::to_string(o.pool_size);
+    // The YAML's and numTasksReveal x teamSize's bound: the pool reserves its tasks up front.
+    if (o.pool_size > 10000000) return "pool_size: must be at most 10000000, got " + std::to_string(o.pool_size);
     if (o.k_nearest < 1) return "k_nearest: must be >= 1, got " + std::to_string(o.k_nearest);
   }
   const QueueOptions& q = o.queues;

@@ -22,6 +22,7 @@
 namespace planner {
 
 class DistCache;
+class Graph;
 class RotationPlanner;
 
 // The goal test as every planner applies it to its current configuration.
@@ -94,6 +95,9 @@ class RealtimePlanner {
   virtual uint64_t expansions() const = 0;    // total over all iterations
   virtual size_t explored() const = 0;        // size of the current explored table
   virtual std::string name() const = 0;
+  // The graph it plans on; nullptr where not known (a test's scripted planner). Callers that
+  // take goals from outside check them against it (python/src/module.cpp set_goals).
+  virtual const Graph* graph() const { return nullptr; }
   // The costliest expansion of the last search() call in ms (thread CPU), where the planner
   // measures it (RtLacam); -1: not measured (callers then use the mean).
   virtual double max_expansion_ms() const { return -1; }

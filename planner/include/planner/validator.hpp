@@ -34,6 +34,7 @@ class Validator {
   bool ok() const { return error_.empty(); }
   const std::string& error() const { return error_; }
   const Config& current() const { return current_; }
+  const Graph& graph() const { return g_; }
   long long steps() const { return steps_; }           // makespan
   long long sum_of_costs() const { return soc_ - off_now_; }  // standard (last arrival)
   long long sum_of_loss() const { return loss_; }

@@ -40,4 +40,10 @@ nlohmann::json lorr_log(const RunInfo& info, const LifelongResult& r, const Task
 // changed agent). Nothing for other modes.
 void add_task_fields(nlohmann::json& j, const TaskManager& tasks);
 
+// run_lifelong's end-of-run check (LifelongResult::unreachable_goals, unsolvable_epoch) as
+// "unreachableGoals" and "unsolvableEpoch" (rtlacam-lifelong, Python's lifelong()), and the
+// one-line stderr warning for it ("" when neither): such a run used to end silently with rc 0.
+void add_stuck_fields(nlohmann::json& j, const LifelongResult& r);
+std::string stuck_warning(const LifelongResult& r);
+
 }  // namespace tasks

@@ -151,6 +151,8 @@ struct LifelongResult {
   double wall_ms = 0;
   long planner_errors = 0;
   std::string first_error;          // first validator message, "" when clean
+  long unreachable_goals = 0;       // at the end: agents whose goal cannot be reached from their cell
+  bool unsolvable_epoch = false;    // at the end: the planner proved its epoch's goals unsolvable
   long first_error_t = 0;           // its step
   uint64_t expansions = 0;
   ActionModel action_model = ActionModel::Grid4;

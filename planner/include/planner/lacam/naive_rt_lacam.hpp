@@ -33,6 +33,7 @@ class NaiveRtLacam : public RealtimePlanner {
   uint64_t expansions() const override { return lacam_.expansions(); }
   size_t explored() const override { return lacam_.explored(); }
   std::string name() const override { return "naive"; }
+  const Graph* graph() const override { return &g_; }
 
  private:
   const HNode* planned() const;

@@ -31,6 +31,7 @@ class PibtPlanner : public RealtimePlanner {
   uint64_t expansions() const override { return steps_planned_; }
   size_t explored() const override { return 0; }
   std::string name() const override { return "pibt"; }
+  const Graph* graph() const override { return &dist_.graph(); }
 
  private:
   DistTable dist_;

@@ -110,6 +110,7 @@ class RtLacam : public RealtimePlanner {
   double max_expansion_ms() const override { return lacam_->max_expansion_ms(); }  // Lacam::max_expansion_ms
   size_t explored() const override { return lacam_->explored(); }
   std::string name() const override { return "rtlacam"; }
+  const Graph* graph() const override { return &g_; }
 
   const Lacam& lacam() const { return *lacam_; }  // for tests and statistics
 

@@ -22,6 +22,7 @@ class RotationPlanner : public RealtimePlanner {
   virtual const std::string& actions() const = 0;        // the planned step, one of "FRCW" per robot (after search())
   virtual uint16_t h(int agent) const = 0;               // steps from its state to its goal
   virtual const RotationDist& dist() const = 0;
+  const Graph* graph() const override { return &dist().graph(); }
   // Lifelong runs: goals known to come (RotationDist::prefetch), grown in spare time.
   virtual void prefetch(const std::vector<Vertex>& goals) = 0;
   virtual bool precompute(std::chrono::steady_clock::time_point deadline) = 0;
