@@ -7,6 +7,7 @@
 //   4 unsolved (a limit reached first; an instance proven unsolvable), 128 + N stopped by
 //   signal N (130 SIGINT, 143 SIGTERM) with every output written.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -37,6 +38,33 @@ inline CLI::Validator finite_range(double lo, double hi)
       },
       "NUMBER in [" + CLI::detail::to_string(lo) + ", " + CLI::detail::to_string(hi) + "]");
 }
+
+// A finite number > 0 (positive) or >= 0 (non_negative): CLI::PositiveNumber and
+// NonNegativeNumber let NaN through and print their bound as DBL_MAX in 309 digits
+// ("Value 0 not in range 0.000000 to 179769313486231570814527..."). An integer option
+// still gets CLI11's own check that the value is an integer (and fits) after this one.
+inline CLI::Validator at_least(bool strict)
+{
+  const std::string want = strict ? "a positive number" : "a number >= 0";
+  return CLI::Validator(
+      [strict, want](std::string& s) -> std::string {
+        double v = 0;
+        try {
+          size_t used = 0;
+          v = std::stod(s, &used);
+          if (used != s.size()) return "'" + s + "' is not a number";
+        } catch (const std::out_of_range&) {
+          v = s.find('-') == std::string::npos ? HUGE_VAL : -HUGE_VAL;  // 1e400: too large, not "not a number"
+        } catch (const std::exception&) {
+          return "'" + s + "' is not a number";
+        }
+        if (!std::isfinite(v) || (strict ? v <= 0 : v < 0)) return "must be " + want + ", not '" + s + "'";
+        return "";
+      },
+      strict ? "POSITIVE" : "NON-NEGATIVE");
+}
+inline CLI::Validator positive() { return at_least(true); }
+inline CLI::Validator non_negative() { return at_least(false); }
 
 // Names the app (usage line, error prefix) and adds --version.
 inline void add_version(CLI::App& app, const std::string& name)

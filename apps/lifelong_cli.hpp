@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "cli.hpp"
 #include "executor/delay_model.hpp"
 #include "executor/graph_execution.hpp"
 #include "planner/error.hpp"
@@ -90,10 +91,10 @@ struct SolverCli {
         ->capture_default_str();
     app.add_option("--epibt-depth", ep.depth, "epibt: actions per operation")->check(CLI::Range(3, 5))->capture_default_str();
     app.add_option("--epibt-revisit", ep.revisit, "epibt: replans of one robot per step at most")
-        ->check(CLI::PositiveNumber)
+        ->check(cli::positive())
         ->capture_default_str();
     app.add_option("--epibt-lns-revisit", ep.lns_revisit, "epibt: the same limit in the LNS rounds")
-        ->check(CLI::PositiveNumber)
+        ->check(cli::positive())
         ->capture_default_str();
     app.add_flag("--epibt-inherit,!--no-epibt-inherit", ep.inherit,
                  "epibt: each step starts from the tails of the last step's operations")
@@ -123,11 +124,11 @@ struct SolverCli {
     app.add_option("--tf-weights", tf_weights, "--traffic-flow on: CONTRAFLOW,VERTEX weights (0..1000) of the congestion costs")
         ->capture_default_str();
     app.add_option("--tf-refresh", ep.tf.refresh, "--traffic-flow on: guide paths re-planned per step beyond goal changes")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
-    app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--wppl-window", wppl.window, "wppl: steps planned ahead (W)")->check(cli::positive())->capture_default_str();
     app.add_option("--wppl-neighbourhood", wppl.neighbourhood, "wppl: robots replanned per LNS iteration")
-        ->check(CLI::PositiveNumber)
+        ->check(cli::positive())
         ->capture_default_str();
     app.add_flag("--wppl-pareto,!--no-wppl-pareto", wppl.pareto,
                  "wppl: accept LNS paths only if no robot of the neighbourhood is worse off")
@@ -354,7 +355,7 @@ struct TaskCli {
         ->check(CLI::IsMember({"greedy", "hungarian"}))
         ->capture_default_str();
     app.add_option("--pool-size", pool_size, "pool mode: tasks revealed at once (default: the problem's numTasksReveal x teamSize)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, 10000000));  // numTasksReveal x teamSize's bound: 2^31 ran out of memory
     app.add_flag("--reassign,!--no-reassign", o.reassign,
                  "pool mode: a free agent strictly nearer to a task not yet opened may take it from its holder "
                  "(default off: assignments are kept until the task is done; helps open maps, hurts LoRR's WAREHOUSE)");
@@ -368,12 +369,12 @@ struct TaskCli {
     app.add_option("--stall-swap-after", o.urgency.swap_after,
                    "pool mode: a pick-up errand stalled this many ticks passes to a nearer agent heading for the "
                    "same station cell (tasks.urgency.swap_after; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_option("--stall-head-after", o.urgency.head_after,
                    "per station cell, the agent stalled this many ticks outside its stub gets priority, and agents in a "
                    "stub that is not theirs leave first (tasks.urgency.head_after; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_flag("--drop-hints,!--no-drop-hints", o.urgency.drop_hints,
                  "with --stall-head-after: every loaded agent stalled that long outside a pocket gets its stall as "
@@ -385,25 +386,25 @@ struct TaskCli {
                    "starvation guard: per errand cell, the errand stalled longest, once this many ticks, gets the top "
                    "priority below battery and the epoch's goal test until it completes (tasks.urgency.escalate_after; "
                    "tasks/escalation.hpp; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_option("--station-load-cost", o.urgency.load_cost,
                    "pool mode: extra moves charged per task already bound for a station (tasks.urgency.load_cost; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_option("--pocket-cost", o.urgency.pocket_cost,
                    "PIBT ranks an agent's move into another station's dead-end stub this many moves worse "
                    "(tasks.urgency.pocket_cost; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
-    app.add_option("--k-nearest", o.k_nearest, "hungarian: candidate tasks per agent")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--k-nearest", o.k_nearest, "hungarian: candidate tasks per agent")->check(cli::positive())->capture_default_str();
     app.add_option("--queue-capacity", o.queues.capacity,
                    "station queues: agents heading for one errand cell at once, the rest wait on queue cells before it "
                    "(tasks/station_queues.hpp); 0 = off")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_option("--queue-length", o.queues.length, "station queues: queue cells per station")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_option("--queue-admission", o.queues.admission,
                    "station queues, pool mode: tasks held at once with an errand left at one station "
@@ -415,7 +416,7 @@ struct TaskCli {
     app.add_option("--queue-clear-after", o.queues.clear_after,
                    "station queues: a dead-end station whose stub held an agent that must get out this many steps "
                    "gives up its places until the stub is empty (tasks.queues.clear_after; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     app.add_flag("--queue-one-way,!--no-queue-one-way", o.queues.one_way,
                  "station queues: each station's queue lane is one-way towards the station in the planners' graph "
@@ -423,7 +424,7 @@ struct TaskCli {
     app.add_option("--queue-jam-after", o.queues.jam_after,
                    "station queues: a station whose admitted agent came no nearer to it for this many steps "
                    "gives up its places until its stub and queue cells are empty (tasks.queues.jam_after; 0 = off)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(cli::non_negative())
         ->capture_default_str();
     in_line_opt = app.add_flag("--queue-in-line,!--no-queue-in-line", o.queues.in_line,
                                "station queues: each step the admitted and queued agents of a station are re-ranked by "

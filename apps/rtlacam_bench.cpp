@@ -50,7 +50,7 @@ int main(int argc, char** argv)
        cold_end = LacamOptions{}.cold_end, scatter_lead_guided = LacamOptions{}.scatter_lead_guided;
   app.add_option("--map", map_file, "MovingAI .map file")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen file (first N agents are used)")->required();
-  app.add_option("--agents,-N", agents, "number of agents")->required()->check(CLI::PositiveNumber);
+  app.add_option("--agents,-N", agents, "number of agents")->required()->check(cli::positive());
   app.add_option("--solver", solver, solver_names(false, true) + " (cspibt: pibt ordered by --policy)")
       ->check(CLI::IsMember(solver_list(false, true)))
       ->capture_default_str();
@@ -65,7 +65,9 @@ int main(int argc, char** argv)
   app.add_option("--timeout-s", timeout_s, "limit on the cumulative planning time")
       ->check(cli::finite_range(0, 1e7))
       ->capture_default_str();
-  app.add_option("--max-steps", max_steps, "limit on executed steps (iterative solvers)")->capture_default_str();
+  app.add_option("--max-steps", max_steps, "limit on executed steps (iterative solvers)")
+      ->check(cli::non_negative())
+      ->capture_default_str();
   app.add_option("--seed", seed, "random seed")->capture_default_str();
   app.add_flag("--no-swap", no_swap, "PIBT without the swap operation (paper-faithful vanilla LaCAM)");
   bool free_first = false;
@@ -79,7 +81,7 @@ int main(int argc, char** argv)
                                       "--refine (RT-LaCAM*), else 0")
                            ->check(CLI::Range(0, 200));
   app.add_option("--highway-min-run", highway_min_run, "highways: least corridor run (cells) that gets a grain")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   bool reserve = true;
   app.add_flag("--reserve,!--no-reserve", reserve,
@@ -126,7 +128,7 @@ int main(int argc, char** argv)
   app.add_option("--lg-budget", lg_budget,
                  "local guidance: at most about K A* nodes per agent per round (a full round at window 5 pushes ~30); "
                  "0 = no cap")
-      ->check(CLI::Range(0.0, 1e6))
+      ->check(cli::finite_range(0, 1e6))
       ->capture_default_str();
   bool lg_repair = LacamOptions{}.lg_repair;
   app.add_flag("--lg-repair,!--no-lg-repair", lg_repair,
@@ -135,7 +137,7 @@ int main(int argc, char** argv)
   app.add_option("--lg-gate", lg_gate,
                  "local guidance in the first search only if at least this share of the first N windowed paths are "
                  "slowed by other agents (congestion at the start); 0 = always")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(cli::finite_range(0, 1))
       ->capture_default_str();
   bool lg_refine = LacamOptions{}.lg_refine;
   app.add_flag("--lg-refine,!--no-lg-refine", lg_refine, "local guidance in refinement's expansions");
@@ -148,7 +150,7 @@ int main(int argc, char** argv)
   app.add_option("--pause-min-ms", pause_min_ms,
                  "below this cutoff an expansion always ends in its iteration (the paper's loop), so the agents do not "
                  "wait for it; 0: resumable at any cutoff")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   app.add_flag("--refine,!--no-refine", refine,
                "LaCAM* refinement after the first solution (RT-LaCAM*); --no-refine: the paper's RT-LaCAM")
@@ -160,11 +162,14 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"soc", "loss"}));
   app.add_flag("--lns,!--no-lns", lns, "with --refine: LNS steps on the best path (lns_refiner.hpp)")
       ->capture_default_str();
-  app.add_option("--lns-agents", lns_agents, "agents replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  app.add_option("--lns-agents", lns_agents, "agents replanned per LNS step")->capture_default_str()->check(cli::positive());
   app.add_option("--lns-neighbourhood", lns_nbh, "agents an LNS step replans (lns_refiner.hpp)")
       ->capture_default_str()
       ->check(CLI::IsMember({"random", "blocking", "intersection", "adaptive"}));
-  app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")->capture_default_str()->check(CLI::PositiveNumber);
+  // Bounded: the LNS occupancy table is (window + 1) x |V| cells (checked on the map below).
+  auto* lns_window_opt = app.add_option("--lns-window", lns_window, "time steps replanned per LNS step")
+                             ->capture_default_str()
+                             ->check(CLI::Range(1, 1000000));
   std::string trace_best;
   app.add_option("--trace-best", trace_best,
                  "rtlacam: write per iteration 'iteration predicted_soc' here: the standard SOC of the executed moves "
@@ -184,12 +189,18 @@ int main(int argc, char** argv)
   app.add_flag("--scatter,!--no-scatter", scatter,
                "with --refine: space-utilisation optimisation guiding PIBT after the first solution (scatter.hpp)")
       ->capture_default_str();
-  app.add_option("--scatter-margin", scatter_margin, "SUO: extra path length allowed per agent")->capture_default_str();
+  // Counts and lengths: a negative one was taken silently.
+  app.add_option("--scatter-margin", scatter_margin, "SUO: extra path length allowed per agent")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
   app.add_option("--scatter-lead", scatter_lead, "SUO starts this many steps ahead on the best path")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_option("--scatter-max-passes", scatter_max_passes, "SUO passes at most (0: until collisions stop dropping)")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_option("--scatter-dive-passes", scatter_dive_passes, "SUO passes before the first guided dive")
+      ->check(CLI::Range(0, 1000000))
       ->capture_default_str();
   app.add_flag("--dive,!--no-dive", dive, "with --refine: PIBT rollouts from the root, inserted and rewired")
       ->capture_default_str();
@@ -211,7 +222,7 @@ int main(int argc, char** argv)
   app.add_flag("--scatter-lead-guided,!--no-scatter-lead-guided", scatter_lead_guided,
                "timed: SUO's lead check prices a guided dive step at the guided step's cost (lacam.hpp)");
   app.add_option("--cold-factor", cold_factor, "with --cold-end: the step after a cache sweep is priced at this x its rate")
-      ->check(CLI::Range(1.0, 100.0))
+      ->check(cli::finite_range(1, 100))
       ->capture_default_str();
   app.add_flag("--reprice,!--no-reprice", reprice,
                "soc: price a goal path again when the agents' move cut its pricing short (lacam.hpp)");
@@ -221,12 +232,13 @@ int main(int argc, char** argv)
                "guiding PIBT as soon as it is planned (changes LaCAM's tree; lacam.hpp)")
       ->capture_default_str();
   app.add_option("--scatter-live-share", scatter_live_share, "with --scatter-live: SUO's share of each call before the first solution")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(cli::finite_range(0, 1))
       ->capture_default_str();
   app.add_flag("--scatter-live-keep,!--no-scatter-live-keep", scatter_live_keep,
                "with --scatter-live: refinement goes on with that SUO (dive from the root) instead of a fresh one ahead")
       ->capture_default_str();
   app.add_option("--restart-rate", restart_rate, "LaCAM*: probability that a revisit pushes the root instead")
+      ->check(cli::finite_range(0, 1))
       ->capture_default_str();
   app.add_option("--anytime-ms", anytime_ms,
                  "solver lacam with refine: keep refining until this much planning time in all (refine-after-solve)")
@@ -252,8 +264,22 @@ int main(int argc, char** argv)
 
   try {
     // The same cells with one-way aisles (planner/one_way_aisles.hpp), or the map as it is.
-    const Graph g = one_way ? one_way_aisles(load_map(map_file)) : load_map(map_file);
+    const Graph g = [&] {
+      if (!one_way) return load_map(map_file);
+      try {
+        return one_way_aisles(load_map(map_file));
+      } catch (const std::invalid_argument& e) {  // a map without shelf aisles is bad input (was rc 1)
+        std::string what = e.what();
+        if (what.rfind("one_way_aisles: ", 0) == 0) what.erase(0, 16);
+        throw InputError("--one-way-aisles: " + what);
+      }
+    }();
     const Instance ins = load_scen(scen_file, g, agents);
+    // std::bad_alloc (rc 1) otherwise; the default window fits every MovingAI map.
+    if (const double cells = (static_cast<double>(lns_window) + 1) * g.size();
+        lns_window_opt->count() > 0 && cells > static_cast<double>(1 << 28))
+      throw InputError("--lns-window " + std::to_string(lns_window) + ": the LNS table of (window + 1) x " +
+                       std::to_string(g.size()) + " vertices exceeds 2^28 cells");
 
     LacamOptions lopt;
     lopt.swap = !no_swap;

@@ -22,7 +22,7 @@ int main(int argc, char** argv)
   int agents = 0;
   app.add_option("--map", map_file, "MovingAI .map")->required();
   app.add_option("--scen", scen_file, "MovingAI .scen")->required();
-  app.add_option("-N,--agents", agents, "the first N agents of the scen")->required()->check(CLI::PositiveNumber);
+  app.add_option("-N,--agents", agents, "the first N agents of the scen")->required()->check(cli::positive());
   app.add_option("--plan", plan_file, "result file (its solution= section)")->required();
   cli::add_version(app, "rtlacam-check");
   RTLACAM_PARSE(app, argc, argv);

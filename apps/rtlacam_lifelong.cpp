@@ -39,8 +39,9 @@ int main(int argc, char** argv)
   cli::ExecCli xc;    // --executor and the delays
   cli::TaskCli tc;    // the task layer: --mode, --assigner, --queue-*, --parking, --urgency, --battery-*, ...
   app.add_option("--problem", problem_file, "LoRR problem JSON")->required();
-  app.add_option("--steps", steps, "steps to simulate (default: the instance's simulation_time)");
-  app.add_option("--agents", agents, "use only the first N agents of the team (default: teamSize)")->check(CLI::PositiveNumber);
+  app.add_option("--steps", steps, "steps to simulate (default: the instance's simulation_time)")
+      ->check(cli::non_negative());  // -5 read as unset: "no simulation_time.json entry"
+  app.add_option("--agents", agents, "use only the first N agents of the team (default: teamSize)")->check(cli::positive());
   app.add_flag("--prefetch,!--no-prefetch", prefetch,
                "grow the distance tables of upcoming goals in each step's spare budget (default on)");
   app.add_flag("--bound-queries,!--exact-queries", bound_queries,
@@ -51,7 +52,7 @@ int main(int argc, char** argv)
                "or wait) instead of overrunning its budget (default off: it costs throughput)");
   app.add_option("--expansion-deviations", expansion_deviations,
                  "the search stops this many mean deviations above the mean expansion cost before its deadline")
-      ->check(CLI::NonNegativeNumber)
+      ->check(cli::non_negative())
       ->capture_default_str();
   app.add_option("--max-dist-tables", max_dist_tables,
                  "distance tables kept (LRU; tables in use are kept beyond it); 0 = 2 x agents + 256");
@@ -63,7 +64,7 @@ int main(int argc, char** argv)
       ->check(CLI::IsMember({"grid4", "rotation"}))
       ->capture_default_str();
   app.add_option("--rotation-window", rotation_window, "rotation: plan steps the planner may run ahead of the slowest robot")
-      ->check(CLI::PositiveNumber)
+      ->check(cli::positive())
       ->capture_default_str();
   app.add_flag("--no-heading-ties", no_heading_ties, "rotation: PIBT breaks distance ties at random, not by turns");
   app.add_option("--heading-cost", heading_cost,
@@ -154,6 +155,8 @@ int main(int argc, char** argv)
                        {"turnTicks", xr.exec.turn_ticks},
                        {"maxTicksWithoutErrand", xr.max_gap}};
     add_task_fields(j, *tm);
+    add_stuck_fields(j, r);
+    if (const std::string w = stuck_warning(r); !w.empty()) std::cerr << "rtlacam-lifelong: " << w << std::endl;
     const int sig = planner::stop_signal();
     if (sig) j["interrupted"] = planner::signal_name(sig);
     if (!out_file.empty()) {

@@ -99,6 +99,7 @@ int run_time(const TimeArgs& a)
   for (int r = 0; r < a.reps; ++r) {
     for (int i = 0; i < a.agents; ++i) {  // each agent tries one random neighbour
       const auto nb = g.neighbors(c[i]);
+      if (nb.empty()) continue;  // an isolated cell (a 1x1 map): rng.below(0) is undefined
       const Vertex u = nb[rng.below(static_cast<uint32_t>(nb.size()))];
       if (!occ[u]) occ[c[i]] = 0, occ[u] = 1, c[i] = u;
     }
@@ -124,15 +125,18 @@ int main(int argc, char** argv)
   CLI::App* dump = app.add_subcommand("dump", "write (observation, LaCAM expert action) pairs for training");
   dump->add_option("--map", d.map_file, "MovingAI .map file")->required();
   dump->add_option("--scen", d.scens, "MovingAI .scen files")->required();
-  dump->add_option("--agents,-N", d.agents, "agent counts (each scen is run with each)")->required();
+  dump->add_option("--agents,-N", d.agents, "agent counts (each scen is run with each)")
+      ->required()
+      ->check(cli::positive());  // each count; -3 was a std::length_error (rc 1)
   dump->add_option("--out", d.out_file, "output dump file")->required();
   dump->add_option("--radius", d.radius, "observation window radius (window 2r+1)")
       ->check(CLI::Range(1, 32))
       ->capture_default_str();
   dump->add_option("--keep", d.keep, "fraction of (agent, step) samples kept, at random")
-      ->check(CLI::Range(0.0, 1.0))
+      ->check(cli::finite_range(0, 1))
       ->capture_default_str();
   dump->add_option("--timeout-s", d.timeout_s, "LaCAM time limit per instance (unsolved ones are skipped)")
+      ->check(cli::finite_range(0, 1e7))
       ->capture_default_str();
   dump->add_option("--seed", d.seed, "seed of LaCAM and of the sampling")->capture_default_str();
 
@@ -141,8 +145,8 @@ int main(int argc, char** argv)
   time->add_option("--weights", t.weights, "policy weights file")->required();
   time->add_option("--map", t.map_file, "MovingAI .map file")->required();
   time->add_option("--scen", t.scen, "MovingAI .scen file")->required();
-  time->add_option("--agents,-N", t.agents, "number of agents")->check(CLI::PositiveNumber)->capture_default_str();
-  time->add_option("--reps", t.reps, "timed configurations")->check(CLI::PositiveNumber)->capture_default_str();
+  time->add_option("--agents,-N", t.agents, "number of agents")->check(cli::positive())->capture_default_str();
+  time->add_option("--reps", t.reps, "timed configurations")->check(cli::positive())->capture_default_str();
   cli::add_version(app, "rtlacam-policy");
   RTLACAM_PARSE(app, argc, argv);
 
@@ -151,9 +155,9 @@ int main(int argc, char** argv)
     return run_time(t);
   } catch (const InputError& e) {
     std::cerr << "rtlacam-policy: " << e.what() << std::endl;
-    return 2;
+    return cli::kBadInput;
   } catch (const std::exception& e) {
     std::cerr << "rtlacam-policy: error: " << e.what() << std::endl;
-    return 1;
+    return cli::kRuntimeError;
   }
 }

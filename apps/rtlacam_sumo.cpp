@@ -37,7 +37,7 @@ int main(int argc, char** argv)
       ->check(CLI::Range(1, 65535));
   app.add_option("--order", order, "with --port: this client's TraCI order in a SUMO of several clients (sumo --num-clients)")
       ->check(CLI::Range(1, 1000000));
-  app.add_option("--max-ticks", max_ticks, "override run.max_ticks")->check(CLI::PositiveNumber);
+  app.add_option("--max-ticks", max_ticks, "override run.max_ticks")->check(cli::positive());
   app.add_option("--out", out, "override output.dir");
   cli::add_version(app, "rtlacam-sumo");
   RTLACAM_PARSE(app, argc, argv);

@@ -22,6 +22,9 @@ bool next_line(std::istream& in, std::string& line, int& lineno)
   if (!std::getline(in, line)) return false;
   ++lineno;
   if (!line.empty() && line.back() == '\r') line.pop_back();
+  // A UTF-8 byte order mark (some Windows editors write one) failed the header check as if
+  // the first line were something else.
+  if (lineno == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
   return true;
 }
 

@@ -1,5 +1,7 @@
 #include "planner/plan_io.hpp"
 
+#include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -8,6 +10,28 @@
 
 namespace planner {
 namespace {
+
+// "(x,y)" at s[p]: true with both coordinates, false if malformed or out of int range
+// (sscanf's %d wraps: 4294967299 read as 3, and a bad plan passed as valid).
+bool parse_cell(const std::string& s, size_t p, int& x, int& y)
+{
+  auto number = [&](size_t& i, int& out) {
+    while (i < s.size() && s[i] == ' ') ++i;  // as %d did
+    const char* first = s.data() + i;
+    const char* last = s.data() + s.size();
+    long long v = 0;
+    const auto [end, ec] = std::from_chars(first, last, v);
+    if (ec != std::errc() || v < INT_MIN || v > INT_MAX) return false;
+    out = static_cast<int>(v);
+    i += static_cast<size_t>(end - first);
+    return true;
+  };
+  if (s[p] != '(') return false;
+  ++p;
+  if (!number(p, x) || p >= s.size() || s[p] != ',') return false;
+  ++p;
+  return number(p, y) && p < s.size() && s[p] == ')';
+}
 
 std::string cell(const Graph& g, Vertex v)
 {
@@ -68,6 +92,8 @@ std::vector<Config> read_plan(std::istream& in, const Graph& g, const std::strin
   bool in_solution = false;
   while (std::getline(in, line)) {
     ++no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF plans, as the map/scen readers
+    if (no == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // and a UTF-8 byte order mark
     if (!in_solution) {
       in_solution = line.rfind("solution=", 0) == 0;
       continue;
@@ -79,7 +105,11 @@ std::vector<Config> read_plan(std::istream& in, const Graph& g, const std::strin
     size_t p = colon + 1;
     while ((p = line.find('(', p)) != std::string::npos) {
       int x = 0, y = 0;
-      if (std::sscanf(line.c_str() + p, "(%d,%d)", &x, &y) != 2) throw input_error(source, no, "expected '(x,y)'");
+      if (!parse_cell(line, p, x, y)) {
+        const size_t close = line.find(')', p);
+        throw input_error(source, no, "expected '(x,y)' with integer coordinates, not '" +
+                                          line.substr(p, close == std::string::npos ? 24 : close - p + 1) + "'");
+      }
       const Vertex v = g.at(x, y);
       if (v < 0) throw input_error(source, no, "cell (" + std::to_string(x) + "," + std::to_string(y) + ") is off the map");
       c.push_back(v);

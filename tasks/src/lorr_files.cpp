@@ -27,6 +27,7 @@ struct LineReader {
     if (!std::getline(in, line)) return false;
     ++lineno;
     if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (lineno == 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);  // a UTF-8 byte order mark
     return true;
   }
 };

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <set>
+#include <vector>
 #include <nlohmann/json.hpp>
 
 #include "planner/error.hpp"
@@ -29,10 +31,25 @@ std::string stem_of(const std::string& path)
 
 json read_json(const std::string& path)
 {
+  planner::check_not_directory(path);
   std::ifstream in(path);
   if (!in) throw input_error(path, 0, "cannot open file");
+  // A key given twice in one object: nlohmann keeps the last silently ("mapFile" twice read
+  // the second); the LoRR start kit's reader may keep either, so name it instead.
+  std::vector<std::set<std::string>> keys;  // per open object
+  std::string dup;
+  const json::parser_callback_t check = [&](int, json::parse_event_t ev, json& parsed) {
+    if (ev == json::parse_event_t::object_start) keys.emplace_back();
+    else if (ev == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    else if (ev == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+             dup.empty())
+      dup = parsed.get<std::string>();
+    return true;
+  };
   try {
-    return json::parse(in);
+    json j = json::parse(in, check);
+    if (!dup.empty()) throw input_error(path, 0, "key '" + dup + "' appears twice in one object");
+    return j;
   } catch (const json::exception& e) {
     // parse_error, but also out_of_range for a number like 1e400: without the catch its
     // message named no file. nlohmann reports a byte offset; keep the message on one line.
@@ -58,17 +75,19 @@ long lookup_steps(const std::string& problem_dir, const std::string& stem)
     const json j = read_json(f);
     // key() below throws json::invalid_iterator, naming no file, on an array.
     if (!j.is_object()) throw input_error(f, 0, "expected a JSON object of instance name -> steps");
-    long best = -1;
-    size_t best_len = 0;
+    const json* best = nullptr;
+    std::string best_key;
     for (auto it = j.begin(); it != j.end(); ++it) {
       const std::string& k = it.key();
-      if (k.size() <= stem.size() && stem.compare(stem.size() - k.size(), k.size(), k) == 0 && k.size() > best_len &&
-          it->is_number_integer()) {
-        best = it->get<long>();
-        best_len = k.size();
-      }
+      if (k.size() <= stem.size() && stem.compare(stem.size() - k.size(), k.size(), k) == 0 && k.size() > best_key.size())
+        best = &*it, best_key = k;
     }
-    if (best > 0) return best;
+    if (!best) continue;
+    // The entry is there: a bad value is its error, not "no entry" (which told the user
+    // to pass --steps although the file had the key).
+    if (!best->is_number_integer() || best->get<long long>() <= 0 || best->get<long long>() > 1000000000)
+      throw input_error(f, 0, "'" + best_key + "': steps must be an integer in [1, 1000000000], not " + best->dump());
+    return best->get<long>();
   }
   return -1;
 }

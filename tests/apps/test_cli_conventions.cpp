@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_run.hpp"
@@ -73,5 +74,32 @@ TEST(CliConventions, BadCommandLineIsBadInputWithOneLine)
       EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << "one line: " << r.err;
       EXPECT_EQ(r.out, "") << a.name;
     }
+  }
+}
+
+// A count that must be positive says so in words: CLI::PositiveNumber printed "Value 0 not in
+// range 0.000000 to 1797693...(309 digits)" and let NaN through (apps/cli.hpp positive()).
+TEST(CliConventions, PositiveCountsSayWhatIsWrongReadably)
+{
+  std::vector<std::pair<std::string, std::string>> runs;  // binary, arguments
+#ifdef RTLACAM_BENCH_BIN
+  runs.push_back({RTLACAM_BENCH_BIN, "--map m --scen s -N 0"});
+#endif
+#ifdef RTLACAM_LIFELONG_BIN
+  runs.push_back({RTLACAM_LIFELONG_BIN, "--problem p --agents 0"});
+#endif
+#ifdef RTLACAM_POLICY_BIN
+  runs.push_back({RTLACAM_POLICY_BIN, "time --weights w --map m --scen s -N 0"});
+#endif
+#ifdef RTLACAM_SUMO_BIN
+  runs.push_back({RTLACAM_SUMO_BIN, "c.yaml --max-ticks 0"});
+#endif
+  for (const auto& [bin, args] : runs) {
+    const test::CliResult r = test::run_cli(bin, args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find("must be a positive number, not '0'"), std::string::npos) << args << ": " << r.err;
+    EXPECT_LT(r.err.size(), 160u) << r.err;
+    const test::CliResult nan = test::run_cli(bin, args.substr(0, args.size() - 1) + "nan");
+    EXPECT_EQ(nan.code, 2) << args << ": " << nan.err;
   }
 }

@@ -79,6 +79,38 @@ TEST(BenchCli, BadInputGivesOneLineAndNonZeroExit)
   }
 }
 
+// Option values out of range are bad input (2) with one readable line naming the option:
+// they ran silently (a negative step limit, NaN rates and budgets, a negative margin), ran
+// out of memory (rc 1: --lns-window 2^30), or printed DBL_MAX in 309 digits (-N 0).
+TEST(BenchCli, OptionValuesOutOfRangeAreBadInput)
+{
+  struct Case {
+    std::string args, expect;
+  };
+  const std::string base = "--map " + kMap + " --scen " + kScen + " -N 5 --json ";
+  const std::vector<Case> cases = {
+      {"--map " + kMap + " --scen " + kScen + " -N 0", "--agents: must be a positive number, not '0'"},
+      {base + "--max-steps -1", "--max-steps: must be a number >= 0, not '-1'"},
+      {base + "--restart-rate -1", "--restart-rate: '-1' is out of range"},
+      {base + "--restart-rate 2", "--restart-rate: '2' is out of range"},
+      {base + "--restart-rate nan", "--restart-rate: 'nan' is out of range"},
+      {base + "--pause-min-ms nan", "--pause-min-ms: must be a number >= 0, not 'nan'"},
+      {base + "--lg-budget nan", "--lg-budget: 'nan' is out of range"},
+      {base + "--scatter-margin -5", "--scatter-margin"},
+      {base + "--lns-window 1073741824", "--lns-window"},
+      {base + "--lns-window 1000000", "--lns-window 1000000: the LNS table of (window + 1) x 819 vertices exceeds 2^28 cells"},
+      {base + "--one-way-aisles", "--one-way-aisles: '" + kMap + "' with one-way aisles is not strongly connected"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run(c.args);
+    EXPECT_EQ(r.code, 2) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << c.args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_LT(r.err.size(), 200u) << r.err;
+    EXPECT_EQ(r.out, "") << c.args;
+  }
+}
+
 TEST(BenchCli, UnsolvedExitsFourAndStillPrintsTheResult)
 {
   // Two steps cannot bring 50 agents to their goals: the step limit comes first.

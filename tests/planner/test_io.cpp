@@ -75,6 +75,19 @@ TEST(MovingAi, SmallMapStructure)
   EXPECT_EQ(g.degree(g.at(1, 0)), 2);
 }
 
+// A UTF-8 byte order mark before the header is skipped (it failed the header check as if
+// the first line said something else).
+TEST(MovingAi, ByteOrderMarkIsSkipped)
+{
+  const std::string bom = "\xEF\xBB\xBF";
+  Graph g = load_map(write_tmp("bom.map", bom + kMap));
+  EXPECT_EQ(g.size(), 10);
+  const Instance ins = load_scen(write_tmp("bom.scen", bom + "version 1\n" + scen_line(0, 0, 3, 2)), g, 1);
+  EXPECT_EQ(ins.starts, Config{g.at(0, 0)});
+  std::stringstream plan(bom + "solution=\n0:(0,0),\n");
+  EXPECT_EQ(read_plan(plan, g, "p.txt"), std::vector<Config>{Config{g.at(0, 0)}});
+}
+
 TEST(MovingAi, MapErrorsNameFileAndLine)
 {
   expect_error([] { load_map("/nonexistent/x.map"); }, {"/nonexistent/x.map", "cannot open"});
@@ -164,4 +177,34 @@ TEST(PlanIo, ReadsBackWhatItWritesAndNamesBadLines)
   EXPECT_EQ(error_of("solution=\n1:(0,0),\n"), "p.txt:2: timestep '1', expected 0");
   EXPECT_EQ(error_of("solution=\n0:(99,99),\n"), "p.txt:2: cell (99,99) is off the map");
   EXPECT_EQ(error_of("solution=\n0 (1,1)\n"), "p.txt:2: expected 't:(x,y),...'");
+}
+
+// A coordinate beyond int is an error naming its line: sscanf's %d wrapped 4294967299 to 3,
+// so rtlacam-check took a jump off the map for a move to (3,0) and called the plan valid.
+// CRLF plans read as LF ones (the map and scen readers strip '\r' too).
+TEST(PlanIo, CoordinatesBeyondIntAreErrorsAndCrlfReads)
+{
+  const Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
+  auto error_of = [&](const std::string& text) {
+    std::stringstream in(text);
+    try {
+      read_plan(in, g, "p.txt");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of("solution=\n0:(0,0),\n1:(4294967296,0),\n"),
+            "p.txt:3: expected '(x,y)' with integer coordinates, not '(4294967296,0)'");
+  EXPECT_EQ(error_of("solution=\n0:(0,-9999999999),\n"),
+            "p.txt:2: expected '(x,y)' with integer coordinates, not '(0,-9999999999)'");
+  EXPECT_EQ(error_of("solution=\n0:(a,0),\n"), "p.txt:2: expected '(x,y)' with integer coordinates, not '(a,0)'");
+  const Instance ins = load_scen(RTLACAM_TEST_DATA "/planner/random-32-32-20-random-1.scen", g, 3);
+  const std::vector<Config> plan = {ins.starts, ins.starts};
+  std::stringstream lf;
+  write_plan(lf, g, ins.starts, ins.goals, plan, PlanHeader{});
+  std::string crlf;
+  for (char c : lf.str() + "\n") crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);  // and a blank line
+  std::stringstream in(crlf);
+  EXPECT_EQ(read_plan(in, g, "p.txt"), plan);
 }

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 #include "cli_run.hpp"
 #include "policy/dump_file.hpp"
@@ -113,4 +115,39 @@ TEST(PolicyCli, TimePrintsJson)
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("\"forward_ms\":"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("\"agents\":50"), std::string::npos) << r.out;
+}
+
+// An agent on a cell with no free neighbour stays put: its random move drew rng.below(0)
+// (a segfault). The 1x1 map's one agent, and an agent walled into a corner.
+TEST(PolicyCli, TimeKeepsAnAgentWithoutNeighboursInPlace)
+{
+  const std::string one_map = test::temp_file("one.map", "type octile\nheight 1\nwidth 1\nmap\n.\n");
+  const std::string one_scen = test::temp_file("one.scen", "version 1\n0\tone.map\t1\t1\t0\t0\t0\t0\t0\n");
+  Result r = run(RTLACAM_POLICY_BIN, "time --weights " + kWeights + " --map " + one_map + " --scen " + one_scen + " -N 1 --reps 2");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"agents\":1"), std::string::npos) << r.out;
+  const std::string iso_map = test::temp_file("iso.map", "type octile\nheight 3\nwidth 3\nmap\n...\n@@@\n.@@\n");
+  const std::string iso_scen = test::temp_file(
+      "iso.scen", "version 1\n0\tiso.map\t3\t3\t0\t2\t0\t2\t0\n0\tiso.map\t3\t3\t0\t0\t2\t0\t2\n");
+  r = run(RTLACAM_POLICY_BIN, "time --weights " + kWeights + " --map " + iso_map + " --scen " + iso_scen + " -N 2 --reps 2");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("\"agents\":2"), std::string::npos) << r.out;
+}
+
+// Out-of-range values are bad input naming the option: dump -N -3 was a std::length_error
+// (rc 1), --timeout-s -1 / nan ran with no search at all.
+TEST(PolicyCli, OptionValuesOutOfRangeAreBadInput)
+{
+  const std::string out = test::temp_path("dump.bin");
+  for (const auto& [args, what] : std::vector<std::pair<std::string, std::string>>{
+           {"-N -3", "--agents: must be a positive number, not '-3'"},
+           {"-N 5 -N 0", "--agents: must be a positive number, not '0'"},
+           {"-N 5 --timeout-s -1", "--timeout-s: '-1' is out of range"},
+           {"-N 5 --timeout-s nan", "--timeout-s: 'nan' is out of range"},
+           {"-N 5 --keep nan", "--keep: 'nan' is out of range"}}) {
+    const Result r = run(RTLACAM_POLICY_BIN, "dump " + kInstance + " --out " + out + " " + args);
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -258,4 +259,83 @@ TEST(LifelongCli, HighwaysReachTheLifelongPlanner)
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--highways needs"), std::string::npos) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+// Bad values are one line naming the option or file, exit 2: --pool-size 2^31 - 1 ran out of
+// memory (rc 1), a directory as the problem or simulation_time.json threw "basic_filebuf::
+// underflow" naming no file (rc 1), a directory as --guidance read as an empty guidance file
+// (rc 0), and --steps -5 or a bad simulation_time.json value said "no simulation_time.json
+// entry for this problem: pass --steps".
+TEST(LifelongCli, BadValuesAndDirectoriesNameTheirOptionOrFile)
+{
+  const std::string dir = test::temp_dir("bad_values");
+  auto put = [&](const std::string& name, const std::string& text) { std::ofstream(dir + "/" + name) << text; };
+  put("p.map", "type octile\nheight 3\nwidth 4\nmap\n....\n.@..\n....\n");
+  put("p.agents", "2\n0\n3\n");
+  put("p.tasks", "3\n11\n8\n2,9\n");
+  put("P-01.json", R"({"mapFile":"p.map","agentFile":"p.agents","teamSize":2,"taskFile":"p.tasks","version":"2024"})");
+  const std::string problem = dir + "/P-01.json", quiet = " --budget-ms 1 --quiet";
+  auto expect_bad = [](const CliRun& r, const std::string& what) {
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_NE(r.err.find(what), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.out, "");
+  };
+  expect_bad(run_cli("--problem " + problem + " --steps 5 --pool-size 2147483647" + quiet), "--pool-size");
+  expect_bad(run_cli("--problem " + dir + " --steps 5" + quiet), dir + ": is a directory, not a file");
+  expect_bad(run_cli("--problem " + problem + " --steps -5" + quiet), "--steps: must be a number >= 0, not '-5'");
+  expect_bad(run_cli("--problem " + problem + " --steps 5 --agents 0" + quiet), "--agents: must be a positive number, not '0'");
+  expect_bad(run_cli("--problem " + problem + " --steps 5 --solver epibt --guidance " + dir + quiet),
+             dir + ": is a directory, not a file");
+  std::filesystem::create_directory(dir + "/simulation_time.json");
+  expect_bad(run_cli("--problem " + problem + quiet), dir + "/simulation_time.json: is a directory, not a file");
+  std::filesystem::remove(dir + "/simulation_time.json");
+  for (const std::string value : {"-5", "0", "\"600\"", "1.5"}) {
+    put("simulation_time.json", "{\"P-01\": " + value + "}");
+    expect_bad(run_cli("--problem " + problem + quiet), dir + "/simulation_time.json: 'P-01': steps must be an integer");
+  }
+  put("simulation_time.json", "{\"01\": 7}");  // the longest key ending the name; --steps wins
+  CliRun r = run_cli("--problem " + problem + quiet);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["makespan"], 7);
+  r = run_cli("--problem " + problem + " --steps 3" + quiet);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out)["makespan"], 3);
+}
+
+// A run that cannot progress warns in one line and says so in the log: errands in another
+// component than their agent (a wall splits the row), or two agents that must swap in a
+// corridor (the planner proves the epoch unsolvable). Both ran silently to rc 0 with 0 tasks.
+TEST(LifelongCli, RunsThatCannotProgressWarn)
+{
+  const std::string dir = test::temp_dir("stuck");
+  auto put = [&](const std::string& name, const std::string& text) { std::ofstream(dir + "/" + name) << text; };
+  put("split.map", "type octile\nheight 1\nwidth 5\nmap\n..@..\n");
+  put("corr.map", "type octile\nheight 1\nwidth 5\nmap\n.....\n");
+  put("a.agents", "2\n0\n4\n");
+  put("split.tasks", "2\n3\n1\n");
+  put("corr.tasks", "2\n4\n0\n");
+  for (const std::string name : {"split", "corr"})
+    put(name + ".json", "{\"mapFile\":\"" + name + ".map\",\"agentFile\":\"a.agents\",\"teamSize\":2,\"taskFile\":\"" + name +
+                            ".tasks\",\"numTasksReveal\":1,\"taskAssignmentStrategy\":\"roundrobin\"}");
+  CliRun r = run_cli("--problem " + dir + "/split.json --steps 20 --budget-ms 1 --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["numTaskFinished"], 0);
+  EXPECT_EQ(j["unreachableGoals"], 2);
+  EXPECT_EQ(r.err.rfind("rtlacam-lifelong: warning: 2 agent(s) at the end cannot reach their goal", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  r = run_cli("--problem " + dir + "/corr.json --steps 50 --budget-ms 1 --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["unreachableGoals"], 0);
+  EXPECT_EQ(j["unsolvableEpoch"], true);
+  EXPECT_NE(r.err.find("warning: the planner proved the last epoch's goals unsolvable"), std::string::npos) << r.err;
+  // A run that progresses: no warning.
+  r = run_cli("--problem " + ttest::kData + "/2024/random.domain/RANDOM-01.json --agents 10 --steps 20 --budget-ms 1 --quiet");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["unreachableGoals"], 0);
+  EXPECT_EQ(j["unsolvableEpoch"], false);
 }

@@ -94,6 +94,24 @@ TEST(LorrProblem, SimulationTimeMustBeAnObject)
   expect_error([&] { load_lorr_problem(p); }, {dir + "/simulation_time.json: expected a JSON object of instance name -> steps"});
 }
 
+// A key given twice in one object is an error naming it (nlohmann kept the last one
+// silently: a second "mapFile" replaced the first); the same key in two objects is fine.
+TEST(LorrProblem, DuplicateKeysAreAnError)
+{
+  const std::string p = test::temp_file("dupkey.json", kProblemHead + R"("numTasksReveal":1.5,"mapFile":"x"})");
+  expect_error([&] { load_lorr_problem(p); }, {p + ": key 'mapFile' appears twice in one object"});
+  const std::string ok = test::temp_file("nested.json", kProblemHead + R"("extra":{"mapFile":1,"a":{"mapFile":2}}})");
+  EXPECT_EQ(load_lorr_problem(ok).team_size, 100);
+}
+
+// A UTF-8 byte order mark before an agents file's count is skipped, as in .map / .scen.
+TEST(LorrFiles, ByteOrderMarkIsSkipped)
+{
+  const planner::Graph g = planner::load_map(kMap2023);
+  const std::string p = test::temp_file("bom.agents", "\xEF\xBB\xBF" "1\n516\n");
+  EXPECT_EQ(load_lorr_agents(p, g), planner::Config{g.at(516 % 32, 516 / 32)});
+}
+
 TEST(LorrFiles, ReadsAgentsAndTasks)
 {
   const planner::Graph g = planner::load_map(kMap2023);

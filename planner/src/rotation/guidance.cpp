@@ -158,6 +158,7 @@ bool cheap_arcs_strongly_connected(const Graph& g, const Guidance& gd, uint16_t 
 Guidance load_guidance(const Graph& g, const std::string& path)
 {
   if (!g.is_grid()) throw input_error(path, 0, "guidance needs a grid map");
+  check_not_directory(path);  // else read as an empty guidance file
   std::ifstream in(path);
   if (!in) throw input_error(path, 0, "cannot open guidance file");
   Guidance gd;
