@@ -283,7 +283,7 @@ TEST(BadInput, ADeadEndNetIsBadInput)
 // --no-left-connections): only a jump could drive it, so it is bad input before SUMO starts.
 TEST(BadInput, ANetNeedingJumpsIsBadInput)
 {
-  expect_bad_net("no_left_turns", "junction '", "(an AGV would have to jump");
+  expect_bad_net("no_left_turns", "junction '", "an AGV would have to jump");
 }
 
 // A goal on a component gridify dropped: the error says gridify dropped it.
