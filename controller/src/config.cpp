@@ -549,7 +549,7 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
 
   const YAML::Node u = root["run"];
   r.keys(u, "run", {"tick_s", "max_ticks", "backend", "gui", "gui_delay_ms", "port", "order", "progress_s", "executor",
-                    "window", "drain", "replan_on_stuck", "stuck_after_s", "stuck_learn", "relative_braking", "same_step_starts", "switch_passages",
+                    "window", "drain", "replan_on_stuck", "stuck_after_s", "stuck_learn", "relative_braking", "leader_decel", "same_step_starts", "switch_passages",
                     "chain_to_end", "gap_handover", "lane_speeds", "epoch_in_budget", "out_and_back",
                     "cut_loops", "out_and_back_rules", "plan_completions"});
   r.number(u, "run", "tick_s", c.run.tick_s, 0, true);
@@ -573,6 +573,9 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
   r.number(u, "run", "stuck_after_s", c.run.stuck_after_s, 0, true);
   r.flag(u, "run", "stuck_learn", c.run.stuck_learn);
   r.flag(u, "run", "relative_braking", c.run.relative_braking);
+  r.number(u, "run", "leader_decel", c.run.leader_decel, 0);
+  if (c.run.leader_decel > 0 && c.run.leader_decel < c.fleet.vtype.decel)
+    r.fail("run.leader_decel", "must be >= fleet.vtype.decel (" + Reader::fmt(c.fleet.vtype.decel) + "): every AGV can brake that hard");
   r.flag(u, "run", "same_step_starts", c.run.same_step_starts);
   r.integer(u, "run", "switch_passages", c.run.switch_passages, 0, 1000);
   r.flag(u, "run", "chain_to_end", c.run.chain_to_end);

@@ -397,7 +397,9 @@ double Driver::gap(const executor::Action& a, double end) const
 
 double Driver::sure_travel(int i) const
 {
-  const double b = p_.decel * p_.dt;
+  // The leader braking at leader_decel >= the follower's decel: the gap only shrinks until
+  // the follower stops, so the stopping points alone decide.
+  const double b = std::max(p_.decel, p_.leader_decel) * p_.dt;
   double d = 0;
   for (double u = agv_[i].v - b; u > 1e-12; u -= b) d += u * p_.dt;
   return d;

@@ -180,6 +180,7 @@ void Run::loop_adg()
   dp.length = cfg_.fleet.vtype.length;
   dp.margin = cfg_.fleet.vtype.min_gap;
   dp.sure_travel = cfg_.run.relative_braking;
+  dp.leader_decel = cfg_.run.leader_decel > 0 ? cfg_.run.leader_decel : dp.decel;
   dp.same_step_starts = cfg_.run.same_step_starts;
   dp.switch_passages = cfg_.run.switch_passages;
   dp.exact_chain = cfg_.run.chain_to_end;

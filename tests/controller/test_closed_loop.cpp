@@ -224,6 +224,34 @@ TEST(ClosedLoop, AdditionalFileErrorsNameTheirKey)
       << what;
 }
 
+// Relative braking counts on a leader's braking distance at run.leader_decel (default the
+// vType's decel, which no AGV exceeds by itself). Outside stops at 8 m/s^2 against decel 1
+// (a bumper, a person) left followers too close and they hit their leader; with
+// leader_decel 8 the same runs finish without a collision.
+TEST(ClosedLoop, LeaderDecelKeepsFollowersClearOfHardOutsideStops)
+{
+  int collided_default = 0;
+  for (unsigned seed : {1u, 2u, 3u, 4u})
+    for (double ld : {0.0, 8.0}) {
+      Config cfg = agv_config("leader_decel_" + std::to_string(seed) + "_" + std::to_string(static_cast<int>(ld)), "adg-follow");
+      cfg.run.leader_decel = ld;
+      Controller c(cfg);
+      ctest_util::OutsideStops stops(cfg.fleet.count, 3, 1, 5, 8.0, cfg.sumo.step_length, seed);
+      stops.attach(c);
+      const Metrics m = c.run();
+      std::printf("leader_decel %.0f seed %u: error '%s' makespan %lld held %lld\n", ld, seed, m.error.c_str(), m.makespan,
+                  stops.steps_held);
+      if (ld == 0) {
+        collided_default += !m.error.empty();
+        continue;
+      }
+      EXPECT_EQ(m.error, "") << "seed " << seed;
+      EXPECT_TRUE(m.solved) << "seed " << seed;
+      ctest_util::expect_no_sumo_collision(cfg.output.dir);
+    }
+  EXPECT_GT(collided_default, 0) << "no run collided without leader_decel: the test shows nothing";
+}
+
 TEST(ClosedLoop, ShippedSmallWarehouseAbsorbsOutsideStops)
 {
   for (const char* ex : {"adg", "adg-follow"}) {

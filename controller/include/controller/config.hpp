@@ -240,6 +240,10 @@ struct RunSection {
   bool stuck_learn = true;
   // adg-follow flow (controller/driver.hpp DriveParams; switches for tests and benches):
   bool relative_braking = true;      // count on a leader's sure travel when following
+  // The hardest a leader may be stopped (by itself or from outside: a bumper, a person), m/s^2,
+  // that its followers must survive: its sure travel is its braking distance at this decel.
+  // 0: the vType's decel (no AGV brakes harder by itself).
+  double leader_decel = 0;
   bool same_step_starts = true;      // a move released by another start in a step starts in it
   // adg / adg-follow: a ready AGV passes a cell before a late one (Adg::try_switch); 0: off,
   // k >= 1: the late one has at least k moves to make before it enters the cell.

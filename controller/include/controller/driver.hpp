@@ -104,6 +104,9 @@ struct DriveParams {
   // nor does an outside stop), and may enter the leader's cell once the leader is sure to
   // arrive. Off: brick-wall following (the leader could stop dead; the cell waits for its arrival).
   bool sure_travel = true;
+  // The decel the sure travel is counted at (>= decel): a leader stopped harder than its own
+  // decel from outside (8 m/s^2 against decel 1) left its follower too close (session 47).
+  double leader_decel = 1.0;
   // Chaining into a leader's cell measures the stopping point from the end of the new move
   // (off: from its start, a move short -- a follower then stops at each cell behind a moving leader).
   bool exact_chain = true;
