@@ -474,6 +474,9 @@ TEST(FailSafe, RunOrderConfigErrors)
             "t.yaml: run.order: only with run.port (a SUMO started with --num-clients, which this client joins)");
   EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 0}\n").rfind("t.yaml: run.order: ", 0), 0u);
   EXPECT_EQ(ctest_util::config_error(net + "run: {port: 8813, order: 2}\n"), "(no error)");
+  // A leader cannot be assumed to brake softer than any AGV can.
+  EXPECT_EQ(ctest_util::config_error(net + "run: {leader_decel: 0.5}\n"),
+            "t.yaml: run.leader_decel: must be >= fleet.vtype.decel (2): every AGV can brake that hard");
   // A port is a TraCI one: without run.backend the run joins over TraCI; an embedded SUMO
   // (run.backend libsumo) cannot join it, and ignored it unseen.
   EXPECT_EQ(controller::parse_config(net + "run: {port: 8813}\n", "t.yaml", RTLACAM_CONFIGS).run.backend, "traci");
