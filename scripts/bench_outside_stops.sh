@@ -7,8 +7,10 @@
 # the same net, executor and instance), then SEEDS runs in which 10 % of the AGVs are each
 # stopped for 1-5 s after every pause of 3-15 s (braked at their vType's decel, held at 0).
 # Nets: the shipped small warehouse (16 AGVs), a warehouse of dead-end aisles only
-# (sumo_scenarios/tree.net.xml, 10 AGVs), and the small net with 2 m cells and 1.6 m AGVs
-# (10 AGVs) -- the nets of tests/controller/test_closed_loop.cpp. No delay model (the only
+# (sumo_scenarios/tree.net.xml, 10 AGVs), the small net with 2 m cells and 1.6 m AGVs
+# (10 AGVs), and a 3 x 3 grid of 8.99 m / 4 m aisles in 1 m cells (tests/data/controller/tolgrid,
+# 12 AGVs: aisles within grid.tolerance of whole cells, as netconvert writes random or diagonal
+# nets) -- the nets of tests/controller/test_closed_loop.cpp. NETS="..." picks some. No delay model (the only
 # stops are the outside ones); planner budget 1 ms; replan_on_stuck as configured (on).
 # Per run: exit code, error, solved, makespan, the physical bound and makespan / bound,
 # makespan / the baseline's, steps the second client held an AGV, SUMO collisions (second
@@ -42,6 +44,7 @@ yaml() {  # name executor -> a run config on stdout
     small) net="$SC/small.net.xml"; add="$SC/small.add.xml" ;;
     tree) net="$SC/tree.net.xml"; add=""; n=10 ;;
     long) net="$SC/small.net.xml"; add="$SC/small.add.xml"; cell=2.0; len=1.6; gap=0.2; n=10 ;;
+    tolgrid) net="$ROOT/tests/data/controller/tolgrid.net.xml"; add=""; n=12 ;;
   esac
   cat <<EOF
 sumo:
@@ -111,7 +114,7 @@ EOF
 
 HEAD="net\texecutor\tseed\tstop_share\texit\terror\tsolved\tmakespan\tbound\tmakespan/bound\theld_steps\tcollision_steps\tcollision_xml\tmax_decel_fcd\tmax_accel_fcd\tmoving_5s_after\tpresent_5s_after\tpresent_at_detach"
 printf "%b\n" "$HEAD" > "$OUT/runs.tsv"
-for name in small tree long; do
+for name in ${NETS:-small tree long tolgrid}; do
   for ex in adg-follow adg; do
     one "$name" "$ex" 0 0 >> "$OUT/runs.tsv"  # baseline: no outside stops
     for ((s = 1; s <= SEEDS; ++s)); do one "$name" "$ex" "$s" 0.1 >> "$OUT/runs.tsv"; done
