@@ -206,13 +206,19 @@ static const char* controlled_sumo_option(const std::string& opt)
 
 // yaml-cpp keeps both entries of a repeated key and lookups find the first, so a typo'd
 // second "tick_s:" would be ignored without a word: every mapping is checked up front.
-static void check_duplicate_keys(const Reader& r, const YAML::Node& n, const std::string& key)
+// `seen`: the maps and sequences walked so far. An alias names a node already walked: once is
+// enough -- a node aliasing itself (`a: &a {b: *a}`) recursed until the stack overflowed, and
+// ten levels of ten aliases walked 10^10 nodes.
+static void check_duplicate_keys(const Reader& r, const YAML::Node& n, const std::string& key, std::vector<YAML::Node>& seen_nodes)
 {
+  if (!n.IsSequence() && !n.IsMap()) return;
+  for (const YAML::Node& s : seen_nodes)
+    if (s.is(n)) return;
+  seen_nodes.push_back(n);
   if (n.IsSequence()) {
-    for (size_t i = 0; i < n.size(); ++i) check_duplicate_keys(r, n[i], key + "[" + std::to_string(i) + "]");
+    for (size_t i = 0; i < n.size(); ++i) check_duplicate_keys(r, n[i], key + "[" + std::to_string(i) + "]", seen_nodes);
     return;
   }
-  if (!n.IsMap()) return;
   std::map<std::string, int> seen;  // key -> line (1-based)
   for (const auto& kv : n) {
     if (!kv.first.IsScalar()) continue;  // Reader::keys names complex keys
@@ -222,7 +228,7 @@ static void check_duplicate_keys(const Reader& r, const YAML::Node& n, const std
     if (!fresh)
       r.fail(path, "duplicate key (line " + std::to_string(kv.first.Mark().line + 1) + "; first on line " +
                        std::to_string(it->second) + ")");
-    check_duplicate_keys(r, kv.second, path);
+    check_duplicate_keys(r, kv.second, path, seen_nodes);
   }
 }
 
@@ -304,7 +310,8 @@ Config parse_config(const std::string& yaml, const std::string& name, const std:
     r.fail("", "not valid YAML: line " + std::to_string(e.mark.line + 1) + ": " + e.msg);
   }
   if (!root.IsMap()) r.fail("", "expected a mapping with sections sumo, grid, fleet, planner, tasks, run, output");
-  check_duplicate_keys(r, root, "");
+  std::vector<YAML::Node> walked;
+  check_duplicate_keys(r, root, "", walked);
   r.keys(root, "", {"sumo", "grid", "fleet", "planner", "tasks", "run", "delays", "output", "rules"});
 
   Config c;

@@ -236,6 +236,9 @@ void Run::prepare()
     pref_ = std::make_unique<policy::PolicyPreference>(g, model_, planner::Config{});
   }
   dir_ = cfg_.output.dir;
+  // The vType file written there goes to SUMO's -a, a list SUMO splits at commas.
+  if (dir_.find(',') != std::string::npos)
+    throw ConfigError(cfg_.path + ": output.dir: '" + dir_ + "' contains ',' (SUMO splits its file lists at commas)");
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (!fs::is_directory(dir_)) throw ConfigError(cfg_.path + ": output.dir: cannot create '" + dir_ + "'");
@@ -818,12 +821,21 @@ void Run::stop_all()
     const int limit = static_cast<int>(std::ceil(1.5 * cfg_.fleet.vtype.max_speed / (decel * dt))) + 8;
     for (int s = 0; s <= limit; ++s) {
       bool moving = false;
+      // One AGV that vanishes meanwhile (removed from outside) must not end the others'
+      // stop: they kept their last speeds in a SUMO that outlived the controller.
+      std::vector<std::string> gone;
       for (const std::string& id : ids) {
-        const double v = sumo_->pose(id).speed;
-        if (v <= 0) continue;
-        moving = true;
-        sumo_->set_speed(id, physical ? std::max(0.0, v - decel * dt) : 0.0);
+        try {
+          const double v = sumo_->pose(id).speed;
+          if (v <= 0) continue;
+          moving = true;
+          sumo_->set_speed(id, physical ? std::max(0.0, v - decel * dt) : 0.0);
+        } catch (const std::exception&) {
+          if (!sumo_->running()) throw;
+          gone.push_back(id);
+        }
       }
+      for (const std::string& id : gone) ids.erase(std::find(ids.begin(), ids.end(), id));
       if (!moving) break;
       // Headings (adg): AGVs standing off their lane's angle keep their heading while the
       // others brake (SUMO would draw the lane's), a running turn stays where it got to.
@@ -831,6 +843,7 @@ void Run::stop_all()
         const std::vector<uint8_t> hold(cmd_->ids().size(), 1);
         cmd_->orient(&hold);
       }
+      if (c_.on_stop_step) c_.on_stop_step(*sumo_);
       sumo_->step();
       ++m_.end_stop_steps;
     }

@@ -7,8 +7,10 @@
 // Every call is a round trip (~12-40 us), so the controller reads poses once per tick.
 #include <libsumo/libtraci.h>
 
+#include <cctype>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <set>
 #include <sstream>
@@ -62,9 +64,17 @@ class TraciBackend : public ApiBackend {
       guarded("load", [&] { api::Simulation::load(absolute_files(args)); });
     } else {
       std::vector<std::string> cmd{binary_};
+      // libtraci joins the command into one line for a shell (popen): an output folder
+      // `o/x;touch${IFS}y` ran `touch`, `o/run(1)` broke the start. Only characters a shell
+      // takes literally pass (and any non-ASCII byte: UTF-8 names).
+      auto literal = [](unsigned char c) {
+        return std::isalnum(c) || c >= 0x80 || std::strchr("_./:,=+@%-", c) != nullptr;
+      };
       for (const std::string& a : args) {
-        if (a.find_first_of(" \t'\"") != std::string::npos)
-          throw SumoError("SUMO start: argument '" + a + "' contains a space or quote, which libtraci cannot pass");
+        for (unsigned char c : a)
+          if (!literal(c))
+            throw SumoError("SUMO start: argument '" + a + "' contains '" + std::string(1, static_cast<char>(c)) +
+                            "', which libtraci would hand to a shell (use a path of letters, digits and _./:,=+@%-)");
         cmd.push_back(a);
       }
       guarded("start", [&] { api::Simulation::start(cmd, -1, kRetries); });

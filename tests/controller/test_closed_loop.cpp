@@ -287,6 +287,71 @@ TEST(FailSafe, TickLimitBrakesEveryAgvToRestAtItsDecel)
   expect_all_at_rest(cfg, m, true);
 }
 
+// An AGV removed from outside while the final stop brakes the fleet: the others still come
+// to rest. Before, the stop's first failing call on the vanished AGV ended it, and the others
+// kept their speeds in a SUMO that outlived the controller.
+TEST(FailSafe, AnAgvVanishingDuringTheFinalStopLeavesTheOthersBraking)
+{
+  Config cfg = agv_config("end_vanish", "adg-follow");
+  cfg.run.max_ticks = 12;  // mid-drive
+  Controller c(cfg);
+  int removed = 0;
+  c.on_stop_step = [&](SumoBackend& sumo) {
+    if (removed > 0) return;
+    for (const std::string& id : sumo.vehicles())
+      if (sumo.pose(id).speed > 0.1) {
+        sumo.remove(id);
+        ++removed;
+        return;
+      }
+  };
+  const Metrics m = c.run();
+  EXPECT_EQ(removed, 1);
+  EXPECT_FALSE(m.solved);
+  expect_all_at_rest(cfg, m, true);
+}
+
+// Hostile configs (session 47's fault sweep): a YAML node aliasing itself overflowed the
+// stack, ten levels of ten aliases ran for minutes, a comma in output.dir split SUMO's -a
+// list, and an output.dir with shell syntax ran a command when libtraci started sumo.
+TEST(FailSafe, HostileConfigsAreOneLineErrors)
+{
+  const std::string net = "sumo:\n  net: ../sumo_scenarios/small.net.xml\nfleet: {count: 3}\n";
+  EXPECT_EQ(ctest_util::config_error("sumo: &s {net: ../sumo_scenarios/small.net.xml, x: *s}\nfleet: {count: 3}\n"),
+            "t.yaml: sumo.x: unknown key (expected one of: additional, extra_args, net, outputs, step_length)");
+  std::string bomb = net + "a0: &a0 [x, x, x, x, x, x, x, x, x, x]\n";
+  for (int i = 1; i < 10; ++i) {
+    bomb += "a" + std::to_string(i) + ": &a" + std::to_string(i) + " [";
+    for (int k = 0; k < 10; ++k) bomb += (k ? ", *a" : "*a") + std::to_string(i - 1);
+    bomb += "]\n";
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(ctest_util::config_error(bomb).rfind("t.yaml: a0: unknown key", 0), 0u);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+
+  Config c = agv_config("hostile", "adg");
+  c.output.dir = test::temp_dir("hostile") + "/a,b";
+  std::string what;
+  try {
+    Controller(c).run();
+  } catch (const ConfigError& e) {
+    what = e.what();
+  }
+  EXPECT_NE(what.find("output.dir: '" + c.output.dir + "' contains ','"), std::string::npos) << what;
+
+  const std::string base = test::temp_dir("hostile_traci");
+  c.run.backend = "traci";
+  c.output.dir = base + "/x;touch${IFS}" + base + "/INJECTED;y";
+  std::string error;
+  try {
+    error = Controller(c).run().error;
+  } catch (const std::exception& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("contains ';'"), std::string::npos) << error;
+  EXPECT_FALSE(std::ifstream(base + "/INJECTED").good()) << "the shell ran the command in output.dir";
+}
+
 TEST(FailSafe, ErrorOverTraciBrakesTheOthersToRestBeforeDetaching)
 {
   Config cfg = agv_config("end_error", "adg");

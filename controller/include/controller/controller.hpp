@@ -66,6 +66,9 @@ class Controller {
   // after the previous step (empty before the first): a second client acting on the AGVs
   // in the same step -- tests inject outside stops with it.
   std::function<void(SumoBackend& sumo, const std::vector<VehiclePose>& poses)> on_step;
+  // Called before every SUMO step of the final stop (every AGV braked to rest before the
+  // controller detaches): tests act on SUMO from outside there too.
+  std::function<void(SumoBackend& sumo)> on_stop_step;
   // Metres an AGV may be off its cell after a tick before it is re-synced.
   double tolerance = 1e-6;
 
