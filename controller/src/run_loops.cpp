@@ -455,7 +455,6 @@ void Run::finish()
   }
   if (cfg_.output.congestion && m_.ticks > 0) checked([&] { write_congestion(); });
   if (view_) m_.view = view_->stats();
-  checked([&] { planner::write_file(dir_ + "/metrics.json", m_.to_json().dump(2) + '\n'); });
   if (cfg_.output.plan) {
     planner::PlanHeader h;
     h.map_file = cfg_.sumo.net;
@@ -475,6 +474,10 @@ void Run::finish()
       });
     });
   }
+  // metrics.json last, so that it says whether an output failed (it said error "" for a run
+  // that exited 1 on "cannot write fcd.xml").
+  if (m_.error.empty() && !write_error.empty()) m_.error = write_error;
+  checked([&] { planner::write_file(dir_ + "/metrics.json", m_.to_json().dump(2) + '\n'); });
   if (!write_error.empty()) throw planner::OutputError(write_error);
 }
 

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -350,6 +351,25 @@ TEST(FailSafe, HostileConfigsAreOneLineErrors)
   }
   EXPECT_NE(error.find("contains ';'"), std::string::npos) << error;
   EXPECT_FALSE(std::ifstream(base + "/INJECTED").good()) << "the shell ran the command in output.dir";
+}
+
+// An output that cannot be written (a full disk) is in metrics.json's error: it was written
+// before plan.txt and the checks of SUMO's outputs, and said error "" for a run that failed.
+TEST(FailSafe, MetricsSayWhichOutputCouldNotBeWritten)
+{
+  Config c = agv_config("full_disk", "adg");
+  c.run.max_ticks = 5;
+  std::filesystem::create_directories(c.output.dir);
+  std::filesystem::create_symlink("/dev/full", c.output.dir + "/plan.txt");
+  std::string thrown;
+  try {
+    Controller(c).run();
+  } catch (const std::exception& e) {
+    thrown = e.what();
+  }
+  EXPECT_NE(thrown.find("plan.txt"), std::string::npos) << thrown;
+  const auto j = nlohmann::json::parse(ctest_util::slurp(c.output.dir + "/metrics.json"));
+  EXPECT_NE(j["error"].get<std::string>().find("cannot write '" + c.output.dir + "/plan.txt'"), std::string::npos) << j["error"];
 }
 
 TEST(FailSafe, ErrorOverTraciBrakesTheOthersToRestBeforeDetaching)
