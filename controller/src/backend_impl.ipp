@@ -123,6 +123,10 @@ class ApiBackend : public SumoBackend {
   {
     return call("Lane.getAllowed", [&] { return api::Lane::getAllowed(lane); });
   }
+  std::vector<std::string> lane_disallowed(const std::string& lane) override
+  {
+    return call("Lane.getDisallowed", [&] { return api::Lane::getDisallowed(lane); });
+  }
   void set_color(const std::string& id, int r, int g, int b, int a) override
   {
     call("Vehicle.setColor", [&] { api::Vehicle::setColor(id, libsumo::TraCIColor(r, g, b, a)); });

@@ -85,6 +85,26 @@ TEST(Rules, LanePermissionChangedOverTraciClosesCellsUntilReopened)
   EXPECT_NE(mo.error.find("Route replacement failed"), std::string::npos) << mo.error;
 }
 
+// Closed to every class (setDisallowed(lane, ['all'])): SUMO's getAllowed answers () as for
+// "all allowed", so the controller missed it and SUMO refused the route (session 47); the
+// disallowed list tells the two apart.
+TEST(Rules, LaneClosedToEveryClassOverTraciIsSeen)
+{
+  auto close_c1 = [](long long tick, SumoBackend&) {
+    if (tick == 0)
+      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"all"});
+    if (tick == 25)
+      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
+  };
+  Config cfg = rules_config("traci_all", kAround, "", "rules: {watch_lanes: true}\n");
+  Controller c(cfg);
+  c.on_tick = close_c1;
+  const Metrics m = c.run();
+  expect_clean(cfg, c, m);
+  EXPECT_EQ(entries(c.plan(), aisle_cells(c.map(), kAisleC1), 0, 25), 0);
+  EXPECT_EQ(m.rules.closure_changes, 2);
+}
+
 TEST(Rules, ZonePolygonHoldsOneAgvAtATime)
 {
   // The zone: the cells of aisle c1 (x = 4 m, y = 1..7 m), as a SUMO polygon.

@@ -91,6 +91,9 @@ class SumoBackend {
   // The vehicle classes a lane allows now (empty: every class): lane permissions another
   // TraCI client may change at run time (rules.hpp polls them).
   virtual std::vector<std::string> lane_allowed(const std::string& lane) = 0;
+  // The classes it disallows: SUMO answers getAllowed with () both for "all" and for "none"
+  // (setDisallowed(lane, ['all'])), so a lane closed to every class shows only here.
+  virtual std::vector<std::string> lane_disallowed(const std::string& lane) = 0;
 
   // What a person sees (fleet_view.hpp): a vehicle's colour, and outline polygons drawn at
   // their real size under the vehicles, with a type (sumo-gui can show it).
