@@ -1,5 +1,7 @@
 #include "planner/stop_signal.hpp"
 
+#include <unistd.h>
+
 #include <csignal>
 #include <initializer_list>
 
@@ -13,6 +15,11 @@ extern "C" void on_stop_signal(int sig)
 {
   if (g_signal == 0) g_signal = sig;
   std::signal(sig, SIG_DFL);  // a second one kills at once (async-signal-safe)
+  // A process blocked where no loop polls the flag (a TraCI read from a frozen SUMO, or one
+  // waiting for the other clients of --num-clients) ignored the request for ever: SIGALRM
+  // (default: terminate) ends it kStopGraceS later unless it has exited by then.
+  std::signal(SIGALRM, SIG_DFL);
+  ::alarm(kStopGraceS);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <unistd.h>
 
 #include <csignal>
 
@@ -95,6 +96,11 @@ TEST(StopSignal, HandlerRecordsTheFirstSignalOnly)
   struct sigaction sa {};
   sigaction(SIGTERM, nullptr, &sa);
   EXPECT_EQ(sa.sa_handler, SIG_DFL);
+  // ... and set the watchdog: a process that cannot get to its end path (blocked on a frozen
+  // SUMO) is ended kStopGraceS later. Cancelled here, the test process lives on.
+  const unsigned left = ::alarm(0);
+  EXPECT_GT(left, planner::kStopGraceS - 5);
+  EXPECT_LE(left, planner::kStopGraceS);
 }
 
 TEST(StopSignal, ASignalIgnoredAtStartStaysIgnored)
