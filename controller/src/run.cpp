@@ -241,7 +241,9 @@ void Run::prepare()
     throw ConfigError(cfg_.path + ": output.dir: '" + dir_ + "' contains ',' (SUMO splits its file lists at commas)");
   std::error_code ec;
   fs::create_directories(dir_, ec);
-  if (!fs::is_directory(dir_)) throw ConfigError(cfg_.path + ": output.dir: cannot create '" + dir_ + "'");
+  if (!fs::is_directory(dir_))
+    throw ConfigError(cfg_.path + ": output.dir: cannot create '" + dir_ + "'" +
+                      (ec ? ": " + ec.message() : fs::exists(dir_) ? ": a file of that name is there" : ""));
   for (const gridify::Aisle& a : c_.map_.aisles) max_spacing_ = std::max(max_spacing_, a.spacing);
 
   sumo_ = make_backend(cfg_.run);
