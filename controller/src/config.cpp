@@ -777,6 +777,11 @@ Config load_config(const std::string& path)
 {
   std::ifstream in(path);
   if (!in) throw ConfigError(path + ": cannot open the config file");
+  // A folder read as "expected a mapping"; /dev/zero was read for ever.
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw ConfigError(path + ": is a directory, not a config file");
+  if (!fs::is_regular_file(path, ec) && !fs::is_fifo(path, ec))
+    throw ConfigError(path + ": not a regular file (a config is a YAML file)");
   std::stringstream ss;
   ss << in.rdbuf();
   fs::path base = fs::path(path).parent_path();

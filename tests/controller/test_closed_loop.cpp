@@ -329,6 +329,17 @@ TEST(FailSafe, HostileConfigsAreOneLineErrors)
   const auto t0 = std::chrono::steady_clock::now();
   EXPECT_EQ(ctest_util::config_error(bomb).rfind("t.yaml: a0: unknown key", 0), 0u);
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.0);
+  // Not a file: /dev/zero was read for ever, a folder said "expected a mapping".
+  for (const auto& [path, msg] : {std::pair<std::string, std::string>{"/dev/zero", "/dev/zero: not a regular file"},
+                                  {RTLACAM_CONFIGS, std::string(RTLACAM_CONFIGS) + ": is a directory"}}) {
+    std::string what;
+    try {
+      load_config(path);
+    } catch (const ConfigError& e) {
+      what = e.what();
+    }
+    EXPECT_EQ(what.rfind(msg, 0), 0u) << what;
+  }
 
   Config c = agv_config("hostile", "adg");
   c.output.dir = test::temp_dir("hostile") + "/a,b";
