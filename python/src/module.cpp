@@ -301,7 +301,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
                     int agents, bool reassign, const std::string& policy_file, const py::object& battery,
                     const std::vector<Vertex>& chargers, int pool_size, int k_nearest, const py::object& queues,
                     const py::object& urgency, const py::object& parking, const std::optional<std::string>& action_model,
-                    const py::object& rotation)
+                    const py::object& rotation, int highways)
 {
   using namespace tasks;
   // As rtlacam-lifelong's option checks: NaN, a negative count or a negative step count was
@@ -312,9 +312,13 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   if (steps < -1)
     throw py::value_error("steps: must be >= 0 (-1: the problem's simulation_time.json entry), not " + std::to_string(steps));
   if (pool_size < 0) throw py::value_error("pool_size: must be >= 0 (0: the problem's), not " + std::to_string(pool_size));
+  if (highways < 0 || highways > 1000) throw py::value_error("highways: must be in [0, 1000], not " + std::to_string(highways));
   // Naming a rotation solver is enough: the action model follows from it (issue 20).
   const Solver kind = parse_solver(solver);
   const std::string actions = action_model ? *action_model : plans_rotation(kind) ? "rotation" : "grid4";
+  // rtlacam-lifelong --highways (apps/lifelong_cli.hpp): off by default in lifelong runs.
+  if (highways > 0 && kind != Solver::RtLacam && kind != Solver::Naive)
+    throw InputError("highways needs solver rtlacam or naive (a LaCAM planner)");
   if (actions != "grid4" && actions != "rotation")
     throw InputError("action_model: must be 'grid4' or 'rotation', not '" + actions + "'");
   if (plans_rotation(kind) && actions == "grid4")
@@ -353,6 +357,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   LifelongOptions opt;
   opt.solver.pref = pref.get();
   apply_rotation(kind, rs, g, opt.solver);
+  opt.solver.lacam.highways = highways;
   opt.action_model = parse_action_model(actions);
   opt.steps = steps;
   opt.budget = Budget::time_ms(budget_ms);
@@ -364,6 +369,7 @@ py::object lifelong(const std::string& problem_file, const std::string& solver, 
   }
   nlohmann::json j = lifelong_log(RunInfo{problem_file, solver, layer.mode, assigner, pr.team_size, budget_ms, seed}, r);
   if (pref) j["policy"] = policy_file;
+  if (highways > 0) j["highways"] = highways;
   // rtlacam-lifelong's solver fields (apps/lifelong_cli.hpp SolverCli::describe).
   if (plans_rotation(kind) && rs.guidance == "arrows")
     j["guidance"] = "arrows " + std::to_string(rs.guidance_costs[0]) + "," + std::to_string(rs.guidance_costs[1]) + "," +
@@ -612,7 +618,7 @@ PYBIND11_MODULE(_rtlacam, m)
         py::arg("policy") = "", py::arg("battery") = py::none(), py::arg("chargers") = std::vector<Vertex>{},
         py::arg("pool_size") = 0, py::arg("k_nearest") = 32, py::arg("queues") = py::none(),
         py::arg("urgency") = py::none(), py::arg("parking") = py::none(), py::arg("action_model") = py::none(),
-        py::arg("rotation") = py::none(),
+        py::arg("rotation") = py::none(), py::arg("highways") = 0,
         "a lifelong run on a League of Robot Runners problem JSON; returns rtlacam-lifelong's log (a dict). "
         "action_model: 'grid4' | 'rotation' (LoRR's headings, a step per quarter turn); default 'rotation' for the "
         "rotation solvers (pibt-rot, epibt, wppl: they need it), else 'grid4'. rotation: rotation solvers only, a dict "
@@ -620,7 +626,8 @@ PYBIND11_MODULE(_rtlacam, m)
         "against, turn], traffic_flow, depth, lns_rounds, revisit, priority: 'distance' | 'age', pocket_exit, "
         "leavers_first, window, neighbourhood; each only with the solver that reads it); unset keys take "
         "rtlacam-lifelong's defaults (arrows guidance for pibt-rot and epibt, none for wppl; traffic flow for epibt; "
-        "priority 'distance'). "
+        "priority 'distance'). highways: rtlacam / naive, rtlacam-lifelong --highways (PIBT ranks a move against a "
+        "1-wide aisle's grain as 1 + highways; default 0, off). "
         "The task layer takes the SUMO controller's YAML options (tasks.*, fleet.battery): mode (tasks.assignment: "
         "roundrobin | pool; default the problem's), assigner, pool_size (0: the problem's), k_nearest, reassign; "
         "queues: a dict of tasks.queues' keys (capacity, length, admission, fifo, in_line (default True with epibt), clear_after, jam_after, one_way, leavers_first); urgency: a dict of tasks.urgency's "

@@ -268,3 +268,33 @@ def test_lifelong_bad_values_raise():
 def test_lifelong_log_says_whether_the_agents_could_progress():
     log = rtlacam.lifelong(PROBLEM, steps=10, budget_ms=1, agents=5)
     assert log["unreachableGoals"] == 0 and log["unsolvableEpoch"] is False
+
+
+def test_lifelong_highways_are_the_clis(tmp_path):
+    # rtlacam-lifelong --highways P from Python: the same run as the app's, and another run
+    # than with them off (a map with 1-wide aisles: warehouse-10-20-10-2-1).
+    app = os.path.join(ROOT, "build", "apps", "rtlacam-lifelong")
+    if not os.path.exists(app):
+        pytest.skip("rtlacam-lifelong not built in build/")
+    m = os.path.join(DATA, "planner", "warehouse-10-20-10-2-1.map")
+    rows = open(m).read().split("\n")[4:]
+    free = [y * len(rows[0]) + x for y, r in enumerate(rows) for x, c in enumerate(r) if c == "."]
+    (tmp_path / "a.agents").write_text("60\n" + "".join(f"{free[(i * 90) % len(free)]}\n" for i in range(60)))
+    tasks = free[5::37]
+    (tmp_path / "t.tasks").write_text(f"{len(tasks)}\n" + "".join(f"{v}\n" for v in tasks))
+    prob = tmp_path / "hw.json"
+    prob.write_text(json.dumps({"mapFile": m, "agentFile": str(tmp_path / "a.agents"), "taskFile": str(tmp_path / "t.tasks"),
+                                "teamSize": 60, "numTasksReveal": 1, "taskAssignmentStrategy": "roundrobin"}))
+    args = dict(solver="rtlacam", steps=120, budget_ms=1000, budget_expansions=30, seed=2)
+    on = rtlacam.lifelong(str(prob), highways=1, **args)
+    off = rtlacam.lifelong(str(prob), **args)
+    assert on["highways"] == 1 and "highways" not in off
+    assert on["numPlannerErrors"] == 0 and off["numPlannerErrors"] == 0
+    out = subprocess.run([app, "--problem", str(prob), "--solver", "rtlacam", "--steps", "120", "--budget-ms", "1000",
+                          "--budget-expansions", "30", "--seed", "2", "--highways", "1", "--quiet", "--out",
+                          str(tmp_path / "app.json")], capture_output=True, text=True, check=True)
+    ref = json.load(open(tmp_path / "app.json"))
+    assert on["events"] == ref["events"] and on["numTaskFinished"] == ref["numTaskFinished"]
+    assert on["events"] != off["events"]
+    with pytest.raises(ValueError, match="highways needs solver rtlacam or naive"):
+        rtlacam.lifelong(str(prob), solver="pibt", highways=1, steps=5)
