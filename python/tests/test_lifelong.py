@@ -294,7 +294,8 @@ def test_lifelong_highways_are_the_clis(tmp_path):
                           "--budget-expansions", "30", "--seed", "2", "--highways", "1", "--quiet", "--out",
                           str(tmp_path / "app.json")], capture_output=True, text=True, check=True)
     ref = json.load(open(tmp_path / "app.json"))
-    assert on["events"] == ref["events"] and on["numTaskFinished"] == ref["numTaskFinished"]
+    assert on["highways"] == ref["highways"] == 1
+    assert (on["numTaskFinished"], on["numErrandFinished"]) == (ref["numTaskFinished"], ref["numErrandFinished"])
     assert on["events"] != off["events"]
     with pytest.raises(ValueError, match="highways needs solver rtlacam or naive"):
         rtlacam.lifelong(str(prob), solver="pibt", highways=1, steps=5)
