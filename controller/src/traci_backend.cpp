@@ -59,7 +59,13 @@ class TraciBackend : public ApiBackend {
     struct sigaction old {};
     if (::sigaction(SIGPIPE, nullptr, &old) == 0 && old.sa_handler == SIG_DFL) std::signal(SIGPIPE, SIG_IGN);
     if (port_ > 0) {
-      guarded("connect", [&] { api::Simulation::init(port_, kRetries); });
+      try {
+        guarded("connect", [&] { api::Simulation::init(port_, kRetries); });
+      } catch (const SumoError& e) {
+        // libtraci's own word for "nobody listens" is "send failed: Broken pipe".
+        throw SumoError(std::string(e.what()) + " (no SUMO answered on port " + std::to_string(port_) + " for " +
+                        std::to_string(kRetries) + " s: start sumo --remote-port " + std::to_string(port_) + " first)");
+      }
       if (order_ > 0) guarded("setOrder", [&] { api::Simulation::setOrder(order_); });
       guarded("load", [&] { api::Simulation::load(absolute_files(args)); });
     } else {
