@@ -18,6 +18,23 @@ enum Exit : int { kOk = 0, kRuntimeError = 1, kBadInput = 2, kInvalidPlan = 3, k
 // SIGINT -> 130, SIGTERM -> 143 (the shell's convention for a process a signal ended).
 inline int signal_exit(int sig) { return 128 + sig; }
 
+// `s` as a number into `v`: "" when it reads whole, else why not. A magnitude beyond double
+// (1e400) reads as +-HUGE_VAL with `overflow_is_huge`, else as not a number.
+inline std::string read_number(const std::string& s, double& v, bool overflow_is_huge)
+{
+  try {
+    size_t used = 0;
+    v = std::stod(s, &used);
+    if (used != s.size()) return "'" + s + "' is not a number";
+  } catch (const std::out_of_range&) {
+    if (!overflow_is_huge) return "'" + s + "' is not a number";
+    v = s.find('-') == std::string::npos ? HUGE_VAL : -HUGE_VAL;
+  } catch (const std::exception&) {
+    return "'" + s + "' is not a number";
+  }
+  return "";
+}
+
 // A number in [lo, hi]: CLI::Range lets NaN through (every comparison with it is false),
 // and a negative or infinite budget or limit would run unbounded.
 inline CLI::Validator finite_range(double lo, double hi)
@@ -25,13 +42,7 @@ inline CLI::Validator finite_range(double lo, double hi)
   return CLI::Validator(
       [lo, hi](std::string& s) -> std::string {
         double v = 0;
-        try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) return "'" + s + "' is not a number";
-        } catch (const std::exception&) {
-          return "'" + s + "' is not a number";
-        }
+        if (std::string bad = read_number(s, v, false); !bad.empty()) return bad;
         if (!(v >= lo && v <= hi)) return "'" + s + "' is out of range [" + CLI::detail::to_string(lo) + ", " +
                                           CLI::detail::to_string(hi) + "]";
         return "";
@@ -49,15 +60,8 @@ inline CLI::Validator at_least(bool strict)
   return CLI::Validator(
       [strict, want](std::string& s) -> std::string {
         double v = 0;
-        try {
-          size_t used = 0;
-          v = std::stod(s, &used);
-          if (used != s.size()) return "'" + s + "' is not a number";
-        } catch (const std::out_of_range&) {
-          v = s.find('-') == std::string::npos ? HUGE_VAL : -HUGE_VAL;  // 1e400: too large, not "not a number"
-        } catch (const std::exception&) {
-          return "'" + s + "' is not a number";
-        }
+        // 1e400: too large, not "not a number".
+        if (std::string bad = read_number(s, v, true); !bad.empty()) return bad;
         if (!std::isfinite(v) || (strict ? v <= 0 : v < 0)) return "must be " + want + ", not '" + s + "'";
         return "";
       },

@@ -289,13 +289,14 @@ bool Rules::update(double t, SumoBackend* sumo)
   if (sumo)
     for (const std::string& l : watched_) {
       const std::vector<std::string> allowed = sumo->lane_allowed(l);
+      const bool listed = std::find(allowed.begin(), allowed.end(), kAgvClass) != allowed.end();
       // Empty: every class may use it -- or none (closed to all): the disallowed list tells.
-      const bool closed = allowed.empty() ? [&] {
+      if (allowed.empty()) {
         const std::vector<std::string> no = sumo->lane_disallowed(l);
-        return std::find(no.begin(), no.end(), kAgvClass) != no.end();
-      }()
-                                          : std::find(allowed.begin(), allowed.end(), kAgvClass) == allowed.end();
-      if (closed) lanes_closed_.push_back(l);
+        if (std::find(no.begin(), no.end(), kAgvClass) != no.end()) lanes_closed_.push_back(l);
+      } else if (!listed) {
+        lanes_closed_.push_back(l);
+      }
     }
   if (!lanes_closed_.empty()) {
     for (const Arc& a : arcs_of_lanes(lanes_closed_)) arcs.push_back({a, -2});

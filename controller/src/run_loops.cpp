@@ -92,8 +92,7 @@ void Run::loop_lockstep()
     }
     // A step stretched over several ticks that would end past run.max_ticks is not started:
     // the limit is the run's last tick (a 5-tick run took 6).
-    if (ticks > 1 || lane > ticks)
-      if (m_.ticks + lane > cfg_.run.max_ticks) break;
+    if (m_.ticks + lane > cfg_.run.max_ticks) break;
     m_.lane_ticks += lane - ticks;
     ticks = lane;
     if (held) ++m_.lockstep_waits;

@@ -8,31 +8,11 @@ namespace gridify {
 
 static bool is_internal_id(const std::string& id) { return !id.empty() && id[0] == ':'; }
 
-// Does the space-separated vClass list name `cls`?
-static bool names(const std::string& list, const char* cls)
-{
-  size_t i = 0;
-  while (i < list.size()) {
-    while (i < list.size() && list[i] == ' ') ++i;
-    size_t j = i;
-    while (j < list.size() && list[j] != ' ') ++j;
-    if (list.compare(i, j - i, cls) == 0) return true;
-    i = j;
-  }
-  return false;
-}
-
 // SUMO's lane permissions for vClass passenger (the AGVs'): allow, else disallow, else all.
 static bool allows_agvs(const XmlSource& src, const pugi::xml_node& l)
 {
-  if (l.attribute("allow")) {
-    const std::string a = src.str(l, "allow");
-    return names(a, "all") || names(a, "passenger");
-  }
-  if (l.attribute("disallow")) {
-    const std::string d = src.str(l, "disallow");
-    return !names(d, "all") && !names(d, "passenger");
-  }
+  if (l.attribute("allow")) return lists_agv_class(src.str(l, "allow"));
+  if (l.attribute("disallow")) return !lists_agv_class(src.str(l, "disallow"));
   return true;
 }
 

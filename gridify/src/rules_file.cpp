@@ -10,28 +10,13 @@ namespace gridify {
 
 namespace {
 
-bool names(const std::string& list, const char* cls)
-{
-  std::istringstream in(list);
-  std::string w;
-  while (in >> w)
-    if (w == cls) return true;
-  return false;
-}
-
 // Does this closingReroute close its edge for the AGVs (vClass passenger, the default of
 // the controller's vType)? SUMO's default for a closing without allow/disallow: closed for
 // all but "authority".
 bool closes_for_agvs(const XmlSource& src, const pugi::xml_node& c)
 {
-  if (c.attribute("disallow")) {
-    const std::string d = src.str(c, "disallow");
-    return names(d, "all") || names(d, "passenger");
-  }
-  if (c.attribute("allow")) {
-    const std::string a = src.str(c, "allow");
-    return !names(a, "all") && !names(a, "passenger");
-  }
+  if (c.attribute("disallow")) return lists_agv_class(src.str(c, "disallow"));
+  if (c.attribute("allow")) return !lists_agv_class(src.str(c, "allow"));
   return true;
 }
 

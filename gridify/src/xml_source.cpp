@@ -100,4 +100,13 @@ double XmlSource::num_or(const pugi::xml_node& n, const char* attr, double def) 
   return n.attribute(attr) ? num(n, attr) : def;
 }
 
+bool lists_agv_class(const std::string& vclasses)
+{
+  std::istringstream in(vclasses);
+  std::string w;
+  while (in >> w)
+    if (w == "all" || w == "passenger") return true;
+  return false;
+}
+
 }  // namespace gridify

@@ -40,4 +40,8 @@ class XmlSource {
   pugi::xml_document doc_;
 };
 
+// Does a SUMO vClass list (an allow / disallow attribute: space-separated) name the AGVs'
+// class -- passenger, the controller's vType's -- or "all"?
+bool lists_agv_class(const std::string& vclasses);
+
 }  // namespace gridify
