@@ -8,7 +8,10 @@
 // along the rows (3 cells), stubs pick1/pick2 below r0 and drop0/drop3 above r1.
 #include <gtest/gtest.h>
 
+#include <libsumo/libsumo.h>
+
 #include <algorithm>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -67,6 +70,19 @@ inline Config rules_config(const std::string& name, const std::string& agents, c
   yaml += "output: {dir: " + dir + "}\n";
   yaml += rules;
   return parse_config(yaml, "rules_" + name + ".yaml", RTLACAM_CONFIGS);
+}
+
+// Another TraCI client's view of SUMO (Controller::on_tick): at tick `from` both lanes of
+// aisle c1 disallow `classes`, at tick `to` they allow every class again.
+inline std::function<void(long long, controller::SumoBackend&)> close_c1_lanes(long long from, long long to,
+                                                                               std::vector<std::string> classes)
+{
+  return [from, to, classes](long long tick, controller::SumoBackend&) {
+    for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) {
+      if (tick == from) libsumo::Lane::setDisallowed(l, classes);
+      if (tick == to) libsumo::Lane::setDisallowed(l, {});
+    }
+  };
 }
 
 inline std::string additional(const std::string& name, const std::string& body)

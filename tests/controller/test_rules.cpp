@@ -57,12 +57,7 @@ TEST(Rules, LanePermissionChangedOverTraciClosesCellsUntilReopened)
 {
   // Another client's view of SUMO: at tick 0 both lanes of aisle c1 disallow the AGVs'
   // class, at tick 25 they allow every class again. The controller sees it by polling.
-  auto close_c1 = [](long long tick, SumoBackend&) {
-    if (tick == 0)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"passenger"});
-    if (tick == 25)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
-  };
+  auto close_c1 = close_c1_lanes(0, 25, {"passenger"});
   Config cfg = rules_config("traci", kAround, "", "rules: {watch_lanes: true}\n");
   Controller c(cfg);
   c.on_tick = close_c1;
@@ -90,12 +85,7 @@ TEST(Rules, LanePermissionChangedOverTraciClosesCellsUntilReopened)
 // disallowed list tells the two apart.
 TEST(Rules, LaneClosedToEveryClassOverTraciIsSeen)
 {
-  auto close_c1 = [](long long tick, SumoBackend&) {
-    if (tick == 0)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"all"});
-    if (tick == 25)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
-  };
+  auto close_c1 = close_c1_lanes(0, 25, {"all"});
   Config cfg = rules_config("traci_all", kAround, "", "rules: {watch_lanes: true}\n");
   Controller c(cfg);
   c.on_tick = close_c1;
@@ -470,12 +460,7 @@ TEST(Rules, AdgFollowClosureReplansFromTheObservedState)
 // Without the watch SUMO refuses a route the plan needs.
 TEST(Rules, AdgFollowLanePermissionChangedOverTraciReplans)
 {
-  auto close_c1 = [](long long tick, SumoBackend&) {
-    if (tick == 3)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"passenger"});
-    if (tick == 25)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
-  };
+  auto close_c1 = close_c1_lanes(3, 25, {"passenger"});
   Config cfg = rules_config("adg_traci", kAround, "", "rules: {watch_lanes: true}\n");
   cfg.run.executor = "adg-follow";
   Controller c(cfg);

@@ -115,12 +115,7 @@ TEST(RulesRotation, AdgFollowClosureReplansRotationSolversFromTheObservedState)
 // refuses a route the plan needs.
 TEST(RulesRotation, PibtRotReplansWhenALanePermissionChangesOverTraci)
 {
-  auto close_c1 = [](long long tick, SumoBackend&) {
-    if (tick == 0)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {"passenger"});
-    if (tick == 25)
-      for (const char* l : {"c1r0_c1r1_0", "c1r1_c1r0_0"}) libsumo::Lane::setDisallowed(l, {});
-  };
+  auto close_c1 = close_c1_lanes(0, 25, {"passenger"});
   Config cfg = rules_config("rot_traci", kAround, "", "rules: {watch_lanes: true}\n", "pibt-rot");
   Controller c(cfg);
   c.on_tick = close_c1;

@@ -44,6 +44,18 @@ void expect_error(F f, std::vector<std::string> fragments)
   }
 }
 
+// read_plan's error for `text` as plan file p.txt on `g` ("no error" when it reads).
+std::string plan_error(const Graph& g, const std::string& text)
+{
+  std::stringstream in(text);
+  try {
+    read_plan(in, g, "p.txt");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
 }  // namespace
 
 TEST(MovingAi, LoadsTheBenchmarkMap)
@@ -164,15 +176,7 @@ TEST(PlanIo, ReadsBackWhatItWritesAndNamesBadLines)
   std::stringstream s;
   write_plan(s, g, ins.starts, ins.goals, plan, PlanHeader{});
   EXPECT_EQ(read_plan(s, g, "p.txt"), plan);
-  auto error_of = [&](const std::string& text) {
-    std::stringstream in(text);
-    try {
-      read_plan(in, g, "p.txt");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error_of = [&](const std::string& text) { return plan_error(g, text); };
   EXPECT_EQ(error_of("agents=1\n"), "p.txt: no 'solution=' line");
   EXPECT_EQ(error_of("solution=\n1:(0,0),\n"), "p.txt:2: timestep '1', expected 0");
   EXPECT_EQ(error_of("solution=\n0:(99,99),\n"), "p.txt:2: cell (99,99) is off the map");
@@ -185,15 +189,7 @@ TEST(PlanIo, ReadsBackWhatItWritesAndNamesBadLines)
 TEST(PlanIo, CoordinatesBeyondIntAreErrorsAndCrlfReads)
 {
   const Graph g = load_map(RTLACAM_TEST_DATA "/planner/random-32-32-20.map");
-  auto error_of = [&](const std::string& text) {
-    std::stringstream in(text);
-    try {
-      read_plan(in, g, "p.txt");
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error_of = [&](const std::string& text) { return plan_error(g, text); };
   EXPECT_EQ(error_of("solution=\n0:(0,0),\n1:(4294967296,0),\n"),
             "p.txt:3: expected '(x,y)' with integer coordinates, not '(4294967296,0)'");
   EXPECT_EQ(error_of("solution=\n0:(0,-9999999999),\n"),
